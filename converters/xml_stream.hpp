@@ -1,0 +1,62 @@
+#pragma once
+// Streaming, safe XML reading on top of libxml2's xmlTextReader: never builds a document tree, reads
+// .xml and .xml.gz alike, and has entity substitution, DTD loading and network access switched off.
+// Every error it raises names file:line.
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "core/error.hpp"
+
+namespace lpsim {
+
+class XmlStream {
+ public:
+  enum class Event { Start, End, Eof };
+
+  /// Opens `path`; a missing, unreadable or empty file is an InputError.
+  explicit XmlStream(const std::string& path);
+  ~XmlStream();
+  XmlStream(const XmlStream&) = delete;
+  XmlStream& operator=(const XmlStream&) = delete;
+
+  /// Advances to the next element start or end (an empty element yields Start then End).
+  /// Malformed or truncated XML raises InputError at the line where the parser stopped.
+  Event next();
+
+  /// Name and depth (root = 0) of the element of the last event.
+  const std::string& name() const { return name_; }
+  int depth() const { return depth_; }
+  int line() const { return line_; }
+  const std::string& path() const { return path_; }
+  SourceLoc loc() const { return SourceLoc{path_, line_}; }
+
+  /// Attribute access for the element of the last Start event.
+  std::optional<std::string> attr(const char* key) const;
+  bool has(const char* key) const { return attr(key).has_value(); }
+  std::string required(const char* key) const;
+  std::string get(const char* key, std::string_view fallback) const;
+  /// Strict number: the whole value must parse; NaN and infinities are refused.
+  double number(const char* key, double fallback) const;
+  double required_number(const char* key) const;
+  /// As number(), and additionally refuses negative values.
+  double non_negative(const char* key, double fallback) const;
+  long long integer(const char* key, long long fallback) const;
+
+  /// Raises InputError at the current element: "<elem id=...>: message".
+  [[noreturn]] void fail(const std::string& message) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  std::string path_, name_;
+  int depth_ = 0, line_ = 0;
+  bool pending_end_ = false;
+};
+
+/// Strict parse of a whole string as a finite double; nullopt when it is not one.
+std::optional<double> parse_double(std::string_view text);
+std::optional<long long> parse_integer(std::string_view text);
+
+}  // namespace lpsim

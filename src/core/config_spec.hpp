@@ -1,0 +1,26 @@
+#pragma once
+// What a run or a load is asked to do: a .sumocfg and/or command-line options, merged (options win).
+#include <string>
+#include <vector>
+
+namespace lpsim {
+
+struct OutputSpec {
+  std::string fcd, tripinfo, summary, edgedata, lanedata;
+  double fcd_period = 0;  // 0: every step
+};
+
+struct ConfigSpec {
+  std::string config_file;  // the .sumocfg, if any
+  std::string net_file;
+  std::vector<std::string> route_files, additional_files;
+  std::string lpsim_nodes_csv, lpsim_edges_csv, lpsim_od_csv;  // original LPSim format
+  double begin = 0, end = -1, step_length = 1.0;  // end -1: until all vehicles arrived
+  long long seed = 23423;
+  double time_to_teleport = 300;
+  bool ignore_route_errors = false;
+  int threads = 0;  // 0: all hardware threads
+  OutputSpec outputs;
+};
+
+}  // namespace lpsim

@@ -1,0 +1,105 @@
+#pragma once
+// Plain description of traffic demand as read from SUMO route files, add-files or an LPSim OD CSV.
+// Readers fill it; src/demand/demand_builder resolves ids, expands flows and routes trips.
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "core/error.hpp"
+
+namespace lpsim {
+
+struct VTypeSpec {
+  std::string id;
+  // SUMO 1.15 defaults for a passenger car.
+  double length = 5.0, min_gap = 2.5, accel = 2.6, decel = 4.5, emergency_decel = 9.0;
+  double max_speed = 55.56, speed_factor = 1.0, speed_dev = 0.1, tau = 1.0, sigma = 0.5;
+  bool speed_dev_given = false;
+  std::string vclass = "passenger";
+  std::string car_follow_model = "Krauss";
+  std::map<std::string, std::string> params;  // other attributes and car-following parameters (delta, ...)
+  SourceLoc loc;
+};
+
+struct WeightedId {
+  std::string id;
+  double probability = 1.0;
+};
+
+struct VTypeDistSpec {
+  std::string id;
+  std::vector<WeightedId> members;
+  SourceLoc loc;
+};
+
+struct RouteSpec {
+  std::string id;
+  std::vector<std::string> edges;
+  SourceLoc loc;
+};
+
+struct RouteDistSpec {
+  std::string id;
+  std::vector<WeightedId> members;  // route ids (inline routes are registered under generated ids)
+  SourceLoc loc;
+};
+
+// departLane / departPos / departSpeed / arrivalPos as SUMO writes them: a keyword or a number.
+enum class DepartLane : uint8_t { Given, First, Random, Free, Allowed, Best };
+enum class DepartPos : uint8_t { Given, Base, Random, Free, RandomFree, Last, Stop };
+enum class DepartSpeed : uint8_t { Given, Zero, Random, Max, Desired, SpeedLimit, Last, Avg };
+enum class ArrivalPos : uint8_t { Given, Max, Random };
+
+struct DepartSpec {
+  DepartLane lane = DepartLane::First;
+  int lane_index = 0;
+  DepartPos pos = DepartPos::Base;
+  double pos_value = 0;
+  DepartSpeed speed = DepartSpeed::Zero;
+  double speed_value = 0;
+  ArrivalPos arrival = ArrivalPos::Max;
+  double arrival_value = 0;
+};
+
+enum class DemandSource : uint8_t { Vehicle, Trip, Flow, OdCsv };
+
+/// A vehicle, a trip or an OD row: one traveller. Exactly one of route / edges / (from,to) names the path.
+struct VehicleSpec {
+  std::string id, type;  // type empty: DEFAULT_VEHTYPE
+  double depart = 0;     // s
+  DemandSource source = DemandSource::Vehicle;
+  std::string route;               // route or routeDistribution id
+  std::vector<std::string> edges;  // inline route
+  std::string from, to;            // trip endpoints (edge ids)
+  std::string from_junction, to_junction;  // trip endpoints as junctions (fromJunction / OD CSV nodes)
+  std::vector<std::string> via;
+  DepartSpec depart_spec;
+  SourceLoc loc;
+};
+
+/// A flow: a generator of vehicles. Exactly one of period / vehs_per_hour / probability; end or number.
+struct FlowSpec {
+  std::string id, type;
+  double begin = 0, end = -1;  // end -1: not given
+  double period = -1, vehs_per_hour = -1, probability = -1;
+  int64_t number = -1;
+  std::string route;
+  std::vector<std::string> edges;
+  std::string from, to, from_junction, to_junction;
+  std::vector<std::string> via;
+  DepartSpec depart_spec;
+  SourceLoc loc;
+};
+
+struct DemandSpec {
+  std::vector<VTypeSpec> vtypes;
+  std::vector<VTypeDistSpec> vtype_dists;
+  std::vector<RouteSpec> routes;
+  std::vector<RouteDistSpec> route_dists;
+  std::vector<VehicleSpec> vehicles;  // vehicles, trips and OD rows in file order
+  std::vector<FlowSpec> flows;
+  std::map<std::string, int64_t> skipped;  // element name -> count of unsupported elements (persons, ...)
+};
+
+}  // namespace lpsim

@@ -1,0 +1,86 @@
+#pragma once
+// Plain description of a road network as read from a file (SUMO .net.xml or the original LPSim CSV).
+// Readers in converters/ fill it; src/net/network_builder turns it into the lane-map layout. Ids stay strings
+// here; the builder maps them to dense indices.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/error.hpp"
+
+namespace lpsim {
+
+struct Point {
+  double x = 0, y = 0;
+};
+
+struct LaneSpec {
+  std::string id;
+  int index = 0;
+  double speed = 13.89;  // m/s
+  double length = 0;     // m
+  std::string allow, disallow;  // SUMO vClass lists, as written
+  bool passenger_allowed = true;  // resolved by the reader from allow/disallow
+  std::vector<Point> shape;
+  SourceLoc loc;
+};
+
+enum class EdgeFunction : uint8_t { Normal, Internal, Connector, Crossing, WalkingArea };
+
+struct EdgeSpec {
+  std::string id, from, to;  // from/to junction ids (empty for internal edges)
+  EdgeFunction function = EdgeFunction::Normal;
+  int priority = -1;
+  std::string type;
+  std::vector<LaneSpec> lanes;  // ordered by index
+  SourceLoc loc;
+};
+
+struct JunctionSpec {
+  std::string id, type;  // type as in SUMO: traffic_light, priority, right_before_left, allway_stop, ...
+  double x = 0, y = 0;
+  std::vector<std::string> inc_lanes, int_lanes;
+  SourceLoc loc;
+};
+
+struct ConnectionSpec {
+  std::string from, to;  // edge ids
+  int from_lane = 0, to_lane = 0;
+  std::string via;  // internal lane id, empty if none
+  std::string tl;   // traffic light id, empty if none
+  int link_index = -1;
+  char dir = 's';    // s,t,l,r,L,R,T(invalid)
+  char state = 'M';  // M,m,=,o,O,s,w,Z,...
+  SourceLoc loc;
+};
+
+struct PhaseSpec {
+  double duration = 0;
+  std::string state;
+  double min_dur = -1, max_dur = -1;  // -1: not given
+  std::string name;
+};
+
+struct TlLogicSpec {
+  std::string id, program_id, type = "static";  // static, actuated, delay_based, ...
+  double offset = 0;
+  std::vector<PhaseSpec> phases;
+  SourceLoc loc;
+};
+
+struct RoundaboutSpec {
+  std::vector<std::string> nodes, edges;
+};
+
+struct NetSpec {
+  std::string source;  // file it came from
+  std::vector<EdgeSpec> edges;
+  std::vector<JunctionSpec> junctions;
+  std::vector<ConnectionSpec> connections;
+  std::vector<TlLogicSpec> tl_logics;
+  std::vector<RoundaboutSpec> roundabouts;
+  Point net_offset;                 // <location netOffset>
+  int64_t skipped_non_car_lanes = 0;  // lanes a passenger car may not use
+};
+
+}  // namespace lpsim

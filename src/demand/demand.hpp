@@ -1,0 +1,58 @@
+#pragma once
+// Demand as the engine sees it: vehicle types and vehicles in structure-of-arrays form, routes as arrays of
+// edge indices, sorted by depart time (ties keep file order). Built by demand_builder from a DemandSpec.
+#include <cstdint>
+#include <map>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "core/demand_spec.hpp"
+
+namespace lpsim {
+
+struct VehicleTypes {
+  std::vector<std::string> id;
+  std::vector<float> length, min_gap, accel, decel, emergency_decel, max_speed;
+  std::vector<float> speed_factor, speed_dev, tau, sigma, delta;  // delta: IDM acceleration exponent
+  std::vector<std::string> vclass, car_follow_model;
+  std::unordered_map<std::string, uint32_t> index;
+
+  uint32_t size() const { return static_cast<uint32_t>(id.size()); }
+};
+
+struct Demand {
+  VehicleTypes types;
+
+  // --- vehicles, sorted by depart ---
+  std::vector<std::string> vehicle_id;
+  std::vector<uint32_t> vehicle_type;
+  std::vector<double> depart;          // s
+  std::vector<uint32_t> route_begin;   // [route_begin[v], route_begin[v] + route_length[v]) in route_edges
+  std::vector<uint32_t> route_length;
+  std::vector<float> speed_factor;     // drawn per vehicle from its type (deterministic in seed and id)
+  std::vector<DemandSource> source;
+  std::vector<uint8_t> depart_lane_kind;   // DepartLane
+  std::vector<int8_t> depart_lane;         // for DepartLane::Given
+  std::vector<uint8_t> depart_pos_kind;    // DepartPos
+  std::vector<float> depart_pos;
+  std::vector<uint8_t> depart_speed_kind;  // DepartSpeed
+  std::vector<float> depart_speed;
+  std::vector<uint8_t> arrival_pos_kind;   // ArrivalPos
+  std::vector<float> arrival_pos;
+
+  std::vector<uint32_t> route_edges;  // edge indices; routes shared by id are stored once
+
+  // --- what was not turned into vehicles ---
+  struct Skipped {
+    std::string id, reason;
+    SourceLoc loc;
+  };
+  std::vector<Skipped> unroutable;  // trips without a path (kept only with ignore_route_errors)
+  std::map<std::string, int64_t> unsupported;  // from DemandSpec::skipped
+
+  uint32_t size() const { return static_cast<uint32_t>(vehicle_id.size()); }
+  uint64_t count(DemandSource s) const;
+};
+
+}  // namespace lpsim

@@ -1,0 +1,97 @@
+#pragma once
+// The network as the engine sees it: dense tables in structure-of-arrays form, built once from a NetSpec
+// by network_builder. Only lanes a passenger car may use are present. Every lane (normal and internal
+// junction lanes) owns a contiguous run of 1-metre cells in one lane map; no padding between lanes.
+//
+// Index conventions: edges, lanes, connections, junctions and signals are numbered densely from 0 in the
+// order of the source file. -1 (kNone) marks "none" in int32 fields.
+#include <cstdint>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "core/net_spec.hpp"
+
+namespace lpsim {
+
+inline constexpr int32_t kNone = -1;
+
+enum class JunctionType : uint8_t {
+  Priority, TrafficLight, RightBeforeLeft, AllwayStop, PriorityStop, Zipper, DeadEnd, Internal, Unregulated, Other
+};
+
+struct Network {
+  // --- edges (normal and internal) ---
+  std::vector<std::string> edge_id;
+  std::vector<uint32_t> edge_first_lane;  // lanes of an edge are contiguous, ordered by SUMO index
+  std::vector<uint8_t> edge_num_lanes;    // car lanes only; 0 if the edge has none
+  std::vector<int32_t> edge_from_junction, edge_to_junction;  // kNone for internal edges
+  std::vector<uint8_t> edge_is_internal;
+  std::vector<float> edge_length;  // m (length of its first car lane)
+  std::vector<float> edge_speed;   // m/s, max over its car lanes (as SUMO's edge speed)
+  std::vector<int32_t> edge_priority;
+
+  // --- lanes (car lanes only) ---
+  std::vector<std::string> lane_id;
+  std::vector<uint32_t> lane_edge;
+  std::vector<uint8_t> lane_index;     // SUMO lane index within its edge
+  std::vector<float> lane_length;      // m
+  std::vector<float> lane_speed;       // m/s
+  std::vector<uint64_t> lane_cell_begin;  // first cell in the lane map; size lanes+1 (last = total cells)
+  std::vector<uint32_t> lane_conn_begin;  // outgoing connections [begin[l], begin[l+1]); size lanes+1
+  std::vector<uint32_t> lane_shape_begin; // points [begin[l], begin[l+1]) in shape_x/shape_y; size lanes+1
+  std::vector<float> shape_x, shape_y;    // lane shapes, net coordinates
+
+  // --- connections: lane-to-lane links, grouped by from_lane (CSR via lane_conn_begin) ---
+  std::vector<uint32_t> conn_from_lane, conn_to_lane;
+  std::vector<int32_t> conn_via_lane;   // internal lane the vehicle crosses, kNone if direct
+  std::vector<uint32_t> conn_to_edge;
+  std::vector<int32_t> conn_signal;     // index into signals, kNone if not signal controlled
+  std::vector<int16_t> conn_link_index; // link index within the signal program, -1 if none
+  std::vector<char> conn_state;         // SUMO connection state: M m = s w o O Z ...
+  std::vector<char> conn_dir;           // s l r t L R
+  std::vector<int32_t> conn_junction;   // junction crossed, kNone if unknown
+
+  // --- junctions ---
+  std::vector<std::string> junction_id;
+  std::vector<JunctionType> junction_type;
+  std::vector<float> junction_x, junction_y;
+
+  // --- signals: one program per traffic light (the one in force: add-files replace the net's) ---
+  std::vector<std::string> signal_id, signal_program;
+  std::vector<uint8_t> signal_actuated;     // actuated programs run their static plan (documented)
+  std::vector<float> signal_offset;         // s
+  std::vector<uint32_t> signal_phase_begin; // phases [begin[s], begin[s+1]); size signals+1
+  std::vector<float> phase_duration;        // s
+  std::vector<float> phase_min_dur, phase_max_dur;  // -1 when not given
+  std::vector<uint32_t> phase_state_begin;  // chars [begin[p], begin[p]+signal_links) in phase_state
+  std::vector<char> phase_state;            // r y g G s u o O per link index
+
+  // --- roundabouts (kept for priority rules) ---
+  std::vector<std::vector<uint32_t>> roundabout_edges;
+
+  // --- provenance ---
+  int64_t skipped_non_car_lanes = 0;
+  int64_t skipped_connections = 0;  // connections touching a non-car lane
+  Point net_offset;
+
+  // --- lookups (built by the builder) ---
+  std::unordered_map<std::string, uint32_t> edge_index, lane_index_by_id, junction_index, signal_index;
+
+  uint32_t num_edges() const { return static_cast<uint32_t>(edge_id.size()); }
+  uint32_t num_lanes() const { return static_cast<uint32_t>(lane_id.size()); }
+  uint32_t num_connections() const { return static_cast<uint32_t>(conn_from_lane.size()); }
+  uint32_t num_junctions() const { return static_cast<uint32_t>(junction_id.size()); }
+  uint32_t num_signals() const { return static_cast<uint32_t>(signal_id.size()); }
+  uint64_t num_cells() const { return lane_cell_begin.empty() ? 0 : lane_cell_begin.back(); }
+
+  /// Edges a vehicle may drive next from `edge` (some car lane of `edge` connects to some car lane of it).
+  /// CSR built by the builder: successors [edge_succ_begin[e], edge_succ_begin[e+1]) in edge_succ.
+  std::vector<uint32_t> edge_succ_begin, edge_succ;
+  bool connected(uint32_t from_edge, uint32_t to_edge) const;
+
+  /// Lane-km of normal (non-internal) car lanes.
+  double lane_km() const;
+};
+
+}  // namespace lpsim
