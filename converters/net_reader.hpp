@@ -5,8 +5,8 @@
 
 namespace lpsim {
 
-/// Reads a SUMO .net.xml or .net.xml.gz (streaming). Lanes a passenger car may not use are dropped and
-/// counted in NetSpec::skipped_non_car_lanes; edges left without car lanes are kept with no lanes.
+/// Reads a SUMO .net.xml or .net.xml.gz (streaming). Every lane is kept with passenger_allowed resolved;
+/// lanes a passenger car may not use are counted in NetSpec::skipped_non_car_lanes (the builder drops them).
 NetSpec read_sumo_net(const std::string& path);
 
 }  // namespace lpsim
