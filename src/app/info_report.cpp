@@ -1,0 +1,117 @@
+#include "app/info_report.hpp"
+
+#include <cstdio>
+#include <map>
+
+namespace lpsim {
+
+namespace {
+
+const char* junction_type_name(JunctionType t) {
+  switch (t) {
+    case JunctionType::Priority: return "priority";
+    case JunctionType::TrafficLight: return "traffic_light";
+    case JunctionType::RightBeforeLeft: return "right_before_left";
+    case JunctionType::AllwayStop: return "allway_stop";
+    case JunctionType::PriorityStop: return "priority_stop";
+    case JunctionType::Zipper: return "zipper";
+    case JunctionType::DeadEnd: return "dead_end";
+    case JunctionType::Internal: return "internal";
+    case JunctionType::Unregulated: return "unregulated";
+    case JunctionType::Other: return "other";
+  }
+  return "other";
+}
+
+std::string fmt(const char* f, auto... args) {
+  char buf[512];
+  std::snprintf(buf, sizeof buf, f, args...);
+  return buf;
+}
+
+}  // namespace
+
+std::string unsupported_summary(const Demand& demand) {
+  if (demand.unsupported.empty()) return "";
+  std::string s = "skipped unsupported elements:";
+  bool first = true;
+  for (const auto& [name, n] : demand.unsupported) {
+    s += fmt("%s %s %lld", first ? "" : ",", name.c_str(), static_cast<long long>(n));
+    first = false;
+  }
+  return s;
+}
+
+std::string describe_scenario(const Scenario& sc) {
+  const Network& net = sc.network;
+  const Demand& d = sc.demand;
+  std::string out;
+
+  std::map<std::string, uint64_t> by_jtype;
+  uint64_t real_junctions = 0;
+  for (auto t : net.junction_type) {
+    if (t == JunctionType::Internal) continue;
+    ++real_junctions;
+    ++by_jtype[junction_type_name(t)];
+  }
+  out += fmt("junctions: %llu", static_cast<unsigned long long>(real_junctions));
+  std::string sep = " (";
+  for (const auto& [name, n] : by_jtype) {
+    out += fmt("%s%s %llu", sep.c_str(), name.c_str(), static_cast<unsigned long long>(n));
+    sep = ", ";
+  }
+  out += real_junctions ? ")\n" : "\n";
+
+  uint64_t normal_edges = 0, internal_edges = 0, normal_lanes = 0, internal_lanes = 0;
+  for (uint32_t e = 0; e < net.num_edges(); ++e) {
+    if (net.edge_is_internal[e]) {
+      ++internal_edges;
+      internal_lanes += net.edge_num_lanes[e];
+    } else {
+      ++normal_edges;
+      normal_lanes += net.edge_num_lanes[e];
+    }
+  }
+  out += fmt("edges: %llu normal, %llu internal\n", static_cast<unsigned long long>(normal_edges),
+             static_cast<unsigned long long>(internal_edges));
+  out += fmt("lanes: %llu car lanes on normal edges (%.3f lane-km), %llu internal; skipped non-car lanes: %lld\n",
+             static_cast<unsigned long long>(normal_lanes), net.lane_km(),
+             static_cast<unsigned long long>(internal_lanes), static_cast<long long>(net.skipped_non_car_lanes));
+  out += fmt("connections: %u (skipped, touching non-car lanes: %lld)\n", net.num_connections(),
+             static_cast<long long>(net.skipped_connections));
+  uint64_t actuated = 0;
+  for (auto a : net.signal_actuated) actuated += a;
+  out += fmt("signal programs: %u (%llu static, %llu actuated)\n", net.num_signals(),
+             static_cast<unsigned long long>(net.num_signals() - actuated), static_cast<unsigned long long>(actuated));
+  out += fmt("lane map: %llu cells (%.1f MiB)\n", static_cast<unsigned long long>(net.num_cells()),
+             static_cast<double>(net.num_cells()) / (1024.0 * 1024.0));
+
+  out += fmt("vehicles: %u\n", d.size());
+  out += fmt("  by source: routes %llu, trips %llu, flows %llu, od-csv %llu\n",
+             static_cast<unsigned long long>(d.count(DemandSource::Vehicle)),
+             static_cast<unsigned long long>(d.count(DemandSource::Trip)),
+             static_cast<unsigned long long>(d.count(DemandSource::Flow)),
+             static_cast<unsigned long long>(d.count(DemandSource::OdCsv)));
+  std::vector<uint64_t> per_type(d.types.size(), 0);
+  for (auto t : d.vehicle_type) ++per_type[t];
+  out += "  by type:";
+  sep = " ";
+  for (uint32_t t = 0; t < d.types.size(); ++t) {
+    if (per_type[t] == 0) continue;
+    out += fmt("%s%s %llu", sep.c_str(), d.types.id[t].c_str(), static_cast<unsigned long long>(per_type[t]));
+    sep = ", ";
+  }
+  out += "\n";
+  if (d.size() > 0) out += fmt("  departures: %.2f s to %.2f s\n", d.depart.front(), d.depart.back());
+  out += fmt("unrouted or skipped vehicles: %zu\n", d.unroutable.size());
+  for (size_t i = 0; i < d.unroutable.size() && i < 10; ++i)
+    out += "  " + d.unroutable[i].id + ": " + d.unroutable[i].reason + " (" + d.unroutable[i].loc.str() + ")\n";
+  if (d.unroutable.size() > 10) out += fmt("  ... and %zu more\n", d.unroutable.size() - 10);
+  std::string unsupported = unsupported_summary(d);
+  out += unsupported.empty() ? "skipped unsupported elements: none\n" : unsupported + "\n";
+  out += fmt("edgeData/laneData definitions: %zu\n", sc.mean_data.size());
+  out += fmt("load time: %.3f s\n", sc.load_seconds);
+  return out;
+}
+
+}  // namespace lpsim

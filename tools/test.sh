@@ -1,0 +1,9 @@
+#!/usr/bin/env bash
+# The README's test command: installs what is missing, builds, runs every test (GPU tests skip without a GPU).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+tools/install_deps.sh
+tools/build.sh
+export SUMO_HOME="${SUMO_HOME:-/usr/share/sumo}"
+cd build
+ctest --output-on-failure -j "$(nproc)" "$@"
