@@ -1,6 +1,57 @@
+// The `lpsim` command: dispatches sub-commands, prints errors as one line, and maps them to exit codes
+// (2: bad input or usage, 1: internal failure).
 #include <cstdio>
+#include <exception>
+#include <string>
+#include <vector>
 
-int main() {
-  std::puts("lpsim: commands are being built");
-  return 0;
+#include "app/commands.hpp"
+#include "core/error.hpp"
+
+namespace {
+
+constexpr const char* kUsage = R"(usage: lpsim <command> [options]
+
+commands:
+  info     load a scenario and report what it holds
+           lpsim info -c scenario.sumocfg | lpsim info -n net.xml -r routes.xml [-a add.xml]
+           lpsim info --lpsim-nodes nodes.csv --lpsim-edges edges.csv [--lpsim-od od.csv]
+           lpsim info scenario.lpsim (a snapshot written by convert)
+  convert  load a scenario and write a binary snapshot that later commands load much faster
+           lpsim convert -c scenario.sumocfg -o scenario.lpsim
+  version  print the version
+
+options follow SUMO's names: -c, -n/--net-file, -r/--route-files, -a/--additional-files, -b/--begin,
+-e/--end, --step-length, --seed, --threads, --ignore-route-errors, --time-to-teleport, output options.
+)";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<std::string> args(argv + 1, argv + argc);
+  if (args.empty() || args[0] == "-h" || args[0] == "--help" || args[0] == "help") {
+    std::fputs(kUsage, args.empty() ? stderr : stdout);
+    return args.empty() ? lpsim::kExitBadInput : 0;
+  }
+  const std::string command = args[0];
+  args.erase(args.begin());
+  try {
+    if (command == "info") return lpsim::command_info(args);
+    if (command == "convert") return lpsim::command_convert(args);
+    if (command == "version" || command == "--version") {
+      std::printf("lpsim %s\n", LPSIM_VERSION);
+      return 0;
+    }
+    std::fprintf(stderr, "lpsim: error: unknown command '%s'\n%s", command.c_str(), kUsage);
+    return lpsim::kExitBadInput;
+  } catch (const lpsim::InputError& e) {
+    std::fprintf(stderr, "lpsim: error: %s\n", e.what());
+    return lpsim::kExitBadInput;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "lpsim: error: out of memory\n");
+    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "lpsim: internal error: %s\n", e.what());
+    return 1;
+  }
 }

@@ -1,0 +1,12 @@
+#pragma once
+// The sub-commands of the lpsim CLI. Each takes the arguments after its name and returns the exit status;
+// bad input is raised as InputError (the caller prints it and exits with 2).
+#include <string>
+#include <vector>
+
+namespace lpsim {
+
+int command_info(const std::vector<std::string>& args);
+int command_convert(const std::vector<std::string>& args);
+
+}  // namespace lpsim
