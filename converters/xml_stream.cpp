@@ -78,7 +78,12 @@ XmlStream::Event XmlStream::next() {
       const xmlChar* n = xmlTextReaderConstName(impl_->reader);
       name_ = n ? reinterpret_cast<const char*>(n) : "";
       depth_ = xmlTextReaderDepth(impl_->reader);
-      line_ = xmlTextReaderGetParserLineNumber(impl_->reader);
+      // The parser reads ahead (up to a 512-byte chunk), so its line can be past the element's own start
+      // tag; the node keeps the exact line, but libxml2 caps it at 65535 for elements: beyond that the
+      // parser's line is the best estimate there is.
+      long node_line = xmlGetLineNo(xmlTextReaderCurrentNode(impl_->reader));
+      line_ = node_line > 0 && node_line < 65535 ? static_cast<int>(node_line)
+                                                   : xmlTextReaderGetParserLineNumber(impl_->reader);
       pending_end_ = xmlTextReaderIsEmptyElement(impl_->reader) == 1;
       return Event::Start;
     }

@@ -21,6 +21,7 @@ struct ConfigSpec {
   bool ignore_route_errors = false;
   int threads = 0;  // 0: all hardware threads
   OutputSpec outputs;
+  std::string output_file;  // -o/--output on the command line: LPSim's own result file
 };
 
 }  // namespace lpsim

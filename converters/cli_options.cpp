@@ -1,0 +1,261 @@
+#include "converters/cli_options.hpp"
+
+#include <algorithm>
+#include <filesystem>
+
+#include "converters/sumocfg_reader.hpp"
+#include "converters/xml_stream.hpp"
+
+namespace lpsim {
+
+namespace {
+
+enum class Kind { Path, PathList, Time, Bool, Integer };
+
+// A checked value, handed to the option's store function.
+struct Value {
+  std::string text;
+  std::vector<std::string> list;
+  double seconds = 0;
+  long long integer = 0;
+  bool flag = false;
+};
+
+enum class Check { None, NonNegative, Positive };
+
+struct OptionDef {
+  std::string_view name, synonym;  // long name and SUMO synonym (empty if none)
+  char short_name;                 // 0 if none
+  Kind kind;
+  Check check;
+  bool command_line_only;
+  void (*store)(ConfigSpec&, Value&&);
+};
+
+constexpr std::string_view kConfigFile = "configuration-file";
+
+// clang-format off
+const OptionDef kOptions[] = {
+  {kConfigFile, "", 'c', Kind::Path, Check::None, true, [](ConfigSpec& c, Value&& v) { c.config_file = std::move(v.text); }},
+  {"net-file", "net", 'n', Kind::Path, Check::None, false, [](ConfigSpec& c, Value&& v) { c.net_file = std::move(v.text); }},
+  {"route-files", "routes", 'r', Kind::PathList, Check::None, false, [](ConfigSpec& c, Value&& v) { c.route_files = std::move(v.list); }},
+  {"additional-files", "additional", 'a', Kind::PathList, Check::None, false, [](ConfigSpec& c, Value&& v) { c.additional_files = std::move(v.list); }},
+  {"begin", "", 'b', Kind::Time, Check::None, false, [](ConfigSpec& c, Value&& v) { c.begin = v.seconds; }},
+  {"end", "", 'e', Kind::Time, Check::None, false, [](ConfigSpec& c, Value&& v) { c.end = v.seconds; }},
+  {"step-length", "", 0, Kind::Time, Check::Positive, false, [](ConfigSpec& c, Value&& v) { c.step_length = v.seconds; }},
+  {"seed", "", 0, Kind::Integer, Check::None, false, [](ConfigSpec& c, Value&& v) { c.seed = v.integer; }},
+  // Negative disables teleporting, as in SUMO.
+  {"time-to-teleport", "", 0, Kind::Time, Check::None, false, [](ConfigSpec& c, Value&& v) { c.time_to_teleport = v.seconds; }},
+  {"ignore-route-errors", "", 0, Kind::Bool, Check::None, false, [](ConfigSpec& c, Value&& v) { c.ignore_route_errors = v.flag; }},
+  {"threads", "", 0, Kind::Integer, Check::NonNegative, false, [](ConfigSpec& c, Value&& v) { c.threads = static_cast<int>(v.integer); }},
+  {"fcd-output", "", 0, Kind::Path, Check::None, false, [](ConfigSpec& c, Value&& v) { c.outputs.fcd = std::move(v.text); }},
+  {"device.fcd.period", "", 0, Kind::Time, Check::NonNegative, false, [](ConfigSpec& c, Value&& v) { c.outputs.fcd_period = v.seconds; }},
+  {"tripinfo-output", "", 0, Kind::Path, Check::None, false, [](ConfigSpec& c, Value&& v) { c.outputs.tripinfo = std::move(v.text); }},
+  {"summary-output", "summary", 0, Kind::Path, Check::None, false, [](ConfigSpec& c, Value&& v) { c.outputs.summary = std::move(v.text); }},
+  {"edgedata-output", "", 0, Kind::Path, Check::None, false, [](ConfigSpec& c, Value&& v) { c.outputs.edgedata = std::move(v.text); }},
+  {"lanedata-output", "", 0, Kind::Path, Check::None, false, [](ConfigSpec& c, Value&& v) { c.outputs.lanedata = std::move(v.text); }},
+  {"lpsim-nodes", "", 0, Kind::Path, Check::None, false, [](ConfigSpec& c, Value&& v) { c.lpsim_nodes_csv = std::move(v.text); }},
+  {"lpsim-edges", "", 0, Kind::Path, Check::None, false, [](ConfigSpec& c, Value&& v) { c.lpsim_edges_csv = std::move(v.text); }},
+  {"lpsim-od", "", 0, Kind::Path, Check::None, false, [](ConfigSpec& c, Value&& v) { c.lpsim_od_csv = std::move(v.text); }},
+  {"output", "", 'o', Kind::Path, Check::None, true, [](ConfigSpec& c, Value&& v) { c.output_file = std::move(v.text); }},
+};
+// clang-format on
+
+const OptionDef* find_long(std::string_view name) {
+  for (const auto& d : kOptions)
+    if (d.name == name || (!d.synonym.empty() && d.synonym == name)) return &d;
+  return nullptr;
+}
+
+const OptionDef* find_short(char c) {
+  for (const auto& d : kOptions)
+    if (d.short_name != 0 && d.short_name == c) return &d;
+  return nullptr;
+}
+
+std::string resolve(const std::string& path, const std::string& base_dir) {
+  if (path.empty() || base_dir.empty()) return path;
+  std::filesystem::path p(path);
+  if (p.is_absolute()) return path;
+  return (std::filesystem::path(base_dir) / p).lexically_normal().string();
+}
+
+[[noreturn]] void bad_value(const OptionSource& where, std::string_view name, const std::string& value,
+                            const std::string& expected) {
+  std::string label = where.command_line ? "--" + std::string(name) : "<" + std::string(name) + ">";
+  throw InputError(where.loc, label + ": " + expected + ", got '" + value + "'");
+}
+
+Value convert(const OptionDef& def, std::string_view name, const std::string& value, const OptionSource& where) {
+  Value v;
+  switch (def.kind) {
+    case Kind::Path:
+      v.text = resolve(value, where.base_dir);
+      break;
+    case Kind::PathList: {
+      size_t i = 0;
+      while (i < value.size()) {
+        auto sep = [](char c) { return c == ',' || c == ' ' || c == '\t' || c == '\n' || c == '\r'; };
+        while (i < value.size() && sep(value[i])) ++i;
+        size_t start = i;
+        while (i < value.size() && !sep(value[i])) ++i;
+        if (i > start) v.list.push_back(resolve(value.substr(start, i - start), where.base_dir));
+      }
+      break;
+    }
+    case Kind::Time: {
+      auto t = parse_sumo_time(value);
+      if (!t) bad_value(where, name, value, "expected a time (seconds, h:m:s or d:h:m:s)");
+      if (def.check == Check::Positive && *t <= 0) bad_value(where, name, value, "expected a positive time");
+      if (def.check == Check::NonNegative && *t < 0) bad_value(where, name, value, "expected a time >= 0");
+      v.seconds = *t;
+      break;
+    }
+    case Kind::Bool: {
+      auto b = parse_sumo_bool(value);
+      if (!b) bad_value(where, name, value, "expected true or false");
+      v.flag = *b;
+      break;
+    }
+    case Kind::Integer: {
+      auto n = parse_integer(value);
+      if (!n) bad_value(where, name, value, "expected an integer");
+      if (def.check == Check::NonNegative && (*n < 0 || *n > 1'000'000))
+        bad_value(where, name, value, "expected an integer between 0 and 1000000");
+      v.integer = *n;
+      break;
+    }
+  }
+  return v;
+}
+
+bool looks_like_option(const std::string& arg) {
+  if (arg.size() < 2 || arg[0] != '-') return false;
+  return !parse_sumo_time(arg);  // "-1" is a value, not an option
+}
+
+}  // namespace
+
+bool apply_option(ConfigSpec& config, std::string_view name, const std::string& value, const OptionSource& where) {
+  const OptionDef* def = find_long(name);
+  if (!def || (def->command_line_only && !where.command_line)) return false;
+  def->store(config, convert(*def, name, value, where));
+  return true;
+}
+
+std::optional<double> parse_sumo_time(std::string_view text) {
+  while (!text.empty() && (text.front() == ' ' || text.front() == '\t')) text.remove_prefix(1);
+  while (!text.empty() && (text.back() == ' ' || text.back() == '\t')) text.remove_suffix(1);
+  if (text.find(':') == std::string_view::npos) return parse_double(text);
+  double sign = 1;
+  if (!text.empty() && text.front() == '-') {
+    sign = -1;
+    text.remove_prefix(1);
+  }
+  std::vector<std::string_view> parts;
+  size_t start = 0;
+  for (;;) {
+    size_t colon = text.find(':', start);
+    parts.push_back(text.substr(start, colon == std::string_view::npos ? std::string_view::npos : colon - start));
+    if (colon == std::string_view::npos) break;
+    start = colon + 1;
+  }
+  if (parts.size() != 3 && parts.size() != 4) return std::nullopt;
+  static constexpr double kUnit[] = {86400, 3600, 60, 1};  // d, h, m, s
+  const size_t first_unit = 4 - parts.size();
+  double total = 0;
+  for (size_t i = 0; i < parts.size(); ++i) {
+    if (parts[i].empty() || parts[i].front() == '-' || parts[i].front() == '+') return std::nullopt;
+    const bool last = i + 1 == parts.size();
+    std::optional<double> value;
+    if (last) {
+      value = parse_double(parts[i]);
+    } else if (auto n = parse_integer(parts[i])) {
+      value = static_cast<double>(*n);
+    }
+    if (!value) return std::nullopt;
+    total += *value * kUnit[first_unit + i];
+  }
+  return sign * total;
+}
+
+std::optional<bool> parse_sumo_bool(std::string_view text) {
+  std::string lower(text);
+  std::transform(lower.begin(), lower.end(), lower.begin(),
+                 [](unsigned char c) { return static_cast<char>(c >= 'A' && c <= 'Z' ? c - 'A' + 'a' : c); });
+  if (lower == "true" || lower == "yes" || lower == "on" || lower == "1" || lower == "x") return true;
+  if (lower == "false" || lower == "no" || lower == "off" || lower == "0" || lower == "-") return false;
+  return std::nullopt;
+}
+
+ConfigSpec parse_cli_options(const std::vector<std::string>& args, std::vector<std::string>* positional) {
+  struct Given {
+    const OptionDef* def;
+    std::string value;
+  };
+  std::vector<Given> given;
+  std::vector<std::string> rest;
+  std::string config_file;
+  const OptionSource where{SourceLoc{"command line", 0}, "", true};
+
+  for (size_t i = 0; i < args.size(); ++i) {
+    const std::string& arg = args[i];
+    if (arg == "--") {
+      rest.insert(rest.end(), args.begin() + static_cast<std::ptrdiff_t>(i) + 1, args.end());
+      break;
+    }
+    if (!looks_like_option(arg)) {
+      rest.push_back(arg);
+      continue;
+    }
+    const OptionDef* def = nullptr;
+    std::optional<std::string> inline_value;
+    if (arg.rfind("--", 0) == 0) {
+      std::string_view body = std::string_view(arg).substr(2);
+      size_t eq = body.find('=');
+      if (eq != std::string_view::npos) inline_value = std::string(body.substr(eq + 1));
+      def = find_long(body.substr(0, eq));
+    } else if (arg.size() == 2 || arg[2] == '=') {
+      def = find_short(arg[1]);
+      if (arg.size() > 2) inline_value = arg.substr(3);
+    }
+    if (!def) throw InputError(where.loc, "unknown option '" + arg + "'");
+    const std::string shown = "--" + std::string(def->name);
+
+    std::string value;
+    if (inline_value) {
+      value = *inline_value;
+    } else if (def->kind == Kind::Bool) {
+      // A bare flag means true; a following true/false belongs to it.
+      if (i + 1 < args.size() && parse_sumo_bool(args[i + 1])) {
+        value = args[++i];
+      } else {
+        value = "true";
+      }
+    } else {
+      if (i + 1 >= args.size() || looks_like_option(args[i + 1]))
+        throw InputError(where.loc, "option '" + arg + "' (" + shown + ") needs a value");
+      value = args[++i];
+    }
+
+    if (def->name == kConfigFile) {
+      if (!config_file.empty()) throw InputError(where.loc, "option '" + arg + "' given more than once");
+      if (value.empty()) throw InputError(where.loc, "option '" + arg + "' needs a file name");
+      config_file = value;
+    } else {
+      given.push_back({def, std::move(value)});
+    }
+  }
+
+  ConfigSpec config = config_file.empty() ? ConfigSpec{} : read_sumocfg(config_file);
+  for (auto& g : given) g.def->store(config, convert(*g.def, g.def->name, g.value, where));
+
+  if (positional) {
+    *positional = std::move(rest);
+  } else if (!rest.empty()) {
+    throw InputError(where.loc, "unexpected argument '" + rest.front() + "'");
+  }
+  return config;
+}
+
+}  // namespace lpsim
