@@ -30,13 +30,15 @@ void FcdWriter::write(const FcdFrame& frame) {
   out_.text(">\n");
   for (size_t i = 0; i < n; ++i) {
     const uint32_t vehicle = frame.vehicle[i], lane = frame.lane[i];
+    const uint32_t type = demand_.vehicle_type[vehicle];
     const LanePoint point = geometry_.at(lane, frame.pos[i]);
+    const double angle = geometry_.vehicle_heading(lane, frame.pos[i], demand_.types.length[type]);
     out_.text("        <vehicle");
     out_.attr("id", demand_.vehicle_id[vehicle]);
     out_.attr_fixed("x", point.x);
     out_.attr_fixed("y", point.y);
-    out_.attr_fixed("angle", point.angle);
-    out_.attr("type", demand_.types.id[demand_.vehicle_type[vehicle]]);
+    out_.attr_fixed("angle", angle);
+    out_.attr("type", demand_.types.id[type]);
     out_.attr_fixed("speed", frame.speed[i]);
     out_.attr_fixed("pos", frame.pos[i]);
     out_.attr("lane", net_.lane_id[lane]);

@@ -1,7 +1,8 @@
 #pragma once
 // FCD (floating car data) output in SUMO's fcd_file.xsd format: one <timestep> per sampled step, one
 // <vehicle> per running vehicle with SUMO's attribute order (id x y angle type speed pos lane slope).
-// x/y are the middle of the front bumper in net coordinates; slope is 0 (the network is planar).
+// x/y are the middle of the front bumper in net coordinates; angle is the back-to-front heading as SUMO
+// computes it (see lane_geometry.hpp); slope is 0 (the network is planar).
 // Steps without vehicles are still written, as an empty <timestep/>, as SUMO does.
 #include <string>
 

@@ -3,10 +3,14 @@
 //
 // SUMO draws a lane along its shape polyline, whose 2D length may differ from the lane's nominal length
 // (the length used for driving). A lane position p is mapped to the shape offset p * shape_length /
-// lane_length, as SUMO's MSLane does with its length-geometry factor. The heading is the direction of the
-// shape segment holding that offset, in navigational degrees (0 = north, clockwise, in [0, 360)).
-// SUMO takes a vehicle's heading from its back to its front bumper; on a straight segment both agree,
-// on a bend they differ by at most the bend angle over one vehicle length.
+// lane_length, as SUMO's MSLane does with its length-geometry factor. at() gives the heading of the shape
+// segment holding that offset, in navigational degrees (0 = north, clockwise, in [0, 360)).
+//
+// SUMO's FCD angle is the direction from a vehicle's back to its front bumper, which differs from the
+// segment heading on bends. vehicle_heading() reproduces it: the back lies one vehicle length behind the
+// front along the lane, continuing onto the previous lane when that lane is unambiguous (always for
+// internal junction lanes, which have exactly one incoming lane). Where the previous lane is ambiguous the
+// back is clamped to the lane start, a chord that still follows the bend.
 #include <cstdint>
 #include <vector>
 
@@ -32,12 +36,20 @@ class LaneGeometry {
   /// without shape points yields (0, 0), heading 0.
   LanePoint at(uint32_t lane, double pos) const;
 
+  /// Navigational heading from the back (pos - vehicle_length) to the front (pos) of a vehicle on `lane`.
+  double vehicle_heading(uint32_t lane, double pos, double vehicle_length) const;
+
+  /// The single lane leading into `lane` (through a connection or as its internal lane), or kNone when
+  /// there is none or more than one.
+  int32_t unique_predecessor(uint32_t lane) const { return predecessor_[lane]; }
+
   /// 2D length of the lane's shape polyline.
   double shape_length(uint32_t lane) const;
 
  private:
   const Network& net_;
   std::vector<double> cumulative_;  // per shape point: shape length from the lane's first point
+  std::vector<int32_t> predecessor_;  // per lane: unique incoming lane, kNone if none or several
 };
 
 }  // namespace lpsim

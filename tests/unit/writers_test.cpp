@@ -4,9 +4,11 @@
 #include <unistd.h>
 #include <zlib.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -185,6 +187,32 @@ TEST(LaneGeometryTest, LShapedLaneScalesPositionToShapeLength) {
   p = geometry.at(0, 25);  // E1_0 runs west from x=100
   EXPECT_DOUBLE_EQ(p.x, 75);
   EXPECT_DOUBLE_EQ(p.angle, 270);
+}
+
+TEST(LaneGeometryTest, VehicleHeadingIsChordFromBackToFront) {
+  const Network net = tiny_network();
+  const LaneGeometry geometry(net);
+  // E2_0 at pos 17 (shape offset 34: (4, 30)), back at pos 12 (offset 24: (0, 24)).
+  EXPECT_NEAR(geometry.vehicle_heading(3, 17, 5), 90 - std::atan2(6.0, 4.0) * 180 / std::numbers::pi, 1e-9);
+  // Fully on the northbound leg: the chord is the leg's heading.
+  EXPECT_DOUBLE_EQ(geometry.vehicle_heading(3, 10, 5), 0);
+  // Back before the lane start and no known previous lane: clamped to the start (0, 0) -> front (0, 2).
+  EXPECT_DOUBLE_EQ(geometry.vehicle_heading(3, 1, 5), 0);
+}
+
+TEST(LaneGeometryTest, VehicleBackContinuesOnUniquePreviousLane) {
+  Network net = tiny_network();
+  // E1_0 -> E2_0 through :J_0_0; E1_1 -> E2_0 directly, which makes E2_0's predecessor ambiguous.
+  net.conn_from_lane = {0, 1};
+  net.conn_to_lane = {3, 3};
+  net.conn_via_lane = {2, kNone};
+  const LaneGeometry geometry(net);
+  EXPECT_EQ(geometry.unique_predecessor(2), 0);
+  EXPECT_EQ(geometry.unique_predecessor(3), kNone);
+  EXPECT_EQ(geometry.unique_predecessor(0), kNone);
+  // On :J_0_0 at pos 2 (front (2, 5)) a 5 m vehicle's back is 3 m before the end of E1_0: (3, 0).
+  EXPECT_NEAR(geometry.vehicle_heading(2, 2, 5), 360 + 90 - std::atan2(5.0, -1.0) * 180 / std::numbers::pi,
+              1e-9);
 }
 
 TEST(LaneGeometryTest, DuplicateShapePointsDoNotBreakHeading) {
