@@ -1,0 +1,61 @@
+#pragma once
+// A buffered text sink for the SUMO-format outputs: plain text, or gzip when the file name ends in ".gz".
+// Numbers are formatted with std::to_chars straight into the buffer (no iostreams), because FCD output can
+// run to millions of records. Fixed-decimal output rounds the exact binary value like printf("%.2f"), which
+// is what SUMO's std::fixed/setprecision output gives, so the same double yields the same text.
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+namespace lpsim {
+
+class OutputFile {
+ public:
+  /// Creates (truncates) `path`. A file that cannot be created is an InputError naming it.
+  explicit OutputFile(std::string path);
+  /// Closes the file; errors during this implicit close are swallowed (call close() to see them).
+  ~OutputFile();
+  OutputFile(const OutputFile&) = delete;
+  OutputFile& operator=(const OutputFile&) = delete;
+
+  const std::string& path() const { return path_; }
+  bool is_open() const { return plain_ != nullptr || gz_ != nullptr; }
+  bool gzipped() const { return gz_ != nullptr; }
+
+  void text(std::string_view s);
+  void put(char c);
+  /// Text with the five XML special characters escaped (for ids inside attribute values).
+  void escaped(std::string_view s);
+  /// Fixed-point with `decimals` digits after the point; NaN and infinities are written as SUMO would
+  /// print them through iostreams ("nan", "inf", "-inf").
+  void fixed(double v, int decimals = 2);
+  void integer(int64_t v);
+  void unsigned_integer(uint64_t v);
+
+  /// ` name="value"` helpers for XML attributes.
+  void attr(std::string_view name, std::string_view value);  // value is escaped
+  void attr_fixed(std::string_view name, double v, int decimals = 2);
+  void attr_int(std::string_view name, int64_t v);
+
+  /// Writes the buffer out and closes the file; write or close failures are an InputError naming it.
+  /// Calling it again does nothing.
+  void close();
+
+ private:
+  void flush_buffer();
+  void reserve(size_t n) {
+    if (buffer_.size() - used_ < n) flush_buffer();
+  }
+
+  std::string path_;
+  void* plain_ = nullptr;  // FILE*
+  void* gz_ = nullptr;     // gzFile
+  std::string buffer_;
+  size_t used_ = 0;
+};
+
+/// Writes the XML declaration, a provenance comment and the opening root tag carrying SUMO's schema
+/// reference (xsd_file is e.g. "fcd_file.xsd"), exactly as SUMO starts its outputs.
+void write_sumo_xml_header(OutputFile& out, std::string_view root, std::string_view xsd_file);
+
+}  // namespace lpsim

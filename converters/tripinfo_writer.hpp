@@ -1,0 +1,39 @@
+#pragma once
+// tripinfo output (SUMO's tripinfo_file.xsd): one <tripinfo/> per finished trip, in the order the trips
+// are handed over (SUMO writes them as vehicles arrive), with SUMO's attribute order. Lanes are written
+// as lane ids; stopTime and rerouteNo are 0 (LPSim has no stops or rerouting).
+// vaporized is "" for a trip that reached its destination and "teleport" for one that ended by being
+// removed in a teleport (TripRecord::teleported).
+#include <string>
+#include <vector>
+
+#include "converters/output_file.hpp"
+#include "demand/demand.hpp"
+#include "engine/samples.hpp"
+#include "net/network.hpp"
+
+namespace lpsim {
+
+class TripinfoWriter {
+ public:
+  /// Opens `path` (".gz" gives gzip) and writes the root tag. `devices` names the vehicle devices listed
+  /// in each trip's devices attribute as "<device>_<vehicle id>", in SUMO's order (tripinfo first, then
+  /// e.g. fcd when FCD output is on). net and demand must outlive the writer.
+  TripinfoWriter(const std::string& path, const Network& net, const Demand& demand,
+                 std::vector<std::string> devices = {"tripinfo"});
+  ~TripinfoWriter();
+  TripinfoWriter(const TripinfoWriter&) = delete;
+  TripinfoWriter& operator=(const TripinfoWriter&) = delete;
+
+  void write(const TripRecord& trip);
+  /// Writes the closing tag and closes the file (InputError on failure); later calls do nothing.
+  void close();
+
+ private:
+  const Network& net_;
+  const Demand& demand_;
+  std::vector<std::string> devices_;
+  OutputFile out_;
+};
+
+}  // namespace lpsim
