@@ -146,8 +146,13 @@ class NetParser {
         root_seen = true;
         continue;
       }
+      if (xs_.depth() == 2 && xs_.name() == "request" && in_junction_) {
+        read_request();
+        continue;
+      }
       if (xs_.depth() != 1) continue;
       const std::string& name = xs_.name();
+      in_junction_ = name == "junction";
       if (name == "edge") {
         read_edge();
       } else if (name == "junction") {
@@ -236,6 +241,8 @@ class NetParser {
     for (size_t i = 0; i < e.lanes.size(); ++i) e.lanes[i].index = static_cast<int>(i);
   }
 
+  bool in_junction_ = false;
+
   void read_junction() {
     JunctionSpec j;
     j.loc = xs_.loc();
@@ -246,6 +253,24 @@ class NetParser {
     if (auto inc = xs_.attr("incLanes")) j.inc_lanes = split_spaces(*inc);
     if (auto in = xs_.attr("intLanes")) j.int_lanes = split_spaces(*in);
     net_.junctions.push_back(std::move(j));
+  }
+
+  // <request index response foes>: which links of the junction this link yields to / conflicts with.
+  // SUMO writes the bit of link j at character (n-1-j).
+  void read_request() {
+    JunctionSpec& j = net_.junctions.back();
+    long long index = xs_.integer("index", -1);
+    if (index < 0 || index > 4096) xs_.fail("request index out of range: " + xs_.get("index", ""));
+    std::string response = xs_.required("response"), foes = xs_.get("foes", "");
+    for (char c : response + foes)
+      if (c != '0' && c != '1') xs_.fail("request bits must be 0 or 1: '" + response + "'");
+    const auto i = static_cast<size_t>(index);
+    if (j.response.size() <= i) {
+      j.response.resize(i + 1);
+      j.foes.resize(i + 1);
+    }
+    j.response[i] = std::move(response);
+    j.foes[i] = std::move(foes);
   }
 
   void read_connection() {

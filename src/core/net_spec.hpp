@@ -40,6 +40,8 @@ struct JunctionSpec {
   std::string id, type;  // type as in SUMO: traffic_light, priority, right_before_left, allway_stop, ...
   double x = 0, y = 0;
   std::vector<std::string> inc_lanes, int_lanes;
+  // <request> rows by junction link index: bit strings as SUMO writes them (link j at char n-1-j).
+  std::vector<std::string> response, foes;
   SourceLoc loc;
 };
 
@@ -49,7 +51,7 @@ struct ConnectionSpec {
   std::string via;  // internal lane id, empty if none
   std::string tl;   // traffic light id, empty if none
   int link_index = -1;
-  char dir = 's';    // s,t,l,r,L,R,T(invalid)
+  char dir = 's';    // s,t,l,r,L,R; 'T' also stands for SUMO's "invalid"
   char state = 'M';  // M,m,=,o,O,s,w,Z,...
   SourceLoc loc;
 };
