@@ -103,6 +103,16 @@ std::optional<std::string> XmlStream::attr(const char* key) const {
   return s;
 }
 
+void XmlStream::for_each_attr_impl(void* visit, void (*call)(void*, std::string_view, std::string_view)) const {
+  xmlTextReaderPtr r = impl_->reader;
+  for (int rc = xmlTextReaderMoveToFirstAttribute(r); rc == 1; rc = xmlTextReaderMoveToNextAttribute(r)) {
+    const xmlChar* n = xmlTextReaderConstName(r);
+    const xmlChar* v = xmlTextReaderConstValue(r);
+    call(visit, n ? reinterpret_cast<const char*>(n) : "", v ? reinterpret_cast<const char*>(v) : "");
+  }
+  xmlTextReaderMoveToElement(r);
+}
+
 std::string XmlStream::required(const char* key) const {
   auto v = attr(key);
   if (!v) fail(std::string("missing attribute '") + key + "'");
