@@ -47,7 +47,9 @@ XmlStream::XmlStream(const std::string& path) : impl_(std::make_unique<Impl>()),
   }
   // No XML_PARSE_NOENT (no entity substitution), no DTDLOAD/DTDVALID, NONET: safe on untrusted input.
   // HUGE lifts libxml2's limits on text size for very large networks, not on entity expansion.
-  impl_->reader = xmlReaderForFile(path.c_str(), nullptr, XML_PARSE_NONET | XML_PARSE_HUGE | XML_PARSE_NOCDATA);
+  // BIG_LINES: element line numbers above 65535 stay exact.
+  impl_->reader = xmlReaderForFile(path.c_str(), nullptr,
+                                   XML_PARSE_NONET | XML_PARSE_HUGE | XML_PARSE_NOCDATA | XML_PARSE_BIG_LINES);
   if (!impl_->reader) throw InputError(SourceLoc{path, 0}, "cannot open as XML");
   xmlTextReaderSetErrorHandler(impl_->reader, remember_error, &impl_->first_error);
 }
@@ -78,7 +80,8 @@ XmlStream::Event XmlStream::next() {
       const xmlChar* n = xmlTextReaderConstName(impl_->reader);
       name_ = n ? reinterpret_cast<const char*>(n) : "";
       depth_ = xmlTextReaderDepth(impl_->reader);
-      line_ = xmlTextReaderGetParserLineNumber(impl_->reader);
+      // The element's own line: the parser's position runs ahead of the reader by a buffer.
+      line_ = static_cast<int>(xmlGetLineNo(xmlTextReaderCurrentNode(impl_->reader)));
       pending_end_ = xmlTextReaderIsEmptyElement(impl_->reader) == 1;
       return Event::Start;
     }
