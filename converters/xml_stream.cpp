@@ -47,7 +47,9 @@ XmlStream::XmlStream(const std::string& path) : impl_(std::make_unique<Impl>()),
   }
   // No XML_PARSE_NOENT (no entity substitution), no DTDLOAD/DTDVALID, NONET: safe on untrusted input.
   // HUGE lifts libxml2's limits on text size for very large networks, not on entity expansion.
-  impl_->reader = xmlReaderForFile(path.c_str(), nullptr, XML_PARSE_NONET | XML_PARSE_HUGE | XML_PARSE_NOCDATA);
+  // BIG_LINES: element line numbers above 65535 stay exact.
+  impl_->reader = xmlReaderForFile(path.c_str(), nullptr,
+                                   XML_PARSE_NONET | XML_PARSE_HUGE | XML_PARSE_NOCDATA | XML_PARSE_BIG_LINES);
   if (!impl_->reader) throw InputError(SourceLoc{path, 0}, "cannot open as XML");
   xmlTextReaderSetErrorHandler(impl_->reader, remember_error, &impl_->first_error);
 }
@@ -78,12 +80,9 @@ XmlStream::Event XmlStream::next() {
       const xmlChar* n = xmlTextReaderConstName(impl_->reader);
       name_ = n ? reinterpret_cast<const char*>(n) : "";
       depth_ = xmlTextReaderDepth(impl_->reader);
-      // The parser reads ahead (up to a 512-byte chunk), so its line can be past the element's own start
-      // tag; the node keeps the exact line, but libxml2 caps it at 65535 for elements: beyond that the
-      // parser's line is the best estimate there is.
+      // The parser reads ahead by a buffer, so take the element's own line (exact with XML_PARSE_BIG_LINES).
       long node_line = xmlGetLineNo(xmlTextReaderCurrentNode(impl_->reader));
-      line_ = node_line > 0 && node_line < 65535 ? static_cast<int>(node_line)
-                                                   : xmlTextReaderGetParserLineNumber(impl_->reader);
+      line_ = node_line > 0 ? static_cast<int>(node_line) : xmlTextReaderGetParserLineNumber(impl_->reader);
       pending_end_ = xmlTextReaderIsEmptyElement(impl_->reader) == 1;
       return Event::Start;
     }
@@ -106,6 +105,16 @@ std::optional<std::string> XmlStream::attr(const char* key) const {
   std::string s(reinterpret_cast<const char*>(v));
   xmlFree(v);
   return s;
+}
+
+void XmlStream::for_each_attr_impl(void* visit, void (*call)(void*, std::string_view, std::string_view)) const {
+  xmlTextReaderPtr r = impl_->reader;
+  for (int rc = xmlTextReaderMoveToFirstAttribute(r); rc == 1; rc = xmlTextReaderMoveToNextAttribute(r)) {
+    const xmlChar* n = xmlTextReaderConstName(r);
+    const xmlChar* v = xmlTextReaderConstValue(r);
+    call(visit, n ? reinterpret_cast<const char*>(n) : "", v ? reinterpret_cast<const char*>(v) : "");
+  }
+  xmlTextReaderMoveToElement(r);
 }
 
 std::string XmlStream::required(const char* key) const {

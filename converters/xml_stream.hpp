@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <type_traits>
 
 #include "core/error.hpp"
 
@@ -43,11 +44,21 @@ class XmlStream {
   /// As number(), and additionally refuses negative values.
   double non_negative(const char* key, double fallback) const;
   long long integer(const char* key, long long fallback) const;
+  /// Calls visit(name, value) for each attribute of the element of the last Start event, in document order,
+  /// without copying: one pass for elements read by the million, and the only way to see unknown attributes.
+  /// The views are valid only during the call.
+  template <class Visit>
+  void for_each_attr(Visit&& visit) const {
+    for_each_attr_impl(&visit, [](void* v, std::string_view name, std::string_view value) {
+      (*static_cast<std::remove_reference_t<Visit>*>(v))(name, value);
+    });
+  }
 
   /// Raises InputError at the current element: "<elem id=...>: message".
   [[noreturn]] void fail(const std::string& message) const;
 
  private:
+  void for_each_attr_impl(void* visit, void (*call)(void*, std::string_view, std::string_view)) const;
   struct Impl;
   std::unique_ptr<Impl> impl_;
   std::string path_, name_;

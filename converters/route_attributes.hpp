@@ -1,0 +1,40 @@
+#pragma once
+// Parsing of the attribute values SUMO route files use: times, depart/arrival keywords, id lists,
+// booleans and distribution specifiers. Pure functions; callers turn a failure into an InputError that
+// names the file, the element and the value.
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/demand_spec.hpp"
+
+namespace lpsim {
+
+/// SUMO time: seconds ("3.5") or clock form "h:m:s" / "d:h:m:s". nullopt when neither, or not finite.
+std::optional<double> parse_sumo_time(std::string_view text);
+
+/// Fill one field of DepartSpec from its SUMO attribute value; false for an unknown keyword or a bad number.
+bool parse_depart_lane(std::string_view text, DepartSpec& out);
+bool parse_depart_pos(std::string_view text, DepartSpec& out);
+bool parse_depart_speed(std::string_view text, DepartSpec& out);
+bool parse_arrival_pos(std::string_view text, DepartSpec& out);
+
+/// SUMO booleans: true/false, 1/0, yes/no, on/off, x/- (case-insensitive for the words).
+std::optional<bool> parse_sumo_bool(std::string_view text);
+
+/// Mean and deviation of a speedFactor: a plain number (deviation absent), "norm(mean,dev)" or
+/// "normc(mean,dev,min,max)".
+struct MeanDev {
+  double mean = 1.0;
+  std::optional<double> dev;
+};
+std::optional<MeanDev> parse_speed_factor(std::string_view text);
+
+/// Splits on spaces, tabs and newlines, dropping empty pieces (files often carry stray spaces).
+std::vector<std::string> split_ids(std::string_view text);
+
+/// The text without leading and trailing whitespace.
+std::string_view trim(std::string_view text);
+
+}  // namespace lpsim
