@@ -366,6 +366,9 @@ NetSpec read_lpsim_csv_net(const std::string& nodes_csv, const std::string& edge
     j.loc = nodes.loc[n];
     const uint32_t* in_b = in.list.data() + in.begin[n];
     const uint32_t* in_e = in.list.data() + in.begin[n + 1];
+    size_t inc = 0;
+    for (const uint32_t* e = in_b; e != in_e; ++e) inc += net.edges[*e].lanes.size();
+    j.inc_lanes.reserve(inc);
     for (const uint32_t* e = in_b; e != in_e; ++e)
       for (const LaneSpec& lane : net.edges[*e].lanes) j.inc_lanes.push_back(lane.id);
     j.type = wiring.wire(n, in_b, in_e, out.list.data() + out.begin[n], out.list.data() + out.begin[n + 1]);

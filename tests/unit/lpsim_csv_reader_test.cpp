@@ -331,5 +331,34 @@ TEST_F(LpsimCsvReaderTest, ReadsOdDemand) {
   EXPECT_NE(error_of([&] { read_lpsim_od_csv(no_column, net, demand); }).find("'destination'"), std::string::npos);
 }
 
+TEST(LpsimCsvSmallScenario, LoadsInBothHeaders) {
+  const std::string dir = std::string(LPSIM_SCENARIOS_DIR) + "/lpsim_csv_small/";
+  const NetSpec a = read_lpsim_csv_net(dir + "nodes.csv", dir + "edges.csv");
+  const NetSpec b = read_lpsim_csv_net(dir + "nodes.csv", dir + "edges_full_header.csv");
+  for (const NetSpec* net : {&a, &b}) {
+    EXPECT_EQ(net->junctions.size(), 6u);
+    ASSERT_EQ(net->edges.size(), 10u);
+    size_t lanes = 0;
+    for (const auto& e : net->edges) lanes += e.lanes.size();
+    EXPECT_EQ(lanes, 14u);
+    // Centre 6+6+3+3, west end U-turn 2, east node 2+1, the three other ends 1 each.
+    EXPECT_EQ(net->connections.size(), 26u);
+    ASSERT_EQ(net->tl_logics.size(), 1u);
+    EXPECT_EQ(net->tl_logics[0].id, "1001");
+    EXPECT_EQ(net->tl_logics[0].phases[0].state.size(), 18u);
+  }
+  for (size_t i = 0; i < a.edges.size(); ++i) {
+    EXPECT_EQ(a.edges[i].from, b.edges[i].from);
+    EXPECT_EQ(a.edges[i].to, b.edges[i].to);
+  }
+  DemandSpec demand;
+  read_lpsim_od_csv(dir + "od.csv", a, demand);
+  ASSERT_EQ(demand.vehicles.size(), 8u);
+  EXPECT_EQ(demand.vehicles[2].id, "od2");
+  EXPECT_DOUBLE_EQ(demand.vehicles[2].depart, 10.5);
+  EXPECT_EQ(demand.vehicles[2].from_junction, "1004");
+  EXPECT_EQ(demand.vehicles[2].to_junction, "1005");
+}
+
 }  // namespace
 }  // namespace lpsim
