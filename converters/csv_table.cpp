@@ -16,7 +16,8 @@ std::string_view trim(std::string_view s) {
   return s;
 }
 
-// Splits `text` into records. Each field's unescaped text is appended to a store and its start offset recorded.
+// Splits `text` into records. Each field's unescaped text is appended to a store and its start offset
+// recorded.
 class Splitter {
  public:
   Splitter(std::string_view text, const std::string& file) : text_(text), file_(file) {
@@ -66,7 +67,8 @@ class Splitter {
       if (c == '\r' && pos_ + 1 < text_.size() && text_[pos_ + 1] == '\n') break;
       if (c == '"')
         throw InputError(SourceLoc{file_, line_}, "quote inside an unquoted CSV field '" +
-                                                      std::string(text_.substr(begin, pos_ - begin + 1)) + "'");
+                                                      std::string(text_.substr(begin, pos_ - begin + 1)) +
+                                                      "'");
       ++pos_;
     }
     store.append(text_.substr(begin, pos_ - begin));
@@ -134,9 +136,11 @@ CsvTable CsvTable::parse(std::string_view text, const std::string& file) {
     if (split.next_record(header_text, header_starts, count)) break;
   }
   if (count == 0) throw InputError(SourceLoc{file, 0}, "empty CSV file: no header line");
+  t.header_line_ = header_line;
   header_starts.push_back(static_cast<uint32_t>(header_text.size()));
   for (size_t i = 0; i < count; ++i) {
-    std::string name(trim(std::string_view(header_text).substr(header_starts[i], header_starts[i + 1] - header_starts[i])));
+    std::string name(trim(
+        std::string_view(header_text).substr(header_starts[i], header_starts[i + 1] - header_starts[i])));
     for (const auto& prev : t.header_)
       if (!name.empty() && prev == name)
         throw InputError(SourceLoc{file, header_line}, "duplicate CSV column '" + name + "'");
@@ -149,9 +153,9 @@ CsvTable CsvTable::parse(std::string_view text, const std::string& file) {
     const int line = split.line();
     if (!split.next_record(t.text_, t.field_begin_, count)) continue;
     if (count != t.header_.size()) {
-      throw InputError(SourceLoc{file, line}, "CSV record has " + std::to_string(count) + " fields, the header (" +
-                                                  quoted_header(t.header_) + ") has " +
-                                                  std::to_string(t.header_.size()));
+      throw InputError(SourceLoc{file, line}, "CSV record has " + std::to_string(count) +
+                                                  " fields, the header (" + quoted_header(t.header_) +
+                                                  ") has " + std::to_string(t.header_.size()));
     }
     t.row_line_.push_back(line);
   }
@@ -167,14 +171,15 @@ std::optional<size_t> CsvTable::find_column(std::string_view name) const {
 
 size_t CsvTable::column(std::string_view name) const {
   if (auto c = find_column(name)) return *c;
-  throw InputError(SourceLoc{file_, 1},
+  throw InputError(SourceLoc{file_, header_line_},
                    "missing CSV column '" + std::string(name) + "' (header: " + quoted_header(header_) + ")");
 }
 
 std::string_view CsvTable::trimmed(size_t row, size_t col) const { return trim(field(row, col)); }
 
 void CsvTable::fail(size_t row, size_t col, const std::string& what) const {
-  throw InputError(loc(row), "column '" + header_[col] + "' value '" + std::string(field(row, col)) + "': " + what);
+  throw InputError(loc(row),
+                   "column '" + header_[col] + "' value '" + std::string(field(row, col)) + "': " + what);
 }
 
 std::optional<double> CsvTable::optional_number(size_t row, size_t col) const {

@@ -1,8 +1,8 @@
 #pragma once
 // A small strict CSV reader for the LPSim input tables. The first record is the header; columns are looked up
 // by name. Fields may be quoted ("a,b", "say ""hi""", embedded newlines). Every data record must have as many
-// fields as the header. Blank lines are skipped. Problems raise InputError naming file:line, the column and the
-// offending value.
+// fields as the header. Blank lines are skipped. Problems raise InputError naming file:line, the column and
+// the offending value.
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -54,7 +54,8 @@ class CsvTable {
  private:
   std::string file_;
   std::vector<std::string> header_;
-  std::string text_;                  // all data fields' text, back to back
+  int header_line_ = 1;
+  std::string text_;                   // all data fields' text, back to back
   std::vector<uint32_t> field_begin_;  // field i is text_[field_begin_[i], field_begin_[i+1])
   std::vector<int> row_line_;
 };

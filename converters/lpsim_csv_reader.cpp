@@ -25,8 +25,8 @@
 //   its straight and right links get 'M', its left and U-turn links 'm', every link of a minor approach 'm'.
 //   At traffic lights the same rule gives SUMO's signal-off states 'O' / 'o'.
 // Signals (tlLogic id = node osmid, programID "0", static, offset 0): links are the node's connections in
-//   order (linkIndex = position). Phases: group A green 30 s ('G', left and U-turns 'g'), A yellow 3 s, group B
-//   green 30 s, B yellow 3 s; links not in the active group are red.
+//   order (linkIndex = position). Phases: group A green 30 s ('G', left and U-turns 'g'), A yellow 3 s, group
+//   B green 30 s, B yellow 3 s; links not in the active group are red.
 // OD CSV: vehicle id "od<row>" (row = 0-based data row, whatever an index column says); depart = dep_time;
 //   origin/destination are indices into the junctions (nodes.csv row order).
 #include "converters/lpsim_csv_reader.hpp"
@@ -44,7 +44,7 @@ namespace lpsim {
 namespace {
 
 constexpr double kMphToMetresPerSecond = 0.44704;
-constexpr double kDefaultSpeed = 13.89;  // m/s, SUMO's default edge speed
+constexpr double kDefaultSpeed = 13.89;     // m/s, SUMO's default edge speed
 constexpr double kEarthRadius = 6371008.8;  // m, mean radius
 constexpr int kMaxLanes = 32;
 constexpr double kGreenSeconds = 30, kYellowSeconds = 3;
@@ -254,7 +254,8 @@ class NodeWiring {
       const RawEdge& in = edges_[*e];
       const bool group_a = in_group_a_[static_cast<size_t>(e - in_begin)];
       const bool major = group_a && score(*e) >= major_score;
-      const bool other_exit = std::any_of(out_begin, out_end, [&](uint32_t o) { return edges_[o].v != in.u; });
+      const bool other_exit =
+          std::any_of(out_begin, out_end, [&](uint32_t o) { return edges_[o].v != in.u; });
       for (const uint32_t* o = out_begin; o != out_end; ++o) {
         const RawEdge& out = edges_[*o];
         const bool u_turn = out.v == in.u;
@@ -384,8 +385,9 @@ void read_lpsim_od_csv(const std::string& path, const NetSpec& net, DemandSpec& 
   auto node_at = [&](size_t r, size_t c) -> const std::string& {
     const int64_t i = t.integer(r, c);
     if (i < 0 || i >= num_nodes)
-      t.fail(r, c, "not a node index (the network has " + std::to_string(num_nodes) + " nodes, 0.." +
-                       std::to_string(num_nodes - 1) + ")");
+      t.fail(r, c,
+             "not a node index (the network has " + std::to_string(num_nodes) + " nodes, 0.." +
+                 std::to_string(num_nodes - 1) + ")");
     return net.junctions[static_cast<size_t>(i)].id;
   };
   demand.vehicles.reserve(demand.vehicles.size() + t.num_rows());

@@ -1,3 +1,5 @@
+#include "converters/lpsim_csv_reader.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,7 +10,6 @@
 #include <string>
 
 #include "converters/csv_table.hpp"
-#include "converters/lpsim_csv_reader.hpp"
 
 namespace lpsim {
 namespace {
@@ -38,8 +39,8 @@ class LpsimCsvReaderTest : public ::testing::Test {
 // has 2 lanes at 35 mph, the north-south road 1 lane (with empty / zero lanes and speeds on two edges).
 std::string cross_nodes(bool signal_at_centre) {
   return std::string("osmid,x,y,ref,highway\n") + "1,-122.001,37.0,,\n" + "2,-122.0,37.0,," +
-         (signal_at_centre ? "traffic_signals" : "") + "\n" + "3,-121.999,37.0,,\n" + "4,-122.0,37.001,,stop\n" +
-         "5,-122.0,36.999,,\n";
+         (signal_at_centre ? "traffic_signals" : "") + "\n" + "3,-121.999,37.0,,\n" +
+         "4,-122.0,37.001,,stop\n" + "5,-122.0,36.999,,\n";
 }
 
 const char* kCrossEdgesByOsmid =
@@ -101,7 +102,8 @@ TEST(CsvTable, ParsesQuotedFieldsAndTracksLines) {
 
 TEST(CsvTable, RejectsMalformedInput) {
   EXPECT_NE(error_of([] { CsvTable::parse("a,b\n1,2\n3\n", "f.csv"); }).find("f.csv:3:"), std::string::npos);
-  EXPECT_NE(error_of([] { CsvTable::parse("a,b\n1,\"2\n", "f.csv"); }).find("unterminated"), std::string::npos);
+  EXPECT_NE(error_of([] { CsvTable::parse("a,b\n1,\"2\n", "f.csv"); }).find("unterminated"),
+            std::string::npos);
   EXPECT_NE(error_of([] { CsvTable::parse("a,b\n1,2\"x\n", "f.csv"); }).find("f.csv:2:"), std::string::npos);
   EXPECT_NE(error_of([] { CsvTable::parse("", "f.csv"); }).find("empty"), std::string::npos);
   const CsvTable t = CsvTable::parse("a,b\n1,abc\n2,nan\n2.5,1e3x\n", "f.csv");
@@ -112,7 +114,8 @@ TEST(CsvTable, RejectsMalformedInput) {
 }
 
 TEST_F(LpsimCsvReaderTest, ReadsLanesSpeedsLengthsAndProjectsDegrees) {
-  const NetSpec net = read_lpsim_csv_net(write("nodes.csv", cross_nodes(false)), write("edges.csv", kCrossEdgesByOsmid));
+  const NetSpec net =
+      read_lpsim_csv_net(write("nodes.csv", cross_nodes(false)), write("edges.csv", kCrossEdgesByOsmid));
   ASSERT_EQ(net.edges.size(), 8u);
   ASSERT_EQ(net.junctions.size(), 5u);
   // Junctions keep the nodes.csv order (OD indices depend on it).
@@ -127,9 +130,9 @@ TEST_F(LpsimCsvReaderTest, ReadsLanesSpeedsLengthsAndProjectsDegrees) {
   EXPECT_EQ(we.lanes[1].index, 1);
   EXPECT_NEAR(we.lanes[0].speed, 35 * 0.44704, 1e-12);
   EXPECT_DOUBLE_EQ(we.lanes[0].length, 88.8);
-  EXPECT_EQ(edge(net, "15").lanes.size(), 1u);  // empty lanes -> 1
+  EXPECT_EQ(edge(net, "15").lanes.size(), 1u);              // empty lanes -> 1
   EXPECT_DOUBLE_EQ(edge(net, "15").lanes[0].speed, 13.89);  // empty speed -> default
-  EXPECT_EQ(edge(net, "16").lanes.size(), 1u);  // 0 lanes -> 1
+  EXPECT_EQ(edge(net, "16").lanes.size(), 1u);              // 0 lanes -> 1
   EXPECT_DOUBLE_EQ(edge(net, "16").lanes[0].speed, 13.89);  // 0 mph -> default
 
   // Equirectangular around the mean latitude (37.0), south-west corner at the origin.
@@ -183,9 +186,10 @@ TEST_F(LpsimCsvReaderTest, KeepsMetricCoordinates) {
 }
 
 TEST_F(LpsimCsvReaderTest, DerivesConnectionsDirectionsAndPriorities) {
-  const NetSpec net = read_lpsim_csv_net(write("nodes.csv", cross_nodes(false)), write("edges.csv", kCrossEdgesByOsmid));
-  // Centre: 2-lane approaches reach 3 edges with 2 lanes each, 1-lane approaches 3 edges: 6+6+3+3; each arm end
-  // offers only the U-turn: 2 + 2 + 1 + 1.
+  const NetSpec net =
+      read_lpsim_csv_net(write("nodes.csv", cross_nodes(false)), write("edges.csv", kCrossEdgesByOsmid));
+  // Centre: 2-lane approaches reach 3 edges with 2 lanes each, 1-lane approaches 3 edges: 6+6+3+3; each arm
+  // end offers only the U-turn: 2 + 2 + 1 + 1.
   EXPECT_EQ(net.connections.size(), 24u);
   EXPECT_TRUE(connections(net, "10", "11").empty());  // U-turn at the centre is not derived
 
@@ -228,7 +232,8 @@ TEST_F(LpsimCsvReaderTest, DerivesConnectionsDirectionsAndPriorities) {
 }
 
 TEST_F(LpsimCsvReaderTest, DerivesFixedTimeSignal) {
-  const NetSpec net = read_lpsim_csv_net(write("nodes.csv", cross_nodes(true)), write("edges.csv", kCrossEdgesByOsmid));
+  const NetSpec net =
+      read_lpsim_csv_net(write("nodes.csv", cross_nodes(true)), write("edges.csv", kCrossEdgesByOsmid));
   EXPECT_EQ(junction(net, "2").type, "traffic_light");
   ASSERT_EQ(net.tl_logics.size(), 1u);
   const TlLogicSpec& tl = net.tl_logics[0];
@@ -284,10 +289,12 @@ TEST_F(LpsimCsvReaderTest, RejectsBadNetworkInput) {
 
   EXPECT_NE(error_of([&] { read_lpsim_csv_net((dir_ / "missing.csv").string(), nodes); }).find("missing.csv"),
             std::string::npos);
-  EXPECT_NE(net_error("uniqueid,u,v,lanes\ne,1,2,1\n").find("missing CSV column 'length'"), std::string::npos);
+  EXPECT_NE(net_error("uniqueid,u,v,lanes\ne,1,2,1\n").find("missing CSV column 'length'"),
+            std::string::npos);
   EXPECT_EQ(net_error(head + "e,1,2,100,1,30\nf,2,1,abc,1,30\n"),
             edges_path + ":3: column 'length' value 'abc': not a number");
-  EXPECT_EQ(net_error(head + "e,1,2,-5,1,30\n"), edges_path + ":2: column 'length' value '-5': negative length");
+  EXPECT_EQ(net_error(head + "e,1,2,-5,1,30\n"),
+            edges_path + ":2: column 'length' value '-5': negative length");
   EXPECT_NE(net_error(head + "e,1,2,NaN,1,30\n").find(":2: column 'length' value 'NaN'"), std::string::npos);
   EXPECT_EQ(net_error(head + "e,1,9,100,1,30\n"),
             edges_path + ":2: column 'v' value '9': unknown node (not in the nodes file)");
@@ -297,12 +304,14 @@ TEST_F(LpsimCsvReaderTest, RejectsBadNetworkInput) {
   EXPECT_NE(net_error(head + "e,1,2,100,1,-3\n").find("column 'speed_mph' value '-3'"), std::string::npos);
 
   const std::string bad_nodes = write("bad_nodes.csv", "osmid,x,y\n1,0,0\n1,5,x\n");
-  EXPECT_NE(error_of([&] { read_lpsim_csv_net(bad_nodes, edges_path); }).find("bad_nodes.csv:3: column 'osmid'"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of([&] { read_lpsim_csv_net(bad_nodes, edges_path); }).find("bad_nodes.csv:3: column 'osmid'"),
+      std::string::npos);
 }
 
 TEST_F(LpsimCsvReaderTest, ReadsOdDemand) {
-  const NetSpec net = read_lpsim_csv_net(write("nodes.csv", cross_nodes(true)), write("edges.csv", kCrossEdgesByOsmid));
+  const NetSpec net =
+      read_lpsim_csv_net(write("nodes.csv", cross_nodes(true)), write("edges.csv", kCrossEdgesByOsmid));
   DemandSpec demand;
   const std::string od = write("od.csv",
                                ",SAMPN,origin_osmid,dep_time,origin,destination\n"
@@ -328,7 +337,8 @@ TEST_F(LpsimCsvReaderTest, ReadsOdDemand) {
   EXPECT_NE(error_of([&] { read_lpsim_od_csv(negative, net, demand); }).find("negative departure time"),
             std::string::npos);
   const std::string no_column = write("nocol_od.csv", "dep_time,origin\n1,0\n");
-  EXPECT_NE(error_of([&] { read_lpsim_od_csv(no_column, net, demand); }).find("'destination'"), std::string::npos);
+  EXPECT_NE(error_of([&] { read_lpsim_od_csv(no_column, net, demand); }).find("'destination'"),
+            std::string::npos);
 }
 
 TEST(LpsimCsvSmallScenario, LoadsInBothHeaders) {
