@@ -1,0 +1,188 @@
+#!/usr/bin/env bash
+# Regenerates the bundled test scenarios under scenarios/ with SUMO's own tools, then their
+# sumo_reference.txt files. Deterministic: every random tool gets a fixed seed and SUMO's
+# "generated on <date>" header comments are stripped, so a rerun reproduces the committed files.
+# Needs SUMO 1.15 (netgenerate, netconvert, duarouter, sumo) and /usr/bin/python3 (sees sumolib).
+set -euo pipefail
+
+export SUMO_HOME=${SUMO_HOME:-/usr/share/sumo}
+PY=/usr/bin/python3
+TOOLS=$SUMO_HOME/tools
+ROOT=$(cd "$(dirname "$0")/.." && pwd)
+OUT=$ROOT/scenarios
+TMP=$(mktemp -d)
+trap 'rm -rf "$TMP"' EXIT
+
+# Drops SUMO's provenance comment (date, absolute paths) from the files given.
+strip_generated_header() {
+  "$PY" - "$@" <<'EOF'
+import re, sys
+for path in sys.argv[1:]:
+    with open(path, encoding="utf-8") as f:
+        text = f.read()
+    text = re.sub(r"<!-- generated on .*?-->\n+", "", text, flags=re.S)
+    with open(path, "w", encoding="utf-8") as f:
+        f.write(text)
+EOF
+}
+
+write_sumocfg() {  # dir name route-or-empty
+  local dir=$1 name=$2 routes=$3
+  cat > "$dir/$name.sumocfg" <<EOF
+<?xml version="1.0" encoding="UTF-8"?>
+<configuration xmlns:xsi="http://www.w3.org/2001/XMLSchema-instance" xsi:noNamespaceSchemaLocation="http://sumo.dlr.de/xsd/sumoConfiguration.xsd">
+    <input>
+        <net-file value="$name.net.xml"/>
+        <route-files value="$routes"/>
+    </input>
+    <time>
+        <begin value="0"/>
+        <end value="3600"/>
+    </time>
+</configuration>
+EOF
+}
+
+# --- grid_tls: 5x5 grid, 200 m blocks, 2 lanes, every junction signalised; 1000 routed vehicles -------------
+make_grid_tls() {
+  local d=$OUT/grid_tls
+  rm -rf "$d" && mkdir -p "$d"
+  netgenerate --grid --grid.number 5 --grid.length 200 --default.lanenumber 2 \
+    --default-junction-type traffic_light --seed 1 -o "$d/grid_tls.net.xml"
+  (cd "$TMP" && "$PY" "$TOOLS/randomTrips.py" -n "$d/grid_tls.net.xml" -b 0 -e 1000 -p 1 --seed 1 \
+    -o "$TMP/grid_tls.trips.xml")
+  duarouter -n "$d/grid_tls.net.xml" --route-files "$TMP/grid_tls.trips.xml" --seed 1 --no-step-log \
+    -o "$d/grid_tls.rou.xml"
+  rm -f "$d/grid_tls.rou.alt.xml"
+  strip_generated_header "$d/grid_tls.net.xml" "$d/grid_tls.rou.xml"
+  write_sumocfg "$d" grid_tls grid_tls.rou.xml
+}
+
+# --- random_net: random topology, right_before_left / priority / traffic_light junctions; 300 unrouted trips ----
+make_random_net() {
+  local d=$OUT/random_net
+  rm -rf "$d" && mkdir -p "$d"
+  # netgenerate gives every junction one type: build right_before_left with a few guessed signals, then turn
+  # every second remaining junction with 3+ approaches into a priority junction.
+  netgenerate --rand --rand.iterations 30 --seed 7 --random-lanenumber --default.lanenumber 2 \
+    --default.speed 13.89 --default-junction-type right_before_left --tls.guess --tls.guess.threshold 100 \
+    -o "$TMP/random_rbl.net.xml"
+  "$PY" - "$TMP/random_rbl.net.xml" "$TMP/priority.nod.xml" <<'EOF'
+import sys
+sys.path.append("/usr/share/sumo/tools")
+import sumolib
+net = sumolib.net.readNet(sys.argv[1])
+ids = sorted(n.getID() for n in net.getNodes()
+             if n.getType() == "right_before_left" and len(n.getIncoming()) >= 3)
+with open(sys.argv[2], "w") as f:
+    f.write("<nodes>\n")
+    for node_id in ids[::2]:
+        f.write('    <node id="%s" type="priority"/>\n' % node_id)
+    f.write("</nodes>\n")
+EOF
+  netconvert -s "$TMP/random_rbl.net.xml" -n "$TMP/priority.nod.xml" -o "$d/random_net.net.xml"
+  # randomTrips --validate leaves a routes.rou.xml in the working directory: run it in $TMP.
+  (cd "$TMP" && "$PY" "$TOOLS/randomTrips.py" -n "$d/random_net.net.xml" -b 0 -e 600 -p 2 --seed 7 --validate \
+    -o "$d/random_net.trips.xml")
+  strip_generated_header "$d/random_net.net.xml" "$d/random_net.trips.xml"
+  write_sumocfg "$d" random_net random_net.trips.xml
+}
+
+# --- flows: 3x3 grid, 2 lanes, priority junctions; every kind of <flow>, a vTypeDistribution, a routeDistribution --
+make_flows() {
+  local d=$OUT/flows
+  rm -rf "$d" && mkdir -p "$d"
+  netgenerate --grid --grid.number 3 --grid.length 150 --default.lanenumber 2 --seed 3 \
+    -o "$d/flows.net.xml"
+  strip_generated_header "$d/flows.net.xml"
+  cat > "$d/flows.rou.xml" <<'EOF'
+<?xml version="1.0" encoding="UTF-8"?>
+<routes xmlns:xsi="http://www.w3.org/2001/XMLSchema-instance" xsi:noNamespaceSchemaLocation="http://sumo.dlr.de/xsd/routes_file.xsd">
+    <vTypeDistribution id="mix">
+        <vType id="car" accel="2.6" decel="4.5" sigma="0.5" length="5" minGap="2.5" maxSpeed="50" probability="0.8"/>
+        <vType id="van" accel="1.8" decel="4.0" sigma="0.5" length="7.5" minGap="2.5" maxSpeed="30" probability="0.2"/>
+    </vTypeDistribution>
+    <vType id="slow" maxSpeed="10" speedFactor="1.0" speedDev="0"/>
+    <route id="west_east" edges="A1B1 B1C1"/>
+    <route id="south_north" edges="B0B1 B1B2"/>
+    <routeDistribution id="mixed_routes">
+        <route id="mixed_a" edges="A0B0 B0C0 C0C1" probability="3"/>
+        <route id="mixed_b" edges="C2B2 B2A2 A2A1" probability="1"/>
+    </routeDistribution>
+    <!-- period, fixed route: 60 vehicles (0, 10, ..., 590) -->
+    <flow id="by_period" type="mix" route="west_east" begin="0" end="600" period="10"/>
+    <!-- vehsPerHour, from/to (routed on insertion): 60 vehicles -->
+    <flow id="by_rate" type="car" from="A2B2" to="C1C0" begin="0" end="600" vehsPerHour="360" departLane="best" departSpeed="max"/>
+    <!-- probability per second, route distribution: random count (about 60) -->
+    <flow id="by_probability" type="mix" route="mixed_routes" begin="0" end="600" probability="0.1" departLane="random"/>
+    <!-- number, fixed route: 40 vehicles spread evenly over [0, 400) -->
+    <flow id="by_number" type="slow" route="south_north" begin="0" end="400" number="40"/>
+    <!-- number, from/to with via: 20 vehicles -->
+    <flow id="by_number_trip" from="C0C1" to="A1A0" via="B1A1" begin="100" end="500" number="20" departPos="random"/>
+</routes>
+EOF
+  write_sumocfg "$d" flows flows.rou.xml
+}
+
+# --- lpsim_csv_small: the original LPSim CSV format, a signalised cross plus one extra road (WGS84 near Berkeley) --
+make_lpsim_csv_small() {
+  local d=$OUT/lpsim_csv_small
+  rm -rf "$d" && mkdir -p "$d"
+  cat > "$d/nodes.csv" <<'EOF'
+osmid,x,y,ref,highway
+1001,-122.26,37.87,,traffic_signals
+1002,-122.262,37.87,,
+1003,-122.258,37.87,,
+1004,-122.26,37.8716,,stop
+1005,-122.26,37.8684,,
+1006,-122.256,37.87,,
+EOF
+  cat > "$d/edges.csv" <<'EOF'
+uniqueid,u,v,length,lanes,speed_mph
+0,1002,1001,176.0,2,35
+1,1001,1002,176.0,2,35
+2,1001,1003,176.0,2,35
+3,1003,1001,176.0,2,35
+4,1003,1006,176.5,1,25
+5,1006,1003,176.5,1,25
+6,1004,1001,178.5,1,25
+7,1001,1004,178.5,1,
+8,1005,1001,178.5,0,25
+9,1001,1005,178.5,1,0
+EOF
+  # The same edges in the header of the original's full network (u/v dense node indices, osmids beside them).
+  cat > "$d/edges_full_header.csv" <<'EOF'
+uniqueid,osmid_u,osmid_v,length,lanes,speed_mph,u,v
+0,1002,1001,176.0,2,35,1,0
+1,1001,1002,176.0,2,35,0,1
+2,1001,1003,176.0,2,35,0,2
+3,1003,1001,176.0,2,35,2,0
+4,1003,1006,176.5,1,25,2,5
+5,1006,1003,176.5,1,25,5,2
+6,1004,1001,178.5,1,25,3,0
+7,1001,1004,178.5,1,,0,3
+8,1005,1001,178.5,0,25,4,0
+9,1001,1005,178.5,1,0,0,4
+EOF
+  cat > "$d/od.csv" <<'EOF'
+,SAMPN,PERNO,origin_osmid,destination_osmid,dep_time,origin,destination
+0,1,1,1002,1006,0.0,1,5
+1,2,1,1006,1002,5.0,5,1
+2,3,1,1004,1005,10.5,3,4
+3,4,1,1005,1002,12.0,4,1
+4,5,1,1002,1004,20.0,1,3
+5,6,1,1006,1005,31.2,5,4
+6,7,1,1004,1006,45.0,3,5
+7,8,1,1005,1004,60.0,4,3
+EOF
+}
+
+make_grid_tls
+make_random_net
+make_flows
+make_lpsim_csv_small
+
+for name in grid_tls random_net flows; do
+  "$PY" "$ROOT/tools/sumo_reference.py" "$OUT/$name/$name.sumocfg" > "$OUT/$name/sumo_reference.txt"
+done
+du -sh "$OUT"
