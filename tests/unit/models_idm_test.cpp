@@ -150,6 +150,32 @@ TEST(ModelsIdm, SafeSpeedHandComputed) {
   EXPECT_TRUE(can_stop_before(0.0f, 0.0f, 4.5f, 1.0f));
 }
 
+// The worst case the safe speed plans for, without IDM's help: the follower takes the safe speed, then
+// brakes at its decel every step while the leader brakes at its decel. The gap must stay >= 0 at every
+// step, also when the follower brakes much harder than the leader (the follower must not pass "through"
+// the leader before both stand).
+TEST(ModelsIdm, SafeSpeedBrakingPlanNeverOverlapsTheLeader) {
+  int cases = 0;
+  for (float dt : {0.5f, 1.0f})
+    for (float gap : {0.0f, 0.5f, 3.0f, 10.0f, 40.0f, 150.0f})
+      for (float vl : {0.0f, 4.0f, 10.0f, 25.0f})
+        for (float bl : {1.0f, 4.5f, 9.0f})
+          for (float bf : {1.0f, 4.5f, 9.0f}) {
+            ++cases;
+            float vf = safe_speed(gap, vl, bl, bf, dt);
+            float v_lead = fmaxf(0.0f, vl - bl * dt);
+            float g = gap + (v_lead - vf) * dt;
+            for (int step = 0; step < 200 && (vf > 0.0f || v_lead > 0.0f); ++step) {
+              ASSERT_GE(g, 0.0f) << "gap " << gap << " vl " << vl << " bl " << bl << " bf " << bf << " dt " << dt;
+              vf = fmaxf(0.0f, vf - bf * dt);
+              v_lead = fmaxf(0.0f, v_lead - bl * dt);
+              g += (v_lead - vf) * dt;
+            }
+            ASSERT_GE(g, 0.0f) << "gap " << gap << " vl " << vl << " bl " << bl << " bf " << bf << " dt " << dt;
+          }
+  EXPECT_EQ(cases, 432);
+}
+
 TEST(ModelsIdm, FollowAndStopSpeedCombineIdmWithSafety) {
   // Far leader: IDM decides; the safety cap is not binding.
   EXPECT_EQ(follow_speed(kP, 10.0f, 20.0f, 200.0f, 10.0f, 9.0f, 1.0f, 4),
@@ -185,7 +211,7 @@ TEST(ModelsIdm, PropertySafeFollowerNeverCollides) {
     f.emergency_decel = draw(seed, pair, 2, f.decel, 10.0f);
     f.accel = draw(seed, pair, 3, 1.0f, 4.0f);
     f.tau = draw(seed, pair, 4, 0.5f, 2.0f);
-    const float leader_emergency = draw(seed, pair, 5, 3.0f, 10.0f);
+    const float leader_emergency = draw(seed, pair, 5, 1.0f, 10.0f);
     const float leader_accel = draw(seed, pair, 6, 1.0f, 4.0f);
     const float v0 = draw(seed, pair, 7, 5.0f, 40.0f);
     float gap = draw(seed, pair, 8, 0.0f, 80.0f);
