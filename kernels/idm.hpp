@@ -1,0 +1,216 @@
+#pragma once
+// Longitudinal model: the Intelligent Driver Model (Treiber) integrated as SUMO does (sub-steps within one
+// simulation step), capped by a ballistic safe speed that guarantees a vehicle can always stop behind its
+// leader. Pure float functions shared by the CPU and CUDA step kernels; see docs/MODELS.md.
+//
+// Gap convention (all functions here): `gap` is the bumper-to-bumper distance in metres from this vehicle's
+// front bumper to the leader's rear bumper (or to a stop point), with NOTHING subtracted. IDM adds min_gap
+// itself as its jam distance s0. SUMO's `gap2pred` is this gap minus the follower's minGap.
+//
+// Position update assumed by the safety guarantee: semi-implicit Euler, x(t+dt) = x(t) + v(t+dt) * dt (SUMO's
+// default), with every vehicle choosing its next speed from the state at the start of the step.
+#include <math.h>
+
+#include "kernels/hd.hpp"
+
+namespace lpsim {
+
+struct IdmParams {
+  float accel;            // a: maximum acceleration [m/s^2]
+  float decel;            // b: comfortable deceleration [m/s^2]
+  float emergency_decel;  // hardest physically possible braking [m/s^2]
+  float tau;              // T: desired time headway [s]
+  float min_gap;          // s0: jam distance kept to the leader at standstill [m]
+  float delta;            // acceleration exponent (4 in SUMO)
+};
+
+/// SUMO's passenger-car defaults with IDM's delta 4.
+LPSIM_HD IdmParams idm_default_params() { return IdmParams{2.6f, 4.5f, 9.0f, 1.0f, 2.5f, 4.0f}; }
+
+/// Speed substeps SUMO's IDM uses for a step of dt seconds with its default stepping of 0.25 s.
+LPSIM_HD int idm_default_substeps(float dt) {
+  const int n = static_cast<int>(dt / 0.25f + 0.5f);
+  return n < 1 ? 1 : n;
+}
+
+// Guards against division by zero for a zero desired speed or a zero gap (metres, m/s).
+constexpr float kIdmEps = 1e-3f;
+// Safe-speed computations shorten the gap by this much so float rounding can never let a follower reach
+// exactly zero distance [m].
+constexpr float kSafeGapEps = 1e-3f;
+// Below this distance to a stop point the vehicle simply stands (SUMO uses 0.01 m as well) [m].
+constexpr float kStopReachedEps = 0.01f;
+
+/// x^delta; exact products for the integer exponents 1..4 so CPU and GPU agree bit for bit (powf is only
+/// used for other exponents, where the two backends may differ in the last bit).
+LPSIM_HD float idm_pow_delta(float x, float delta) {
+  if (delta == 4.0f) {
+    const float x2 = x * x;
+    return x2 * x2;
+  }
+  if (delta == 2.0f) return x * x;
+  if (delta == 1.0f) return x;
+  if (delta == 3.0f) return x * x * x;
+  return powf(x, delta);
+}
+
+/// Desired (free-flow) speed: the lane's limit scaled by the driver's speed factor, capped by the vehicle.
+LPSIM_HD float desired_speed(float lane_speed, float speed_factor, float max_speed) {
+  return fminf(lane_speed * speed_factor, max_speed);
+}
+
+/// IDM desired gap s* = s0 + max(0, v*T + v*(v - v_leader) / (2*sqrt(a*b))).
+LPSIM_HD float idm_desired_gap(const IdmParams& p, float speed, float leader_speed, float jam_gap) {
+  const float two_sqrt_ab = 2.0f * sqrtf(p.accel * p.decel);
+  const float dynamic = speed * p.tau + speed * (speed - leader_speed) / two_sqrt_ab;
+  return jam_gap + fmaxf(0.0f, dynamic);
+}
+
+/// Free-road acceleration a*(1 - (v/v0)^delta). Above the desired speed the result is bounded by -decel:
+/// the raw IDM term explodes (v = 2*v0 gives -15a) where a real driver just brakes comfortably.
+LPSIM_HD float idm_free_accel(const IdmParams& p, float speed, float v0) {
+  const float ratio = speed / fmaxf(v0, kIdmEps);
+  return fmaxf(p.accel * (1.0f - idm_pow_delta(ratio, p.delta)), -p.decel);
+}
+
+/// IDM acceleration towards a leader `gap` metres ahead (bumper to bumper) driving at leader_speed.
+LPSIM_HD float idm_accel(const IdmParams& p, float speed, float v0, float gap, float leader_speed) {
+  const float ratio = speed / fmaxf(v0, kIdmEps);
+  const float s_star = idm_desired_gap(p, speed, leader_speed, p.min_gap);
+  const float s = fmaxf(gap, kIdmEps);
+  const float interaction = (s_star / s) * (s_star / s);
+  return p.accel * (1.0f - idm_pow_delta(ratio, p.delta) - interaction);
+}
+
+/// IDM acceleration towards a stop point (red light, junction entry, lane end) `gap` metres ahead: a
+/// standing leader with jam distance 0, so the front bumper may come right up to the line (as SUMO's
+/// stopSpeed, which does not respect minGap at stop points).
+LPSIM_HD float idm_stop_accel(const IdmParams& p, float speed, float v0, float gap) {
+  const float ratio = speed / fmaxf(v0, kIdmEps);
+  const float s_star = idm_desired_gap(p, speed, 0.0f, 0.0f);
+  const float s = fmaxf(gap, kIdmEps);
+  const float interaction = (s_star / s) * (s_star / s);
+  return p.accel * (1.0f - idm_pow_delta(ratio, p.delta) - interaction);
+}
+
+/// IDM speed after dt on a free road, integrated in `substeps` equal speed updates.
+LPSIM_HD float idm_free_speed(const IdmParams& p, float speed, float v0, float dt, int substeps) {
+  const int n = substeps < 1 ? 1 : substeps;
+  const float h = dt / static_cast<float>(n);
+  float v = speed;
+  for (int i = 0; i < n; ++i) v = fmaxf(0.0f, v + idm_free_accel(p, v, v0) * h);
+  return v;
+}
+
+// Shared sub-step loop for a leader or stop point: the gap shrinks by the closing distance of each sub-step
+// (never grows, as in SUMO, which assumes the leader keeps its speed). jam_gap selects leader vs stop.
+LPSIM_HD float idm_interaction_speed(const IdmParams& p, float speed, float v0, float gap, float leader_speed,
+                                     float jam_gap, float dt, int substeps) {
+  const int n = substeps < 1 ? 1 : substeps;
+  const float h = dt / static_cast<float>(n);
+  float v = speed;
+  float s = gap;
+  for (int i = 0; i < n; ++i) {
+    const float ratio = v / fmaxf(v0, kIdmEps);
+    const float s_star = idm_desired_gap(p, v, leader_speed, jam_gap);
+    const float s_safe = fmaxf(s, kIdmEps);
+    const float interaction = (s_star / s_safe) * (s_star / s_safe);
+    const float acc = p.accel * (1.0f - idm_pow_delta(ratio, p.delta) - interaction);
+    v = fmaxf(0.0f, v + acc * h);
+    s -= fmaxf(0.0f, (v - leader_speed) * h);
+  }
+  return v;
+}
+
+/// IDM speed after dt following a leader (IDM only; see follow_speed for the version with the safety cap).
+LPSIM_HD float idm_follow_speed(const IdmParams& p, float speed, float v0, float gap, float leader_speed,
+                                float dt, int substeps) {
+  return idm_interaction_speed(p, speed, v0, gap, leader_speed, p.min_gap, dt, substeps);
+}
+
+/// IDM speed after dt approaching a stop point `gap` metres ahead (IDM only; see stop_speed).
+LPSIM_HD float idm_stop_speed(const IdmParams& p, float speed, float v0, float gap, float dt, int substeps) {
+  return idm_interaction_speed(p, speed, v0, gap, 0.0f, 0.0f, dt, substeps);
+}
+
+/// Distance covered from now to standstill when braking at `decel` from `speed` under Euler stepping: the
+/// speeds of the next steps are v - b*dt, v - 2*b*dt, ... (each held for dt) until they reach zero.
+LPSIM_HD float stopping_distance(float speed, float decel, float dt) {
+  const float step_loss = fmaxf(decel, kIdmEps) * dt;  // speed lost per step
+  if (speed <= step_loss) return 0.0f;
+  const float n = floorf(speed / step_loss);  // steps that still move
+  return dt * (n * speed - step_loss * n * (n + 1.0f) * 0.5f);
+}
+
+/// How far ahead a vehicle must scan for leaders and stop points: the distance it could cover by
+/// accelerating for one step and then braking comfortably to a stop, plus its jam gap.
+LPSIM_HD float lookahead_distance(const IdmParams& p, float speed, float dt) {
+  const float v_next = speed + p.accel * dt;
+  return v_next * dt + stopping_distance(v_next, p.decel, dt) + p.min_gap;
+}
+
+/// Largest speed x for the next step such that x*dt plus the Euler braking distance from x at own_decel
+/// fits in `budget` metres. With x = n*b' + r (b' = own_decel*dt, 0 <= r < b') the distance is
+/// dt*((n+1)*r + b'*n*(n+1)/2), which is solved for the largest n, then r.
+LPSIM_HD float max_speed_within(float budget, float own_decel, float dt) {
+  if (budget <= 0.0f || dt <= 0.0f) return 0.0f;
+  const float b = fmaxf(own_decel, kIdmEps) * dt;
+  const float sum = budget / dt;  // budget expressed as a sum of step speeds
+  float n = floorf((sqrtf(1.0f + 8.0f * sum / b) - 1.0f) * 0.5f);
+  if (n < 0.0f) n = 0.0f;
+  // sqrtf rounding may leave n one off the exact integer; settle it against the defining inequality.
+  if (b * (n + 1.0f) * (n + 2.0f) * 0.5f <= sum) n += 1.0f;
+  if (n > 0.0f && b * n * (n + 1.0f) * 0.5f > sum) n -= 1.0f;
+  const float r = fminf(fmaxf((sum - b * n * (n + 1.0f) * 0.5f) / (n + 1.0f), 0.0f), b);
+  return n * b + r;
+}
+
+/// Ballistic (Krauss-style) safe speed: the fastest next speed from which this vehicle, braking at
+/// own_decel, stops behind a leader `gap` metres ahead that brakes at up to leader_decel from leader_speed.
+/// The leader is assumed to brake at least as hard as the follower (max of both decels, as SUMO does) so the
+/// follower cannot reach the leader's standstill point "through" it while braking harder. Invariant: if a
+/// vehicle used a speed <= safe_speed last step, then max(0, v - own_decel*dt) is <= safe_speed now, so
+/// own_decel always suffices and there is no collision as long as the leader brakes at most leader_decel.
+LPSIM_HD float safe_speed(float gap, float leader_speed, float leader_decel, float own_decel, float dt) {
+  const float leader_room = stopping_distance(leader_speed, fmaxf(leader_decel, own_decel), dt);
+  return max_speed_within(gap - kSafeGapEps + leader_room, own_decel, dt);
+}
+
+/// Fastest next speed from which the vehicle can stop before a point `gap` metres ahead braking at decel.
+LPSIM_HD float safe_stop_speed(float gap, float decel, float dt) {
+  return max_speed_within(gap - kSafeGapEps, decel, dt);
+}
+
+/// Whether a vehicle at `speed` can stop before a point `gap` ahead without braking harder than decel.
+LPSIM_HD bool can_stop_before(float gap, float speed, float decel, float dt) {
+  return fmaxf(0.0f, speed - decel * dt) <= safe_stop_speed(gap, decel, dt);
+}
+
+/// Next speed following a leader: min(IDM, safe speed). leader_decel is the hardest braking the leader may
+/// use (its emergency decel for the hard guarantee); the follower plans with its comfortable decel.
+LPSIM_HD float follow_speed(const IdmParams& p, float speed, float v0, float gap, float leader_speed,
+                            float leader_decel, float dt, int substeps) {
+  const float v_idm = idm_follow_speed(p, speed, v0, gap, leader_speed, dt, substeps);
+  return fminf(v_idm, safe_speed(gap, leader_speed, leader_decel, p.decel, dt));
+}
+
+/// Next speed approaching a stop point: zero once within kStopReachedEps, else min(IDM, safe stop speed).
+/// A standing vehicle close to the line gets a zero IDM speed (its own first sub-step closes too much of
+/// the gap); like SUMO it then moves up with the safe stop speed instead of standing short of the line.
+LPSIM_HD float stop_speed(const IdmParams& p, float speed, float v0, float gap, float dt, int substeps) {
+  if (gap < kStopReachedEps) return 0.0f;
+  const float v_safe = safe_stop_speed(gap, p.decel, dt);
+  const float v_idm = idm_stop_speed(p, speed, v0, gap, dt, substeps);
+  if (speed < kIdmEps && v_idm < kIdmEps) return v_safe;
+  return fminf(v_idm, v_safe);
+}
+
+/// Final speed for the step from the minimum of all candidate speeds (free, leaders, stop points): never
+/// faster than accelerating at accel, never slower than braking at emergency_decel, never negative.
+LPSIM_HD float finalize_speed(const IdmParams& p, float speed, float candidate, float dt) {
+  const float fastest = speed + p.accel * dt;
+  const float slowest = fmaxf(0.0f, speed - p.emergency_decel * dt);
+  return fminf(fmaxf(candidate, slowest), fastest);
+}
+
+}  // namespace lpsim
