@@ -8,5 +8,6 @@ namespace lpsim {
 
 int command_info(const std::vector<std::string>& args);
 int command_convert(const std::vector<std::string>& args);
+int command_run(const std::vector<std::string>& args);
 
 }  // namespace lpsim

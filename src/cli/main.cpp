@@ -19,6 +19,9 @@ commands:
            lpsim info scenario.lpsim (a snapshot written by convert)
   convert  load a scenario and write a binary snapshot that later commands load much faster
            lpsim convert -c scenario.sumocfg -o scenario.lpsim
+  run      simulate and write SUMO outputs
+           lpsim run -c scenario.sumocfg [--threads N] [--end T] [--fcd-output f.xml] [--tripinfo-output f.xml]
+           [--edgedata-output f.xml] [--summary-output f.xml]
   version  print the version
 
 options follow SUMO's names: -c, -n/--net-file, -r/--route-files, -a/--additional-files, -b/--begin,
@@ -38,6 +41,7 @@ int main(int argc, char** argv) {
   try {
     if (command == "info") return lpsim::command_info(args);
     if (command == "convert") return lpsim::command_convert(args);
+    if (command == "run") return lpsim::command_run(args);
     if (command == "version" || command == "--version") {
       std::printf("lpsim %s\n", LPSIM_VERSION);
       return 0;

@@ -11,3 +11,24 @@ void LaneCounters::resize(size_t lanes) {
 void LaneCounters::clear() { resize(sampled_steps.size()); }
 
 }  // namespace lpsim
+
+namespace lpsim {
+
+LaneCounters counters_since(const LaneCounters& now, const LaneCounters& start) {
+  LaneCounters d = now;
+  auto sub = [](std::vector<int64_t>& a, const std::vector<int64_t>& b) {
+    for (size_t i = 0; i < a.size() && i < b.size(); ++i) a[i] -= b[i];
+  };
+  sub(d.sampled_steps, start.sampled_steps);
+  sub(d.travelled_mm, start.travelled_mm);
+  sub(d.waiting_steps, start.waiting_steps);
+  sub(d.time_loss_ms, start.time_loss_ms);
+  sub(d.occupied_mm_steps, start.occupied_mm_steps);
+  sub(d.departed, start.departed);
+  sub(d.arrived, start.arrived);
+  sub(d.entered, start.entered);
+  sub(d.left, start.left);
+  return d;
+}
+
+}  // namespace lpsim

@@ -60,3 +60,10 @@ struct SummaryRow {
 };
 
 }  // namespace lpsim
+
+namespace lpsim {
+
+/// Counters accumulated between two snapshots of cumulative counters (now - start), for intervals.
+LaneCounters counters_since(const LaneCounters& now, const LaneCounters& start);
+
+}  // namespace lpsim

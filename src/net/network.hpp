@@ -51,6 +51,9 @@ struct Network {
   std::vector<char> conn_state;         // SUMO connection state: M m = s w o O Z ...
   std::vector<char> conn_dir;           // s l r t L R
   std::vector<int32_t> conn_junction;   // junction crossed, kNone if unknown
+  // Right of way: the connections each connection must yield to (from the junction's <request> rows),
+  // CSR [conn_foe_begin[c], conn_foe_begin[c+1]) in conn_foe. Filled by build_junction_foes.
+  std::vector<uint32_t> conn_foe_begin, conn_foe;
 
   // --- junctions ---
   std::vector<std::string> junction_id;

@@ -1,0 +1,69 @@
+#pragma once
+// The lane map: one byte per metre of lane. 0 = free; otherwise 1 + the occupying vehicle's speed in
+// quarter metres per second (floored, so a reader never overestimates a leader's speed). A vehicle marks
+// every cell its body covers, from the cell of its rear bumper to the cell of its front bumper, continuing
+// back over the lanes it came from when its body spans a lane boundary.
+#include <math.h>
+#include <stdint.h>
+
+#include "kernels/hd.hpp"
+#include "kernels/step_view.hpp"
+
+namespace lpsim {
+
+LPSIM_HD uint8_t encode_cell_speed(float v) {
+  const float q = floorf(v * 4.0f);
+  return static_cast<uint8_t>(1 + (q < 0.0f ? 0 : (q > 254.0f ? 254 : static_cast<int>(q))));
+}
+
+LPSIM_HD float decode_cell_speed(uint8_t cell) { return static_cast<float>(cell - 1) * 0.25f; }
+
+LPSIM_HD uint32_t lane_cells(const NetView& net, int32_t lane) {
+  return net.lane_cell_begin[lane + 1] - net.lane_cell_begin[lane];
+}
+
+/// Cell index on a lane of a position (m from the lane start), clamped to the lane.
+LPSIM_HD uint32_t cell_of(const NetView& net, int32_t lane, float pos) {
+  const uint32_t n = lane_cells(net, lane);
+  if (pos <= 0.0f) return 0;
+  const uint32_t c = static_cast<uint32_t>(pos);
+  return c >= n ? n - 1 : c;
+}
+
+LPSIM_HD void fill_cells(uint8_t* map, const NetView& net, int32_t lane, uint32_t first, uint32_t last, uint8_t v) {
+  const uint32_t base = net.lane_cell_begin[lane];
+  for (uint32_t c = first; c <= last; ++c) map[base + c] = v;
+}
+
+/// Writes `value` into every cell of a footprint of a vehicle `length` metres long.
+LPSIM_HD void apply_footprint(uint8_t* map, const NetView& net, const Footprint& fp, float length, uint8_t value) {
+  if (fp.lane < 0) return;
+  const float rear = fp.pos - length;
+  fill_cells(map, net, fp.lane, cell_of(net, fp.lane, rear), cell_of(net, fp.lane, fp.pos), value);
+  float remaining = -rear;  // body length still to place behind this lane's start
+  const int32_t behind[2] = {fp.prev, fp.prev2};
+  for (int k = 0; k < 2 && remaining > 0.0f && behind[k] >= 0; ++k) {
+    const int32_t l = behind[k];
+    const float len = net.lane_length[l];
+    fill_cells(map, net, l, cell_of(net, l, len - remaining), lane_cells(net, l) - 1, value);
+    remaining -= len;
+  }
+}
+
+/// First occupied cell in [first, last] of a lane, or -1.
+LPSIM_HD int32_t first_occupied(const uint8_t* map, const NetView& net, int32_t lane, int32_t first, int32_t last) {
+  const uint8_t* cells = map + net.lane_cell_begin[lane];
+  for (int32_t c = first; c <= last; ++c)
+    if (cells[c] != 0) return c;
+  return -1;
+}
+
+/// Last occupied cell in [first, last] of a lane (scanning down from last), or -1.
+LPSIM_HD int32_t last_occupied(const uint8_t* map, const NetView& net, int32_t lane, int32_t first, int32_t last) {
+  const uint8_t* cells = map + net.lane_cell_begin[lane];
+  for (int32_t c = last; c >= first; --c)
+    if (cells[c] != 0) return c;
+  return -1;
+}
+
+}  // namespace lpsim

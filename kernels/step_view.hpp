@@ -1,0 +1,135 @@
+#pragma once
+// Plain views the step kernels work on: raw pointers to structure-of-arrays columns and sizes, 32-bit
+// values only, so the same code runs on the host (CPU backend) and, compiled by nvcc, on the device.
+// The engine (src/engine) owns the arrays and fills these views; kernels never allocate.
+#include <stdint.h>
+
+#include "kernels/hd.hpp"
+
+namespace lpsim {
+
+/// The network, read-only during a run.
+struct NetView {
+  uint32_t num_lanes;
+  const uint32_t* lane_cell_begin;  // [num_lanes+1] first cell of each lane in the lane map
+  const float* lane_length;         // m
+  const float* lane_speed;          // m/s
+  const uint32_t* lane_edge;
+  const uint8_t* lane_internal;     // 1: junction-internal lane
+  const int32_t* lane_left;         // car lane to the left on the same edge (index+1), -1 if none
+  const int32_t* lane_right;        // car lane to the right on the same edge, -1 if none
+  const uint32_t* lane_conn_begin;  // [num_lanes+1] outgoing connections
+  const uint32_t* edge_first_lane;
+  const uint8_t* edge_num_lanes;
+  const uint32_t* conn_to_lane;
+  const int32_t* conn_via_lane;     // -1: direct
+  const uint32_t* conn_to_edge;
+  const uint32_t* conn_from_lane;
+  const int32_t* conn_signal;       // -1: not signalised
+  const int16_t* conn_link_index;
+  const char* conn_state;           // SUMO connection state (M m = s w ...)
+  const uint32_t* conn_foe_begin;   // [num_conns+1] connections this one must yield to (junction response)
+  const uint32_t* conn_foe;
+  const uint32_t* signal_link_begin;  // [num_signals+1] offset of each signal's links in link_state
+};
+
+/// Vehicle types, read-only.
+struct TypeView {
+  const float* length;
+  const float* min_gap;
+  const float* accel;
+  const float* decel;
+  const float* emergency_decel;
+  const float* max_speed;
+  const float* tau;
+  const float* delta;
+};
+
+/// Per-vehicle static data, read-only.
+struct TripView {
+  const uint32_t* type;
+  const uint32_t* route_begin;
+  const uint32_t* route_length;
+  const uint32_t* route_edges;
+  const float* speed_factor;
+  const uint8_t* arrival_pos_kind;  // ArrivalPos
+  const float* arrival_pos;
+};
+
+enum VehicleStatus : uint8_t { kPending = 0, kRunning = 1, kArrived = 2, kTeleporting = 3 };
+
+/// Where a vehicle's body lies: front bumper `pos` on `lane`, the tail continuing back over `prev` and
+/// `prev2` (the lanes driven before) when the vehicle is longer than what lies ahead of their ends.
+struct Footprint {
+  int32_t lane;  // -1: none (not on the road)
+  int32_t prev;
+  int32_t prev2;
+  float pos;
+};
+
+/// Mutable per-vehicle state. A vehicle's thread is the only one that reads or writes its own entries;
+/// other vehicles see it only through the lane map, so these need no double buffer.
+struct VehicleView {
+  uint8_t* status;
+  uint32_t* route_pos;  // index in the route of the current (or, on an internal lane, last) normal edge
+  float* speed;
+  int32_t* lane;
+  int32_t* prev;
+  int32_t* prev2;
+  float* pos;
+  int32_t* old_lane;  // footprint one step ago (cleared from the lane-map buffer being written)
+  int32_t* old_prev;
+  int32_t* old_prev2;
+  float* old_pos;
+  uint32_t* stopped_steps;  // consecutive steps below 0.1 m/s (teleport clock)
+  uint32_t* waiting_steps;  // all steps below 0.1 m/s (tripinfo waitingTime)
+  uint32_t* waiting_count;  // times it came to a halt
+  float* time_loss;         // s
+  float* route_length;      // m driven
+  uint32_t* arrival_step;
+  uint8_t* lane_change_dir; // last lane change: 0 none, 1 left, 2 right (for outputs)
+};
+
+/// What a vehicle decided this step, between the plan and the commit passes.
+struct PlanView {
+  float* new_speed;
+  int32_t* new_lane;   // lane of the front after the move
+  float* new_pos;
+  int32_t* new_prev;
+  int32_t* new_prev2;
+  int32_t* claim_lane0;  // lanes entered from their start this step (up to 2), -1 if none
+  int32_t* claim_lane1;
+  float* stop_pos;       // fallback if a claim is lost: front position on the pre-claim lane
+  int32_t* stop_lane;
+  uint8_t* arrives;      // 1: reaches its arrival position this step
+};
+
+/// Claims on lane entries: one 64-bit word per lane; the largest value of the current step wins.
+/// value = step << 40 | (0xFF - priority) << 32 | (0xFFFFFFFF - vehicle): higher priority, then lower index.
+LPSIM_HD uint64_t claim_key(uint32_t step, uint32_t priority, uint32_t vehicle) {
+  return (static_cast<uint64_t>(step & 0xFFFFFFu) << 40) | (static_cast<uint64_t>(0xFFu - (priority & 0xFFu)) << 32) |
+         static_cast<uint64_t>(0xFFFFFFFFu - vehicle);
+}
+
+/// The first vehicle on a lane as seen by junction right-of-way checks (valid when step matches).
+struct LaneApproach {
+  uint32_t step;
+  int32_t conn;        // connection it intends to take at the lane's end, -1 unknown
+  float dist;          // front bumper to the lane end [m]
+  float speed;         // m/s
+  uint32_t waiting;    // consecutive steps stopped (deadlock breaking)
+};
+
+/// Everything one step needs besides the arrays above.
+struct StepParams {
+  uint32_t step;        // step counter from 0
+  int64_t time_ms;      // simulation time at the start of the step
+  float dt;             // s
+  uint64_t seed;
+  int32_t substeps;     // IDM integration sub-steps
+  float max_accel;      // largest accel over all types (bounds how far an unseen vehicle can get)
+  float max_emergency_decel;  // largest emergency decel over all types (hardest a leader may brake)
+  uint32_t teleport_steps;    // 0: never teleport
+};
+
+}  // namespace lpsim

@@ -1,0 +1,556 @@
+#pragma once
+// One vehicle's step, written once for the CPU backend and the CUDA kernels. Three passes per step:
+//   approach: the first vehicle on each lane publishes where it is and which link it will take (read by
+//             right-of-way checks of other vehicles in the plan pass);
+//   plan:     from the previous step's lane map only, choose speed, lane change and new position; claim the
+//             lanes whose start the front crosses;
+//   commit:   keep the move if every claim was won (else stop at the lane end), write the footprint into the
+//             next lane map, update counters.
+// The hard guarantees (no shared cell, no passing a red light) come from clamping the move to the first
+// occupied cell seen ahead and to mandatory stop lines, whatever the models propose.
+#include <math.h>
+#include <stdint.h>
+
+#include "kernels/atomics.hpp"
+#include "kernels/idm.hpp"
+#include "kernels/lane_change.hpp"
+#include "kernels/lane_map.hpp"
+#include "kernels/right_of_way.hpp"
+#include "kernels/signal_state.hpp"
+#include "kernels/step_view.hpp"
+
+namespace lpsim {
+
+/// Everything the passes read or write, bundled so kernels take one argument.
+struct StepContext {
+  NetView net;
+  TypeView types;
+  TripView trips;
+  VehicleView veh;
+  PlanView plan;
+  StepParams params;
+  const uint8_t* map_now;   // lane map at the start of the step (read)
+  uint8_t* map_next;        // lane map being built for the end of the step (written)
+  const char* link_state;   // current signal character per signal link
+  LaneApproach* approach;   // per lane
+  uint64_t* claims;         // per lane
+  // Per-lane output counters (integers: order independent).
+  int64_t* cnt_sampled_steps;
+  int64_t* cnt_travelled_mm;
+  int64_t* cnt_waiting_steps;
+  int64_t* cnt_time_loss_ms;
+  int64_t* cnt_occupied_mm_steps;
+  int64_t* cnt_entered;
+  int64_t* cnt_left;
+  int64_t* cnt_arrived;
+};
+
+constexpr float kHaltingSpeed = 0.1f;  // SUMO's threshold for "waiting"
+constexpr int kMaxPathHops = 8;        // lanes looked ahead beyond the current one
+constexpr float kMaxLookahead = 1000.0f;
+constexpr float kDecisionMargin = 10.0f;  // m beyond the stopping distance where link decisions are taken
+constexpr float kFoeWindow = 1.0f;        // s of safety margin in right-of-way time windows
+constexpr float kClampEps = 0.001f;
+
+LPSIM_HD IdmParams idm_of(const StepContext& s, uint32_t type) {
+  return IdmParams{s.types.accel[type], s.types.decel[type], s.types.emergency_decel[type],
+                   s.types.tau[type],   s.types.min_gap[type], s.types.delta[type]};
+}
+
+LPSIM_HD uint32_t route_edge(const StepContext& s, uint32_t v, uint32_t k) {
+  return s.trips.route_edges[s.trips.route_begin[v] + k];
+}
+
+LPSIM_HD bool lane_has_conn_to(const NetView& net, int32_t lane, uint32_t edge) {
+  for (uint32_t c = net.lane_conn_begin[lane]; c < net.lane_conn_begin[lane + 1]; ++c)
+    if (net.conn_to_edge[c] == edge) return true;
+  return false;
+}
+
+/// The connection a vehicle takes at the end of `lane` to reach the route's next edge (index rp+1); prefers
+/// a target lane that also continues to the edge after. -1: this lane does not lead there.
+LPSIM_HD int32_t choose_connection(const StepContext& s, uint32_t v, int32_t lane, uint32_t rp) {
+  const NetView& net = s.net;
+  const uint32_t len = s.trips.route_length[v];
+  int32_t first = -1;
+  if (net.lane_internal[lane]) {
+    // Internal lanes continue along their single link (or the one towards the route's next edge).
+    for (uint32_t c = net.lane_conn_begin[lane]; c < net.lane_conn_begin[lane + 1]; ++c) {
+      if (first < 0) first = static_cast<int32_t>(c);
+      if (rp + 1 < len && net.conn_to_edge[c] == route_edge(s, v, rp + 1)) return static_cast<int32_t>(c);
+    }
+    return first;
+  }
+  if (rp + 1 >= len) return -1;
+  const uint32_t next = route_edge(s, v, rp + 1);
+  const bool has_after = rp + 2 < len;
+  const uint32_t after = has_after ? route_edge(s, v, rp + 2) : 0;
+  for (uint32_t c = net.lane_conn_begin[lane]; c < net.lane_conn_begin[lane + 1]; ++c) {
+    if (net.conn_to_edge[c] != next) continue;
+    if (first < 0) first = static_cast<int32_t>(c);
+    if (!has_after || lane_has_conn_to(net, static_cast<int32_t>(net.conn_to_lane[c]), after))
+      return static_cast<int32_t>(c);
+  }
+  return first;
+}
+
+/// Signal character (or the connection's own state) currently governing a connection.
+LPSIM_HD char link_state_of(const StepContext& s, uint32_t c) {
+  const int32_t sig = s.net.conn_signal[c];
+  if (sig < 0 || s.net.conn_link_index[c] < 0) return s.net.conn_state[c];
+  return s.link_state[s.net.signal_link_begin[sig] + static_cast<uint32_t>(s.net.conn_link_index[c])];
+}
+
+/// Whether some cell of a lane is occupied (a foe crossing the junction on its internal lane).
+LPSIM_HD bool lane_occupied(const StepContext& s, int32_t lane) {
+  return first_occupied(s.map_now, s.net, lane, 0, static_cast<int32_t>(lane_cells(s.net, lane)) - 1) >= 0;
+}
+
+/// Right of way for entering connection c, `dist` metres ahead: every foe link it must yield to is either
+/// closed by its signal, empty inside the junction and without an approaching vehicle that would arrive
+/// before this one has cleared. Circular waits (right_before_left with all approaches busy) are broken by
+/// letting the lowest lane index go once everyone involved stands.
+LPSIM_HD bool may_enter(const StepContext& s, uint32_t v, uint32_t c, float dist, float speed, float v0,
+                        const IdmParams& p, float length, bool self_waiting) {
+  const NetView& net = s.net;
+  const int32_t via = net.conn_via_lane[c];
+  const float cross = (via >= 0 ? net.lane_length[via] : 0.0f) + length;
+  const float own_clear = earliest_arrival_time(dist + cross, speed, p.accel, fmaxf(v0, 1.0f));
+  const uint32_t own_lane = net.conn_from_lane[c];
+  (void)v;
+  for (uint32_t k = net.conn_foe_begin[c]; k < net.conn_foe_begin[c + 1]; ++k) {
+    const uint32_t f = net.conn_foe[k];
+    const char fs = link_state_of(s, f);
+    if (signal_is_red(fs)) continue;
+    const int32_t fvia = net.conn_via_lane[f];
+    if (fvia >= 0 && lane_occupied(s, fvia)) return false;
+    const uint32_t flane = net.conn_from_lane[f];
+    const LaneApproach& a = s.approach[flane];
+    if (a.step != s.params.step || a.conn != static_cast<int32_t>(f)) continue;
+    const ApproachingFoe foe{a.dist, a.speed, s.params.max_accel, net.lane_speed[flane]};
+    if (!foe_conflicts(foe, own_clear, kFoeWindow)) continue;
+    // Deadlock breaking: both stand at their lines; the lower lane index goes first.
+    if (self_waiting && a.speed < kHaltingSpeed && a.waiting > 0 && own_lane < flane) continue;
+    return false;
+  }
+  return true;
+}
+
+/// A lane has room at its start for a vehicle of `need` metres (body plus gap) in the current map.
+LPSIM_HD bool room_at_start(const StepContext& s, int32_t lane, float need) {
+  const int32_t cells = static_cast<int32_t>(lane_cells(s.net, lane));
+  const int32_t last = static_cast<int32_t>(need) < cells ? static_cast<int32_t>(need) : cells - 1;
+  return first_occupied(s.map_now, s.net, lane, 0, last) < 0;
+}
+
+/// Speed from which braking at `decel` reaches v_lim within `dist` metres.
+LPSIM_HD float approach_speed_limit(float dist, float v_lim, float decel) {
+  return sqrtf(v_lim * v_lim + 2.0f * decel * fmaxf(dist, 0.0f));
+}
+
+/// Approach pass: the first vehicle on its lane (nothing ahead until the lane end) publishes itself.
+LPSIM_HD void approach_vehicle(StepContext& s, uint32_t v) {
+  if (s.veh.status[v] != kRunning) return;
+  const int32_t lane = s.veh.lane[v];
+  const float pos = s.veh.pos[v];
+  const int32_t cells = static_cast<int32_t>(lane_cells(s.net, lane));
+  const int32_t from = static_cast<int32_t>(cell_of(s.net, lane, pos)) + 1;
+  if (from < cells && first_occupied(s.map_now, s.net, lane, from, cells - 1) >= 0) return;
+  LaneApproach a;
+  a.step = s.params.step;
+  a.conn = choose_connection(s, v, lane, s.veh.route_pos[v]);
+  a.dist = s.net.lane_length[lane] - pos;
+  a.speed = s.veh.speed[v];
+  a.waiting = s.veh.stopped_steps[v];
+  s.approach[lane] = a;
+}
+
+/// Lane-change target: a neighbouring lane `target` of the current one. Returns true and tightens the
+/// speed/leader bounds when the change is safe and wanted.
+struct LaneChangeResult {
+  bool change;
+  float speed_cap;    // max next speed behind the target lane's leader
+  float leader_gap;   // distance to the first occupied cell ahead on the target lane (1e30: none)
+};
+
+LPSIM_HD LaneChangeResult try_lane_change(const StepContext& s, uint32_t v, int32_t lane, int32_t target,
+                                          bool mandatory, float urgency, float cand_here, float own_leader_gap,
+                                          float own_leader_speed, bool own_has_leader) {
+  LaneChangeResult r{false, 0.0f, 1e30f};
+  const NetView& net = s.net;
+  const uint32_t type = s.trips.type[v];
+  const IdmParams p = idm_of(s, type);
+  const float length = s.types.length[type];
+  const float pos = s.veh.pos[v];
+  const float speed = s.veh.speed[v];
+  const float dt = s.params.dt;
+  const float rear = pos - length;
+  // Vehicles about to enter the target lane from upstream are not visible here: keep clear of its start.
+  const float upstream_reach = (net.lane_speed[target] * 1.5f + s.params.max_accel * dt) * dt + p.min_gap;
+  if (rear < upstream_reach) return r;
+  if (pos + cand_here * dt >= net.lane_length[target] - 1.0f) return r;
+  const int32_t cells = static_cast<int32_t>(lane_cells(net, target));
+  const int32_t rear_cell = static_cast<int32_t>(cell_of(net, target, rear));
+  const int32_t front_cell = static_cast<int32_t>(cell_of(net, target, pos));
+  if (first_occupied(s.map_now, net, target, rear_cell, front_cell) >= 0) return r;
+  const float v0 = desired_speed(net.lane_speed[target], s.trips.speed_factor[v], s.types.max_speed[type]);
+  const float look = lookahead_distance(p, speed, dt);
+  LcNeighbor lead = lc_no_neighbor();
+  int32_t last = front_cell + 1 + static_cast<int32_t>(look);
+  if (last > cells - 1) last = cells - 1;
+  const int32_t lc = front_cell + 1 <= last ? first_occupied(s.map_now, net, target, front_cell + 1, last) : -1;
+  if (lc >= 0) {
+    lead = LcNeighbor{true, static_cast<float>(lc) - pos,
+                      decode_cell_speed(s.map_now[net.lane_cell_begin[target] + static_cast<uint32_t>(lc)]), v0, p};
+    lead.idm.emergency_decel = s.params.max_emergency_decel;
+  }
+  LcNeighbor lag = lc_no_neighbor();
+  int32_t back_first = rear_cell - 1 - static_cast<int32_t>(lookahead_distance(p, net.lane_speed[target], dt));
+  if (back_first < 0) back_first = 0;
+  const int32_t gc = rear_cell - 1 >= back_first ? last_occupied(s.map_now, net, target, back_first, rear_cell - 1) : -1;
+  if (gc >= 0) {
+    const float lag_speed = decode_cell_speed(s.map_now[net.lane_cell_begin[target] + static_cast<uint32_t>(gc)]) + 0.25f;
+    lag = LcNeighbor{true, rear - static_cast<float>(gc + 1), lag_speed, v0, p};
+    // The lag does not see the changer this step: it must not be able to reach the changer's rear.
+    if (lag.gap <= (lag_speed + s.params.max_accel * dt) * dt + 0.5f) return r;
+  }
+  const LaneChangeParams lcp = lane_change_default_params();
+  bool ok;
+  if (mandatory) {
+    ok = lc_gaps_acceptable(p, speed, v0, lead, lag, urgency, lcp, dt);
+  } else {
+    LcNeighbor cur_lead = lc_no_neighbor();
+    if (own_has_leader) cur_lead = LcNeighbor{true, own_leader_gap, own_leader_speed, v0, p};
+    const float bias = target == net.lane_left[lane] ? 0.1f : 0.0f;  // mild keep-right preference
+    ok = discretionary_change_wanted(p, speed, v0, length, cur_lead, lc_no_neighbor(), lead, lag, bias, lcp, dt);
+  }
+  if (!ok) return r;
+  r.change = true;
+  r.speed_cap = lead.present ? follow_speed(p, speed, v0, lead.gap, lead.speed, s.params.max_emergency_decel, dt,
+                                            s.params.substeps)
+                             : 1e30f;
+  r.leader_gap = lead.present ? lead.gap : 1e30f;
+  return r;
+}
+
+/// Plan pass for one running vehicle.
+LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
+  PlanView& out = s.plan;
+  out.claim_lane0[v] = -1;
+  out.claim_lane1[v] = -1;
+  out.arrives[v] = 0;
+  if (s.veh.status[v] != kRunning) return;
+  const NetView& net = s.net;
+  const uint32_t type = s.trips.type[v];
+  const IdmParams p = idm_of(s, type);
+  const float length = s.types.length[type];
+  const float sf = s.trips.speed_factor[v];
+  const float vmax = s.types.max_speed[type];
+  const float dt = s.params.dt;
+  const int32_t lane = s.veh.lane[v];
+  const float pos = s.veh.pos[v];
+  const float speed = s.veh.speed[v];
+  const uint32_t rp = s.veh.route_pos[v];
+  const uint32_t rlen = s.trips.route_length[v];
+  const float v0 = desired_speed(net.lane_speed[lane], sf, vmax);
+  const bool waiting = s.veh.stopped_steps[v] > 0;
+
+  float cand = idm_free_speed(p, speed, v0, dt, s.params.substeps);
+  const float budget = fminf(lookahead_distance(p, speed, dt) + p.min_gap, kMaxLookahead);
+  const float decision_dist = stopping_distance(speed, p.decel, dt) + speed * dt + kDecisionMargin;
+
+  // Walk the path ahead: current lane, then the lanes the route leads through, up to the budget.
+  int32_t path[kMaxPathHops];
+  int32_t hops = 0;
+  float hard_limit = 1e30f;        // the front must stay short of this distance (occupied cell / closed line)
+  bool has_leader = false;
+  float leader_gap = 0.0f, leader_speed = 0.0f;
+  float dist_to_lane_end = net.lane_length[lane] - pos;
+  int32_t cur = lane;
+  float cur_start = -pos;
+  uint32_t cur_rp = rp;
+  bool last_edge_here = !net.lane_internal[lane] && rp + 1 >= rlen;
+  for (;;) {
+    const int32_t cells = static_cast<int32_t>(lane_cells(net, cur));
+    const int32_t first = cur == lane ? static_cast<int32_t>(cell_of(net, cur, pos)) + 1 : 0;
+    int32_t last = static_cast<int32_t>(budget - cur_start);
+    if (last > cells - 1) last = cells - 1;
+    const int32_t hit = first <= last ? first_occupied(s.map_now, net, cur, first, last) : -1;
+    if (hit >= 0) {
+      const float gap = cur_start + static_cast<float>(hit);
+      const float vl = decode_cell_speed(s.map_now[net.lane_cell_begin[cur] + static_cast<uint32_t>(hit)]);
+      cand = fminf(cand, follow_speed(p, speed, v0, gap, vl, s.params.max_emergency_decel, dt, s.params.substeps));
+      hard_limit = fminf(hard_limit, gap - kClampEps);
+      has_leader = true;
+      leader_gap = gap;
+      leader_speed = vl;
+      break;
+    }
+    const float end_dist = cur_start + net.lane_length[cur];
+    if (end_dist > budget || hops == kMaxPathHops) break;
+    const bool normal = !net.lane_internal[cur];
+    if (normal && cur_rp + 1 >= rlen) break;  // the route ends on this lane: arrival, no boundary to pass
+    const int32_t c = choose_connection(s, v, cur, cur_rp);
+    if (c < 0) {  // wrong lane for the route (or a dead end): the lane end is a wall until a lane change
+      cand = fminf(cand, stop_speed(p, speed, v0, end_dist, dt, s.params.substeps));
+      hard_limit = fminf(hard_limit, end_dist - kClampEps);
+      break;
+    }
+    if (normal) {
+      const char st = link_state_of(s, static_cast<uint32_t>(c));
+      bool stop = signal_must_stop(st, end_dist, speed, p.decel, dt) || link_rule(st) == LinkRule::Closed;
+      if (!stop && end_dist <= decision_dist) {
+        const LinkRule rule = link_rule(st);
+        const bool needs_halt = rule == LinkRule::StopThenYield || rule == LinkRule::AllwayStop;
+        if (needs_halt && !(waiting && end_dist < 1.0f)) stop = true;
+        const uint32_t to = net.conn_to_lane[c];
+        if (!stop && !room_at_start(s, static_cast<int32_t>(to), length + p.min_gap)) stop = true;
+        if (!stop && !may_enter(s, v, static_cast<uint32_t>(c), end_dist, speed, v0, p, length, waiting)) stop = true;
+      }
+      if (stop) {
+        cand = fminf(cand, stop_speed(p, speed, v0, end_dist, dt, s.params.substeps));
+        if (signal_is_red(st) || link_rule(st) == LinkRule::Closed || signal_is_yellow(st))
+          hard_limit = fminf(hard_limit, end_dist - kClampEps);  // never pass a closed line
+        // A yield decision taken in time is also a hard line (the vehicle could stop for it).
+        else if (can_stop_before(end_dist, speed, p.emergency_decel, dt))
+          hard_limit = fminf(hard_limit, end_dist - kClampEps);
+        break;
+      }
+    }
+    const int32_t via = net.conn_via_lane[c];
+    const int32_t nxt = via >= 0 ? via : static_cast<int32_t>(net.conn_to_lane[c]);
+    const float v_lim = desired_speed(net.lane_speed[nxt], sf, vmax);
+    if (v_lim < cand) cand = fminf(cand, approach_speed_limit(end_dist, v_lim, p.decel));
+    path[hops] = nxt;
+    ++hops;
+    if (!net.lane_internal[nxt]) ++cur_rp;
+    cur = nxt;
+    cur_start = end_dist;
+  }
+
+  float new_speed = finalize_speed(p, speed, cand, dt);
+  int32_t new_lane = lane;
+
+  // Lane changes on normal lanes only, left on even steps and right on odd ones, so that no lane receives
+  // changers from both sides in one step.
+  if (!net.lane_internal[lane] && !last_edge_here) {
+    const bool left_step = (s.params.step & 1u) == 0;
+    const int32_t target = left_step ? net.lane_left[lane] : net.lane_right[lane];
+    if (target >= 0) {
+      const uint32_t next_edge = route_edge(s, v, rp + 1);
+      const bool here_good = lane_has_conn_to(net, lane, next_edge);
+      const bool target_good = lane_has_conn_to(net, target, next_edge);
+      bool mandatory = false;
+      float urgency = 0.0f;
+      if (!here_good) {
+        // Lanes still to cross towards the nearest lane that leads on, and whether target is on the way.
+        const uint32_t e = net.lane_edge[lane];
+        const int32_t first_lane = static_cast<int32_t>(net.edge_first_lane[e]);
+        const int32_t n = net.edge_num_lanes[e];
+        int32_t best = -1, best_d = 1 << 20;
+        for (int32_t k = 0; k < n; ++k) {
+          if (!lane_has_conn_to(net, first_lane + k, next_edge)) continue;
+          const int32_t d = (first_lane + k > lane) ? first_lane + k - lane : lane - first_lane - k;
+          if (d < best_d) best_d = d, best = first_lane + k;
+        }
+        const bool towards = best >= 0 && ((best > lane) == (target > lane));
+        if (towards) {
+          mandatory = true;
+          urgency = mandatory_lc_urgency(dist_to_lane_end, best_d, speed, lane_change_default_params());
+        }
+      }
+      const bool discretionary =
+          !mandatory && here_good && target_good && lc_attempt_allowed(s.params.seed, v, s.params.step, 0.5f);
+      if (mandatory || discretionary) {
+        const LaneChangeResult r =
+            try_lane_change(s, v, lane, target, mandatory, urgency, new_speed, leader_gap, leader_speed, has_leader);
+        if (r.change) {
+          new_lane = target;
+          new_speed = finalize_speed(p, speed, fminf(cand, r.speed_cap), dt);
+          hard_limit = fminf(hard_limit, r.leader_gap - kClampEps);
+          if (!target_good) {
+            const float end_dist = net.lane_length[target] - pos;
+            new_speed = fminf(new_speed, fmaxf(0.0f, stop_speed(p, speed, v0, end_dist, dt, s.params.substeps)));
+            hard_limit = fminf(hard_limit, end_dist - kClampEps);
+          }
+          hops = 0;  // the change step never crosses the lane end (checked in try_lane_change)
+        }
+      }
+    }
+  }
+
+  // Move, clamped to the hard limit.
+  float advance = new_speed * dt;
+  if (advance > hard_limit) advance = fmaxf(0.0f, hard_limit);
+  new_speed = advance / dt;
+  float npos = pos + advance;
+  int32_t nlane = new_lane, nprev = s.veh.prev[v], nprev2 = s.veh.prev2[v];
+  if (new_lane != lane) {
+    nprev = -1;  // a lane change moves the whole body across
+    nprev2 = -1;
+  }
+  out.stop_lane[v] = new_lane;
+  out.stop_pos[v] = npos;
+  int32_t claims = 0;
+  for (int32_t h = 0; h < hops && npos > net.lane_length[nlane]; ++h) {
+    if (claims == 2) {  // at most two lane entries per step: stop at the end of the second lane
+      npos = net.lane_length[nlane];
+      break;
+    }
+    if (claims == 0) {
+      out.stop_lane[v] = nlane;
+      out.stop_pos[v] = net.lane_length[nlane];
+    }
+    npos -= net.lane_length[nlane];
+    nprev2 = nprev;
+    nprev = nlane;
+    nlane = path[h];
+    if (claims == 0) out.claim_lane0[v] = nlane;
+    else out.claim_lane1[v] = nlane;
+    ++claims;
+    atomic_max_u64(&s.claims[nlane], claim_key(s.params.step, 1, v));
+  }
+  if (npos > net.lane_length[nlane]) npos = net.lane_length[nlane];
+  new_speed = fminf(new_speed, advance / dt);
+  // Arrival: on the route's last edge, at its arrival position (default: the lane's end).
+  if (!net.lane_internal[nlane] && net.lane_edge[nlane] == route_edge(s, v, rlen - 1)) {
+    float arrival = net.lane_length[nlane];
+    if (s.trips.arrival_pos_kind[v] == 0) {  // ArrivalPos::Given; negative counts from the end
+      const float a = s.trips.arrival_pos[v];
+      arrival = a < 0.0f ? net.lane_length[nlane] + a : a;
+      if (arrival > net.lane_length[nlane]) arrival = net.lane_length[nlane];
+    }
+    if (npos >= arrival - kClampEps && (nlane != lane || rp + 1 >= rlen)) out.arrives[v] = 1;
+  }
+  out.new_speed[v] = new_speed;
+  out.new_lane[v] = nlane;
+  out.new_pos[v] = npos;
+  out.new_prev[v] = nprev;
+  out.new_prev2[v] = nprev2;
+}
+
+/// Clears the footprint a vehicle had one step ago from the buffer that is about to be written.
+LPSIM_HD void clear_old_footprint(StepContext& s, uint32_t v) {
+  const Footprint fp{s.veh.old_lane[v], s.veh.old_prev[v], s.veh.old_prev2[v], s.veh.old_pos[v]};
+  apply_footprint(s.map_next, s.net, fp, s.types.length[s.trips.type[v]], 0);
+}
+
+/// Commit pass for one vehicle: settle claims, write the new footprint, update counters.
+LPSIM_HD void commit_vehicle(StepContext& s, uint32_t v) {
+  VehicleView& veh = s.veh;
+  // The footprint at the start of this step becomes "one step ago" (cleared two buffers later).
+  veh.old_lane[v] = veh.status[v] == kRunning ? veh.lane[v] : -1;
+  veh.old_prev[v] = veh.prev[v];
+  veh.old_prev2[v] = veh.prev2[v];
+  veh.old_pos[v] = veh.pos[v];
+  if (veh.status[v] != kRunning) return;
+  const NetView& net = s.net;
+  PlanView& plan = s.plan;
+  const uint32_t type = s.trips.type[v];
+  const float length = s.types.length[type];
+  const float dt = s.params.dt;
+  const int32_t lane = veh.lane[v];
+  const float pos = veh.pos[v];
+
+  int32_t nlane = plan.new_lane[v], nprev = plan.new_prev[v], nprev2 = plan.new_prev2[v];
+  float npos = plan.new_pos[v], nspeed = plan.new_speed[v];
+  bool arrives = plan.arrives[v] != 0;
+  const uint64_t key = claim_key(s.params.step, 1, v);
+  const int32_t c0 = plan.claim_lane0[v], c1 = plan.claim_lane1[v];
+  const bool lost0 = c0 >= 0 && s.claims[c0] != key;
+  const bool lost1 = c1 >= 0 && s.claims[c1] != key;
+  if (lost0 || lost1) {
+    arrives = false;
+    if (lost0) {  // stay on the lane before the first claimed one, at its end
+      nlane = plan.stop_lane[v];
+      npos = plan.stop_pos[v] - kClampEps;
+      if (nlane == lane) {
+        nprev = veh.prev[v];
+        nprev2 = veh.prev2[v];
+      } else {
+        nprev = lane;
+        nprev2 = veh.prev[v];
+      }
+    } else {  // keep the first lane entered, stop at its end
+      nprev2 = veh.prev[v];
+      nprev = lane;
+      nlane = c0;
+      npos = net.lane_length[c0] - kClampEps;
+    }
+    if (nlane == lane && npos < pos) npos = pos;
+  }
+  // Distance driven this step along the path.
+  float driven;
+  if (nlane == lane) driven = npos - pos;
+  else if (nprev == lane) driven = net.lane_length[lane] - pos + npos;
+  else if (nprev2 == lane && nprev >= 0) driven = net.lane_length[lane] - pos + net.lane_length[nprev] + npos;
+  else driven = npos - pos;  // lane change: longitudinal advance only
+  if (driven < 0.0f) driven = 0.0f;
+  nspeed = driven / dt;
+  if (nspeed > plan.new_speed[v]) nspeed = plan.new_speed[v];
+
+  // Route position follows the front onto each new normal edge.
+  uint32_t rp = veh.route_pos[v];
+  const uint32_t rlen = s.trips.route_length[v];
+  if (!net.lane_internal[nlane] && net.lane_edge[nlane] != route_edge(s, v, rp) && rp + 1 < rlen &&
+      net.lane_edge[nlane] == route_edge(s, v, rp + 1))
+    ++rp;
+  const bool edge_changed = rp != veh.route_pos[v];
+  veh.route_pos[v] = rp;
+
+  // Per-vehicle counters (tripinfo).
+  const float v0 = desired_speed(net.lane_speed[nlane], s.trips.speed_factor[v], s.types.max_speed[type]);
+  veh.route_length[v] += driven;
+  if (v0 > 0.0f) veh.time_loss[v] += dt * fmaxf(0.0f, (v0 - nspeed) / v0);
+  if (nspeed < kHaltingSpeed) {
+    if (veh.stopped_steps[v] == 0) veh.waiting_count[v] += 1;
+    veh.stopped_steps[v] += 1;
+    veh.waiting_steps[v] += 1;
+  } else {
+    veh.stopped_steps[v] = 0;
+  }
+  veh.lane_change_dir[v] = nlane != lane && net.lane_edge[nlane] == net.lane_edge[lane]
+                               ? (nlane == net.lane_left[lane] ? 1 : 2)
+                               : 0;
+
+  // Per-lane counters (edgeData/laneData), attributed to the lane of the front bumper.
+  if (edge_changed) {
+    atomic_add_i64(&s.cnt_left[lane], 1);
+    atomic_add_i64(&s.cnt_entered[nlane], 1);
+  } else if (nlane != lane && !net.lane_internal[nlane] && !net.lane_internal[lane]) {
+    atomic_add_i64(&s.cnt_left[lane], 1);
+    atomic_add_i64(&s.cnt_entered[nlane], 1);
+  }
+  atomic_add_i64(&s.cnt_sampled_steps[nlane], 1);
+  atomic_add_i64(&s.cnt_travelled_mm[nlane], static_cast<int64_t>(driven * 1000.0f + 0.5f));
+  if (nspeed < kHaltingSpeed) atomic_add_i64(&s.cnt_waiting_steps[nlane], 1);
+  if (v0 > 0.0f)
+    atomic_add_i64(&s.cnt_time_loss_ms[nlane], static_cast<int64_t>(dt * fmaxf(0.0f, (v0 - nspeed) / v0) * 1000.0f + 0.5f));
+  atomic_add_i64(&s.cnt_occupied_mm_steps[nlane],
+                 static_cast<int64_t>(fminf(length, fminf(npos, net.lane_length[nlane])) * 1000.0f + 0.5f));
+
+  if (arrives) {
+    atomic_add_i64(&s.cnt_arrived[nlane], 1);
+    veh.status[v] = kArrived;
+    veh.arrival_step[v] = s.params.step + 1;
+    veh.lane[v] = nlane;
+    veh.pos[v] = npos;
+    veh.speed[v] = nspeed;
+    return;  // no footprint: it left the network
+  }
+  if (s.params.teleport_steps > 0 && veh.stopped_steps[v] >= s.params.teleport_steps) {
+    veh.status[v] = kTeleporting;  // the host moves it on along its route
+    veh.lane[v] = nlane;
+    veh.pos[v] = npos;
+    veh.speed[v] = 0.0f;
+    return;
+  }
+  veh.lane[v] = nlane;
+  veh.pos[v] = npos;
+  veh.prev[v] = nprev;
+  veh.prev2[v] = nprev2;
+  veh.speed[v] = nspeed;
+  apply_footprint(s.map_next, net, Footprint{nlane, nprev, nprev2, npos}, length, encode_cell_speed(nspeed));
+}
+
+}  // namespace lpsim

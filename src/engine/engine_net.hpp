@@ -1,0 +1,28 @@
+#pragma once
+// Columns the step kernels need that the Network does not store directly: 32-bit cell offsets, internal
+// flags, lane neighbours, signal tables in the kernels' units (milliseconds). Built once per run.
+#include <cstdint>
+#include <vector>
+
+#include "kernels/signal_step.hpp"
+#include "kernels/step_view.hpp"
+#include "net/network.hpp"
+
+namespace lpsim {
+
+struct EngineNet {
+  std::vector<uint32_t> lane_cell_begin;
+  std::vector<uint8_t> lane_internal;
+  std::vector<int32_t> lane_left, lane_right;
+  std::vector<uint32_t> conn_foe_begin, conn_foe;  // copies, or an empty CSR if the net has none
+  // Signals.
+  std::vector<int32_t> durations_ms, num_links;
+  std::vector<int64_t> cycle_ms, offset_ms;
+  std::vector<uint32_t> link_begin;
+
+  explicit EngineNet(const Network& net);
+  NetView view(const Network& net) const;
+  SignalTable signal_table(const Network& net) const;
+};
+
+}  // namespace lpsim
