@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "core/net_spec.hpp"
@@ -67,22 +68,27 @@ inline char turn_dir(Point a0, Point a1, Point b0, Point b1) {
 
 }  // namespace detail
 
-/// Adds a normal edge between two existing junctions with `lanes` car lanes of the junction distance.
-inline EdgeSpec& add_edge(NetSpec& s, const std::string& id, const std::string& from, const std::string& to,
+/// Adds a normal edge from junction `a` to `b` with `lanes` car lanes of the junction distance.
+inline EdgeSpec& add_edge(NetSpec& s, const std::string& id, const JunctionSpec& a, const JunctionSpec& b,
                           int lanes = 1, double speed = 13.89) {
-  const JunctionSpec* a = detail::find_junction(s, from);
-  const JunctionSpec* b = detail::find_junction(s, to);
-  Point pa{a->x, a->y}, pb{b->x, b->y};
+  Point pa{a.x, a.y}, pb{b.x, b.y};
   EdgeSpec e;
   e.id = id;
-  e.from = from;
-  e.to = to;
+  e.from = a.id;
+  e.to = b.id;
   e.priority = 1;
   e.loc = {s.source, static_cast<int>(s.edges.size()) + 1};
   double len = std::hypot(pb.x - pa.x, pb.y - pa.y);
   for (int i = 0; i < lanes; ++i) e.lanes.push_back(detail::make_lane(id, i, len, speed, pa, pb));
   s.edges.push_back(std::move(e));
   return s.edges.back();
+}
+
+/// Same, naming existing junctions by id (linear lookup: for small specs).
+inline EdgeSpec& add_edge(NetSpec& s, const std::string& id, const std::string& from, const std::string& to,
+                          int lanes = 1, double speed = 13.89) {
+  JunctionSpec a = *detail::find_junction(s, from), b = *detail::find_junction(s, to);
+  return add_edge(s, id, a, b, lanes, speed);
 }
 
 /// Adds the connections of every incoming to every outgoing edge at each junction (lane i -> lane
@@ -92,16 +98,26 @@ inline void connect_all(NetSpec& s, bool with_internal, double internal_length, 
                         const std::vector<std::string>& signalled = {}) {
   std::vector<EdgeSpec> internal;
   std::vector<ConnectionSpec> conns;
-  for (auto& j : s.junctions) {
+  // Incoming and outgoing normal edges per junction, in edge order (keeps this linear for big grids).
+  std::unordered_map<std::string, size_t> junction;
+  for (size_t k = 0; k < s.junctions.size(); ++k) junction.emplace(s.junctions[k].id, k);
+  std::vector<std::vector<size_t>> ins(s.junctions.size()), outs(s.junctions.size());
+  for (size_t k = 0; k < s.edges.size(); ++k) {
+    if (s.edges[k].function != EdgeFunction::Normal) continue;
+    outs[junction.at(s.edges[k].from)].push_back(k);
+    ins[junction.at(s.edges[k].to)].push_back(k);
+  }
+  for (size_t jk = 0; jk < s.junctions.size(); ++jk) {
+    JunctionSpec& j = s.junctions[jk];
     bool tl = std::find(signalled.begin(), signalled.end(), j.id) != signalled.end();
     int link = 0;
-    for (const auto& in : s.edges) {
-      if (in.to != j.id || in.function != EdgeFunction::Normal) continue;
+    for (size_t ik : ins[jk]) {
+      const EdgeSpec& in = s.edges[ik];
       for (const auto& inl : in.lanes) j.inc_lanes.push_back(inl.id);
-      for (const auto& out : s.edges) {
-        if (out.from != j.id || out.function != EdgeFunction::Normal) continue;
-        const auto* a = detail::find_junction(s, in.from);
-        const auto* b = detail::find_junction(s, out.to);
+      for (size_t ok : outs[jk]) {
+        const EdgeSpec& out = s.edges[ok];
+        const JunctionSpec* a = &s.junctions[junction.at(in.from)];
+        const JunctionSpec* b = &s.junctions[junction.at(out.to)];
         char dir = detail::turn_dir({a->x, a->y}, {j.x, j.y}, {j.x, j.y}, {b->x, b->y});
         if (in.from == out.to) dir = 't';
         if (dir == 't' && !allow_uturn) continue;
@@ -173,7 +189,8 @@ inline NetSpec make_grid_spec(int cols, int rows, const GridOptions& o = {}) {
       for (int k = 0; k < 4; ++k) {
         int c1 = c + dc[k], r1 = r + dr[k];
         if (c1 < 0 || r1 < 0 || c1 >= cols || r1 >= rows) continue;
-        add_edge(s, grid_edge(c, r, c1, r1), grid_junction(c, r), grid_junction(c1, r1), o.lanes, o.speed);
+        add_edge(s, grid_edge(c, r, c1, r1), s.junctions[r * cols + c], s.junctions[r1 * cols + c1], o.lanes,
+                 o.speed);
       }
     }
   connect_all(s, o.with_internal, o.internal_length, o.allow_uturn);
@@ -193,7 +210,7 @@ inline NetSpec make_corridor_spec(int segments, double length = 100, int lanes =
     s.junctions.push_back(j);
   }
   for (int k = 0; k < segments; ++k)
-    add_edge(s, "E" + std::to_string(k), "K" + std::to_string(k), "K" + std::to_string(k + 1), lanes, speed);
+    add_edge(s, "E" + std::to_string(k), s.junctions[k], s.junctions[k + 1], lanes, speed);
   connect_all(s, false, 0, false);
   return s;
 }
