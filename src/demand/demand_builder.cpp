@@ -4,9 +4,10 @@
 #include <limits>
 #include <numeric>
 #include <string_view>
-#include <unordered_set>
+#include <utility>
 
 #include "demand/demand_draws.hpp"
+#include "demand/flat_index.hpp"
 #include "demand/flow_expansion.hpp"
 #include "demand/route_table.hpp"
 #include "demand/trip_batch.hpp"
@@ -108,10 +109,9 @@ class Builder {
   }
 
   void check_unique_ids() const {
-    std::unordered_set<std::string_view> seen;
-    seen.reserve(ids_.size());
-    for (size_t k = 0; k < ids_.size(); ++k)
-      if (!seen.insert(ids_[k]).second)
+    FlatIndex seen(ids_.size());
+    for (uint32_t k = 0; k < ids_.size(); ++k)
+      if (seen.find_or_insert(draw_stream(ids_[k]), k, [&](uint32_t other) { return ids_[other] == ids_[k]; }) != k)
         throw InputError(loc_of(pending_[k]), "duplicate vehicle id '" + ids_[k] + "'");
   }
 
@@ -124,19 +124,22 @@ class Builder {
   }
 
   void assemble() {
-    // Drop vehicles on broken routes (only possible with ignore_route_errors), in file order.
-    std::vector<uint32_t> order;
-    order.reserve(pending_.size());
+    // Drop vehicles on broken routes (only possible with ignore_route_errors), in file order. Sorting
+    // (depart, position) pairs is a stable sort by depart that touches only the pairs.
+    std::vector<std::pair<double, uint32_t>> by_depart;
+    by_depart.reserve(pending_.size());
     for (uint32_t k = 0; k < pending_.size(); ++k) {
       const RouteSlot& slot = routes_.slot(pending_[k].slot);
       if (slot.problem >= 0) {
         demand_.unroutable.push_back({ids_[k], routes_.problem(slot.problem), loc_of(pending_[k])});
       } else {
-        order.push_back(k);
+        by_depart.emplace_back(pending_[k].depart, k);
       }
     }
-    std::stable_sort(order.begin(), order.end(),
-                     [this](uint32_t a, uint32_t b) { return pending_[a].depart < pending_[b].depart; });
+    if (!std::is_sorted(by_depart.begin(), by_depart.end())) std::sort(by_depart.begin(), by_depart.end());
+    std::vector<uint32_t> order(by_depart.size());
+    for (size_t v = 0; v < order.size(); ++v) order[v] = by_depart[v].second;
+    by_depart = {};
 
     const size_t n = order.size();
     Demand& d = demand_;

@@ -102,13 +102,18 @@ uint32_t TripBatch::add(const TripEnds& ends, std::string_view kind, std::string
     return it->second;
   }
 
-  const uint64_t h = hash_request(request);
-  for (auto [it, last] = by_hash_.equal_range(h); it != last; ++it)
-    if (same_request(requests_[it->second], request)) return pending_[it->second].slot;
+  const bool packed = request.origins.size() == 1 && request.destinations.size() == 1 && request.via.empty();
+  const uint64_t key =
+      packed ? (uint64_t{request.origins[0]} << 32 | request.destinations[0]) : hash_request(request);
+  const auto next = static_cast<uint32_t>(requests_.size());
+  const uint32_t known = index_.find_or_insert(key, next, [&](uint32_t r) {
+    return packed_[r] ? packed : !packed && same_request(requests_[r], request);
+  });
+  if (known != next) return pending_[known].slot;
 
   const uint32_t slot = routes_.add_pending();  // filled by route_all()
-  by_hash_.emplace(h, static_cast<uint32_t>(requests_.size()));
   requests_.push_back(std::move(request));
+  packed_.push_back(packed);
   pending_.push_back({slot,
                       "from " + endpoint_name(ends.from, ends.from_junction) + " to " +
                           endpoint_name(ends.to, ends.to_junction) + " for " + who,

@@ -8,6 +8,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "demand/flat_index.hpp"
 #include "demand/route_table.hpp"
 #include "net/router.hpp"
 
@@ -49,7 +50,10 @@ class TripBatch {
   RouteTable& routes_;
   std::vector<RouteRequest> requests_;
   std::vector<Pending> pending_;
-  std::unordered_multimap<uint64_t, uint32_t> by_hash_;  // request hash -> index in requests_
+  // Request key -> index in requests_: (origin, destination) packed for one-edge ends without via, which
+  // is exact; a hash of the whole request otherwise, confirmed by comparing the requests.
+  FlatIndex index_;
+  std::vector<uint8_t> packed_;  // per request: its key is the packed pair
   std::unordered_map<uint32_t, uint32_t> single_edge_slot_;  // from == to without via: that edge
   // Per junction, CSR lists of drivable normal edges leaving and entering it (built on first use).
   std::vector<uint32_t> leaving_begin_, leaving_, entering_begin_, entering_;

@@ -571,6 +571,14 @@ TEST_F(DemandBuilderTest, UnknownIdsNameTheVehicleAndTheLine) {
   twice.vehicles = {on_edges("v15", 0, {"E0"}, 25), on_edges("v15", 1, {"E1"}, 26)};
   expect_error(twice, {"test.rou.xml:26", "duplicate", "'v15'"});
 
+  DemandSpec clash;  // a flow's generated id taken by a vehicle
+  FlowSpec f = flow("f", {"E0"}, 28);
+  f.number = 2;
+  f.period = 1;
+  clash.flows = {f};
+  clash.vehicles = {on_edges("f.1", 0, {"E0"})};
+  expect_error(clash, {"test.rou.xml:28", "duplicate", "'f.1'"});
+
   DemandSpec bad_dist;
   bad_dist.vtype_dists.push_back({"d", {{"ghost", 1}}, at(27)});
   expect_error(bad_dist, {"test.rou.xml:27", "'ghost'", "'d'"});
