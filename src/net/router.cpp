@@ -12,18 +12,21 @@ namespace lpsim {
 namespace {
 
 // Cost model: a path's cost is the sum of length/speed over ALL its edges, the first and the last included
-// (a trip drives its whole origin and destination edge as far as routing is concerned; duarouter does the
-// same by default). Edges without car lanes or with speed 0 are impassable; internal edges are never part
-// of a route because edge_succ links normal edges only, and internal edges given as origin, destination or
-// via yield no path.
-constexpr double kInf = std::numeric_limits<double>::infinity();
+// (depart and arrival positions are ignored). For a single destination this ranks paths exactly as leaving
+// the last edge out would; with several destinations a long destination edge counts against itself.
+// Edges without car lanes or with speed 0 are impassable; internal edges are never part of a route
+// because edge_succ links normal edges only, and internal edges given as origin, destination or via yield
+// no path.
+//
+// Ties: the heap pops the smallest (cost, edge index), and an edge keeps the predecessor that first
+// reached its final cost, so among equal-cost paths the one through earlier-settled edges wins. The
+// outcome depends only on the request, never on the thread or on which requests share a search.
 
 struct HeapItem {
   double dist;
   uint32_t edge;
 };
-// std heap functions build a max-heap; "greater" puts the smallest (dist, edge) on top, so equal costs
-// settle in edge-index order and the search is fully determined by its input.
+// std heap functions build a max-heap; "after" puts the smallest (dist, edge) on top.
 inline bool heap_after(const HeapItem& a, const HeapItem& b) {
   return a.dist > b.dist || (a.dist == b.dist && a.edge > b.edge);
 }
