@@ -77,10 +77,10 @@ class Builder {
       auto it = net_.junction_index.find(e.id.substr(1, us - 1));
       if (it != net_.junction_index.end()) return static_cast<int32_t>(it->second);
     }
-    if (int_lane_junction_.empty()) {
+    if (!int_lane_junction_built_) {  // only nets with unusual internal ids pay for this map
       for (uint32_t j = 0; j < spec_.junctions.size(); ++j)
-        for (const auto& l : spec_.junctions[j].int_lanes) int_lane_junction_.emplace(l, j);
-      if (int_lane_junction_.empty()) int_lane_junction_.emplace("", kNone);  // built, and empty
+        for (const auto& l : spec_.junctions[j].int_lanes) int_lane_junction_.emplace(l, static_cast<int32_t>(j));
+      int_lane_junction_built_ = true;
     }
     for (const auto& l : e.lanes) {
       auto it = int_lane_junction_.find(l.id);
@@ -89,6 +89,7 @@ class Builder {
     return kNone;
   }
   std::unordered_map<std::string, int32_t> int_lane_junction_;
+  bool int_lane_junction_built_ = false;
 
   void add_edges_and_lanes() {
     const auto& edges = spec_.edges;
