@@ -156,6 +156,26 @@ TEST(NetworkBuilder, SuccessorsFollowInternalChains) {
   EXPECT_EQ(net.conn_junction[net.lane_conn_begin[l]], static_cast<int32_t>(net.junction_index.at("K1")));
 }
 
+TEST(NetworkBuilder, InternalJunctionFromIntLanesWhenIdDoesNotTell) {
+  NetSpec s = test::make_corridor_spec(2);
+  EdgeSpec ie;
+  ie.id = ":odd";
+  ie.function = EdgeFunction::Internal;
+  LaneSpec il;
+  il.id = ":odd_lane";
+  il.length = 2;
+  ie.lanes.push_back(il);
+  s.edges.push_back(ie);
+  s.junctions[1].int_lanes.push_back(":odd_lane");
+  ConnectionSpec c;
+  c.from = ":odd";
+  c.to = "E1";
+  s.connections.push_back(c);
+  Network net = build_network(s);
+  const uint32_t l = net.lane_index_by_id.at(":odd_lane");
+  EXPECT_EQ(net.conn_junction[net.lane_conn_begin[l]], static_cast<int32_t>(net.junction_index.at("K1")));
+}
+
 TEST(NetworkBuilder, BusLaneAndItsConnectionsAreDropped) {
   Network net = build_network(test::make_signal_spec(/*bus_lane=*/true));
   EXPECT_EQ(net.num_edges(), 8u);
