@@ -9,11 +9,26 @@ struct DemandOptions {
   uint64_t seed = 23423;
   bool ignore_route_errors = false;  // as SUMO's --ignore-route-errors: skip unroutable/broken, report them
   int threads = 0;                   // routing threads; 0: all hardware threads
-  double begin = 0, end = -1;        // flows are expanded within [begin, end) when end >= 0
+  double step_length = 1.0;          // s; the grid on which probability flows draw
+  // Kept for the engine: every vehicle is built whatever its depart; the engine decides what runs.
+  double begin = 0, end = -1;
 };
 
 /// Resolves types, distributions and routes, expands flows, routes trips (fastest free-flow path over lane
 /// connections) and checks every route is connected. Raises InputError naming the vehicle and the bad id.
+///
+/// Conventions of the result (beyond demand.hpp):
+///  - vehicles are sorted by depart, stable: vehicles/trips/OD rows in file order first, then each flow's
+///    vehicles in flow order; flows therefore interleave with everything else by time only;
+///  - flow vehicles are named "<flow id>.<n>" (see flow_expansion.hpp for the expansion rules);
+///  - depart_lane (DepartLane::Given) is the position of the lane among the first edge's car lanes, i.e. the
+///    lane is edge_first_lane[e] + depart_lane; the SUMO index given in the file is mapped to it;
+///  - depart_pos / arrival_pos (Given) are from the start of the first / last edge: SUMO's negative values
+///    (measured back from the lane end) are converted by adding that edge's length;
+///  - every random draw is keyed by (seed, hash of the vehicle id) (flows' per-step draws: flow id, step),
+///    never by load order;
+///  - with ignore_route_errors, vehicles on broken routes and trips without a path are left out and listed
+///    in Demand::unroutable (every flow vehicle individually).
 Demand build_demand(const DemandSpec& spec, const Network& net, const DemandOptions& options);
 
 }  // namespace lpsim

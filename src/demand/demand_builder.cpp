@@ -1,0 +1,220 @@
+#include "demand/demand_builder.hpp"
+
+#include <algorithm>
+#include <limits>
+#include <numeric>
+#include <string_view>
+#include <utility>
+
+#include "demand/demand_draws.hpp"
+#include "demand/flat_index.hpp"
+#include "demand/flow_expansion.hpp"
+#include "demand/route_table.hpp"
+#include "demand/trip_batch.hpp"
+#include "demand/vtype_table.hpp"
+
+namespace lpsim {
+namespace {
+
+// A vehicle between resolution and the final sorted layout. `origin` indexes spec.vehicles, or spec.flows
+// when from_flow is set (its depart attributes and location live there).
+struct PendingVehicle {
+  double depart;
+  uint32_t type;
+  uint32_t slot;
+  float speed_factor;
+  uint32_t origin;
+  bool from_flow;
+};
+
+const char* kind_name(DemandSource s) {
+  switch (s) {
+    case DemandSource::Trip: return "trip";
+    case DemandSource::OdCsv: return "OD trip";
+    default: return "vehicle";
+  }
+}
+
+class Builder {
+ public:
+  Builder(const DemandSpec& spec, const Network& net, const DemandOptions& options, Demand& demand)
+      : spec_(spec), net_(net), opt_(options), demand_(demand), types_(spec),
+        routes_(spec, net, options.ignore_route_errors, demand.route_edges), trips_(net, routes_) {}
+
+  void run() {
+    std::vector<std::vector<double>> flow_times(spec_.flows.size());
+    size_t total = spec_.vehicles.size();
+    for (size_t f = 0; f < spec_.flows.size(); ++f) {
+      flow_times[f] = flow_departures(spec_.flows[f], opt_.seed, opt_.step_length);
+      total += flow_times[f].size();
+    }
+    if (total > std::numeric_limits<uint32_t>::max())
+      throw InputError("the demand has " + std::to_string(total) + " vehicles, more than 2^32 - 1");
+    pending_.reserve(total);
+    ids_.reserve(total);
+
+    for (uint32_t i = 0; i < spec_.vehicles.size(); ++i) add_vehicle(i);
+    for (uint32_t f = 0; f < spec_.flows.size(); ++f) add_flow(f, flow_times[f]);
+    flow_times.clear();
+    trips_.route_all(opt_.threads);
+    check_unique_ids();
+    assemble();
+  }
+
+ private:
+  void add_vehicle(uint32_t i) {
+    const VehicleSpec& v = spec_.vehicles[i];
+    const uint64_t stream = draw_stream(v.id);
+    const uint32_t type = types_.resolve(v.type, v.id, opt_.seed, stream, v.loc);
+    uint32_t slot;
+    if (!v.route.empty()) {
+      slot = routes_.named(v.route, v.id, opt_.seed, stream, v.loc);
+    } else if (!v.edges.empty()) {
+      slot = routes_.inline_route(v.edges, "vehicle '" + v.id + "'", v.loc);
+    } else {
+      slot = trips_.add({v.from, v.to, v.from_junction, v.to_junction, v.via}, kind_name(v.source), v.id, v.loc);
+    }
+    pending_.push_back({v.depart, type, slot, types_.speed_factor(type, opt_.seed, stream), i, false});
+    ids_.push_back(v.id);
+  }
+
+  void add_flow(uint32_t f, const std::vector<double>& times) {
+    if (times.empty()) return;
+    const FlowSpec& flow = spec_.flows[f];
+    // One route for the whole flow unless it names a route (a distribution draws per vehicle).
+    uint32_t shared_slot = 0;
+    if (flow.route.empty()) {
+      shared_slot = flow.edges.empty()
+                        ? trips_.add({flow.from, flow.to, flow.from_junction, flow.to_junction, flow.via}, "flow",
+                                     flow.id, flow.loc)
+                        : routes_.inline_route(flow.edges, "flow '" + flow.id + "'", flow.loc);
+    }
+    std::string id;
+    for (size_t n = 0; n < times.size(); ++n) {
+      id.assign(flow.id).append(".").append(std::to_string(n));
+      const uint64_t stream = draw_stream(id);
+      const uint32_t type = types_.resolve(flow.type, id, opt_.seed, stream, flow.loc);
+      const uint32_t slot =
+          flow.route.empty() ? shared_slot : routes_.named(flow.route, id, opt_.seed, stream, flow.loc);
+      pending_.push_back({times[n], type, slot, types_.speed_factor(type, opt_.seed, stream), f, true});
+      ids_.push_back(id);
+    }
+  }
+
+  const SourceLoc& loc_of(const PendingVehicle& p) const {
+    return p.from_flow ? spec_.flows[p.origin].loc : spec_.vehicles[p.origin].loc;
+  }
+  const DepartSpec& depart_of(const PendingVehicle& p) const {
+    return p.from_flow ? spec_.flows[p.origin].depart_spec : spec_.vehicles[p.origin].depart_spec;
+  }
+
+  void check_unique_ids() const {
+    FlatIndex seen(ids_.size());
+    for (uint32_t k = 0; k < ids_.size(); ++k)
+      if (seen.find_or_insert(draw_stream(ids_[k]), k, [&](uint32_t other) { return ids_[other] == ids_[k]; }) != k)
+        throw InputError(loc_of(pending_[k]), "duplicate vehicle id '" + ids_[k] + "'");
+  }
+
+  // Position of SUMO lane `sumo_index` among the car lanes of `edge`, or -1.
+  int car_lane_position(uint32_t edge, int sumo_index) const {
+    const uint32_t first = net_.edge_first_lane[edge];
+    for (uint32_t k = 0; k < net_.edge_num_lanes[edge]; ++k)
+      if (net_.lane_index[first + k] == sumo_index) return static_cast<int>(k);
+    return -1;
+  }
+
+  void assemble() {
+    // Drop vehicles on broken routes (only possible with ignore_route_errors), in file order. Sorting
+    // (depart, position) pairs is a stable sort by depart that touches only the pairs.
+    std::vector<std::pair<double, uint32_t>> by_depart;
+    by_depart.reserve(pending_.size());
+    for (uint32_t k = 0; k < pending_.size(); ++k) {
+      const RouteSlot& slot = routes_.slot(pending_[k].slot);
+      if (slot.problem >= 0) {
+        demand_.unroutable.push_back({ids_[k], routes_.problem(slot.problem), loc_of(pending_[k])});
+      } else {
+        by_depart.emplace_back(pending_[k].depart, k);
+      }
+    }
+    if (!std::is_sorted(by_depart.begin(), by_depart.end())) std::sort(by_depart.begin(), by_depart.end());
+    std::vector<uint32_t> order(by_depart.size());
+    for (size_t v = 0; v < order.size(); ++v) order[v] = by_depart[v].second;
+    by_depart = {};
+
+    const size_t n = order.size();
+    Demand& d = demand_;
+    d.vehicle_id.resize(n);
+    d.vehicle_type.resize(n);
+    d.depart.resize(n);
+    d.route_begin.resize(n);
+    d.route_length.resize(n);
+    d.speed_factor.resize(n);
+    d.source.resize(n);
+    d.depart_lane_kind.resize(n);
+    d.depart_lane.resize(n);
+    d.depart_pos_kind.resize(n);
+    d.depart_pos.resize(n);
+    d.depart_speed_kind.resize(n);
+    d.depart_speed.resize(n);
+    d.arrival_pos_kind.resize(n);
+    d.arrival_pos.resize(n);
+    for (size_t v = 0; v < n; ++v) {
+      const PendingVehicle& p = pending_[order[v]];
+      const RouteSlot& slot = routes_.slot(p.slot);
+      const DepartSpec& ds = depart_of(p);
+      const uint32_t first_edge = d.route_edges[slot.begin];
+      const uint32_t last_edge = d.route_edges[slot.begin + slot.length - 1];
+      d.vehicle_id[v] = std::move(ids_[order[v]]);
+      d.vehicle_type[v] = p.type;
+      d.depart[v] = p.depart;
+      d.route_begin[v] = slot.begin;
+      d.route_length[v] = slot.length;
+      d.speed_factor[v] = p.speed_factor;
+      d.source[v] = p.from_flow ? DemandSource::Flow : spec_.vehicles[p.origin].source;
+
+      d.depart_lane_kind[v] = static_cast<uint8_t>(ds.lane);
+      d.depart_lane[v] = 0;
+      if (ds.lane == DepartLane::Given) {
+        const int position = car_lane_position(first_edge, ds.lane_index);
+        if (position < 0)
+          throw InputError(loc_of(p), "departLane " + std::to_string(ds.lane_index) + " of vehicle '" +
+                                          d.vehicle_id[v] + "' is not a car lane of its first edge '" +
+                                          net_.edge_id[first_edge] + "' (" +
+                                          std::to_string(net_.edge_num_lanes[first_edge]) + " car lanes)");
+        d.depart_lane[v] = static_cast<int8_t>(position);
+      }
+      d.depart_pos_kind[v] = static_cast<uint8_t>(ds.pos);
+      d.depart_pos[v] = static_cast<float>(ds.pos == DepartPos::Given && ds.pos_value < 0
+                                               ? ds.pos_value + net_.edge_length[first_edge]
+                                               : ds.pos_value);
+      d.depart_speed_kind[v] = static_cast<uint8_t>(ds.speed);
+      d.depart_speed[v] = static_cast<float>(ds.speed_value);
+      d.arrival_pos_kind[v] = static_cast<uint8_t>(ds.arrival);
+      d.arrival_pos[v] = static_cast<float>(ds.arrival == ArrivalPos::Given && ds.arrival_value < 0
+                                                ? ds.arrival_value + net_.edge_length[last_edge]
+                                                : ds.arrival_value);
+    }
+    d.types = types_.take();
+    d.unsupported = spec_.skipped;
+  }
+
+  const DemandSpec& spec_;
+  const Network& net_;
+  const DemandOptions& opt_;
+  Demand& demand_;
+  VTypeTable types_;
+  RouteTable routes_;
+  TripBatch trips_;
+  std::vector<PendingVehicle> pending_;
+  std::vector<std::string> ids_;
+};
+
+}  // namespace
+
+Demand build_demand(const DemandSpec& spec, const Network& net, const DemandOptions& options) {
+  Demand demand;
+  Builder(spec, net, options, demand).run();
+  return demand;
+}
+
+}  // namespace lpsim

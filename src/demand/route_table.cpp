@@ -1,0 +1,131 @@
+#include "demand/route_table.hpp"
+
+#include <cmath>
+
+#include "demand/demand_draws.hpp"
+
+namespace lpsim {
+
+std::optional<uint32_t> drivable_edge(const Network& net, const std::string& id, std::string& reason) {
+  auto it = net.edge_index.find(id);
+  if (it == net.edge_index.end()) {
+    reason = "unknown edge '" + id + "'";
+    return std::nullopt;
+  }
+  const uint32_t e = it->second;
+  if (net.edge_is_internal[e]) {
+    reason = "edge '" + id + "' is an internal junction edge";
+    return std::nullopt;
+  }
+  if (net.edge_num_lanes[e] == 0) {
+    reason = "edge '" + id + "' has no lane a passenger car may use";
+    return std::nullopt;
+  }
+  return e;
+}
+
+RouteTable::RouteTable(const DemandSpec& spec, const Network& net, bool ignore_route_errors,
+                       std::vector<uint32_t>& route_edges)
+    : spec_(spec), net_(net), ignore_(ignore_route_errors), route_edges_(route_edges) {
+  route_index_.reserve(spec.routes.size());
+  for (uint32_t r = 0; r < spec.routes.size(); ++r) {
+    const RouteSpec& route = spec.routes[r];
+    if (!route_index_.emplace(route.id, r).second)
+      throw InputError(route.loc, "duplicate route id '" + route.id + "'");
+  }
+  route_slot_.assign(spec.routes.size(), -1);
+  for (const auto& d : spec.route_dists) {
+    if (route_index_.count(d.id) || dist_index_.count(d.id))
+      throw InputError(d.loc, "routeDistribution id '" + d.id + "' is already used by a route or distribution");
+    if (d.members.empty()) throw InputError(d.loc, "routeDistribution '" + d.id + "' has no members");
+    Distribution dist;
+    double total = 0;
+    for (const auto& m : d.members) {
+      auto it = route_index_.find(m.id);
+      if (it == route_index_.end())
+        throw InputError(d.loc, "unknown route '" + m.id + "' in routeDistribution '" + d.id + "'");
+      if (!(m.probability >= 0) || !std::isfinite(m.probability))
+        throw InputError(d.loc, "invalid probability of route '" + m.id + "' in routeDistribution '" + d.id + "'");
+      total += m.probability;
+      dist.routes.push_back(it->second);
+      dist.cumulative.push_back(total);
+    }
+    if (!(total > 0)) throw InputError(d.loc, "routeDistribution '" + d.id + "' has only zero probabilities");
+    dist_index_.emplace(d.id, static_cast<uint32_t>(dists_.size()));
+    dists_.push_back(std::move(dist));
+  }
+}
+
+uint32_t RouteTable::named(const std::string& ref, std::string_view vehicle_id, uint64_t seed, uint64_t stream,
+                           const SourceLoc& loc) {
+  if (auto it = route_index_.find(ref); it != route_index_.end()) return route_slot(it->second, vehicle_id);
+  if (auto it = dist_index_.find(ref); it != dist_index_.end()) {
+    const Distribution& d = dists_[it->second];
+    return route_slot(d.routes[draw_weighted(d.cumulative, seed, stream, kDrawRouteMember)], vehicle_id);
+  }
+  throw InputError(loc, "unknown route '" + ref + "' for vehicle '" + std::string(vehicle_id) + "'");
+}
+
+uint32_t RouteTable::route_slot(uint32_t route, std::string_view vehicle_id) {
+  if (route_slot_[route] < 0) {
+    const RouteSpec& r = spec_.routes[route];
+    route_slot_[route] = resolve(r.edges, "route '" + r.id + "' of vehicle '" + std::string(vehicle_id) + "'", r.loc);
+  }
+  return static_cast<uint32_t>(route_slot_[route]);
+}
+
+uint32_t RouteTable::inline_route(const std::vector<std::string>& edges, const std::string& owner,
+                                  const SourceLoc& loc) {
+  return resolve(edges, "the route of " + owner, loc);
+}
+
+uint32_t RouteTable::resolve(const std::vector<std::string>& edges, const std::string& what, const SourceLoc& loc) {
+  if (edges.empty()) return add_broken(loc, "no edges in " + what);
+  const auto begin = route_edges_.size();
+  std::string reason;
+  for (size_t i = 0; i < edges.size(); ++i) {
+    auto e = drivable_edge(net_, edges[i], reason);
+    if (!e) {
+      route_edges_.resize(begin);
+      return add_broken(loc, reason + " in " + what);
+    }
+    if (i > 0 && !net_.connected(route_edges_.back(), *e)) {
+      route_edges_.resize(begin);
+      return add_broken(loc, "no connection from edge '" + edges[i - 1] + "' to edge '" + edges[i] + "' in " + what);
+    }
+    route_edges_.push_back(*e);
+  }
+  slots_.push_back({static_cast<uint32_t>(begin), static_cast<uint32_t>(edges.size()), -1});
+  return static_cast<uint32_t>(slots_.size() - 1);
+}
+
+uint32_t RouteTable::add_resolved(const std::vector<uint32_t>& edges) {
+  const uint32_t slot = add_pending();
+  set_resolved(slot, edges);
+  return slot;
+}
+
+uint32_t RouteTable::add_pending() {
+  slots_.push_back({});
+  return static_cast<uint32_t>(slots_.size() - 1);
+}
+
+void RouteTable::set_resolved(uint32_t slot, const std::vector<uint32_t>& edges) {
+  slots_[slot] = {static_cast<uint32_t>(route_edges_.size()), static_cast<uint32_t>(edges.size()), -1};
+  route_edges_.insert(route_edges_.end(), edges.begin(), edges.end());
+}
+
+void RouteTable::set_broken(uint32_t slot, const SourceLoc& loc, const std::string& reason) {
+  if (!ignore_) throw InputError(loc, reason);
+  problems_.push_back(reason);
+  slots_[slot] = {0, 0, static_cast<int32_t>(problems_.size() - 1)};
+}
+
+uint32_t RouteTable::add_broken(const SourceLoc& loc, const std::string& reason) {
+  if (!ignore_) throw InputError(loc, reason);
+  problems_.push_back(reason);
+  slots_.push_back({0, 0, static_cast<int32_t>(problems_.size() - 1)});
+  return static_cast<uint32_t>(slots_.size() - 1);
+}
+
+}  // namespace lpsim

@@ -1,0 +1,77 @@
+#pragma once
+// Routes of a demand as edge-index runs in Demand::route_edges. A vehicle refers to a route "slot"; a named
+// route (and each flow's route) has one slot shared by every vehicle using it, so its edges are stored
+// once. Named routes are resolved and checked when first used (an unused broken route is harmless).
+//
+// Route problems (unknown, internal or car-less edge, two consecutive edges without a connection, a trip
+// without a path) throw InputError, or with ignore_route_errors mark the slot broken: vehicles on a broken
+// slot are skipped and recorded in Demand::unroutable with the reason.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <vector>
+
+#include "core/demand_spec.hpp"
+#include "net/network.hpp"
+
+namespace lpsim {
+
+/// Index of edge `id` if a vehicle can drive on it (exists, is not internal, has a car lane); otherwise
+/// nullopt and `reason` says why, naming the edge.
+std::optional<uint32_t> drivable_edge(const Network& net, const std::string& id, std::string& reason);
+
+struct RouteSlot {
+  uint32_t begin = 0, length = 0;  // in route_edges
+  int32_t problem = -1;            // index into RouteTable::problem(); -1: usable
+};
+
+class RouteTable {
+ public:
+  RouteTable(const DemandSpec& spec, const Network& net, bool ignore_route_errors,
+             std::vector<uint32_t>& route_edges);
+
+  /// Slot for a route attribute: a named route, or a routeDistribution from which a member is drawn with
+  /// the vehicle's `stream`. InputError at `loc` naming the route and the vehicle when the id is unknown.
+  uint32_t named(const std::string& ref, std::string_view vehicle_id, uint64_t seed, uint64_t stream,
+                 const SourceLoc& loc);
+
+  /// New slot for an inline list of edge ids, checked like a named route; errors at `loc` name `owner`
+  /// (e.g. "vehicle 'v1'" or "flow 'f'").
+  uint32_t inline_route(const std::vector<std::string>& edges, const std::string& owner, const SourceLoc& loc);
+
+  /// New slot holding already-resolved edges (a routed trip); connectivity is the router's business.
+  uint32_t add_resolved(const std::vector<uint32_t>& edges);
+  /// New broken slot, or InputError(loc, reason) unless route errors are ignored.
+  uint32_t add_broken(const SourceLoc& loc, const std::string& reason);
+  /// New empty slot to be filled later by set_resolved / set_broken (trips waiting for the router).
+  uint32_t add_pending();
+  void set_resolved(uint32_t slot, const std::vector<uint32_t>& edges);
+  void set_broken(uint32_t slot, const SourceLoc& loc, const std::string& reason);
+
+  const RouteSlot& slot(uint32_t s) const { return slots_[s]; }
+  const std::string& problem(int32_t p) const { return problems_[static_cast<size_t>(p)]; }
+  bool ignore_route_errors() const { return ignore_; }
+
+ private:
+  struct Distribution {
+    std::vector<uint32_t> routes;  // indices into spec.routes
+    std::vector<double> cumulative;
+  };
+  uint32_t route_slot(uint32_t route, std::string_view vehicle_id);
+  // Appends the checked edges of a route as a slot; `what` names the route for messages.
+  uint32_t resolve(const std::vector<std::string>& edges, const std::string& what, const SourceLoc& loc);
+
+  const DemandSpec& spec_;
+  const Network& net_;
+  bool ignore_;
+  std::vector<uint32_t>& route_edges_;
+  std::unordered_map<std::string, uint32_t> route_index_, dist_index_;
+  std::vector<Distribution> dists_;
+  std::vector<int64_t> route_slot_;  // per named route: its slot, -1 until first used
+  std::vector<RouteSlot> slots_;
+  std::vector<std::string> problems_;
+};
+
+}  // namespace lpsim

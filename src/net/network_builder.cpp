@@ -1,0 +1,421 @@
+#include "net/network_builder.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <unordered_set>
+
+#include "net/junction_type.hpp"
+
+namespace lpsim {
+namespace {
+
+// Builds the Network in passes over the spec: junctions, edges and lanes, lane map layout, signals,
+// connections (CSR), edge successors, roundabouts. Every pass is linear (hash lookups, counting sort), so
+// 100k-edge / 1M-lane nets build in well under a second per pass.
+class Builder {
+ public:
+  Builder(const NetSpec& spec, const std::vector<TlLogicSpec>& overrides) : spec_(spec), overrides_(overrides) {}
+
+  Network build() {
+    add_junctions();
+    add_edges_and_lanes();
+    lay_out_lanes();
+    add_signals();
+    add_connections();
+    add_edge_successors();
+    add_roundabouts();
+    net_.skipped_non_car_lanes = spec_.skipped_non_car_lanes;
+    net_.net_offset = spec_.net_offset;
+    return std::move(net_);
+  }
+
+ private:
+  const NetSpec& spec_;
+  const std::vector<TlLogicSpec>& overrides_;
+  Network net_;
+
+  std::vector<uint32_t> spec_lane_offset_;  // per spec edge: first slot in spec_lane_car_
+  std::vector<int32_t> spec_lane_car_;      // per spec lane: car lane index or kNone
+  std::vector<uint32_t> edge_spec_;         // per network edge: index of its EdgeSpec
+  std::vector<const LaneSpec*> lane_spec_;  // per car lane: its LaneSpec
+  std::vector<int32_t> internal_junction_;  // per network edge: junction an internal edge lies in
+  std::unordered_set<std::string> pedestrian_edges_;  // crossings and walking areas, dropped entirely
+  std::unordered_set<std::string> non_car_lanes_;     // lane ids dropped for cars (for via checks)
+
+  void add_junctions() {
+    const auto n = spec_.junctions.size();
+    net_.junction_id.reserve(n);
+    net_.junction_type.reserve(n);
+    net_.junction_x.reserve(n);
+    net_.junction_y.reserve(n);
+    net_.junction_index.reserve(n);
+    for (const auto& j : spec_.junctions) {
+      const auto idx = static_cast<uint32_t>(net_.junction_id.size());
+      if (!net_.junction_index.emplace(j.id, idx).second)
+        throw InputError(j.loc, "duplicate junction id '" + j.id + "'");
+      net_.junction_id.push_back(j.id);
+      net_.junction_type.push_back(parse_junction_type(j.type, j.loc, j.id));
+      net_.junction_x.push_back(static_cast<float>(j.x));
+      net_.junction_y.push_back(static_cast<float>(j.y));
+    }
+  }
+
+  int32_t junction_of(const EdgeSpec& e, const std::string& id, const char* role) const {
+    auto it = net_.junction_index.find(id);
+    if (it != net_.junction_index.end()) return static_cast<int32_t>(it->second);
+    // Connector edges may end in districts that are not junctions; a normal edge must have both ends.
+    if (e.function == EdgeFunction::Connector) return kNone;
+    throw InputError(e.loc, "edge '" + e.id + "' names unknown " + role + " junction '" + id + "'");
+  }
+
+  // ":<junction>_<n>" -> junction index; falls back to the junctions' intLanes lists.
+  int32_t junction_of_internal(const EdgeSpec& e) {
+    auto us = e.id.rfind('_');
+    if (!e.id.empty() && e.id[0] == ':' && us != std::string::npos && us > 1) {
+      auto it = net_.junction_index.find(e.id.substr(1, us - 1));
+      if (it != net_.junction_index.end()) return static_cast<int32_t>(it->second);
+    }
+    if (!int_lane_junction_built_) {  // only nets with unusual internal ids pay for this map
+      for (uint32_t j = 0; j < spec_.junctions.size(); ++j)
+        for (const auto& l : spec_.junctions[j].int_lanes) int_lane_junction_.emplace(l, static_cast<int32_t>(j));
+      int_lane_junction_built_ = true;
+    }
+    for (const auto& l : e.lanes) {
+      auto it = int_lane_junction_.find(l.id);
+      if (it != int_lane_junction_.end()) return it->second;
+    }
+    return kNone;
+  }
+  std::unordered_map<std::string, int32_t> int_lane_junction_;
+  bool int_lane_junction_built_ = false;
+
+  void add_edges_and_lanes() {
+    const auto& edges = spec_.edges;
+    size_t spec_lanes = 0;
+    for (const auto& e : edges) spec_lanes += e.lanes.size();
+    spec_lane_offset_.resize(edges.size());
+    spec_lane_car_.assign(spec_lanes, kNone);
+    net_.edge_index.reserve(edges.size());
+    net_.lane_index_by_id.reserve(spec_lanes);
+    net_.lane_id.reserve(spec_lanes);
+    lane_spec_.reserve(spec_lanes);
+    net_.lane_edge.reserve(spec_lanes);
+    net_.lane_index.reserve(spec_lanes);
+    net_.lane_length.reserve(spec_lanes);
+    net_.lane_speed.reserve(spec_lanes);
+
+    uint32_t offset = 0;
+    std::vector<uint32_t> order;
+    for (uint32_t se = 0; se < edges.size(); ++se) {
+      const EdgeSpec& e = edges[se];
+      spec_lane_offset_[se] = offset;
+      offset += static_cast<uint32_t>(e.lanes.size());
+      if (e.function == EdgeFunction::Crossing || e.function == EdgeFunction::WalkingArea) {
+        pedestrian_edges_.insert(e.id);
+        for (const auto& l : e.lanes) non_car_lanes_.insert(l.id);
+        continue;
+      }
+      const auto ei = static_cast<uint32_t>(net_.edge_id.size());
+      if (!net_.edge_index.emplace(e.id, ei).second) throw InputError(e.loc, "duplicate edge id '" + e.id + "'");
+      const bool internal = e.function == EdgeFunction::Internal;
+      net_.edge_id.push_back(e.id);
+      net_.edge_is_internal.push_back(internal ? 1 : 0);
+      net_.edge_from_junction.push_back(internal ? kNone : junction_of(e, e.from, "from"));
+      net_.edge_to_junction.push_back(internal ? kNone : junction_of(e, e.to, "to"));
+      internal_junction_.push_back(internal ? junction_of_internal(e) : kNone);
+      net_.edge_priority.push_back(e.priority);
+      edge_spec_.push_back(se);
+
+      order.clear();
+      for (uint32_t k = 0; k < e.lanes.size(); ++k) {
+        if (e.lanes[k].passenger_allowed)
+          order.push_back(k);
+        else
+          non_car_lanes_.insert(e.lanes[k].id);
+      }
+      std::stable_sort(order.begin(), order.end(),
+                       [&](uint32_t a, uint32_t b) { return e.lanes[a].index < e.lanes[b].index; });
+      if (order.size() > std::numeric_limits<uint8_t>::max())
+        throw InputError(e.loc, "edge '" + e.id + "' has " + std::to_string(order.size()) + " car lanes (max 255)");
+      net_.edge_first_lane.push_back(static_cast<uint32_t>(net_.lane_id.size()));
+      net_.edge_num_lanes.push_back(static_cast<uint8_t>(order.size()));
+      float speed = 0;
+      for (uint32_t k : order) {
+        const LaneSpec& l = e.lanes[k];
+        if (l.index < 0 || l.index > std::numeric_limits<uint8_t>::max())
+          throw InputError(l.loc, "lane '" + l.id + "' of edge '" + e.id + "' has index " + std::to_string(l.index));
+        const auto li = static_cast<uint32_t>(net_.lane_id.size());
+        if (!net_.lane_index_by_id.emplace(l.id, li).second)
+          throw InputError(l.loc, "duplicate lane id '" + l.id + "' in edge '" + e.id + "'");
+        spec_lane_car_[spec_lane_offset_[se] + k] = static_cast<int32_t>(li);
+        net_.lane_id.push_back(l.id);
+        lane_spec_.push_back(&l);
+        net_.lane_edge.push_back(ei);
+        net_.lane_index.push_back(static_cast<uint8_t>(l.index));
+        net_.lane_length.push_back(static_cast<float>(l.length));
+        net_.lane_speed.push_back(static_cast<float>(l.speed));
+        speed = std::max(speed, static_cast<float>(l.speed));
+      }
+      net_.edge_length.push_back(order.empty() ? 0.f : static_cast<float>(e.lanes[order.front()].length));
+      net_.edge_speed.push_back(speed);
+    }
+  }
+
+  // Cells: one per started metre, at least one per lane. Shapes: as given, else the edge's end junctions.
+  void lay_out_lanes() {
+    const uint32_t lanes = net_.num_lanes();
+    net_.lane_cell_begin.resize(lanes + 1);
+    net_.lane_shape_begin.resize(lanes + 1);
+    uint64_t cells = 0;
+    for (uint32_t l = 0; l < lanes; ++l) {
+      net_.lane_cell_begin[l] = cells;
+      cells += std::max<uint64_t>(1, static_cast<uint64_t>(std::ceil(static_cast<double>(net_.lane_length[l]))));
+    }
+    net_.lane_cell_begin[lanes] = cells;
+
+    size_t points = 0;
+    for (const LaneSpec* ls : lane_spec_) points += std::max<size_t>(2, ls->shape.size());
+    net_.shape_x.reserve(points);
+    net_.shape_y.reserve(points);
+    for (uint32_t l = 0; l < lanes; ++l) {
+      net_.lane_shape_begin[l] = static_cast<uint32_t>(net_.shape_x.size());
+      const auto& shape = lane_spec_[l]->shape;
+      if (!shape.empty()) {
+        for (const auto& p : shape) push_point(p.x, p.y);
+      } else {
+        const uint32_t e = net_.lane_edge[l];
+        int32_t a = net_.edge_from_junction[e], b = net_.edge_to_junction[e];
+        if (net_.edge_is_internal[e]) a = b = internal_junction_[e];
+        push_junction_point(a);
+        push_junction_point(b);
+      }
+    }
+    net_.lane_shape_begin[lanes] = static_cast<uint32_t>(net_.shape_x.size());
+  }
+  void push_point(double x, double y) {
+    net_.shape_x.push_back(static_cast<float>(x));
+    net_.shape_y.push_back(static_cast<float>(y));
+  }
+  void push_junction_point(int32_t j) {
+    if (j == kNone)
+      push_point(0, 0);
+    else
+      push_point(net_.junction_x[j], net_.junction_y[j]);
+  }
+
+  // One program per tlLogic id: the last one loaded wins, add-file programs after the net's.
+  void add_signals() {
+    std::unordered_map<std::string, const TlLogicSpec*> chosen;
+    std::vector<std::string> order;
+    auto take = [&](const TlLogicSpec& t) {
+      auto [it, fresh] = chosen.try_emplace(t.id, &t);
+      if (fresh)
+        order.push_back(t.id);
+      else
+        it->second = &t;
+    };
+    for (const auto& t : spec_.tl_logics) take(t);
+    for (const auto& t : overrides_) take(t);
+
+    net_.signal_phase_begin.push_back(0);
+    net_.phase_state_begin.push_back(0);
+    for (const auto& id : order) {
+      const TlLogicSpec& t = *chosen[id];
+      if (t.phases.empty()) throw InputError(t.loc, "tlLogic '" + t.id + "' program '" + t.program_id + "' has no phases");
+      const size_t links = t.phases.front().state.size();
+      if (links > static_cast<size_t>(std::numeric_limits<int16_t>::max()))
+        throw InputError(t.loc, "tlLogic '" + t.id + "' controls " + std::to_string(links) + " links (max 32767)");
+      net_.signal_index.emplace(t.id, net_.num_signals());
+      net_.signal_id.push_back(t.id);
+      net_.signal_program.push_back(t.program_id);
+      net_.signal_actuated.push_back(t.type == "actuated" || t.type == "delay_based" ? 1 : 0);
+      net_.signal_offset.push_back(static_cast<float>(t.offset));
+      for (size_t p = 0; p < t.phases.size(); ++p) {
+        const PhaseSpec& ph = t.phases[p];
+        if (ph.state.size() != links)
+          throw InputError(t.loc, "tlLogic '" + t.id + "' phase " + std::to_string(p) + " has state '" + ph.state +
+                                      "' of " + std::to_string(ph.state.size()) + " links, phase 0 has " +
+                                      std::to_string(links));
+        net_.phase_duration.push_back(static_cast<float>(ph.duration));
+        net_.phase_min_dur.push_back(static_cast<float>(ph.min_dur));
+        net_.phase_max_dur.push_back(static_cast<float>(ph.max_dur));
+        net_.phase_state.insert(net_.phase_state.end(), ph.state.begin(), ph.state.end());
+        net_.phase_state_begin.push_back(static_cast<uint32_t>(net_.phase_state.size()));
+      }
+      net_.signal_phase_begin.push_back(static_cast<uint32_t>(net_.phase_duration.size()));
+    }
+  }
+
+  uint32_t signal_links(uint32_t s) const {
+    const uint32_t p = net_.signal_phase_begin[s];
+    return net_.phase_state_begin[p + 1] - net_.phase_state_begin[p];
+  }
+
+  // Car lane index of lane `index` of edge `ei`, kNone if that lane is not a car lane; InputError if the
+  // edge has no lane with that index.
+  int32_t car_lane(const ConnectionSpec& c, uint32_t ei, int index, const char* role) const {
+    const uint32_t se = edge_spec_[ei];
+    const auto& lanes = spec_.edges[se].lanes;
+    for (uint32_t k = 0; k < lanes.size(); ++k)
+      if (lanes[k].index == index) return spec_lane_car_[spec_lane_offset_[se] + k];
+    throw InputError(c.loc, "connection from '" + c.from + "' to '" + c.to + "' names " + role + " " +
+                                std::to_string(index) + " but edge '" + net_.edge_id[ei] + "' has " +
+                                std::to_string(lanes.size()) + " lanes");
+  }
+
+  uint32_t edge_of(const ConnectionSpec& c, const std::string& id, const char* role) const {
+    auto it = net_.edge_index.find(id);
+    if (it == net_.edge_index.end())
+      throw InputError(c.loc, "connection from '" + c.from + "' to '" + c.to + "' names unknown " + role +
+                                  " edge '" + id + "'");
+    return it->second;
+  }
+
+  struct Conn {
+    uint32_t from_lane, to_lane, to_edge;
+    int32_t via, signal, junction;
+    int16_t link;
+    char state, dir;
+  };
+
+  void add_connections() {
+    std::vector<Conn> kept;
+    kept.reserve(spec_.connections.size());
+    for (const auto& c : spec_.connections) {
+      if (pedestrian_edges_.count(c.from) || pedestrian_edges_.count(c.to)) {
+        ++net_.skipped_connections;
+        continue;
+      }
+      const uint32_t fe = edge_of(c, c.from, "from"), te = edge_of(c, c.to, "to");
+      const int32_t fl = car_lane(c, fe, c.from_lane, "fromLane");
+      const int32_t tl = car_lane(c, te, c.to_lane, "toLane");
+      int32_t via = kNone;
+      bool via_ok = true;
+      if (!c.via.empty()) {
+        auto it = net_.lane_index_by_id.find(c.via);
+        if (it != net_.lane_index_by_id.end())
+          via = static_cast<int32_t>(it->second);
+        else if (non_car_lanes_.count(c.via))
+          via_ok = false;
+        else
+          throw InputError(c.loc, "connection from '" + c.from + "' to '" + c.to + "' names unknown via lane '" +
+                                      c.via + "'");
+      }
+      if (fl == kNone || tl == kNone || !via_ok) {
+        ++net_.skipped_connections;
+        continue;
+      }
+      Conn k{static_cast<uint32_t>(fl), static_cast<uint32_t>(tl), te, via, kNone, kNone, -1, c.state, c.dir};
+      k.junction = net_.edge_is_internal[fe] ? internal_junction_[fe] : net_.edge_to_junction[fe];
+      if (!c.tl.empty()) {
+        auto it = net_.signal_index.find(c.tl);
+        if (it == net_.signal_index.end())
+          throw InputError(c.loc, "connection from '" + c.from + "' to '" + c.to + "' names tlLogic '" + c.tl +
+                                      "' which has no program");
+        const uint32_t links = signal_links(it->second);
+        if (c.link_index < 0 || static_cast<uint32_t>(c.link_index) >= links)
+          throw InputError(c.loc, "connection from '" + c.from + "' to '" + c.to + "' has linkIndex " +
+                                      std::to_string(c.link_index) + " but tlLogic '" + c.tl + "' controls " +
+                                      std::to_string(links) + " links");
+        k.signal = static_cast<int32_t>(it->second);
+        k.link = static_cast<int16_t>(c.link_index);
+      }
+      kept.push_back(k);
+    }
+
+    // Counting sort by from-lane keeps file order within a lane.
+    const uint32_t lanes = net_.num_lanes();
+    auto& begin = net_.lane_conn_begin;
+    begin.assign(lanes + 1, 0);
+    for (const auto& k : kept) ++begin[k.from_lane + 1];
+    for (uint32_t l = 0; l < lanes; ++l) begin[l + 1] += begin[l];
+    std::vector<uint32_t> slot(begin.begin(), begin.end() - 1);
+    const size_t n = kept.size();
+    net_.conn_from_lane.resize(n);
+    net_.conn_to_lane.resize(n);
+    net_.conn_via_lane.resize(n);
+    net_.conn_to_edge.resize(n);
+    net_.conn_signal.resize(n);
+    net_.conn_link_index.resize(n);
+    net_.conn_state.resize(n);
+    net_.conn_dir.resize(n);
+    net_.conn_junction.resize(n);
+    for (const auto& k : kept) {
+      const uint32_t i = slot[k.from_lane]++;
+      net_.conn_from_lane[i] = k.from_lane;
+      net_.conn_to_lane[i] = k.to_lane;
+      net_.conn_via_lane[i] = k.via;
+      net_.conn_to_edge[i] = k.to_edge;
+      net_.conn_signal[i] = k.signal;
+      net_.conn_link_index[i] = k.link;
+      net_.conn_state[i] = k.state;
+      net_.conn_dir[i] = k.dir;
+      net_.conn_junction[i] = k.junction;
+    }
+  }
+
+  // Normal edges reachable from each normal edge by one connection, following chains of internal lanes
+  // when a connection leads onto an internal edge instead of naming the normal edge beyond it.
+  void add_edge_successors() {
+    const uint32_t edges = net_.num_edges();
+    net_.edge_succ_begin.assign(edges + 1, 0);
+    std::vector<uint32_t> found, stack;
+    std::vector<uint32_t> lane_mark(net_.num_lanes(), 0);
+    uint32_t mark = 0;
+    for (uint32_t e = 0; e < edges; ++e) {
+      net_.edge_succ_begin[e] = static_cast<uint32_t>(net_.edge_succ.size());
+      if (net_.edge_is_internal[e]) continue;
+      found.clear();
+      ++mark;
+      const uint32_t l0 = net_.edge_first_lane[e], l1 = l0 + net_.edge_num_lanes[e];
+      for (uint32_t l = l0; l < l1; ++l)
+        for (uint32_t c = net_.lane_conn_begin[l]; c < net_.lane_conn_begin[l + 1]; ++c) {
+          const uint32_t t = net_.conn_to_edge[c];
+          if (!net_.edge_is_internal[t]) {
+            found.push_back(t);
+          } else if (lane_mark[net_.conn_to_lane[c]] != mark) {
+            lane_mark[net_.conn_to_lane[c]] = mark;
+            stack.push_back(net_.conn_to_lane[c]);
+          }
+        }
+      while (!stack.empty()) {
+        const uint32_t l = stack.back();
+        stack.pop_back();
+        for (uint32_t c = net_.lane_conn_begin[l]; c < net_.lane_conn_begin[l + 1]; ++c) {
+          const uint32_t t = net_.conn_to_edge[c];
+          if (!net_.edge_is_internal[t]) {
+            found.push_back(t);
+          } else if (lane_mark[net_.conn_to_lane[c]] != mark) {
+            lane_mark[net_.conn_to_lane[c]] = mark;
+            stack.push_back(net_.conn_to_lane[c]);
+          }
+        }
+      }
+      std::sort(found.begin(), found.end());
+      found.erase(std::unique(found.begin(), found.end()), found.end());
+      net_.edge_succ.insert(net_.edge_succ.end(), found.begin(), found.end());
+    }
+    net_.edge_succ_begin[edges] = static_cast<uint32_t>(net_.edge_succ.size());
+  }
+
+  void add_roundabouts() {
+    for (const auto& r : spec_.roundabouts) {
+      std::vector<uint32_t> edges;
+      for (const auto& id : r.edges) {
+        auto it = net_.edge_index.find(id);
+        if (it != net_.edge_index.end()) edges.push_back(it->second);
+      }
+      net_.roundabout_edges.push_back(std::move(edges));
+    }
+  }
+};
+
+}  // namespace
+
+Network build_network(const NetSpec& spec, const std::vector<TlLogicSpec>& tl_overrides) {
+  return Builder(spec, tl_overrides).build();
+}
+
+}  // namespace lpsim

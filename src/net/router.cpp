@@ -1,0 +1,253 @@
+#include "net/router.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <thread>
+
+namespace lpsim {
+namespace {
+
+// Cost model: a path's cost is the sum of length/speed over ALL its edges, the first and the last included
+// (depart and arrival positions are ignored). For a single destination this ranks paths exactly as leaving
+// the last edge out would; with several destinations a long destination edge counts against itself.
+// Edges without car lanes or with speed 0 are impassable; internal edges are never part of a route
+// because edge_succ links normal edges only, and internal edges given as origin, destination or via yield
+// no path.
+//
+// Ties: the heap pops the smallest (cost, edge index), and an edge keeps the predecessor that first
+// reached its final cost, so among equal-cost paths the one through earlier-settled edges wins. The
+// outcome depends only on the request, never on the thread or on which requests share a search.
+
+struct HeapItem {
+  double dist;
+  uint32_t edge;
+};
+// std heap functions build a max-heap; "after" puts the smallest (dist, edge) on top.
+inline bool heap_after(const HeapItem& a, const HeapItem& b) {
+  return a.dist > b.dist || (a.dist == b.dist && a.edge > b.edge);
+}
+
+// One Dijkstra workspace per thread. Per-edge arrays are tagged with the search version instead of being
+// cleared, so a query costs only what it touches.
+class Search {
+ public:
+  Search(const Network& net, const std::vector<float>& cost)
+      : net_(net), cost_(cost), dist_(net.num_edges()), pred_(net.num_edges()), seen_(net.num_edges(), 0),
+        settled_(net.num_edges(), 0), target_(net.num_edges(), 0), target_slot_(net.num_edges()) {}
+
+  /// Runs from `seeds` (each starting at its own cost) and calls on_settle(edge) for each settled edge in
+  /// order; stops when it returns true or nothing is left.
+  template <class OnSettle>
+  void run(const std::vector<uint32_t>& seeds, OnSettle&& on_settle) {
+    heap_.clear();
+    for (uint32_t s : seeds) {
+      const double c = cost_[s];
+      if (!std::isfinite(c) || net_.edge_is_internal[s]) continue;
+      if (seen_[s] != version_ || c < dist_[s]) {
+        seen_[s] = version_;
+        dist_[s] = c;
+        pred_[s] = kNone;
+        push(c, s);
+      }
+    }
+    while (!heap_.empty()) {
+      std::pop_heap(heap_.begin(), heap_.end(), heap_after);
+      const HeapItem top = heap_.back();
+      heap_.pop_back();
+      const uint32_t e = top.edge;
+      if (settled_[e] == version_ || top.dist > dist_[e]) continue;  // stale entry
+      settled_[e] = version_;
+      if (on_settle(e)) return;
+      for (uint32_t i = net_.edge_succ_begin[e]; i < net_.edge_succ_begin[e + 1]; ++i) {
+        const uint32_t s = net_.edge_succ[i];
+        const double c = cost_[s];
+        if (!std::isfinite(c) || settled_[s] == version_) continue;
+        const double d = top.dist + c;
+        if (seen_[s] != version_ || d < dist_[s]) {
+          seen_[s] = version_;
+          dist_[s] = d;
+          pred_[s] = static_cast<int32_t>(e);
+          push(d, s);
+        }
+      }
+    }
+  }
+
+  /// Starts a new search: all per-edge tags become stale.
+  void next_version() {
+    if (++version_ == 0) {  // wrapped: clear once every 2^32 searches
+      std::fill(seen_.begin(), seen_.end(), 0);
+      std::fill(settled_.begin(), settled_.end(), 0);
+      std::fill(target_.begin(), target_.end(), 0);
+      version_ = 1;
+    }
+  }
+
+  /// Path from a seed to the settled edge `e`.
+  std::vector<uint32_t> path_to(uint32_t e) const {
+    std::vector<uint32_t> path;
+    for (int32_t x = static_cast<int32_t>(e); x != kNone; x = pred_[x]) path.push_back(static_cast<uint32_t>(x));
+    std::reverse(path.begin(), path.end());
+    return path;
+  }
+
+  /// Fastest path from any of `origins` to any of `targets` (the first target settled); empty if none.
+  std::vector<uint32_t> segment(const std::vector<uint32_t>& origins, const std::vector<uint32_t>& targets) {
+    next_version();
+    for (uint32_t t : targets) target_[t] = version_;
+    int32_t reached = kNone;
+    run(origins, [&](uint32_t e) {
+      if (target_[e] != version_) return false;
+      reached = static_cast<int32_t>(e);
+      return true;
+    });
+    return reached == kNone ? std::vector<uint32_t>{} : path_to(static_cast<uint32_t>(reached));
+  }
+
+  /// One search from `origin` answering every request in `group` (all have this single origin and no via).
+  void one_to_many(uint32_t origin, const std::vector<uint32_t>& group, const std::vector<RouteRequest>& requests,
+                   std::vector<std::vector<uint32_t>>& out) {
+    next_version();
+    // (destination, position in group) pairs sorted by destination; target_slot_ points at an edge's first pair.
+    pairs_.clear();
+    for (uint32_t k = 0; k < group.size(); ++k)
+      for (uint32_t d : requests[group[k]].destinations) pairs_.push_back({d, k});
+    std::sort(pairs_.begin(), pairs_.end());
+    for (uint32_t i = 0; i < pairs_.size(); ++i)
+      if (target_[pairs_[i].first] != version_) {
+        target_[pairs_[i].first] = version_;
+        target_slot_[pairs_[i].first] = i;
+      }
+    size_t remaining = 0;
+    for (uint32_t r : group) remaining += requests[r].destinations.empty() ? 0 : 1;
+    if (remaining == 0) return;
+    answered_.assign(group.size(), 0);
+    const std::vector<uint32_t> seeds{origin};
+    run(seeds, [&](uint32_t e) {
+      if (target_[e] != version_) return false;
+      for (uint32_t i = target_slot_[e]; i < pairs_.size() && pairs_[i].first == e; ++i) {
+        const uint32_t k = pairs_[i].second;
+        if (answered_[k]) continue;  // an earlier-settled destination of this request won
+        answered_[k] = 1;
+        out[group[k]] = path_to(e);
+        --remaining;
+      }
+      return remaining == 0;
+    });
+  }
+
+ private:
+  void push(double d, uint32_t e) {
+    heap_.push_back({d, e});
+    std::push_heap(heap_.begin(), heap_.end(), heap_after);
+  }
+
+  const Network& net_;
+  const std::vector<float>& cost_;
+  std::vector<double> dist_;
+  std::vector<int32_t> pred_;
+  std::vector<uint32_t> seen_, settled_, target_, target_slot_;
+  uint32_t version_ = 1;
+  std::vector<HeapItem> heap_;
+  std::vector<std::pair<uint32_t, uint32_t>> pairs_;
+  std::vector<char> answered_;
+};
+
+std::vector<uint32_t> route_one(Search& search, const RouteRequest& r) {
+  std::vector<uint32_t> path;
+  std::vector<uint32_t> sources = r.origins;
+  for (uint32_t v : r.via) {
+    std::vector<uint32_t> leg = search.segment(sources, {v});
+    if (leg.empty()) return {};
+    // The leg starts on the previous via edge, which already ends `path`.
+    path.insert(path.end(), leg.begin() + (path.empty() ? 0 : 1), leg.end());
+    sources = {v};
+  }
+  std::vector<uint32_t> leg = search.segment(sources, r.destinations);
+  if (leg.empty()) return {};
+  path.insert(path.end(), leg.begin() + (path.empty() ? 0 : 1), leg.end());
+  return path;
+}
+
+}  // namespace
+
+Router::Router(const Network& net) : net_(net), edge_cost_(net.num_edges()) {
+  for (uint32_t e = 0; e < net.num_edges(); ++e)
+    edge_cost_[e] = net.edge_speed[e] > 0 ? net.edge_length[e] / net.edge_speed[e] : std::numeric_limits<float>::infinity();
+}
+
+double Router::cost(const std::vector<uint32_t>& path) const {
+  double total = 0;
+  for (uint32_t e : path) total += edge_cost_[e];
+  return total;
+}
+
+std::vector<std::vector<uint32_t>> Router::route_all(const std::vector<RouteRequest>& requests, int threads) const {
+  const uint32_t edges = net_.num_edges();
+  for (size_t i = 0; i < requests.size(); ++i)
+    for (const auto* list : {&requests[i].origins, &requests[i].destinations, &requests[i].via})
+      for (uint32_t e : *list)
+        if (e >= edges)
+          throw std::out_of_range("route request " + std::to_string(i) + " names edge index " + std::to_string(e) +
+                                  " of " + std::to_string(edges));
+
+  // Work items: one per distinct single origin (requests without via share one one-to-many search), and
+  // one per remaining request. Items depend only on the requests, never on the thread count.
+  std::vector<std::pair<uint32_t, uint32_t>> by_origin;  // (origin, request)
+  std::vector<uint32_t> singles;
+  for (uint32_t i = 0; i < requests.size(); ++i) {
+    const auto& r = requests[i];
+    if (r.origins.size() == 1 && r.via.empty())
+      by_origin.push_back({r.origins[0], i});
+    else
+      singles.push_back(i);
+  }
+  std::sort(by_origin.begin(), by_origin.end());
+  struct Item {
+    uint32_t first, last;  // range in by_origin, or a request in singles when first == last == kSingle
+    uint32_t single;
+  };
+  constexpr uint32_t kSingle = std::numeric_limits<uint32_t>::max();
+  std::vector<Item> items;
+  for (uint32_t i = 0; i < by_origin.size();) {
+    uint32_t j = i;
+    while (j < by_origin.size() && by_origin[j].first == by_origin[i].first) ++j;
+    items.push_back({i, j, kSingle});
+    i = j;
+  }
+  for (uint32_t r : singles) items.push_back({0, 0, r});
+
+  std::vector<std::vector<uint32_t>> out(requests.size());
+  std::atomic<size_t> next{0};
+  auto worker = [&]() {
+    Search search(net_, edge_cost_);
+    std::vector<uint32_t> group;
+    for (size_t k; (k = next.fetch_add(1, std::memory_order_relaxed)) < items.size();) {
+      const Item& it = items[k];
+      if (it.single != kSingle) {
+        out[it.single] = route_one(search, requests[it.single]);
+        continue;
+      }
+      group.clear();
+      for (uint32_t i = it.first; i < it.last; ++i) group.push_back(by_origin[i].second);
+      search.one_to_many(by_origin[it.first].first, group, requests, out);
+    }
+  };
+
+  size_t n = threads > 0 ? static_cast<size_t>(threads) : std::max(1u, std::thread::hardware_concurrency());
+  n = std::min(n, std::max<size_t>(1, items.size()));
+  if (n == 1) {
+    worker();
+  } else {
+    std::vector<std::thread> pool;
+    for (size_t t = 0; t < n; ++t) pool.emplace_back(worker);
+    for (auto& t : pool) t.join();
+  }
+  return out;
+}
+
+}  // namespace lpsim
