@@ -14,27 +14,6 @@ std::string_view trim(std::string_view text) {
   return text;
 }
 
-std::optional<double> parse_sumo_time(std::string_view text) {
-  text = trim(text);
-  if (text.find(':') == std::string_view::npos) return parse_double(text);
-  // Clock form: up to four fields d:h:m:s, each a non-negative number.
-  std::array<double, 4> fields{};
-  size_t count = 0;
-  while (true) {
-    size_t colon = text.find(':');
-    if (count == fields.size()) return std::nullopt;
-    auto field = parse_double(text.substr(0, colon));
-    if (!field || *field < 0) return std::nullopt;
-    fields[count++] = *field;
-    if (colon == std::string_view::npos) break;
-    text.remove_prefix(colon + 1);
-  }
-  if (count < 3) return std::nullopt;
-  double days = count == 4 ? fields[0] : 0;
-  const double* hms = fields.data() + (count - 3);
-  return ((days * 24 + hms[0]) * 60 + hms[1]) * 60 + hms[2];
-}
-
 bool parse_depart_lane(std::string_view text, DepartSpec& out) {
   text = trim(text);
   static constexpr std::pair<std::string_view, DepartLane> kKeywords[] = {
@@ -104,14 +83,6 @@ bool parse_arrival_pos(std::string_view text, DepartSpec& out) {
   return true;
 }
 
-std::optional<bool> parse_sumo_bool(std::string_view text) {
-  text = trim(text);
-  std::string lower;
-  for (char c : text) lower.push_back(static_cast<char>(std::tolower(static_cast<unsigned char>(c))));
-  if (lower == "true" || lower == "1" || lower == "yes" || lower == "on" || lower == "x") return true;
-  if (lower == "false" || lower == "0" || lower == "no" || lower == "off" || lower == "-") return false;
-  return std::nullopt;
-}
 
 std::optional<MeanDev> parse_speed_factor(std::string_view text) {
   text = trim(text);

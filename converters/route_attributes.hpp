@@ -7,21 +7,16 @@
 #include <string_view>
 #include <vector>
 
+#include "converters/cli_options.hpp"  // parse_sumo_time, parse_sumo_bool
 #include "core/demand_spec.hpp"
 
 namespace lpsim {
-
-/// SUMO time: seconds ("3.5") or clock form "h:m:s" / "d:h:m:s". nullopt when neither, or not finite.
-std::optional<double> parse_sumo_time(std::string_view text);
 
 /// Fill one field of DepartSpec from its SUMO attribute value; false for an unknown keyword or a bad number.
 bool parse_depart_lane(std::string_view text, DepartSpec& out);
 bool parse_depart_pos(std::string_view text, DepartSpec& out);
 bool parse_depart_speed(std::string_view text, DepartSpec& out);
 bool parse_arrival_pos(std::string_view text, DepartSpec& out);
-
-/// SUMO booleans: true/false, 1/0, yes/no, on/off, x/- (case-insensitive for the words).
-std::optional<bool> parse_sumo_bool(std::string_view text);
 
 /// Mean and deviation of a speedFactor: a plain number (deviation absent), "norm(mean,dev)" or
 /// "normc(mean,dev,min,max)".

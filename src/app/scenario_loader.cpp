@@ -37,6 +37,7 @@ Scenario load_scenario(const ConfigSpec& config) {
   opt.threads = config.threads;
   opt.begin = config.begin;
   opt.end = config.end;
+  opt.step_length = config.step_length;
   sc.demand = build_demand(demand, sc.network, opt);
   sc.mean_data = std::move(additional.mean_data);
   sc.load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -6,6 +6,7 @@
 #include <string>
 #include <unordered_set>
 
+#include "net/junction_foes.hpp"
 #include "net/junction_type.hpp"
 
 namespace lpsim {
@@ -26,6 +27,7 @@ class Builder {
     add_connections();
     add_edge_successors();
     add_roundabouts();
+    build_junction_foes(spec_, net_);
     net_.skipped_non_car_lanes = spec_.skipped_non_car_lanes;
     net_.net_offset = spec_.net_offset;
     return std::move(net_);
