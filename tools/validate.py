@@ -93,8 +93,8 @@ def _execute(name, role, command_for, cfg, scenario_dir, env, timeout, is_sumo):
     result = runner.RunResult(role, command_for(mirrored_cfg, files), work_dir, files)
     print("[%s] %s: %s" % (name, role, runner.describe(result.command)), file=sys.stderr, flush=True)
     runner.run_timed(result, env=env, timeout=timeout)
-    print("[%s] %s: %s, %.1f CPU s, %.1f wall s" % (name, role, result.error or "ok", result.cpu_s, result.wall_s),
-          file=sys.stderr, flush=True)
+    timing = "" if result.cpu_s is None else ", %.1f CPU s, %.1f wall s" % (result.cpu_s, result.wall_s)
+    print("[%s] %s: %s%s" % (name, role, result.error or "ok", timing), file=sys.stderr, flush=True)
     outputs, error = None, result.error
     if error is None:
         try:

@@ -133,6 +133,8 @@ def run_timed(result, env=None, timeout=None):
         result.error = "cannot start: %s" % denied
     except subprocess.TimeoutExpired:
         result.error = "timed out after %s s" % timeout
+    if result.error is not None and result.returncode is None and not result.error.startswith("timed out"):
+        return result  # never started: no times to report
     result.wall_s = time.monotonic() - start
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     result.cpu_s = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)

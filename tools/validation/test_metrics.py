@@ -287,6 +287,7 @@ class RunnerTest(TempDirTest):
         self.assertGreaterEqual(result.cpu_s, 0.0)
         missing = runner.run_timed(runner.RunResult("y", [os.path.join(self.tmp, "nope")], self.tmp, files))
         self.assertTrue(missing.error.startswith("cannot start"))
+        self.assertIsNone(missing.cpu_s)
 
     def test_commands_carry_step_length_seed_and_end(self):
         files = runner.output_files("/o", with_statistics=True)
@@ -405,6 +406,7 @@ class EndToEndTest(TempDirTest):
         self.assertEqual(entry["reference"]["summary"]["arrived"], 10)
         self.assertIn("lpsim: cannot start", table)
         self.assertIn("| scn | 11 / – | 10 / – |", table)
+        self.assertIsNone(entry["candidate"]["run"]["cpu_s"])
 
 
 @unittest.skipUnless(shutil.which("sumo") and shutil.which("netgenerate"), "SUMO not installed")
