@@ -88,6 +88,7 @@ struct VehicleView {
   float* route_length;      // m driven
   uint32_t* arrival_step;
   uint8_t* lane_change_dir; // last lane change: 0 none, 1 left, 2 right (for outputs)
+  uint8_t* held_at_line;    // last plan stopped at the lane end for a red light or a full next lane
 };
 
 /// What a vehicle decided this step, between the plan and the commit passes.
@@ -118,6 +119,7 @@ struct LaneApproach {
   float dist;          // front bumper to the lane end [m]
   float speed;         // m/s
   uint32_t waiting;    // consecutive steps stopped (deadlock breaking)
+  uint32_t held;       // 1: standing at the line for a red light or a full next lane (not a foe now)
 };
 
 /// Everything one step needs besides the arrays above.

@@ -34,6 +34,7 @@ struct StepContext {
   const char* link_state;   // current signal character per signal link
   LaneApproach* approach;   // per lane
   uint64_t* claims;         // per lane
+  uint64_t* merge_requests; // per lane: a blocked mandatory lane changer asks followers there to open a gap
   // Per-lane output counters (integers: order independent).
   int64_t* cnt_sampled_steps;
   int64_t* cnt_travelled_mm;
@@ -126,7 +127,7 @@ LPSIM_HD bool may_enter(const StepContext& s, uint32_t v, uint32_t c, float dist
     if (fvia >= 0 && lane_occupied(s, fvia)) return false;
     const uint32_t flane = net.conn_from_lane[f];
     const LaneApproach& a = s.approach[flane];
-    if (a.step != s.params.step || a.conn != static_cast<int32_t>(f)) continue;
+    if (a.step != s.params.step || a.conn != static_cast<int32_t>(f) || a.held) continue;
     const ApproachingFoe foe{a.dist, a.speed, s.params.max_accel, net.lane_speed[flane]};
     if (!foe_conflicts(foe, own_clear, kFoeWindow)) continue;
     // Deadlock breaking: both stand at their lines; the lower lane index goes first.
@@ -148,11 +149,48 @@ LPSIM_HD float approach_speed_limit(float dist, float v_lim, float decel) {
   return sqrtf(v_lim * v_lim + 2.0f * decel * fmaxf(dist, 0.0f));
 }
 
-/// Approach pass: the first vehicle on its lane (nothing ahead until the lane end) publishes itself.
+/// Lane a vehicle must move to (adjacent, towards the nearest lane leading to its next edge), or -1.
+LPSIM_HD int32_t mandatory_target(const StepContext& s, uint32_t v, int32_t lane, int32_t* lanes_to_cross) {
+  const NetView& net = s.net;
+  const uint32_t rp = s.veh.route_pos[v];
+  if (net.lane_internal[lane] || rp + 1 >= s.trips.route_length[v]) return -1;
+  const uint32_t next_edge = route_edge(s, v, rp + 1);
+  if (lane_has_conn_to(net, lane, next_edge)) return -1;
+  const uint32_t e = net.lane_edge[lane];
+  const int32_t first_lane = static_cast<int32_t>(net.edge_first_lane[e]);
+  const int32_t n = net.edge_num_lanes[e];
+  int32_t best = -1, best_d = 1 << 20;
+  for (int32_t k = 0; k < n; ++k) {
+    if (!lane_has_conn_to(net, first_lane + k, next_edge)) continue;
+    const int32_t d = first_lane + k > lane ? first_lane + k - lane : lane - first_lane - k;
+    if (d < best_d) best_d = d, best = first_lane + k;
+  }
+  if (best < 0) return -1;
+  *lanes_to_cross = best_d;
+  return best > lane ? net.lane_left[lane] : net.lane_right[lane];
+}
+
+// A merge request is encoded so that the one nearest the lane end wins an atomic max.
+LPSIM_HD uint64_t merge_key(uint32_t step, float rear_pos) {
+  const float cm = fminf(fmaxf(rear_pos * 100.0f, 0.0f), 4.0e9f);
+  return (static_cast<uint64_t>(step & 0xFFFFFFu) << 40) | static_cast<uint64_t>(cm);
+}
+constexpr float kMergeRequestZone = 30.0f;  // m before the lane end where a blocked changer asks for a gap
+
+/// Approach pass: the first vehicle on its lane (nothing ahead until the lane end) publishes itself, and
+/// a vehicle stuck on a wrong lane near its end asks the followers on the target lane to open a gap (as
+/// SUMO's cooperative lane changing does), so queues cannot lock it out forever.
 LPSIM_HD void approach_vehicle(StepContext& s, uint32_t v) {
   if (s.veh.status[v] != kRunning) return;
   const int32_t lane = s.veh.lane[v];
   const float pos = s.veh.pos[v];
+  int32_t to_cross = 0;
+  const int32_t target = mandatory_target(s, v, lane, &to_cross);
+  if (target >= 0 && s.net.lane_length[lane] - pos < kMergeRequestZone * static_cast<float>(to_cross) &&
+      s.veh.speed[v] < 2.0f) {
+    const float rear = pos - s.types.length[s.trips.type[v]];
+    if (rear > 0.0f) atomic_max_u64(&s.merge_requests[target], merge_key(s.params.step, rear));
+  }
   const int32_t cells = static_cast<int32_t>(lane_cells(s.net, lane));
   const int32_t from = static_cast<int32_t>(cell_of(s.net, lane, pos)) + 1;
   if (from < cells && first_occupied(s.map_now, s.net, lane, from, cells - 1) >= 0) return;
@@ -162,6 +200,7 @@ LPSIM_HD void approach_vehicle(StepContext& s, uint32_t v) {
   a.dist = s.net.lane_length[lane] - pos;
   a.speed = s.veh.speed[v];
   a.waiting = s.veh.stopped_steps[v];
+  a.held = s.veh.held_at_line[v] != 0 && a.speed < kHaltingSpeed ? 1u : 0u;
   s.approach[lane] = a;
 }
 
@@ -188,7 +227,7 @@ LPSIM_HD LaneChangeResult try_lane_change(const StepContext& s, uint32_t v, int3
   // Vehicles about to enter the target lane from upstream are not visible here: keep clear of its start.
   const float upstream_reach = (net.lane_speed[target] * 1.5f + s.params.max_accel * dt) * dt + p.min_gap;
   if (rear < upstream_reach) return r;
-  if (pos + cand_here * dt >= net.lane_length[target] - 1.0f) return r;
+  if (pos + cand_here * dt > net.lane_length[target] - kClampEps) return r;  // never cross the end while changing
   const int32_t cells = static_cast<int32_t>(lane_cells(net, target));
   const int32_t rear_cell = static_cast<int32_t>(cell_of(net, target, rear));
   const int32_t front_cell = static_cast<int32_t>(cell_of(net, target, pos));
@@ -233,6 +272,40 @@ LPSIM_HD LaneChangeResult try_lane_change(const StepContext& s, uint32_t v, int3
   return r;
 }
 
+/// Two vehicles standing side by side at their lanes' ends, each needing the other's lane, swap lanes
+/// (as SUMO lets them): both see the same two merge requests and the same cells, so both decide alike.
+/// Returns true when this vehicle swaps into `target`.
+LPSIM_HD bool swap_with_neighbour(const StepContext& s, uint32_t v, int32_t lane, int32_t target) {
+  const NetView& net = s.net;
+  const uint32_t step = s.params.step & 0xFFFFFFu;
+  const uint64_t mine = s.merge_requests[target], theirs = s.merge_requests[lane];
+  if ((mine >> 40) != step || (theirs >> 40) != step) return false;
+  const float length = s.types.length[s.trips.type[v]];
+  const float pos = s.veh.pos[v];
+  const float my_rear = pos - length;
+  if (mine != merge_key(s.params.step, my_rear)) return false;  // another vehicle's request won
+  const float their_rear = static_cast<float>(theirs & 0xFFFFFFFFFFull) / 100.0f;
+  // Their body: the occupied run on target ending at my front's cell and starting at their rear's cell.
+  const int32_t front_cell = static_cast<int32_t>(cell_of(net, target, pos));
+  const int32_t their_rear_cell = static_cast<int32_t>(cell_of(net, target, their_rear));
+  const uint8_t* t_cells = s.map_now + net.lane_cell_begin[target];
+  if (t_cells[front_cell] == 0 || decode_cell_speed(t_cells[front_cell]) > 0.0f) return false;
+  for (int32_t c = their_rear_cell; c <= front_cell; ++c)
+    if (t_cells[c] == 0) return false;
+  if (front_cell + 1 < static_cast<int32_t>(lane_cells(net, target)) && t_cells[front_cell + 1] != 0) return false;
+  // My body must fit on target below their run, and theirs on my lane below mine.
+  const int32_t my_rear_cell = static_cast<int32_t>(cell_of(net, target, my_rear));
+  if (my_rear_cell < their_rear_cell &&
+      first_occupied(s.map_now, net, target, my_rear_cell, their_rear_cell - 1) >= 0)
+    return false;
+  const int32_t my_rear_cell_here = static_cast<int32_t>(cell_of(net, lane, my_rear));
+  const int32_t their_rear_cell_here = static_cast<int32_t>(cell_of(net, lane, their_rear));
+  if (their_rear_cell_here < my_rear_cell_here &&
+      first_occupied(s.map_now, net, lane, their_rear_cell_here, my_rear_cell_here - 1) >= 0)
+    return false;
+  return my_rear > 0.0f && their_rear > 0.0f;
+}
+
 /// Plan pass for one running vehicle.
 LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
   PlanView& out = s.plan;
@@ -255,6 +328,23 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
   const float v0 = desired_speed(net.lane_speed[lane], sf, vmax);
   const bool waiting = s.veh.stopped_steps[v] > 0;
 
+  // Stuck side by side at the lane end with a vehicle that needs this lane: swap, standing still.
+  if (speed < kHaltingSpeed && net.lane_length[lane] - pos < 0.5f) {
+    int32_t to_cross = 0;
+    const int32_t target = mandatory_target(s, v, lane, &to_cross);
+    if (target >= 0 && swap_with_neighbour(s, v, lane, target)) {
+      s.veh.held_at_line[v] = 0;
+      out.new_speed[v] = 0.0f;
+      out.new_lane[v] = target;
+      out.new_pos[v] = pos;
+      out.new_prev[v] = -1;
+      out.new_prev2[v] = -1;
+      out.stop_lane[v] = target;
+      out.stop_pos[v] = pos;
+      return;
+    }
+  }
+
   float cand = idm_free_speed(p, speed, v0, dt, s.params.substeps);
   const float budget = fminf(lookahead_distance(p, speed, dt) + p.min_gap, kMaxLookahead);
   const float decision_dist = stopping_distance(speed, p.decel, dt) + speed * dt + kDecisionMargin;
@@ -270,6 +360,7 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
   float cur_start = -pos;
   uint32_t cur_rp = rp;
   bool last_edge_here = !net.lane_internal[lane] && rp + 1 >= rlen;
+  uint8_t held = 0;
   for (;;) {
     const int32_t cells = static_cast<int32_t>(lane_cells(net, cur));
     const int32_t first = cur == lane ? static_cast<int32_t>(cell_of(net, cur, pos)) + 1 : 0;
@@ -299,12 +390,16 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
     if (normal) {
       const char st = link_state_of(s, static_cast<uint32_t>(c));
       bool stop = signal_must_stop(st, end_dist, speed, p.decel, dt) || link_rule(st) == LinkRule::Closed;
+      if (stop) held = 1;
       if (!stop && end_dist <= decision_dist) {
         const LinkRule rule = link_rule(st);
         const bool needs_halt = rule == LinkRule::StopThenYield || rule == LinkRule::AllwayStop;
         if (needs_halt && !(waiting && end_dist < 1.0f)) stop = true;
         const uint32_t to = net.conn_to_lane[c];
-        if (!stop && !room_at_start(s, static_cast<int32_t>(to), length + p.min_gap)) stop = true;
+        if (!stop && !room_at_start(s, static_cast<int32_t>(to), length + p.min_gap)) {
+          stop = true;
+          held = 1;
+        }
         if (!stop && !may_enter(s, v, static_cast<uint32_t>(c), end_dist, speed, v0, p, length, waiting)) stop = true;
       }
       if (stop) {
@@ -328,6 +423,16 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
     cur_start = end_dist;
   }
 
+  s.veh.held_at_line[v] = held;
+  // Open a gap for a blocked lane changer waiting beside this lane ahead of us.
+  const uint64_t mr = s.merge_requests[lane];
+  if (!net.lane_internal[lane] && (mr >> 40) == (s.params.step & 0xFFFFFFu)) {
+    const float rear = static_cast<float>(mr & 0xFFFFFFFFFFull) / 100.0f;
+    // Stop a minimum gap (plus room for the changer's lag check) short of the changer's rear. A vehicle
+    // already closer than that drives on past it; the gap then opens behind it.
+    const float gap = rear - pos - p.min_gap - 2.5f;
+    if (gap > 0.0f && gap < budget) cand = fminf(cand, stop_speed(p, speed, v0, gap, dt, s.params.substeps));
+  }
   float new_speed = finalize_speed(p, speed, cand, dt);
   int32_t new_lane = lane;
 
@@ -342,22 +447,10 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
       const bool target_good = lane_has_conn_to(net, target, next_edge);
       bool mandatory = false;
       float urgency = 0.0f;
-      if (!here_good) {
-        // Lanes still to cross towards the nearest lane that leads on, and whether target is on the way.
-        const uint32_t e = net.lane_edge[lane];
-        const int32_t first_lane = static_cast<int32_t>(net.edge_first_lane[e]);
-        const int32_t n = net.edge_num_lanes[e];
-        int32_t best = -1, best_d = 1 << 20;
-        for (int32_t k = 0; k < n; ++k) {
-          if (!lane_has_conn_to(net, first_lane + k, next_edge)) continue;
-          const int32_t d = (first_lane + k > lane) ? first_lane + k - lane : lane - first_lane - k;
-          if (d < best_d) best_d = d, best = first_lane + k;
-        }
-        const bool towards = best >= 0 && ((best > lane) == (target > lane));
-        if (towards) {
-          mandatory = true;
-          urgency = mandatory_lc_urgency(dist_to_lane_end, best_d, speed, lane_change_default_params());
-        }
+      int32_t to_cross = 0;
+      if (!here_good && mandatory_target(s, v, lane, &to_cross) == target) {
+        mandatory = true;
+        urgency = mandatory_lc_urgency(dist_to_lane_end, to_cross, speed, lane_change_default_params());
       }
       const bool discretionary =
           !mandatory && here_good && target_good && lc_attempt_allowed(s.params.seed, v, s.params.step, 0.5f);

@@ -36,12 +36,14 @@ Simulation::Simulation(const Network& net, const Demand& demand, const Simulatio
 
   for (int b = 0; b < 2; ++b) map_[b].assign(net.num_cells(), 0);
   link_state_.assign(engine_net_.link_begin.back(), 'r');
-  approach_.assign(nl, LaneApproach{0xFFFFFFFFu, -1, 0, 0, 0});
+  approach_.assign(nl, LaneApproach{0xFFFFFFFFu, -1, 0, 0, 0, 0});
   claims_.assign(nl, 0);
+  merge_requests_.assign(nl, 0);
   lane_counters_.resize(nl);
 
   status_.assign(nv, kPending);
   lane_change_dir_.assign(nv, 0);
+  held_at_line_.assign(nv, 0);
   arrives_.assign(nv, 0);
   route_pos_.assign(nv, 0);
   stopped_steps_.assign(nv, 0);
@@ -127,7 +129,7 @@ void Simulation::step() {
                         ptr(prev_),          ptr(prev2_),         ptr(pos_),            ptr(old_lane_),
                         ptr(old_prev_),      ptr(old_prev2_),     ptr(old_pos_),        ptr(stopped_steps_),
                         ptr(waiting_steps_), ptr(waiting_count_), ptr(time_loss_),      ptr(route_length_),
-                        ptr(arrival_step_),  ptr(lane_change_dir_)};
+                        ptr(arrival_step_),  ptr(lane_change_dir_), ptr(held_at_line_)};
   ctx.plan = PlanView{ptr(new_speed_), ptr(new_lane_), ptr(new_pos_),  ptr(new_prev_),   ptr(new_prev2_),
                       ptr(claim0_),    ptr(claim1_),   ptr(stop_pos_), ptr(stop_lane_), ptr(arrives_)};
   const float dt = static_cast<float>(dt_ms_) / 1000.0f;
@@ -140,6 +142,7 @@ void Simulation::step() {
   ctx.link_state = link_state_.data();
   ctx.approach = approach_.data();
   ctx.claims = claims_.data();
+  ctx.merge_requests = merge_requests_.data();
   LaneCounters& lc = lane_counters_;
   ctx.cnt_sampled_steps = lc.sampled_steps.data();
   ctx.cnt_travelled_mm = lc.travelled_mm.data();

@@ -85,11 +85,11 @@ class Simulation {
   int cur_ = 0;
   std::vector<char> link_state_;
   std::vector<LaneApproach> approach_;
-  std::vector<uint64_t> claims_;
+  std::vector<uint64_t> claims_, merge_requests_;
   LaneCounters lane_counters_;
 
   // Per-vehicle state (see VehicleView) and plan scratch (see PlanView).
-  std::vector<uint8_t> status_, lane_change_dir_, arrives_;
+  std::vector<uint8_t> status_, lane_change_dir_, arrives_, held_at_line_;
   std::vector<uint32_t> route_pos_, stopped_steps_, waiting_steps_, waiting_count_, arrival_step_;
   std::vector<float> speed_, pos_, old_pos_, time_loss_, route_length_;
   std::vector<int32_t> lane_, prev_, prev2_, old_lane_, old_prev_, old_prev2_;
