@@ -8,10 +8,7 @@
 #include <optional>
 
 #include "app/commands.hpp"
-#include "app/info_report.hpp"
-#include "app/scenario.hpp"
-#include "app/snapshot.hpp"
-#include "converters/cli_options.hpp"
+#include "app/scenario_args.hpp"
 #include "converters/fcd_writer.hpp"
 #include "converters/mean_data_writer.hpp"
 #include "converters/summary_writer.hpp"
@@ -53,27 +50,8 @@ void print_progress(const Simulation& sim, double wall, double end) {
 }  // namespace
 
 int command_run(const std::vector<std::string>& args) {
-  std::vector<std::string> positional;
-  ConfigSpec config = parse_cli_options(args, &positional);
-  if (positional.size() > 1) throw InputError("expected at most one input file, got '" + positional[1] + "'");
-  Scenario sc;
-  if (positional.size() == 1 && is_snapshot(positional[0])) {
-    sc = read_snapshot(positional[0]);
-    sc.config = config;
-  } else {
-    if (positional.size() == 1) {
-      std::vector<std::string> with_cfg{"-c", positional[0]};
-      for (const auto& a : args)
-        if (a != positional[0]) with_cfg.push_back(a);
-      config = parse_cli_options(with_cfg, nullptr);
-    }
-    sc = load_scenario(config);
-  }
-  std::string unsupported = unsupported_summary(sc.demand);
-  if (!unsupported.empty()) std::fprintf(stderr, "lpsim: warning: %s\n", unsupported.c_str());
-  if (!sc.demand.unroutable.empty())
-    std::fprintf(stderr, "lpsim: warning: %zu vehicles skipped (unroutable or broken routes)\n",
-                 sc.demand.unroutable.size());
+  ConfigSpec config;
+  Scenario sc = scenario_from_args(args, &config);
 
   SimulationOptions opt;
   opt.begin = config.begin;

@@ -123,6 +123,10 @@ class Builder {
     return -1;
   }
 
+  static bool is_car_class(const std::string& vclass) {
+    return vclass.empty() || vclass == "passenger" || vclass == "private" || vclass == "taxi" || vclass == "evehicle";
+  }
+
   void assemble() {
     // Drop vehicles on broken routes (only possible with ignore_route_errors), in file order. Sorting
     // (depart, position) pairs is a stable sort by depart that touches only the pairs.
@@ -131,7 +135,16 @@ class Builder {
     for (uint32_t k = 0; k < pending_.size(); ++k) {
       const RouteSlot& slot = routes_.slot(pending_[k].slot);
       if (slot.problem >= 0) {
-        demand_.unroutable.push_back({ids_[k], routes_.problem(slot.problem), loc_of(pending_[k])});
+        std::string reason = routes_.problem(slot.problem);
+        if (routes_.problem_outside_car_map(slot.problem)) {
+          // Cars must find car lanes on their route; other classes (buses on bus lanes, trams) are
+          // outside what the car lane map simulates and are skipped with the reason.
+          const std::string& vclass = types_.types().vclass[pending_[k].type];
+          if (is_car_class(vclass) && !routes_.ignores_errors())
+            throw InputError(loc_of(pending_[k]), reason + " (vehicle '" + ids_[k] + "')");
+          reason = "vClass " + vclass + ": " + reason;
+        }
+        demand_.unroutable.push_back({ids_[k], reason, loc_of(pending_[k])});
       } else {
         by_depart.emplace_back(pending_[k].depart, k);
       }

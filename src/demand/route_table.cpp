@@ -87,7 +87,7 @@ uint32_t RouteTable::resolve(const std::vector<std::string>& edges, const std::s
     auto e = drivable_edge(net_, edges[i], reason);
     if (!e) {
       route_edges_.resize(begin);
-      return add_broken(loc, reason + " in " + what);
+      return add_broken(loc, reason + " in " + what, net_.edge_index.count(edges[i]) > 0);
     }
     if (i > 0 && !net_.connected(route_edges_.back(), *e)) {
       route_edges_.resize(begin);
@@ -118,12 +118,14 @@ void RouteTable::set_resolved(uint32_t slot, const std::vector<uint32_t>& edges)
 void RouteTable::set_broken(uint32_t slot, const SourceLoc& loc, const std::string& reason) {
   if (!ignore_) throw InputError(loc, reason);
   problems_.push_back(reason);
+  outside_car_map_.push_back(0);
   slots_[slot] = {0, 0, static_cast<int32_t>(problems_.size() - 1)};
 }
 
-uint32_t RouteTable::add_broken(const SourceLoc& loc, const std::string& reason) {
-  if (!ignore_) throw InputError(loc, reason);
+uint32_t RouteTable::add_broken(const SourceLoc& loc, const std::string& reason, bool outside_car_map) {
+  if (!ignore_ && !outside_car_map) throw InputError(loc, reason);
   problems_.push_back(reason);
+  outside_car_map_.push_back(outside_car_map ? 1 : 0);
   slots_.push_back({0, 0, static_cast<int32_t>(problems_.size() - 1)});
   return static_cast<uint32_t>(slots_.size() - 1);
 }

@@ -44,7 +44,9 @@ class RouteTable {
   /// New slot holding already-resolved edges (a routed trip); connectivity is the router's business.
   uint32_t add_resolved(const std::vector<uint32_t>& edges);
   /// New broken slot, or InputError(loc, reason) unless route errors are ignored.
-  uint32_t add_broken(const SourceLoc& loc, const std::string& reason);
+  /// `outside_car_map`: the route uses an edge without car lanes. That is not raised here: only vehicles of a
+  /// car class make it an error (others, e.g. buses on bus lanes, are skipped with a reason).
+  uint32_t add_broken(const SourceLoc& loc, const std::string& reason, bool outside_car_map = false);
   /// New empty slot to be filled later by set_resolved / set_broken (trips waiting for the router).
   uint32_t add_pending();
   void set_resolved(uint32_t slot, const std::vector<uint32_t>& edges);
@@ -52,6 +54,8 @@ class RouteTable {
 
   const RouteSlot& slot(uint32_t s) const { return slots_[s]; }
   const std::string& problem(int32_t p) const { return problems_[static_cast<size_t>(p)]; }
+  bool problem_outside_car_map(int32_t p) const { return outside_car_map_[static_cast<size_t>(p)] != 0; }
+  bool ignores_errors() const { return ignore_; }
   bool ignore_route_errors() const { return ignore_; }
 
  private:
@@ -72,6 +76,7 @@ class RouteTable {
   std::vector<int64_t> route_slot_;  // per named route: its slot, -1 until first used
   std::vector<RouteSlot> slots_;
   std::vector<std::string> problems_;
+  std::vector<uint8_t> outside_car_map_;
 };
 
 }  // namespace lpsim

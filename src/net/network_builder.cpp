@@ -33,7 +33,14 @@ class Builder {
     return std::move(net_);
   }
 
- private:
+   // A rail crossing or rail signal junction of that id (its tl attribute needs no program for cars).
+  bool is_rail_controlled(const std::string& id) const {
+    for (const auto& j : spec_.junctions)
+      if (j.id == id) return j.type == "rail_crossing" || j.type == "rail_signal";
+    return false;
+  }
+
+private:
   const NetSpec& spec_;
   const std::vector<TlLogicSpec>& overrides_;
   Network net_;
@@ -313,6 +320,12 @@ class Builder {
       k.junction = net_.edge_is_internal[fe] ? internal_junction_[fe] : net_.edge_to_junction[fe];
       if (!c.tl.empty()) {
         auto it = net_.signal_index.find(c.tl);
+        // Rail crossings name their junction as tl without a program: SUMO closes them for trains only,
+        // and no trains run here, so road links there are open (unsignalised).
+        if (it == net_.signal_index.end() && is_rail_controlled(c.tl)) {
+          kept.push_back(k);
+          continue;
+        }
         if (it == net_.signal_index.end())
           throw InputError(c.loc, "connection from '" + c.from + "' to '" + c.to + "' names tlLogic '" + c.tl +
                                       "' which has no program");
