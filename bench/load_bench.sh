@@ -3,7 +3,7 @@
 # signalised grid with 1M vehicles on explicit routes. Prints a markdown table on stdout (also saved
 # as bench/work/load/results.md); progress goes to stderr.
 #
-# Usage: bench/load_bench.sh [--runs N] [--force] [--lpsim PATH] [--no-sumo]
+# Usage: bench/load_bench.sh [--runs N] [--force] [--lpsim PATH] [--cases abcd]
 #                            [--grid N] [--vehicles N] [--out DIR]   (smaller scenarios for smoke runs)
 set -euo pipefail
 
@@ -13,7 +13,7 @@ source "$repo/bench/lib.sh"
 runs=3
 force=()
 lpsim="$repo/build/lpsim"
-with_sumo=1
+cases=abcd  # letters of the cases to run: a, b (SUMO), c, d (LPSim)
 gen_args=()
 work=bench/work/load
 while [[ $# -gt 0 ]]; do
@@ -21,7 +21,7 @@ while [[ $# -gt 0 ]]; do
     --runs) runs="$2"; shift 2 ;;
     --force) force=(--force); shift ;;
     --lpsim) lpsim="$2"; shift 2 ;;
-    --no-sumo) with_sumo=0; shift ;;
+    --cases) cases="$2"; shift 2 ;;
     --out) work="$2"; shift 2 ;;
     --grid|--vehicles|--seed|--duration) gen_args+=("$1" "$2"); shift 2 ;;
     -h|--help) sed -n '2,8p' "$0"; exit 0 ;;
@@ -29,6 +29,8 @@ while [[ $# -gt 0 ]]; do
   esac
 done
 [[ "$runs" =~ ^[1-9][0-9]*$ ]] || { echo "--runs needs a positive integer" >&2; exit 2; }
+[[ "$cases" =~ ^[abcd]+$ ]] || { echo "--cases takes letters among a, b, c, d" >&2; exit 2; }
+wants() { [[ "$cases" == *"$1"* ]]; }
 
 cd "$repo"
 config="$work/load.sumocfg"
@@ -72,19 +74,25 @@ bench_case() {
   LOADED[$key]=$(sed -n 's/.*(Loaded: \([0-9]*\)).*/\1/p' "$logs/$key.1.log" | tail -n 1)
 }
 
-if [[ $with_sumo -eq 1 ]]; then
+if wants a; then
   bench_case sumo_all sumo -c "$config" --end 0 --no-step-log --route-steps 0 --duration-log.statistics || true
+fi
+if wants b; then
   bench_case sumo_default sumo -c "$config" --end 0 --no-step-log --duration-log.statistics || true
 fi
 
 lpsim_state="not run"
-if [[ ! -x "$lpsim" ]]; then
+if ! wants c && ! wants d; then
+  lpsim_state="not requested (--cases $cases)"
+elif [[ ! -x "$lpsim" ]]; then
   lpsim_state="$lpsim does not exist or is not executable: LPSim rows skipped (build it with tools/build.sh)"
-elif ! bench_case lpsim_full "$lpsim" info -c "$config"; then
+elif wants c && ! bench_case lpsim_full "$lpsim" info -c "$config"; then
   lpsim_state="lpsim info -c failed: ${NOTE[lpsim_full]}"
 else
   lpsim_state="ok"
-  if bench_case lpsim_convert "$lpsim" convert -c "$config" -o "$snapshot" &&
+  if ! wants d; then
+    :
+  elif bench_case lpsim_convert "$lpsim" convert -c "$config" -o "$snapshot" &&
      bench_case lpsim_snapshot "$lpsim" info "$snapshot"; then
     :
   else
