@@ -89,6 +89,12 @@ struct VehicleView {
   uint32_t* arrival_step;
   uint8_t* lane_change_dir; // last lane change: 0 none, 1 left, 2 right (for outputs)
   uint8_t* held_at_line;    // last plan stopped at the lane end for a red light or a full next lane
+  uint8_t* limit_reason;    // what bounded the last plan's speed (StopReason), for diagnostics and tests
+};
+
+enum StopReason : uint8_t {
+  kFree = 0, kLeader = 1, kWrongLane = 2, kSignal = 3, kHaltRule = 4, kNoRoom = 5, kYield = 6, kMergeGap = 7,
+  kSwap = 8
 };
 
 /// What a vehicle decided this step, between the plan and the commit passes.
@@ -103,6 +109,9 @@ struct PlanView {
   float* stop_pos;       // fallback if a claim is lost: front position on the pre-claim lane
   int32_t* stop_lane;
   uint8_t* arrives;      // 1: reaches its arrival position this step
+  uint32_t* new_rp;      // route position after the move
+  uint32_t* first_rp;    // route position on claim_lane0 (kept if only the second claim is lost)
+  uint8_t* claim_prio;   // priority of this vehicle's claims (1 entering a lane, 0 changing lanes near a start)
 };
 
 /// Claims on lane entries: one 64-bit word per lane; the largest value of the current step wins.

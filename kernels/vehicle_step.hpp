@@ -68,8 +68,58 @@ LPSIM_HD bool lane_has_conn_to(const NetView& net, int32_t lane, uint32_t edge) 
   return false;
 }
 
+// Strategic lane choice looks this many edges (and at most this far) ahead along the route.
+constexpr uint32_t kBestLaneEdges = 4;
+constexpr float kBestLaneDistance = 600.0f;
+
+/// Bit k set: lane k (rank among the edge's car lanes) of the route's edge rp+level can follow the route for
+/// the next edges in view without a lane change (SUMO's "best lanes", limited to kBestLaneEdges). Where no
+/// lane can, the lanes that at least reach the next edge. Edges with more than 32 lanes see their first 32.
+struct BestLanes {
+  uint32_t mask[kBestLaneEdges];
+  uint32_t levels;  // edges in view (1 = only the current edge)
+};
+
+LPSIM_HD uint32_t lane_bit(const NetView& net, uint32_t lane) {
+  const uint32_t rank = lane - net.edge_first_lane[net.lane_edge[lane]];
+  return rank < 32 ? (1u << rank) : 0u;
+}
+
+LPSIM_HD BestLanes best_lanes(const NetView& net, const TripView& trips, uint32_t v, uint32_t rp) {
+  BestLanes b{};
+  const uint32_t len = trips.route_length[v];
+  const uint32_t* route = trips.route_edges + trips.route_begin[v];
+  float dist = 0.0f;
+  uint32_t n = 0;
+  while (n < kBestLaneEdges && rp + n < len) {
+    const uint32_t e = route[rp + n];
+    ++n;
+    dist += net.lane_length[net.edge_first_lane[e]];
+    if (dist > kBestLaneDistance) break;
+  }
+  b.levels = n;
+  const uint32_t last = route[rp + n - 1];
+  const uint32_t last_lanes = net.edge_num_lanes[last];
+  b.mask[n - 1] = last_lanes >= 32 ? 0xFFFFFFFFu : ((1u << last_lanes) - 1u);
+  for (int32_t i = static_cast<int32_t>(n) - 2; i >= 0; --i) {
+    const uint32_t e = route[rp + static_cast<uint32_t>(i)];
+    const uint32_t next = route[rp + static_cast<uint32_t>(i) + 1];
+    const uint32_t first = net.edge_first_lane[e];
+    uint32_t keep = 0, reach = 0;
+    for (uint32_t k = 0; k < net.edge_num_lanes[e] && k < 32; ++k) {
+      for (uint32_t c = net.lane_conn_begin[first + k]; c < net.lane_conn_begin[first + k + 1]; ++c) {
+        if (net.conn_to_edge[c] != next) continue;
+        reach |= 1u << k;
+        if (lane_bit(net, net.conn_to_lane[c]) & b.mask[i + 1]) keep |= 1u << k;
+      }
+    }
+    b.mask[i] = keep ? keep : reach;
+  }
+  return b;
+}
+
 /// The connection a vehicle takes at the end of `lane` to reach the route's next edge (index rp+1); prefers
-/// a target lane that also continues to the edge after. -1: this lane does not lead there.
+/// a target lane among the next edge's best lanes. -1: this lane does not lead there.
 LPSIM_HD int32_t choose_connection(const StepContext& s, uint32_t v, int32_t lane, uint32_t rp) {
   const NetView& net = s.net;
   const uint32_t len = s.trips.route_length[v];
@@ -84,13 +134,11 @@ LPSIM_HD int32_t choose_connection(const StepContext& s, uint32_t v, int32_t lan
   }
   if (rp + 1 >= len) return -1;
   const uint32_t next = route_edge(s, v, rp + 1);
-  const bool has_after = rp + 2 < len;
-  const uint32_t after = has_after ? route_edge(s, v, rp + 2) : 0;
+  const BestLanes best = best_lanes(s.net, s.trips, v, rp + 1);
   for (uint32_t c = net.lane_conn_begin[lane]; c < net.lane_conn_begin[lane + 1]; ++c) {
     if (net.conn_to_edge[c] != next) continue;
     if (first < 0) first = static_cast<int32_t>(c);
-    if (!has_after || lane_has_conn_to(net, static_cast<int32_t>(net.conn_to_lane[c]), after))
-      return static_cast<int32_t>(c);
+    if (lane_bit(net, net.conn_to_lane[c]) & best.mask[0]) return static_cast<int32_t>(c);
   }
   return first;
 }
@@ -154,14 +202,14 @@ LPSIM_HD int32_t mandatory_target(const StepContext& s, uint32_t v, int32_t lane
   const NetView& net = s.net;
   const uint32_t rp = s.veh.route_pos[v];
   if (net.lane_internal[lane] || rp + 1 >= s.trips.route_length[v]) return -1;
-  const uint32_t next_edge = route_edge(s, v, rp + 1);
-  if (lane_has_conn_to(net, lane, next_edge)) return -1;
+  const uint32_t good = best_lanes(s.net, s.trips, v, rp).mask[0];
+  if (lane_bit(net, static_cast<uint32_t>(lane)) & good) return -1;
   const uint32_t e = net.lane_edge[lane];
   const int32_t first_lane = static_cast<int32_t>(net.edge_first_lane[e]);
   const int32_t n = net.edge_num_lanes[e];
   int32_t best = -1, best_d = 1 << 20;
-  for (int32_t k = 0; k < n; ++k) {
-    if (!lane_has_conn_to(net, first_lane + k, next_edge)) continue;
+  for (int32_t k = 0; k < n && k < 32; ++k) {
+    if (!(good & (1u << k))) continue;
     const int32_t d = first_lane + k > lane ? first_lane + k - lane : lane - first_lane - k;
     if (d < best_d) best_d = d, best = first_lane + k;
   }
@@ -210,12 +258,13 @@ struct LaneChangeResult {
   bool change;
   float speed_cap;    // max next speed behind the target lane's leader
   float leader_gap;   // distance to the first occupied cell ahead on the target lane (1e30: none)
+  bool near_start;    // the changer's rear is within reach of vehicles entering the target lane this step
 };
 
 LPSIM_HD LaneChangeResult try_lane_change(const StepContext& s, uint32_t v, int32_t lane, int32_t target,
                                           bool mandatory, float urgency, float cand_here, float own_leader_gap,
                                           float own_leader_speed, bool own_has_leader) {
-  LaneChangeResult r{false, 0.0f, 1e30f};
+  LaneChangeResult r{false, 0.0f, 1e30f, false};
   const NetView& net = s.net;
   const uint32_t type = s.trips.type[v];
   const IdmParams p = idm_of(s, type);
@@ -225,8 +274,11 @@ LPSIM_HD LaneChangeResult try_lane_change(const StepContext& s, uint32_t v, int3
   const float dt = s.params.dt;
   const float rear = pos - length;
   // Vehicles about to enter the target lane from upstream are not visible here: keep clear of its start.
+  // Vehicles entering the target lane this step do not see the changer: near the start it claims the lane
+  // entry with the lowest priority, so any entrant wins and the changer then stays in its lane.
   const float upstream_reach = (net.lane_speed[target] * 1.5f + s.params.max_accel * dt) * dt + p.min_gap;
-  if (rear < upstream_reach) return r;
+  if (rear <= 0.0f) return r;
+  r.near_start = rear < upstream_reach;
   if (pos + cand_here * dt > net.lane_length[target] - kClampEps) return r;  // never cross the end while changing
   const int32_t cells = static_cast<int32_t>(lane_cells(net, target));
   const int32_t rear_cell = static_cast<int32_t>(cell_of(net, target, rear));
@@ -334,6 +386,7 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
     const int32_t target = mandatory_target(s, v, lane, &to_cross);
     if (target >= 0 && swap_with_neighbour(s, v, lane, target)) {
       s.veh.held_at_line[v] = 0;
+      s.veh.limit_reason[v] = kSwap;
       out.new_speed[v] = 0.0f;
       out.new_lane[v] = target;
       out.new_pos[v] = pos;
@@ -341,6 +394,8 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
       out.new_prev2[v] = -1;
       out.stop_lane[v] = target;
       out.stop_pos[v] = pos;
+      out.new_rp[v] = rp;
+      out.first_rp[v] = rp;
       return;
     }
   }
@@ -351,6 +406,7 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
 
   // Walk the path ahead: current lane, then the lanes the route leads through, up to the budget.
   int32_t path[kMaxPathHops];
+  uint32_t path_rp[kMaxPathHops];  // route position once the front is on path[h]
   int32_t hops = 0;
   float hard_limit = 1e30f;        // the front must stay short of this distance (occupied cell / closed line)
   bool has_leader = false;
@@ -360,7 +416,7 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
   float cur_start = -pos;
   uint32_t cur_rp = rp;
   bool last_edge_here = !net.lane_internal[lane] && rp + 1 >= rlen;
-  uint8_t held = 0;
+  uint8_t held = 0, reason = kFree;
   for (;;) {
     const int32_t cells = static_cast<int32_t>(lane_cells(net, cur));
     const int32_t first = cur == lane ? static_cast<int32_t>(cell_of(net, cur, pos)) + 1 : 0;
@@ -372,6 +428,7 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
       const float vl = decode_cell_speed(s.map_now[net.lane_cell_begin[cur] + static_cast<uint32_t>(hit)]);
       cand = fminf(cand, follow_speed(p, speed, v0, gap, vl, s.params.max_emergency_decel, dt, s.params.substeps));
       hard_limit = fminf(hard_limit, gap - kClampEps);
+      reason = kLeader;
       has_leader = true;
       leader_gap = gap;
       leader_speed = vl;
@@ -385,22 +442,25 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
     if (c < 0) {  // wrong lane for the route (or a dead end): the lane end is a wall until a lane change
       cand = fminf(cand, stop_speed(p, speed, v0, end_dist, dt, s.params.substeps));
       hard_limit = fminf(hard_limit, end_dist - kClampEps);
+      reason = kWrongLane;
       break;
     }
     if (normal) {
       const char st = link_state_of(s, static_cast<uint32_t>(c));
       bool stop = signal_must_stop(st, end_dist, speed, p.decel, dt) || link_rule(st) == LinkRule::Closed;
-      if (stop) held = 1;
+      if (stop) held = 1, reason = kSignal;
       if (!stop && end_dist <= decision_dist) {
         const LinkRule rule = link_rule(st);
         const bool needs_halt = rule == LinkRule::StopThenYield || rule == LinkRule::AllwayStop;
-        if (needs_halt && !(waiting && end_dist < 1.0f)) stop = true;
+        if (needs_halt && !(waiting && end_dist < 1.0f)) stop = true, reason = kHaltRule;
         const uint32_t to = net.conn_to_lane[c];
         if (!stop && !room_at_start(s, static_cast<int32_t>(to), length + p.min_gap)) {
           stop = true;
           held = 1;
+          reason = kNoRoom;
         }
-        if (!stop && !may_enter(s, v, static_cast<uint32_t>(c), end_dist, speed, v0, p, length, waiting)) stop = true;
+        if (!stop && !may_enter(s, v, static_cast<uint32_t>(c), end_dist, speed, v0, p, length, waiting))
+          stop = true, reason = kYield;
       }
       if (stop) {
         cand = fminf(cand, stop_speed(p, speed, v0, end_dist, dt, s.params.substeps));
@@ -419,6 +479,7 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
     path[hops] = nxt;
     ++hops;
     if (!net.lane_internal[nxt]) ++cur_rp;
+    path_rp[hops - 1] = cur_rp;
     cur = nxt;
     cur_start = end_dist;
   }
@@ -430,11 +491,16 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
     const float rear = static_cast<float>(mr & 0xFFFFFFFFFFull) / 100.0f;
     // Stop a minimum gap (plus room for the changer's lag check) short of the changer's rear. A vehicle
     // already closer than that drives on past it; the gap then opens behind it.
-    const float gap = rear - pos - p.min_gap - 2.5f;
-    if (gap > 0.0f && gap < budget) cand = fminf(cand, stop_speed(p, speed, v0, gap, dt, s.params.substeps));
+    const float gap = rear - pos - p.min_gap - 4.0f;
+    if (gap > 0.0f && gap < budget) {
+      const float vs = stop_speed(p, speed, v0, gap, dt, s.params.substeps);
+      if (vs < cand) cand = vs, reason = kMergeGap;
+    }
   }
+  s.veh.limit_reason[v] = reason;
   float new_speed = finalize_speed(p, speed, cand, dt);
   int32_t new_lane = lane;
+  bool change_claim = false;
 
   // Lane changes on normal lanes only, left on even steps and right on odd ones, so that no lane receives
   // changers from both sides in one step.
@@ -442,9 +508,9 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
     const bool left_step = (s.params.step & 1u) == 0;
     const int32_t target = left_step ? net.lane_left[lane] : net.lane_right[lane];
     if (target >= 0) {
-      const uint32_t next_edge = route_edge(s, v, rp + 1);
-      const bool here_good = lane_has_conn_to(net, lane, next_edge);
-      const bool target_good = lane_has_conn_to(net, target, next_edge);
+      const uint32_t good = best_lanes(s.net, s.trips, v, rp).mask[0];
+      const bool here_good = (lane_bit(net, static_cast<uint32_t>(lane)) & good) != 0;
+      const bool target_good = (lane_bit(net, static_cast<uint32_t>(target)) & good) != 0;
       bool mandatory = false;
       float urgency = 0.0f;
       int32_t to_cross = 0;
@@ -459,9 +525,10 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
             try_lane_change(s, v, lane, target, mandatory, urgency, new_speed, leader_gap, leader_speed, has_leader);
         if (r.change) {
           new_lane = target;
+          change_claim = r.near_start;
           new_speed = finalize_speed(p, speed, fminf(cand, r.speed_cap), dt);
           hard_limit = fminf(hard_limit, r.leader_gap - kClampEps);
-          if (!target_good) {
+          if (!lane_has_conn_to(net, target, route_edge(s, v, rp + 1))) {
             const float end_dist = net.lane_length[target] - pos;
             new_speed = fminf(new_speed, fmaxf(0.0f, stop_speed(p, speed, v0, end_dist, dt, s.params.substeps)));
             hard_limit = fminf(hard_limit, end_dist - kClampEps);
@@ -484,7 +551,17 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
   }
   out.stop_lane[v] = new_lane;
   out.stop_pos[v] = npos;
+  out.claim_prio[v] = 1;
   int32_t claims = 0;
+  if (change_claim) {  // lowest priority; losing it means staying in the old lane at the same position
+    out.claim_prio[v] = 0;
+    out.claim_lane0[v] = new_lane;
+    out.stop_lane[v] = lane;
+    out.stop_pos[v] = npos + kClampEps;
+    atomic_max_u64(&s.claims[new_lane], claim_key(s.params.step, 0, v));
+  }
+  uint32_t nrp = rp;
+  out.first_rp[v] = rp;
   for (int32_t h = 0; h < hops && npos > net.lane_length[nlane]; ++h) {
     if (claims == 2) {  // at most two lane entries per step: stop at the end of the second lane
       npos = net.lane_length[nlane];
@@ -498,7 +575,8 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
     nprev2 = nprev;
     nprev = nlane;
     nlane = path[h];
-    if (claims == 0) out.claim_lane0[v] = nlane;
+    nrp = path_rp[h];
+    if (claims == 0) out.claim_lane0[v] = nlane, out.first_rp[v] = nrp;
     else out.claim_lane1[v] = nlane;
     ++claims;
     atomic_max_u64(&s.claims[nlane], claim_key(s.params.step, 1, v));
@@ -506,14 +584,15 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
   if (npos > net.lane_length[nlane]) npos = net.lane_length[nlane];
   new_speed = fminf(new_speed, advance / dt);
   // Arrival: on the route's last edge, at its arrival position (default: the lane's end).
-  if (!net.lane_internal[nlane] && net.lane_edge[nlane] == route_edge(s, v, rlen - 1)) {
+  out.new_rp[v] = nrp;
+  if (!net.lane_internal[nlane] && nrp + 1 >= rlen) {
     float arrival = net.lane_length[nlane];
     if (s.trips.arrival_pos_kind[v] == 0) {  // ArrivalPos::Given; negative counts from the end
       const float a = s.trips.arrival_pos[v];
       arrival = a < 0.0f ? net.lane_length[nlane] + a : a;
       if (arrival > net.lane_length[nlane]) arrival = net.lane_length[nlane];
     }
-    if (npos >= arrival - kClampEps && (nlane != lane || rp + 1 >= rlen)) out.arrives[v] = 1;
+    if (npos >= arrival - kClampEps) out.arrives[v] = 1;
   }
   out.new_speed[v] = new_speed;
   out.new_lane[v] = nlane;
@@ -548,7 +627,7 @@ LPSIM_HD void commit_vehicle(StepContext& s, uint32_t v) {
   int32_t nlane = plan.new_lane[v], nprev = plan.new_prev[v], nprev2 = plan.new_prev2[v];
   float npos = plan.new_pos[v], nspeed = plan.new_speed[v];
   bool arrives = plan.arrives[v] != 0;
-  const uint64_t key = claim_key(s.params.step, 1, v);
+  const uint64_t key = claim_key(s.params.step, plan.claim_prio[v], v);
   const int32_t c0 = plan.claim_lane0[v], c1 = plan.claim_lane1[v];
   const bool lost0 = c0 >= 0 && s.claims[c0] != key;
   const bool lost1 = c1 >= 0 && s.claims[c1] != key;
@@ -582,12 +661,8 @@ LPSIM_HD void commit_vehicle(StepContext& s, uint32_t v) {
   nspeed = driven / dt;
   if (nspeed > plan.new_speed[v]) nspeed = plan.new_speed[v];
 
-  // Route position follows the front onto each new normal edge.
-  uint32_t rp = veh.route_pos[v];
-  const uint32_t rlen = s.trips.route_length[v];
-  if (!net.lane_internal[nlane] && net.lane_edge[nlane] != route_edge(s, v, rp) && rp + 1 < rlen &&
-      net.lane_edge[nlane] == route_edge(s, v, rp + 1))
-    ++rp;
+  // Route position follows the front over every normal edge it entered (as planned, or up to the fallback).
+  const uint32_t rp = lost0 ? veh.route_pos[v] : (lost1 ? plan.first_rp[v] : plan.new_rp[v]);
   const bool edge_changed = rp != veh.route_pos[v];
   veh.route_pos[v] = rp;
 

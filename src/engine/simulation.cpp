@@ -44,8 +44,12 @@ Simulation::Simulation(const Network& net, const Demand& demand, const Simulatio
   status_.assign(nv, kPending);
   lane_change_dir_.assign(nv, 0);
   held_at_line_.assign(nv, 0);
+  limit_reason_.assign(nv, 0);
+  claim_prio_.assign(nv, 1);
   arrives_.assign(nv, 0);
   route_pos_.assign(nv, 0);
+  new_rp_.assign(nv, 0);
+  first_rp_.assign(nv, 0);
   stopped_steps_.assign(nv, 0);
   waiting_steps_.assign(nv, 0);
   waiting_count_.assign(nv, 0);
@@ -129,9 +133,10 @@ void Simulation::step() {
                         ptr(prev_),          ptr(prev2_),         ptr(pos_),            ptr(old_lane_),
                         ptr(old_prev_),      ptr(old_prev2_),     ptr(old_pos_),        ptr(stopped_steps_),
                         ptr(waiting_steps_), ptr(waiting_count_), ptr(time_loss_),      ptr(route_length_),
-                        ptr(arrival_step_),  ptr(lane_change_dir_), ptr(held_at_line_)};
+                        ptr(arrival_step_),  ptr(lane_change_dir_), ptr(held_at_line_), ptr(limit_reason_)};
   ctx.plan = PlanView{ptr(new_speed_), ptr(new_lane_), ptr(new_pos_),  ptr(new_prev_),   ptr(new_prev2_),
-                      ptr(claim0_),    ptr(claim1_),   ptr(stop_pos_), ptr(stop_lane_), ptr(arrives_)};
+                      ptr(claim0_),    ptr(claim1_),   ptr(stop_pos_), ptr(stop_lane_), ptr(arrives_),
+                      ptr(new_rp_),    ptr(first_rp_), ptr(claim_prio_)};
   const float dt = static_cast<float>(dt_ms_) / 1000.0f;
   const uint32_t teleport_steps =
       opt_.time_to_teleport > 0 ? static_cast<uint32_t>(std::ceil(opt_.time_to_teleport / opt_.step_length)) : 0;
@@ -297,11 +302,11 @@ bool Simulation::try_insert(uint32_t v, uint8_t* map) {
   const float length = t.length[type], min_gap = t.min_gap[type];
   const float dt = static_cast<float>(opt_.step_length);
   const NetView nv = engine_net_.view(net_);
-  const bool has_next = rp + 1 < demand_.route_length[v];
-  const uint32_t next_edge = has_next ? demand_.route_edges[demand_.route_begin[v] + rp + 1] : 0;
-  auto leads_on = [&](uint32_t l) {
-    return !has_next || lane_has_conn_to(nv, static_cast<int32_t>(l), next_edge);
-  };
+  const TripView trips{demand_.vehicle_type.data(), demand_.route_begin.data(), demand_.route_length.data(),
+                       demand_.route_edges.data(), demand_.speed_factor.data(), demand_.arrival_pos_kind.data(),
+                       demand_.arrival_pos.data()};
+  const uint32_t best = best_lanes(nv, trips, v, rp).mask[0];
+  auto leads_on = [&](uint32_t l) { return (lane_bit(nv, l) & best) != 0; };
 
   // Candidate lanes in the order they are tried.
   uint32_t candidates[64];
@@ -317,8 +322,12 @@ bool Simulation::try_insert(uint32_t v, uint8_t* map) {
       candidates[nc++] = first + static_cast<uint32_t>(draw % nlanes);
       break;
     }
+    case DepartLane::Best:  // as SUMO: only lanes that lead on along the route (wait for one otherwise)
+      for (uint32_t l = first; l < first + nlanes && nc < 64; ++l)
+        if (leads_on(l)) candidates[nc++] = l;
+      if (!teleported) break;
+      [[fallthrough]];
     case DepartLane::Free:
-    case DepartLane::Best:
       for (uint32_t l = first; l < first + nlanes && nc < 64; ++l)
         if (leads_on(l)) candidates[nc++] = l;
       for (uint32_t l = first; l < first + nlanes && nc < 64; ++l)

@@ -57,6 +57,8 @@ class Simulation {
   int32_t lane(uint32_t v) const { return lane_[v]; }
   float pos(uint32_t v) const { return pos_[v]; }
   float speed(uint32_t v) const { return speed_[v]; }
+  /// What bounded the vehicle's speed in its last plan (StopReason in kernels/step_view.hpp).
+  uint8_t limit_reason(uint32_t v) const { return limit_reason_[v]; }
   /// Current character of a connection's signal link (or its state when unsignalised).
   char link_state(uint32_t conn) const;
   const std::vector<uint32_t>& active() const { return active_; }
@@ -89,8 +91,8 @@ class Simulation {
   LaneCounters lane_counters_;
 
   // Per-vehicle state (see VehicleView) and plan scratch (see PlanView).
-  std::vector<uint8_t> status_, lane_change_dir_, arrives_, held_at_line_;
-  std::vector<uint32_t> route_pos_, stopped_steps_, waiting_steps_, waiting_count_, arrival_step_;
+  std::vector<uint8_t> status_, lane_change_dir_, arrives_, held_at_line_, limit_reason_, claim_prio_;
+  std::vector<uint32_t> new_rp_, first_rp_, route_pos_, stopped_steps_, waiting_steps_, waiting_count_, arrival_step_;
   std::vector<float> speed_, pos_, old_pos_, time_loss_, route_length_;
   std::vector<int32_t> lane_, prev_, prev2_, old_lane_, old_prev_, old_prev2_;
   std::vector<float> new_speed_, new_pos_, stop_pos_;
