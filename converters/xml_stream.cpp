@@ -25,7 +25,13 @@ void remember_error(void* arg, const char* msg, xmlParserSeverities severity, xm
   first->first = msg ? msg : "malformed XML";
   while (!first->first.empty() && (first->first.back() == '\n' || first->first.back() == ' '))
     first->first.pop_back();
-  first->second = xmlTextReaderLocatorLineNumber(loc);
+  // The locator is the parser context: its input line is where parsing failed (the reader's node line
+  // would be the enclosing element's).
+  auto* ctxt = reinterpret_cast<xmlParserCtxtPtr>(loc);
+  first->second = ctxt && ctxt->input ? ctxt->input->line : xmlTextReaderLocatorLineNumber(loc);
+  // The reader reports a file cut short as "extra content"; say what it usually means.
+  if (first->first.find("Extra content at the end of the document") != std::string::npos)
+    first->first = "premature end of data or content after the root element (truncated file?)";
 }
 
 }  // namespace

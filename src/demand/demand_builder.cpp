@@ -144,6 +144,8 @@ class Builder {
             throw InputError(loc_of(pending_[k]), reason + " (vehicle '" + ids_[k] + "')");
           reason = "vClass " + vclass + ": " + reason;
         }
+        // Shared named routes keep a vehicle-free reason; name the vehicle here.
+        if (reason.find("'" + ids_[k] + "'") == std::string::npos) reason += " of vehicle '" + ids_[k] + "'";
         demand_.unroutable.push_back({ids_[k], reason, loc_of(pending_[k])});
       } else {
         by_depart.emplace_back(pending_[k].depart, k);

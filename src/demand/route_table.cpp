@@ -69,7 +69,7 @@ uint32_t RouteTable::named(const std::string& ref, std::string_view vehicle_id, 
 uint32_t RouteTable::route_slot(uint32_t route, std::string_view vehicle_id) {
   if (route_slot_[route] < 0) {
     const RouteSpec& r = spec_.routes[route];
-    route_slot_[route] = resolve(r.edges, "route '" + r.id + "' of vehicle '" + std::string(vehicle_id) + "'", r.loc);
+    route_slot_[route] = resolve(r.edges, "route '" + r.id + "'", r.loc, " of vehicle '" + std::string(vehicle_id) + "'");
   }
   return static_cast<uint32_t>(route_slot_[route]);
 }
@@ -79,19 +79,21 @@ uint32_t RouteTable::inline_route(const std::vector<std::string>& edges, const s
   return resolve(edges, "the route of " + owner, loc);
 }
 
-uint32_t RouteTable::resolve(const std::vector<std::string>& edges, const std::string& what, const SourceLoc& loc) {
-  if (edges.empty()) return add_broken(loc, "no edges in " + what);
+uint32_t RouteTable::resolve(const std::vector<std::string>& edges, const std::string& what, const SourceLoc& loc,
+                             const std::string& user) {
+  if (edges.empty()) return add_broken(loc, "no edges in " + what, false, user);
   const auto begin = route_edges_.size();
   std::string reason;
   for (size_t i = 0; i < edges.size(); ++i) {
     auto e = drivable_edge(net_, edges[i], reason);
     if (!e) {
       route_edges_.resize(begin);
-      return add_broken(loc, reason + " in " + what, net_.edge_index.count(edges[i]) > 0);
+      return add_broken(loc, reason + " in " + what, net_.edge_index.count(edges[i]) > 0, user);
     }
     if (i > 0 && !net_.connected(route_edges_.back(), *e)) {
       route_edges_.resize(begin);
-      return add_broken(loc, "no connection from edge '" + edges[i - 1] + "' to edge '" + edges[i] + "' in " + what);
+      return add_broken(loc, "no connection from edge '" + edges[i - 1] + "' to edge '" + edges[i] + "' in " + what,
+                        false, user);
     }
     route_edges_.push_back(*e);
   }
@@ -122,8 +124,9 @@ void RouteTable::set_broken(uint32_t slot, const SourceLoc& loc, const std::stri
   slots_[slot] = {0, 0, static_cast<int32_t>(problems_.size() - 1)};
 }
 
-uint32_t RouteTable::add_broken(const SourceLoc& loc, const std::string& reason, bool outside_car_map) {
-  if (!ignore_ && !outside_car_map) throw InputError(loc, reason);
+uint32_t RouteTable::add_broken(const SourceLoc& loc, const std::string& reason, bool outside_car_map,
+                               const std::string& user) {
+  if (!ignore_ && !outside_car_map) throw InputError(loc, reason + user);
   problems_.push_back(reason);
   outside_car_map_.push_back(outside_car_map ? 1 : 0);
   slots_.push_back({0, 0, static_cast<int32_t>(problems_.size() - 1)});

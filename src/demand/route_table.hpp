@@ -46,7 +46,8 @@ class RouteTable {
   /// New broken slot, or InputError(loc, reason) unless route errors are ignored.
   /// `outside_car_map`: the route uses an edge without car lanes. That is not raised here: only vehicles of a
   /// car class make it an error (others, e.g. buses on bus lanes, are skipped with a reason).
-  uint32_t add_broken(const SourceLoc& loc, const std::string& reason, bool outside_car_map = false);
+  uint32_t add_broken(const SourceLoc& loc, const std::string& reason, bool outside_car_map = false,
+                      const std::string& user = "");
   /// New empty slot to be filled later by set_resolved / set_broken (trips waiting for the router).
   uint32_t add_pending();
   void set_resolved(uint32_t slot, const std::vector<uint32_t>& edges);
@@ -65,7 +66,9 @@ class RouteTable {
   };
   uint32_t route_slot(uint32_t route, std::string_view vehicle_id);
   // Appends the checked edges of a route as a slot; `what` names the route for messages.
-  uint32_t resolve(const std::vector<std::string>& edges, const std::string& what, const SourceLoc& loc);
+  // `user` (" of vehicle 'x'") is named in a raised error but not stored: a named route is shared.
+  uint32_t resolve(const std::vector<std::string>& edges, const std::string& what, const SourceLoc& loc,
+                   const std::string& user = "");
 
   const DemandSpec& spec_;
   const Network& net_;

@@ -137,10 +137,8 @@ TEST_F(CliBadInputTest, MalformedXml) {
   EXPECT_NE(r.err.find("malformed XML"), std::string::npos) << r.err;
 }
 
-// DEFECT: the line of a malformed-XML error is the line of the element being read when libxml2 failed
-// (here <net> on line 3), not the line where the parser found the error (1227, as xmllint reports it).
-// Observed: "lpsim: error: garbage.net.xml:3: malformed XML: AttValue: \" or ' expected".
-TEST_F(CliBadInputTest, DISABLED_MalformedXmlNamesTheLineOfTheError) {
+// The line of a malformed-XML error is where the parser found the error (as xmllint reports it).
+TEST_F(CliBadInputTest, MalformedXmlNamesTheLineOfTheError) {
   write_net_with_garbage_line(dir_ / "garbage.net.xml");
   const auto r = run({"info", "-n", "garbage.net.xml"});
   expect_input_error(r, "garbage.net.xml:" + std::to_string(kGarbageLineNumber), {"malformed XML"});
@@ -166,12 +164,8 @@ TEST_F(CliBadInputTest, TruncatedXml) {
   EXPECT_NE(r.err.find("malformed XML"), std::string::npos) << r.err;
 }
 
-// DEFECT: a net cut after a complete line is reported at the <net> element's line with libxml2's
-// follow-up message, not at the end of the file with the cause.
-// Observed: "lpsim: error: cut.net.xml:3: malformed XML: Extra content at the end of the document"
-// (xmllint: "cut.net.xml:1508: parser error : Premature end of data in tag net line 3"). A cut inside an
-// element is reported at that element's start line (1862 for the half net; the data ends on line 1873).
-TEST_F(CliBadInputTest, DISABLED_TruncatedXmlNamesTheEndOfTheFile) {
+// A file cut after a complete line is reported at its end, as truncated.
+TEST_F(CliBadInputTest, TruncatedXmlNamesTheEndOfTheFile) {
   const auto lines = lines_of(slurp(kGridNet));
   std::string cut;
   for (size_t i = 0; i < lines.size() / 2; ++i) cut += lines[i] + "\n";
@@ -346,11 +340,8 @@ TEST_F(CliBadInputTest, IgnoreRouteErrorsSkipsUnknownEdgeAndDisconnectedRoute) {
   EXPECT_TRUE(disconnected_listed) << r.out;
 }
 
-// DEFECT: when several vehicles share a broken named route, every skipped vehicle's reason names the first
-// vehicle that used the route. Observed: "  b: unknown edge 'NOPE' in route 'r_bad' of vehicle 'a' (r.rou.xml:5)"
-// and the same "of vehicle 'a'" for f.0, f.1; also seen on wildau (pt_train_S46:0.1 "... of vehicle
-// 'pt_train_S46:0.0'"). Each line should name its own vehicle.
-TEST_F(CliBadInputTest, DISABLED_IgnoreRouteErrorsReasonNamesEachVehicle) {
+// Vehicles sharing a broken named route each get a reason naming themselves.
+TEST_F(CliBadInputTest, IgnoreRouteErrorsReasonNamesEachVehicle) {
   write_routes("r.rou.xml", "<route id=\"r_bad\" edges=\"A0A1 NO_SUCH_EDGE\"/>\n"
                             "<vehicle id=\"a\" depart=\"0\" route=\"r_bad\"/>\n"
                             "<vehicle id=\"b\" depart=\"0\" route=\"r_bad\"/>\n"
