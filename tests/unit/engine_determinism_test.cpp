@@ -1,0 +1,116 @@
+// Determinism of `lpsim run`: the same scenario run with 1, 2 and 4 threads, and run twice, writes
+// byte-identical FCD, tripinfo, edgeData and summary files (the summary's per-step wall time `duration`
+// masked, the only value allowed to differ).
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace lpsim {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string read_file(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::string mask_duration(const std::string& summary) {
+  static const std::regex duration(" duration=\"[^\"]*\"");
+  return std::regex_replace(summary, duration, " duration=\"masked\"");
+}
+
+// Position and the two lines around the first difference, for a readable failure.
+std::string first_difference(const std::string& a, const std::string& b) {
+  size_t i = 0;
+  while (i < a.size() && i < b.size() && a[i] == b[i]) ++i;
+  auto line_at = [](const std::string& s, size_t at) {
+    if (at >= s.size()) return std::string("<end of file>");
+    const size_t begin = s.rfind('\n', at) == std::string::npos ? 0 : s.rfind('\n', at) + 1;
+    return s.substr(begin, s.find('\n', at) - begin);
+  };
+  return "byte " + std::to_string(i) + ":\n  " + line_at(a, i) + "\n  " + line_at(b, i);
+}
+
+class EngineDeterminismTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::string pattern = (fs::temp_directory_path() / "lpsim_determinism_XXXXXX").string();
+    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
+    dir_ = pattern;
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  struct Outputs {
+    std::string fcd, tripinfo, edgedata, summary;
+  };
+
+  // Runs the binary on a bundled scenario with all four outputs in a run-specific folder.
+  Outputs run(const std::string& scenario, int threads, const std::string& tag) {
+    const fs::path out = dir_ / tag;
+    fs::create_directories(out);
+    const std::string cfg = std::string(LPSIM_SCENARIOS_DIR) + "/" + scenario + "/" + scenario + ".sumocfg";
+    const std::string cmd = std::string(LPSIM_BINARY) + " run " + cfg + " --threads " + std::to_string(threads) +
+                            " --fcd-output " + (out / "fcd.xml").string() + " --tripinfo-output " +
+                            (out / "tripinfo.xml").string() + " --edgedata-output " + (out / "edgedata.xml").string() +
+                            " --summary-output " + (out / "summary.xml").string() + " > " +
+                            (out / "log.txt").string() + " 2>&1";
+    const int rc = std::system(cmd.c_str());
+    EXPECT_EQ(rc, 0) << cmd << "\n" << read_file(out / "log.txt");
+    return Outputs{read_file(out / "fcd.xml"), read_file(out / "tripinfo.xml"), read_file(out / "edgedata.xml"),
+                   mask_duration(read_file(out / "summary.xml"))};
+  }
+
+  static void expect_same(const Outputs& a, const Outputs& b, const std::string& what) {
+    EXPECT_TRUE(a.fcd == b.fcd) << what << ": fcd differs at " << first_difference(a.fcd, b.fcd);
+    EXPECT_TRUE(a.tripinfo == b.tripinfo) << what << ": tripinfo differs at " << first_difference(a.tripinfo, b.tripinfo);
+    EXPECT_TRUE(a.edgedata == b.edgedata) << what << ": edgedata differs at " << first_difference(a.edgedata, b.edgedata);
+    EXPECT_TRUE(a.summary == b.summary) << what << ": summary differs at " << first_difference(a.summary, b.summary);
+  }
+
+  // The reference run must have produced real content, or identical empty files would pass.
+  static void expect_content(const Outputs& o, size_t vehicles) {
+    auto count = [](const std::string& s, const std::string& needle) {
+      size_t n = 0;
+      for (size_t at = s.find(needle); at != std::string::npos; at = s.find(needle, at + 1)) ++n;
+      return n;
+    };
+    EXPECT_EQ(count(o.tripinfo, "<tripinfo "), vehicles);
+    EXPECT_GT(count(o.fcd, "<vehicle "), vehicles * 10);
+    EXPECT_GT(count(o.edgedata, "<edge "), 10u);
+    EXPECT_GT(count(o.summary, "<step "), 100u);
+  }
+
+  void check_scenario(const std::string& scenario, size_t vehicles) {
+    const Outputs one = run(scenario, 1, "t1");
+    expect_content(one, vehicles);
+    expect_same(one, run(scenario, 2, "t2"), scenario + " threads 1 vs 2");
+    const Outputs four = run(scenario, 4, "t4");
+    expect_same(one, four, scenario + " threads 1 vs 4");
+    expect_same(four, run(scenario, 4, "t4_again"), scenario + " threads 4, repeated");
+  }
+
+  fs::path dir_;
+};
+
+TEST_F(EngineDeterminismTest, GridTlsSameOutputsForAnyThreadCount) { check_scenario("grid_tls", 1000); }
+
+TEST_F(EngineDeterminismTest, RandomNetSameOutputsForAnyThreadCount) { check_scenario("random_net", 300); }
+
+TEST(EngineDeterminismMaskTest, MasksOnlyTheDuration) {
+  EXPECT_EQ(mask_duration("<step time=\"1.00\" halting=\"0\" duration=\"17\"/>"),
+            "<step time=\"1.00\" halting=\"0\" duration=\"masked\"/>");
+  EXPECT_NE(mask_duration("<step time=\"1.00\" duration=\"3\"/>"), mask_duration("<step time=\"2.00\" duration=\"3\"/>"));
+}
+
+}  // namespace
+}  // namespace lpsim
