@@ -663,7 +663,6 @@ LPSIM_HD void commit_vehicle(StepContext& s, uint32_t v) {
 
   // Route position follows the front over every normal edge it entered (as planned, or up to the fallback).
   const uint32_t rp = lost0 ? veh.route_pos[v] : (lost1 ? plan.first_rp[v] : plan.new_rp[v]);
-  const bool edge_changed = rp != veh.route_pos[v];
   veh.route_pos[v] = rp;
 
   // Per-vehicle counters (tripinfo).
@@ -681,13 +680,17 @@ LPSIM_HD void commit_vehicle(StepContext& s, uint32_t v) {
                                ? (nlane == net.lane_left[lane] ? 1 : 2)
                                : 0;
 
-  // Per-lane counters (edgeData/laneData), attributed to the lane of the front bumper.
-  if (edge_changed) {
-    atomic_add_i64(&s.cnt_left[lane], 1);
-    atomic_add_i64(&s.cnt_entered[nlane], 1);
-  } else if (nlane != lane && !net.lane_internal[nlane] && !net.lane_internal[lane]) {
-    atomic_add_i64(&s.cnt_left[lane], 1);
-    atomic_add_i64(&s.cnt_entered[nlane], 1);
+  // Per-lane counters (edgeData/laneData), attributed to the lane of the front bumper. The front passed
+  // lane -> c0 -> c1 (the claims kept); each change of edge leaves a normal lane / enters a normal lane.
+  int32_t chain[3] = {lane, -1, -1};
+  int32_t links = 0;
+  if (c0 >= 0 && !lost0) chain[++links] = c0;
+  if (c1 >= 0 && !lost0 && !lost1) chain[++links] = c1;
+  for (int32_t k = 0; k < links; ++k) {
+    const int32_t a = chain[k], b = chain[k + 1];
+    if (net.lane_edge[a] == net.lane_edge[b]) continue;  // a lane change (claimed near a lane start)
+    if (!net.lane_internal[a]) atomic_add_i64(&s.cnt_left[a], 1);
+    if (!net.lane_internal[b]) atomic_add_i64(&s.cnt_entered[b], 1);
   }
   atomic_add_i64(&s.cnt_sampled_steps[nlane], 1);
   atomic_add_i64(&s.cnt_travelled_mm[nlane], static_cast<int64_t>(driven * 1000.0f + 0.5f));

@@ -103,6 +103,18 @@ std::string describe_scenario(const Scenario& sc) {
   }
   out += "\n";
   if (d.size() > 0) out += fmt("  departures: %.2f s to %.2f s\n", d.depart.front(), d.depart.back());
+  if (d.routing.requests > 0)
+    out += fmt("routing: %llu trips (%llu distinct requests)\n", static_cast<unsigned long long>(d.routing.vehicles),
+               static_cast<unsigned long long>(d.routing.requests));
+  // Sum over vehicles of their route's free-flow travel time (length / speed of every edge), the measure
+  // the router minimises; comparable between LPSim's routes and another router's on the same net.
+  double cost = 0;
+  for (uint32_t v = 0; v < d.size(); ++v)
+    for (uint32_t k = 0; k < d.route_length[v]; ++k) {
+      const uint32_t e = d.route_edges[d.route_begin[v] + k];
+      if (net.edge_speed[e] > 0) cost += static_cast<double>(net.edge_length[e]) / net.edge_speed[e];
+    }
+  out += fmt("free-flow route cost: %.1f s\n", cost);
   out += fmt("unrouted or skipped vehicles: %zu\n", d.unroutable.size());
   for (size_t i = 0; i < d.unroutable.size() && i < 10; ++i)
     out += "  " + d.unroutable[i].id + ": " + d.unroutable[i].reason + " (" + d.unroutable[i].loc.str() + ")\n";
@@ -110,7 +122,10 @@ std::string describe_scenario(const Scenario& sc) {
   std::string unsupported = unsupported_summary(d);
   out += unsupported.empty() ? "skipped unsupported elements: none\n" : unsupported + "\n";
   out += fmt("edgeData/laneData definitions: %zu\n", sc.mean_data.size());
-  out += fmt("load time: %.3f s\n", sc.load_seconds);
+  out += fmt("load time: %.3f s", sc.load_seconds);
+  if (d.routing.seconds > 0)  // timings vary run to run, so they stay on this one line
+    out += fmt(" (routing %.3f s, %.0f trips/s)", d.routing.seconds, static_cast<double>(d.routing.vehicles) / d.routing.seconds);
+  out += "\n";
   return out;
 }
 

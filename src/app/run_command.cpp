@@ -82,7 +82,8 @@ int command_run(const std::vector<std::string>& args) {
     m.spec = s;
     m.writer = std::make_unique<MeanDataWriter>(s, sc.network, sc.demand);
     m.interval_begin = s.begin >= 0 ? s.begin : sim.time();
-    m.at_begin = sim.lane_counters();
+    // Zero, not the counters now: vehicles inserted at the begin time belong to the first interval.
+    m.at_begin.resize(sc.network.num_lanes());
     mean.push_back(std::move(m));
   }
 

@@ -156,6 +156,7 @@ void visit(IO& io, Demand& d) {
   d.unroutable.resize(n);
   for (auto& s : d.unroutable) visit(io, s);
   io.field(d.unsupported);
+  io.field(d.routing.vehicles), io.field(d.routing.requests);  // not the time: snapshots are deterministic
 }
 
 template <class IO>

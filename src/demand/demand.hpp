@@ -51,6 +51,12 @@ struct Demand {
   std::vector<Skipped> unroutable;  // trips without a path (kept only with ignore_route_errors)
   std::map<std::string, int64_t> unsupported;  // from DemandSpec::skipped
 
+  /// Trip routing done while building: vehicles routed, distinct requests after deduplication, wall time.
+  struct RoutingStats {
+    uint64_t vehicles = 0, requests = 0;
+    double seconds = 0;
+  } routing;
+
   uint32_t size() const { return static_cast<uint32_t>(vehicle_id.size()); }
   uint64_t count(DemandSource s) const;
 };

@@ -56,7 +56,8 @@ class Builder {
     for (uint32_t i = 0; i < spec_.vehicles.size(); ++i) add_vehicle(i);
     for (uint32_t f = 0; f < spec_.flows.size(); ++f) add_flow(f, flow_times[f]);
     flow_times.clear();
-    trips_.route_all(opt_.threads);
+    demand_.routing.seconds = trips_.route_all(opt_.threads);
+    demand_.routing.requests = trips_.num_requests();
     check_unique_ids();
     assemble();
   }
@@ -211,6 +212,7 @@ class Builder {
     }
     d.types = types_.take();
     d.unsupported = spec_.skipped;
+    for (auto src : d.source) d.routing.vehicles += src != DemandSource::Vehicle ? 1 : 0;
   }
 
   const DemandSpec& spec_;

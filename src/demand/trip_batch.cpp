@@ -1,5 +1,7 @@
 #include "demand/trip_batch.hpp"
 
+#include <chrono>
+
 #include "kernels/rng.hpp"
 
 namespace lpsim {
@@ -126,10 +128,12 @@ uint32_t TripBatch::add(const TripEnds& ends, std::string_view kind, std::string
   return slot;
 }
 
-void TripBatch::route_all(int threads) {
-  if (requests_.empty()) return;
+double TripBatch::route_all(int threads) {
+  if (requests_.empty()) return 0;
+  const auto t0 = std::chrono::steady_clock::now();
   Router router(net_);
   const auto paths = router.route_all(requests_, threads);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   for (size_t i = 0; i < pending_.size(); ++i) {
     if (paths[i].empty()) {
       routes_.set_broken(pending_[i].slot, pending_[i].loc, "no route " + pending_[i].description);
@@ -137,6 +141,7 @@ void TripBatch::route_all(int threads) {
       routes_.set_resolved(pending_[i].slot, paths[i]);
     }
   }
+  return seconds;
 }
 
 }  // namespace lpsim
