@@ -141,7 +141,7 @@ class Builder {
           // Cars must find car lanes on their route; other classes (buses on bus lanes, trams) are
           // outside what the car lane map simulates and are skipped with the reason.
           const std::string& vclass = types_.types().vclass[pending_[k].type];
-          if (is_car_class(vclass) && !routes_.ignores_errors())
+          if (is_car_class(vclass) && !routes_.ignore_route_errors())
             throw InputError(loc_of(pending_[k]), reason + " (vehicle '" + ids_[k] + "')");
           reason = "vClass " + vclass + ": " + reason;
         }

@@ -32,6 +32,15 @@ class FlatIndex {
     }
   }
 
+  /// The index stored under `key` for which same(index) holds, or kEmpty.
+  template <class Same>
+  uint32_t find(uint64_t key, Same&& same) const {
+    for (size_t slot = rng_mix64(key) & mask_;; slot = (slot + 1) & mask_) {
+      if (values_[slot] == kEmpty) return kEmpty;
+      if (keys_[slot] == key && same(values_[slot])) return values_[slot];
+    }
+  }
+
  private:
   static size_t capacity_for(size_t n) {
     size_t c = 16;

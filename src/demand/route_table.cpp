@@ -6,19 +6,32 @@
 
 namespace lpsim {
 
-std::optional<uint32_t> drivable_edge(const Network& net, const std::string& id, std::string& reason) {
-  auto it = net.edge_index.find(id);
-  if (it == net.edge_index.end()) {
+EdgeLookup::EdgeLookup(const Network& net) : net_(net), index_(net.num_edges()) {
+  for (uint32_t e = 0; e < net.num_edges(); ++e) {
+    const std::string& id = net.edge_id[e];
+    index_.find_or_insert(rng_hash(id.data(), id.size()), e, [&](uint32_t other) { return net.edge_id[other] == id; });
+  }
+}
+
+namespace {
+constexpr const char* kNoCarLane = "has no lane a passenger car may use";
+}
+
+bool EdgeLookup::outside_car_map(const std::string& reason) { return reason.find(kNoCarLane) != std::string::npos; }
+
+std::optional<uint32_t> EdgeLookup::drivable(const std::string& id, std::string& reason) const {
+  const uint32_t e =
+      index_.find(rng_hash(id.data(), id.size()), [&](uint32_t other) { return net_.edge_id[other] == id; });
+  if (e == FlatIndex::kEmpty) {
     reason = "unknown edge '" + id + "'";
     return std::nullopt;
   }
-  const uint32_t e = it->second;
-  if (net.edge_is_internal[e]) {
+  if (net_.edge_is_internal[e]) {
     reason = "edge '" + id + "' is an internal junction edge";
     return std::nullopt;
   }
-  if (net.edge_num_lanes[e] == 0) {
-    reason = "edge '" + id + "' has no lane a passenger car may use";
+  if (net_.edge_num_lanes[e] == 0) {
+    reason = "edge '" + id + "' " + kNoCarLane;
     return std::nullopt;
   }
   return e;
@@ -26,7 +39,7 @@ std::optional<uint32_t> drivable_edge(const Network& net, const std::string& id,
 
 RouteTable::RouteTable(const DemandSpec& spec, const Network& net, bool ignore_route_errors,
                        std::vector<uint32_t>& route_edges)
-    : spec_(spec), net_(net), ignore_(ignore_route_errors), route_edges_(route_edges) {
+    : spec_(spec), net_(net), edges_(net), ignore_(ignore_route_errors), route_edges_(route_edges) {
   route_index_.reserve(spec.routes.size());
   for (uint32_t r = 0; r < spec.routes.size(); ++r) {
     const RouteSpec& route = spec.routes[r];
@@ -85,10 +98,10 @@ uint32_t RouteTable::resolve(const std::vector<std::string>& edges, const std::s
   const auto begin = route_edges_.size();
   std::string reason;
   for (size_t i = 0; i < edges.size(); ++i) {
-    auto e = drivable_edge(net_, edges[i], reason);
+    auto e = edges_.drivable(edges[i], reason);
     if (!e) {
       route_edges_.resize(begin);
-      return add_broken(loc, reason + " in " + what, net_.edge_index.count(edges[i]) > 0, user);
+      return add_broken(loc, reason + " in " + what, EdgeLookup::outside_car_map(reason), user);
     }
     if (i > 0 && !net_.connected(route_edges_.back(), *e)) {
       route_edges_.resize(begin);

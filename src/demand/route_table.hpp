@@ -14,13 +14,26 @@
 #include <vector>
 
 #include "core/demand_spec.hpp"
+#include "demand/flat_index.hpp"
 #include "net/network.hpp"
 
 namespace lpsim {
 
 /// Index of edge `id` if a vehicle can drive on it (exists, is not internal, has a car lane); otherwise
 /// nullopt and `reason` says why, naming the edge.
-std::optional<uint32_t> drivable_edge(const Network& net, const std::string& id, std::string& reason);
+/// Edge ids to indices for millions of route lookups: open addressing on the id's hash, no node chasing.
+class EdgeLookup {
+ public:
+  explicit EdgeLookup(const Network& net);
+  /// Index of a normal edge with car lanes, or nullopt with the reason (unknown, internal, no car lane).
+  std::optional<uint32_t> drivable(const std::string& id, std::string& reason) const;
+  /// Whether a reason from drivable() is "the edge exists but has no car lane" (outside the car lane map).
+  static bool outside_car_map(const std::string& reason);
+
+ private:
+  const Network& net_;
+  FlatIndex index_;
+};
 
 struct RouteSlot {
   uint32_t begin = 0, length = 0;  // in route_edges
@@ -29,6 +42,7 @@ struct RouteSlot {
 
 class RouteTable {
  public:
+  const EdgeLookup& edges() const { return edges_; }
   RouteTable(const DemandSpec& spec, const Network& net, bool ignore_route_errors,
              std::vector<uint32_t>& route_edges);
 
@@ -56,7 +70,6 @@ class RouteTable {
   const RouteSlot& slot(uint32_t s) const { return slots_[s]; }
   const std::string& problem(int32_t p) const { return problems_[static_cast<size_t>(p)]; }
   bool problem_outside_car_map(int32_t p) const { return outside_car_map_[static_cast<size_t>(p)] != 0; }
-  bool ignores_errors() const { return ignore_; }
   bool ignore_route_errors() const { return ignore_; }
 
  private:
@@ -72,6 +85,7 @@ class RouteTable {
 
   const DemandSpec& spec_;
   const Network& net_;
+  EdgeLookup edges_;
   bool ignore_;
   std::vector<uint32_t>& route_edges_;
   std::unordered_map<std::string, uint32_t> route_index_, dist_index_;

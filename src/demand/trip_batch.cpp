@@ -59,7 +59,7 @@ void TripBatch::index_junctions() {
 bool TripBatch::endpoint(const std::string& edge, const std::string& junction, bool leaving,
                          std::vector<uint32_t>& out, std::string& reason) {
   if (!edge.empty()) {
-    auto e = drivable_edge(net_, edge, reason);
+    auto e = routes_.edges().drivable(edge, reason);
     if (e) out.push_back(*e);
     return e.has_value();
   }
@@ -81,11 +81,6 @@ bool TripBatch::endpoint(const std::string& edge, const std::string& junction, b
   return true;
 }
 
-// drivable_edge's reason for an existing edge without car lanes (as opposed to an unknown id).
-static bool outside_car_map(const std::string& reason) {
-  return reason.find("has no lane a passenger car may use") != std::string::npos;
-}
-
 uint32_t TripBatch::add(const TripEnds& ends, std::string_view kind, std::string_view id, const SourceLoc& loc) {
   const std::string who = std::string(kind) + " '" + std::string(id) + "'";
   if ((ends.from.empty() && ends.from_junction.empty()) || (ends.to.empty() && ends.to_junction.empty()))
@@ -94,10 +89,10 @@ uint32_t TripBatch::add(const TripEnds& ends, std::string_view kind, std::string
   std::string reason;
   if (!endpoint(ends.from, ends.from_junction, true, request.origins, reason) ||
       !endpoint(ends.to, ends.to_junction, false, request.destinations, reason))
-    return routes_.add_broken(loc, reason + " in " + who, outside_car_map(reason));
+    return routes_.add_broken(loc, reason + " in " + who, EdgeLookup::outside_car_map(reason));
   for (const auto& v : ends.via) {
-    auto e = drivable_edge(net_, v, reason);
-    if (!e) return routes_.add_broken(loc, reason + " (via) in " + who, outside_car_map(reason));
+    auto e = routes_.edges().drivable(v, reason);
+    if (!e) return routes_.add_broken(loc, reason + " (via) in " + who, EdgeLookup::outside_car_map(reason));
     request.via.push_back(*e);
   }
 
