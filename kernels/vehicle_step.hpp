@@ -192,9 +192,11 @@ LPSIM_HD bool room_at_start(const StepContext& s, int32_t lane, float need) {
   return first_occupied(s.map_now, s.net, lane, 0, last) < 0;
 }
 
-/// Speed from which braking at `decel` reaches v_lim within `dist` metres.
-LPSIM_HD float approach_speed_limit(float dist, float v_lim, float decel) {
-  return sqrtf(v_lim * v_lim + 2.0f * decel * fmaxf(dist, 0.0f));
+/// Fastest next speed from which braking at `decel` (Euler steps) gets down to v_lim by the time the front
+/// has covered `dist` metres, and that is at most v_lim if the front would pass the boundary in this step.
+LPSIM_HD float approach_speed_limit(float dist, float v_lim, float decel, float dt) {
+  const float v = max_speed_within(fmaxf(dist, 0.0f) + stopping_distance(v_lim, decel, dt), decel, dt);
+  return v * dt > dist ? fmaxf(v_lim, dist / dt) : fmaxf(v, v_lim);
 }
 
 /// Lane a vehicle must move to (adjacent, towards the nearest lane leading to its next edge), or -1.
@@ -475,7 +477,7 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
     const int32_t via = net.conn_via_lane[c];
     const int32_t nxt = via >= 0 ? via : static_cast<int32_t>(net.conn_to_lane[c]);
     const float v_lim = desired_speed(net.lane_speed[nxt], sf, vmax);
-    if (v_lim < cand) cand = fminf(cand, approach_speed_limit(end_dist, v_lim, p.decel));
+    if (v_lim < cand) cand = fminf(cand, approach_speed_limit(end_dist, v_lim, p.decel, dt));
     path[hops] = nxt;
     ++hops;
     if (!net.lane_internal[nxt]) ++cur_rp;

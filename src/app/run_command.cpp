@@ -120,7 +120,8 @@ int command_run(const std::vector<std::string>& args) {
 
   emit();
   auto last_progress = std::chrono::steady_clock::now();
-  while (!(end >= 0 ? sim.time() + 1e-9 >= end : sim.finished())) {
+  // As SUMO: with an end time the last step simulated starts at end - step (outputs run to end - step).
+  while (!(end >= 0 ? sim.time() + config.step_length > end - 1e-9 : sim.finished())) {
     sim.step();
     emit();
     for (auto& m : mean)

@@ -19,6 +19,9 @@ T* ptr(std::vector<T>& v) {
   return v.data();
 }
 
+// Fewer active vehicles than this run the passes on the calling thread.
+constexpr int64_t kParallelMinVehicles = 2048;
+
 // Salt for departure draws (random lane / position), apart from every other use of the RNG.
 constexpr uint64_t kDepartRngSalt = 0x4445504152545F31ull;
 
@@ -162,7 +165,8 @@ void Simulation::step() {
   const int64_t n = static_cast<int64_t>(active_.size());
   const uint32_t* act = active_.data();
   const int threads = std::max(1, opt_.threads);
-#pragma omp parallel num_threads(threads)
+  // Small steps are not worth waking threads for (and spinning threads hurt on a loaded machine).
+#pragma omp parallel num_threads(threads) if (threads > 1 && n >= kParallelMinVehicles)
   {
 #pragma omp for schedule(static)
     for (int64_t i = 0; i < n; ++i) clear_old_footprint(ctx, act[i]);
@@ -184,28 +188,34 @@ void Simulation::step() {
   rebuild_active();
 }
 
+void Simulation::record_trip(uint32_t v, bool teleported) {
+  ++counts_.arrived;
+  TripRecord r;
+  r.vehicle = v;
+  r.depart = depart_time_[v];
+  r.depart_delay = depart_time_[v] - demand_.depart[v];
+  r.arrival = time();
+  r.depart_lane = static_cast<uint32_t>(depart_lane_[v]);
+  r.arrival_lane = static_cast<uint32_t>(lane_[v]);
+  r.depart_pos = depart_pos_[v];
+  r.depart_speed = depart_speed_[v];
+  r.arrival_pos = pos_[v];
+  r.arrival_speed = teleported ? 0.0f : speed_[v];
+  r.route_length = route_length_[v];
+  r.waiting_time = static_cast<double>(waiting_steps_[v]) * opt_.step_length;
+  r.waiting_count = waiting_count_[v];
+  r.time_loss = time_loss_[v];
+  r.speed_factor = demand_.speed_factor[v];
+  r.teleported = teleported;
+  travel_time_sum_ += r.arrival - r.depart;
+  finished_.push_back(r);
+}
+
 // Arrivals become trip records; teleporting vehicles re-enter at the next edge of their route.
 void Simulation::handle_departures_from_road() {
   for (uint32_t v : active_) {
     if (status_[v] == kArrived && arrival_step_[v] == step_ && !teleport_pending_[v]) {
-      ++counts_.arrived;
-      TripRecord r;
-      r.vehicle = v;
-      r.depart = depart_time_[v];
-      r.depart_delay = depart_time_[v] - demand_.depart[v];
-      r.arrival = time();
-      r.depart_lane = static_cast<uint32_t>(depart_lane_[v]);
-      r.arrival_lane = static_cast<uint32_t>(lane_[v]);
-      r.depart_pos = depart_pos_[v];
-      r.depart_speed = depart_speed_[v];
-      r.arrival_pos = pos_[v];
-      r.arrival_speed = speed_[v];
-      r.route_length = route_length_[v];
-      r.waiting_time = static_cast<double>(waiting_steps_[v]) * opt_.step_length;
-      r.waiting_count = waiting_count_[v];
-      r.time_loss = time_loss_[v];
-      r.speed_factor = demand_.speed_factor[v];
-      finished_.push_back(r);
+      record_trip(v, false);
     } else if (status_[v] == kTeleporting && !teleport_pending_[v]) {
       ++counts_.teleports;
       const uint32_t rp = route_pos_[v];
@@ -213,24 +223,7 @@ void Simulation::handle_departures_from_road() {
         // Teleported past the end of its route: the trip ends here.
         status_[v] = kArrived;
         arrival_step_[v] = step_;
-        ++counts_.arrived;
-        TripRecord r;
-        r.vehicle = v;
-        r.depart = depart_time_[v];
-        r.depart_delay = depart_time_[v] - demand_.depart[v];
-        r.arrival = time();
-        r.depart_lane = static_cast<uint32_t>(depart_lane_[v]);
-        r.arrival_lane = static_cast<uint32_t>(lane_[v]);
-        r.depart_pos = depart_pos_[v];
-        r.depart_speed = depart_speed_[v];
-        r.arrival_pos = pos_[v];
-        r.route_length = route_length_[v];
-        r.waiting_time = static_cast<double>(waiting_steps_[v]) * opt_.step_length;
-        r.waiting_count = waiting_count_[v];
-        r.time_loss = time_loss_[v];
-        r.speed_factor = demand_.speed_factor[v];
-        r.teleported = true;
-        finished_.push_back(r);
+        record_trip(v, true);
         continue;
       }
       route_pos_[v] = rp + 1;
@@ -424,6 +417,7 @@ bool Simulation::try_insert(uint32_t v, uint8_t* map) {
     apply_footprint(map, nv, Footprint{static_cast<int32_t>(l), -1, -1, pos}, length, encode_cell_speed(speed));
     if (!teleported) {
       ++counts_.inserted;
+      depart_delay_sum_ += time() - demand_.depart[v];
       depart_time_[v] = static_cast<float>(time());
       depart_lane_[v] = static_cast<int32_t>(l);
       depart_pos_[v] = pos;
@@ -488,7 +482,7 @@ SummaryRow Simulation::summary_row() const {
   r.arrived = counts_.arrived;
   r.ended = counts_.arrived;
   r.teleports = counts_.teleports;
-  double speed_sum = 0, rel_sum = 0, wait_sum = 0;
+  double speed_sum = 0, rel_sum = 0;
   uint64_t running = 0, halting = 0;
   const VehicleTypes& t = demand_.types;
   for (uint32_t v : active_) {
@@ -498,14 +492,16 @@ SummaryRow Simulation::summary_row() const {
     const float v0 = desired_speed(net_.lane_speed[lane_[v]], demand_.speed_factor[v], t.max_speed[demand_.vehicle_type[v]]);
     if (v0 > 0) rel_sum += speed_[v] / v0;
     if (speed_[v] < kHaltingSpeed) ++halting;
-    wait_sum += static_cast<double>(waiting_steps_[v]) * opt_.step_length;
   }
   r.halting = halting;
   if (running > 0) {
     r.mean_speed = speed_sum / static_cast<double>(running);
     r.mean_speed_relative = rel_sum / static_cast<double>(running);
   }
-  if (counts_.inserted > 0) r.mean_waiting_time = wait_sum / static_cast<double>(std::max<uint64_t>(running, 1));
+  // As SUMO: meanWaitingTime is the mean insertion delay of the vehicles inserted so far, meanTravelTime
+  // the mean trip duration of the vehicles that arrived so far.
+  if (counts_.inserted > 0) r.mean_waiting_time = depart_delay_sum_ / static_cast<double>(counts_.inserted);
+  if (counts_.arrived > 0) r.mean_travel_time = travel_time_sum_ / static_cast<double>(counts_.arrived);
   return r;
 }
 

@@ -71,6 +71,7 @@ class Simulation {
   void insert_waiting(uint8_t* map);
   bool try_insert(uint32_t v, uint8_t* map);
   void handle_departures_from_road();
+  void record_trip(uint32_t v, bool teleported);
   void rebuild_active();
 
   const Network& net_;
@@ -112,6 +113,7 @@ class Simulation {
   std::vector<uint32_t> active_;   // vehicles the passes visit, ascending
   std::vector<uint32_t> inserted_now_;
   std::vector<TripRecord> finished_;
+  double depart_delay_sum_ = 0, travel_time_sum_ = 0;
 };
 
 }  // namespace lpsim

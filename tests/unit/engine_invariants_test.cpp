@@ -45,14 +45,9 @@ TEST(EngineInvariantsTest, LpsimCsvSmallEveryStep) {
   EXPECT_GT(r.stats.signalised_entries, 0u);  // the cross at osmid 1001 is signalised
 }
 
-// DEFECT (kernels/vehicle_step.hpp, plan_vehicle: approach_speed_limit): a vehicle may cross into a slower
-// lane at sqrt(v_lim^2 + 2 * decel * d), d being its distance to the lane end at the start of the step, so
-// it enters junction-internal lanes at up to ~2.5x their limit (x speed factor: up to 3.3x). SUMO's
-// freeSpeed (Euler) keeps a vehicle short of the boundary while it is faster than the next lane's limit
-// and enters at most at that limit. Smallest case: grid_tls, step 36 -> 37 s, vehicle "21" on A3A4_0 at
-// 174.50 m, 13.44 m/s enters :A4_2_0 (2.58 m, 3.90 m/s) at 9.62 m/s. Enable once the approach limit
-// bounds the speed of the step that crosses the boundary.
-TEST(EngineInvariantsTest, DISABLED_SpeedWithinLimitOfEnteredLane) {
+// A vehicle never enters a slower lane faster than that lane's limit (x its speed factor, as SUMO's
+// freeSpeed keeps it short of the boundary until it is slow enough).
+TEST(EngineInvariantsTest, SpeedWithinLimitOfEnteredLane) {
   for (const std::string name : {"grid_tls", "random_net", "flows"}) {
     const Scenario sc = load_sumo_scenario(name);
     Simulation sim(sc.network, sc.demand, options_of(sc.config, 1));

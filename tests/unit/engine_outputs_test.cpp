@@ -328,13 +328,8 @@ TEST_P(EngineOutputsTest, LaneDataSumsToEdgeData) {
   }
 }
 
-// DEFECT (src/engine/simulation.cpp, Simulation::summary_row): meanTravelTime is never filled, so every row
-// after the first arrival says 0.00; SUMO writes the mean duration of the trips ended so far (random_net at
-// 3599 s: SUMO 95.81). meanWaitingTime is the mean accumulated waiting time of the running vehicles (0 once
-// none runs), where SUMO (and the writer's own comment) means the total insertion delay over the inserted
-// vehicles (random_net: SUMO 0.30 at the end, LPSim 7.67 at 294 s and 0.00 at the end). Enable when
-// summary_row computes both.
-TEST_P(EngineOutputsTest, DISABLED_SummaryMeansMatchTripinfo) {
+// Summary means follow SUMO: meanTravelTime over arrived vehicles, meanWaitingTime the mean insertion delay.
+TEST_P(EngineOutputsTest, SummaryMeansMatchTripinfo) {
   const ScenarioRun& r = run();
   ASSERT_TRUE(r.ok);
   const std::vector<std::string> trips = lines_starting(read_all(r.plain.tripinfo), "<tripinfo ");
