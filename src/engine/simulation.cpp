@@ -267,8 +267,8 @@ void Simulation::enqueue_due(int64_t until_ms) {
 
 void Simulation::insert_waiting(uint8_t* map) {
   inserted_now_.clear();
-  std::vector<uint32_t> still;
-  still.reserve(queued_edges_.size());
+  std::vector<uint32_t>& still = scratch_;
+  still.clear();
   for (uint32_t e : queued_edges_) {
     auto& q = queue_[e];
     while (queue_head_[e] < q.size() && try_insert(q[queue_head_[e]], map)) {
@@ -282,7 +282,7 @@ void Simulation::insert_waiting(uint8_t* map) {
       queue_head_[e] = 0;
     }
   }
-  queued_edges_.swap(still);
+  queued_edges_.assign(still.begin(), still.end());
 }
 
 bool Simulation::try_insert(uint32_t v, uint8_t* map) {
@@ -435,15 +435,14 @@ bool Simulation::try_insert(uint32_t v, uint8_t* map) {
 void Simulation::rebuild_active() {
   // Keep running vehicles and those that left the road this step (their old footprint is cleared by
   // the next step's clear pass); add the newly inserted ones; ascending order keeps passes deterministic.
-  std::vector<uint32_t> next;
-  next.reserve(active_.size() + inserted_now_.size());
+  // Member scratch buffers: fresh large vectors every step would cost page faults.
+  std::vector<uint32_t>& next = scratch_;
+  next.clear();
   for (uint32_t v : active_)
     if (status_[v] == kRunning || old_lane_[v] >= 0) next.push_back(v);
   std::sort(inserted_now_.begin(), inserted_now_.end());
-  std::vector<uint32_t> merged;
-  merged.reserve(next.size() + inserted_now_.size());
-  std::set_union(next.begin(), next.end(), inserted_now_.begin(), inserted_now_.end(), std::back_inserter(merged));
-  active_.swap(merged);
+  active_.clear();
+  std::set_union(next.begin(), next.end(), inserted_now_.begin(), inserted_now_.end(), std::back_inserter(active_));
   inserted_now_.clear();
   uint64_t running = 0;
   for (uint32_t v : active_) running += status_[v] == kRunning;

@@ -111,7 +111,7 @@ class Simulation {
   uint64_t waiting_ = 0;
 
   std::vector<uint32_t> active_;   // vehicles the passes visit, ascending
-  std::vector<uint32_t> inserted_now_;
+  std::vector<uint32_t> inserted_now_, scratch_;
   std::vector<TripRecord> finished_;
   double depart_delay_sum_ = 0, travel_time_sum_ = 0;
 };

@@ -1,0 +1,97 @@
+#!/usr/bin/env bash
+# Engine benchmark: vehicle-updates per CPU-second and peak memory of `lpsim run --threads 2` against SUMO
+# (microscopic, IDM) and SUMO --mesosim on the same files in the same run.
+#   scenario grid40: 40x40 signalised grid (netgenerate, 200 m, 2 lanes), 100k vehicles on explicit routes
+#                    (random walks of 10-40 edges, departures over 3600 s), simulated for --end seconds;
+#   scenario bologna: ../shared/scenarios/bologna_acosta (largest demand among the shared scenarios).
+# Vehicle-updates are counted the same way for every simulator: the sum over steps of running vehicles,
+# from each run's summary output. Prints a markdown table (also bench/work/engine/results.md).
+#
+# Usage: bench/engine_bench.sh [--end T] [--vehicles N] [--runs N] [--scenarios "grid40 bologna"] [--lpsim PATH]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+source bench/lib.sh
+
+end=1200
+vehicles=100000
+runs=1
+scenarios="grid40 bologna"
+lpsim=build/lpsim
+while [[ $# -gt 0 ]]; do
+  case "$1" in
+    --end) end="$2"; shift 2 ;;
+    --vehicles) vehicles="$2"; shift 2 ;;
+    --runs) runs="$2"; shift 2 ;;
+    --scenarios) scenarios="$2"; shift 2 ;;
+    --lpsim) lpsim="$2"; shift 2 ;;
+    -h|--help) sed -n '2,11p' "$0"; exit 0 ;;
+    *) echo "unknown option $1" >&2; exit 2 ;;
+  esac
+done
+
+work=bench/work/engine
+mkdir -p "$work"
+
+# Sum over steps of running vehicles in a SUMO-format summary file.
+updates_of() {
+  /usr/bin/python3 - "$1" <<'PY'
+import sys, xml.etree.ElementTree as ET
+total = 0
+for _, el in ET.iterparse(sys.argv[1]):
+    if el.tag == "step":
+        total += int(el.get("running"))
+        el.clear()
+print(total)
+PY
+}
+
+cfg_of() {
+  case "$1" in
+    grid40)
+      /usr/bin/python3 bench/make_load_scenario.py --grid 40 --vehicles "$vehicles" --out "$work/grid40" >&2
+      echo "$work/grid40/load.sumocfg" ;;
+    bologna) echo "../shared/scenarios/bologna_acosta/run.sumocfg" ;;
+    *) echo "unknown scenario $1" >&2; exit 2 ;;
+  esac
+}
+
+rows=()
+for sc in $scenarios; do
+  cfg=$(cfg_of "$sc")
+  [[ -f "$cfg" ]] || { log "skipping $sc: $cfg missing"; continue; }
+  out="$work/$sc"
+  mkdir -p "$out"
+  declare -A cpu=() rss=() ups=()
+  for sim in sumo meso lpsim; do
+    cpus=(); rsss=()
+    for ((r = 1; r <= runs; r++)); do
+      summary="$out/$sim.summary.xml"
+      case "$sim" in
+        sumo) cmd=(sumo -c "$cfg" --default.carfollowmodel IDM --end "$end" --no-step-log --summary-output "$summary") ;;
+        meso) cmd=(sumo -c "$cfg" --mesosim --end "$end" --no-step-log --summary-output "$summary") ;;
+        lpsim) cmd=("$lpsim" run -c "$cfg" --threads 2 --end "$end" --summary-output "$summary") ;;
+      esac
+      log "$sc $sim run $r/$runs: ${cmd[*]}"
+      read -r wall c m < <(measure "$out/$sim.log" "${cmd[@]}") || { log "$sim failed, see $out/$sim.log"; }
+      cpus+=("$c"); rsss+=("$m")
+    done
+    cpu[$sim]=$(median "${cpus[@]}")
+    rss[$sim]=$(median "${rsss[@]}")
+    n=$(updates_of "$out/$sim.summary.xml" 2>/dev/null || echo nan)
+    ups[$sim]=$(awk -v n="$n" -v c="${cpu[$sim]}" 'BEGIN { if (c > 0) printf "%.0f", n / c; else print "nan" }')
+    rows+=("| $sc | $sim | $n | ${cpu[$sim]} | ${ups[$sim]} | ${rss[$sim]} |")
+  done
+  rows+=("| $sc | **lpsim / sumo** | | | **$(ratio "${ups[lpsim]}" "${ups[sumo]}")×** | $(ratio "${rss[lpsim]}" "${rss[sumo]}")× |")
+  rows+=("| $sc | **lpsim / meso** | | | **$(ratio "${ups[lpsim]}" "${ups[meso]}")×** | $(ratio "${rss[lpsim]}" "${rss[meso]}")× |")
+  unset cpu rss ups
+done
+
+{
+  echo "### Engine: vehicle-updates per CPU-second (end $end s, runs $runs, median)"
+  echo
+  machine_info
+  echo
+  echo "| scenario | simulator | vehicle-updates | CPU s | updates / CPU-s | peak RSS MiB |"
+  echo "|---|---|---:|---:|---:|---:|"
+  printf '%s\n' "${rows[@]}"
+} | tee "$work/results.md"
