@@ -1,7 +1,6 @@
 // The `lpsim` command: dispatches sub-commands, prints errors as one line, and maps them to exit codes
 // (2: bad input or usage, 1: internal failure).
 #include <cstdio>
-#include <cstdlib>
 #include <exception>
 #include <string>
 #include <vector>
@@ -32,9 +31,6 @@ options follow SUMO's names: -c, -n/--net-file, -r/--route-files, -a/--additiona
 }  // namespace
 
 int main(int argc, char** argv) {
-  // Threads that spin at the step's barriers burn CPU that a shared machine's other work needs; sleeping
-  // costs little at one barrier per pass. The user's own setting wins.
-  setenv("OMP_WAIT_POLICY", "PASSIVE", 0);
   std::vector<std::string> args(argv + 1, argv + argc);
   if (args.empty() || args[0] == "-h" || args[0] == "--help" || args[0] == "help") {
     std::fputs(kUsage, args.empty() ? stderr : stdout);

@@ -1,7 +1,5 @@
 #include "engine/simulation.hpp"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -28,7 +26,7 @@ constexpr uint64_t kDepartRngSalt = 0x4445504152545F31ull;
 }  // namespace
 
 Simulation::Simulation(const Network& net, const Demand& demand, const SimulationOptions& options)
-    : net_(net), demand_(demand), opt_(options), engine_net_(net) {
+    : net_(net), demand_(demand), opt_(options), engine_net_(net), pool_(std::max(1, options.threads)) {
   if (!(opt_.step_length > 0)) throw std::invalid_argument("step length must be positive");
   dt_ms_ = std::llround(opt_.step_length * 1000.0);
   if (dt_ms_ <= 0 || std::fabs(static_cast<double>(dt_ms_) - opt_.step_length * 1000.0) > 1e-6)
@@ -161,22 +159,13 @@ void Simulation::step() {
   ctx.cnt_left = lc.left.data();
   ctx.cnt_arrived = lc.arrived.data();
 
-  // CPU backend: each pass is one parallel loop over the active vehicles; loops end with a barrier.
+  // CPU backend: each pass is one parallel loop over the active vehicles, finished before the next starts.
   const int64_t n = static_cast<int64_t>(active_.size());
   const uint32_t* act = active_.data();
-  const int threads = std::max(1, opt_.threads);
-  // Small steps are not worth waking threads for (and spinning threads hurt on a loaded machine).
-#pragma omp parallel num_threads(threads) if (threads > 1 && n >= kParallelMinVehicles)
-  {
-#pragma omp for schedule(static)
-    for (int64_t i = 0; i < n; ++i) clear_old_footprint(ctx, act[i]);
-#pragma omp for schedule(static)
-    for (int64_t i = 0; i < n; ++i) approach_vehicle(ctx, act[i]);
-#pragma omp for schedule(static)
-    for (int64_t i = 0; i < n; ++i) plan_vehicle(ctx, act[i]);
-#pragma omp for schedule(static)
-    for (int64_t i = 0; i < n; ++i) commit_vehicle(ctx, act[i]);
-  }
+  pool_.run(n, [&](int64_t i) { clear_old_footprint(ctx, act[i]); }, kParallelMinVehicles);
+  pool_.run(n, [&](int64_t i) { approach_vehicle(ctx, act[i]); }, kParallelMinVehicles);
+  pool_.run(n, [&](int64_t i) { plan_vehicle(ctx, act[i]); }, kParallelMinVehicles);
+  pool_.run(n, [&](int64_t i) { commit_vehicle(ctx, act[i]); }, kParallelMinVehicles);
   counts_.vehicle_updates += static_cast<uint64_t>(n);
 
   time_ms_ += dt_ms_;

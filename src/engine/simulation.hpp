@@ -1,7 +1,7 @@
 #pragma once
 // The Simulation owns the run state of one scenario: the double-buffered lane map, per-vehicle state, the
 // insertion queues and output counters. Each step() runs the kernels/ passes through a backend (the CPU
-// backend is an OpenMP loop over the same functions the CUDA kernels wrap). It never formats text: the
+// backend is a ParallelFor loop over the same functions the CUDA kernels wrap). It never formats text: the
 // runner in src/app samples it and hands the samples to the writers in converters/.
 #include <cstdint>
 #include <string>
@@ -9,6 +9,7 @@
 
 #include "demand/demand.hpp"
 #include "engine/engine_net.hpp"
+#include "engine/parallel_for.hpp"
 #include "engine/samples.hpp"
 #include "kernels/step_view.hpp"
 #include "net/network.hpp"
@@ -78,6 +79,7 @@ class Simulation {
   const Demand& demand_;
   SimulationOptions opt_;
   EngineNet engine_net_;
+  ParallelFor pool_;
   int64_t time_ms_ = 0, dt_ms_ = 1000;
   uint32_t step_ = 0;
   Counts counts_;

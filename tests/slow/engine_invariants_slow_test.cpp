@@ -9,7 +9,7 @@
 namespace lpsim::engine_test {
 namespace {
 
-// OpenMP threads spin while waiting; on an oversubscribed machine this run is slow, hence this suite.
+// Four threads on a two-core machine: slower than the unit suite's runs, hence this suite.
 TEST(EngineInvariantsSlowTest, GridTlsFourThreads) {
   const Scenario sc = load_sumo_scenario("grid_tls");
   const RunResult r = run_checked(sc, "grid_tls threads 4", 4, 1);

@@ -59,9 +59,7 @@ class EngineDeterminismTest : public ::testing::Test {
     const fs::path out = dir_ / tag;
     fs::create_directories(out);
     const std::string cfg = std::string(LPSIM_SCENARIOS_DIR) + "/" + scenario + "/" + scenario + ".sumocfg";
-    // Passive OpenMP waiting: spinning threads on an oversubscribed machine (CI has two cores) make a run
-    // of thousands of short steps take minutes; the wait policy does not change results.
-    const std::string cmd = "OMP_WAIT_POLICY=passive " + std::string(LPSIM_BINARY) + " run " + cfg + " --threads " + std::to_string(threads) +
+    const std::string cmd = std::string(LPSIM_BINARY) + " run " + cfg + " --threads " + std::to_string(threads) +
                             " --fcd-output " + (out / "fcd.xml").string() + " --tripinfo-output " +
                             (out / "tripinfo.xml").string() + " --edgedata-output " + (out / "edgedata.xml").string() +
                             " --summary-output " + (out / "summary.xml").string() + " > " +
