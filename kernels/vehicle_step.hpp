@@ -176,7 +176,8 @@ LPSIM_HD bool may_enter(const StepContext& s, uint32_t v, uint32_t c, float dist
     const uint32_t flane = net.conn_from_lane[f];
     const LaneApproach& a = s.approach[flane];
     if (a.step != s.params.step || a.conn != static_cast<int32_t>(f) || a.held) continue;
-    const ApproachingFoe foe{a.dist, a.speed, s.params.max_accel, net.lane_speed[flane]};
+    // The foe is expected at its current speed (as SUMO's announced arrival times), not at its fastest.
+    const ApproachingFoe foe{a.dist, a.speed, 0.0f, a.speed};
     if (!foe_conflicts(foe, own_clear, kFoeWindow)) continue;
     // Deadlock breaking: both stand at their lines; the lower lane index goes first.
     if (self_waiting && a.speed < kHaltingSpeed && a.waiting > 0 && own_lane < flane) continue;
@@ -418,7 +419,8 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
   float cur_start = -pos;
   uint32_t cur_rp = rp;
   bool last_edge_here = !net.lane_internal[lane] && rp + 1 >= rlen;
-  uint8_t held = 0, reason = kFree;
+  uint8_t reason = kFree;
+  bool stop_at_own_line = false;  // the plan stops at the end of the lane the vehicle is on
   for (;;) {
     const int32_t cells = static_cast<int32_t>(lane_cells(net, cur));
     const int32_t first = cur == lane ? static_cast<int32_t>(cell_of(net, cur, pos)) + 1 : 0;
@@ -445,12 +447,13 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
       cand = fminf(cand, stop_speed(p, speed, v0, end_dist, dt, s.params.substeps));
       hard_limit = fminf(hard_limit, end_dist - kClampEps);
       reason = kWrongLane;
+      stop_at_own_line = hops == 0;
       break;
     }
     if (normal) {
       const char st = link_state_of(s, static_cast<uint32_t>(c));
       bool stop = signal_must_stop(st, end_dist, speed, p.decel, dt) || link_rule(st) == LinkRule::Closed;
-      if (stop) held = 1, reason = kSignal;
+      if (stop) reason = kSignal;
       if (!stop && end_dist <= decision_dist) {
         const LinkRule rule = link_rule(st);
         const bool needs_halt = rule == LinkRule::StopThenYield || rule == LinkRule::AllwayStop;
@@ -458,7 +461,6 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
         const uint32_t to = net.conn_to_lane[c];
         if (!stop && !room_at_start(s, static_cast<int32_t>(to), length + p.min_gap)) {
           stop = true;
-          held = 1;
           reason = kNoRoom;
         }
         if (!stop && !may_enter(s, v, static_cast<uint32_t>(c), end_dist, speed, v0, p, length, waiting))
@@ -471,6 +473,7 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
         // A yield decision taken in time is also a hard line (the vehicle could stop for it).
         else if (can_stop_before(end_dist, speed, p.emergency_decel, dt))
           hard_limit = fminf(hard_limit, end_dist - kClampEps);
+        stop_at_own_line = hops == 0;
         break;
       }
     }
@@ -486,7 +489,9 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
     cur_start = end_dist;
   }
 
-  s.veh.held_at_line[v] = held;
+  // A vehicle that stops at its own lane's end (red, full next lane, yielding, wrong lane) will not enter the
+  // junction now: foes need not yield to it (SUMO's approaching vehicles that will not pass).
+  s.veh.held_at_line[v] = stop_at_own_line ? 1 : 0;
   // Open a gap for a blocked lane changer waiting beside this lane ahead of us.
   const uint64_t mr = s.merge_requests[lane];
   if (!net.lane_internal[lane] && (mr >> 40) == (s.params.step & 0xFFFFFFu)) {

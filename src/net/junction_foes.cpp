@@ -1,21 +1,25 @@
 #include "net/junction_foes.hpp"
 
-#include <charconv>
-#include <string_view>
+#include <string>
+#include <unordered_map>
 
 namespace lpsim {
 
 namespace {
 
-// k of an internal lane id ":<junction>_<k>_<lane>", or -1.
-int link_index_from_via(std::string_view via_lane, std::string_view junction) {
-  if (via_lane.size() < junction.size() + 4 || via_lane[0] != ':') return -1;
-  if (via_lane.substr(1, junction.size()) != junction || via_lane[junction.size() + 1] != '_') return -1;
-  std::string_view rest = via_lane.substr(junction.size() + 2);
-  int k = -1;
-  auto [ptr, ec] = std::from_chars(rest.data(), rest.data() + rest.size(), k);
-  if (ec != std::errc() || ptr == rest.data() + rest.size() || *ptr != '_') return -1;
-  return k;
+// Junction link index of a connection with internal lanes: the position in the junction's intLanes of its
+// via lane, or, for a link with an internal junction (left turns), of the second internal lane it
+// continues on. intLanes lists exactly one internal lane per link, in link-index order.
+int link_index_from_via(const Network& net, uint32_t conn, const std::unordered_map<std::string, int>& position) {
+  const int32_t via = net.conn_via_lane[conn];
+  if (via < 0) return -1;
+  if (auto it = position.find(net.lane_id[static_cast<size_t>(via)]); it != position.end()) return it->second;
+  for (uint32_t c = net.lane_conn_begin[via]; c < net.lane_conn_begin[via + 1]; ++c) {
+    const int32_t next = net.conn_via_lane[c];
+    if (next < 0) continue;
+    if (auto it = position.find(net.lane_id[static_cast<size_t>(next)]); it != position.end()) return it->second;
+  }
+  return -1;
 }
 
 }  // namespace
@@ -51,8 +55,9 @@ void build_junction_foes(const NetSpec& spec, Network& net) {
           link_of[c] = rank++;
       }
     } else {
-      for (uint32_t c : conns)
-        link_of[c] = link_index_from_via(net.lane_id[static_cast<size_t>(net.conn_via_lane[c])], js.id);
+      std::unordered_map<std::string, int> position;
+      for (size_t i = 0; i < js.int_lanes.size(); ++i) position.emplace(js.int_lanes[i], static_cast<int>(i));
+      for (uint32_t c : conns) link_of[c] = link_index_from_via(net, c, position);
     }
     for (uint32_t c : conns)
       if (link_of[c] >= 0 && static_cast<size_t>(link_of[c]) < by_link.size())
