@@ -186,11 +186,18 @@ LPSIM_HD bool may_enter(const StepContext& s, uint32_t v, uint32_t c, float dist
   return true;
 }
 
-/// A lane has room at its start for a vehicle of `need` metres (body plus gap) in the current map.
+// A vehicle in the next lane's first metres slower than this is a queue that blocks the junction exit.
+constexpr float kJamSpeed = 2.0f;
+
+/// A lane has room at its start for a vehicle of `need` metres (body plus gap): no standing or crawling
+/// vehicle there (a moving one is followed like any leader). Keeps vehicles out of junctions they cannot leave.
 LPSIM_HD bool room_at_start(const StepContext& s, int32_t lane, float need) {
   const int32_t cells = static_cast<int32_t>(lane_cells(s.net, lane));
   const int32_t last = static_cast<int32_t>(need) < cells ? static_cast<int32_t>(need) : cells - 1;
-  return first_occupied(s.map_now, s.net, lane, 0, last) < 0;
+  const uint8_t* c = s.map_now + s.net.lane_cell_begin[lane];
+  for (int32_t k = 0; k <= last; ++k)
+    if (c[k] != 0 && decode_cell_speed(c[k]) < kJamSpeed) return false;
+  return true;
 }
 
 /// Fastest next speed from which braking at `decel` (Euler steps) gets down to v_lim by the time the front
