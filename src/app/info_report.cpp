@@ -1,5 +1,6 @@
 #include "app/info_report.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <map>
 
@@ -103,6 +104,11 @@ std::string describe_scenario(const Scenario& sc) {
   }
   out += "\n";
   if (d.size() > 0) out += fmt("  departures: %.2f s to %.2f s\n", d.depart.front(), d.depart.back());
+  // As SUMO, a run does not insert vehicles that depart before the begin time.
+  const auto before_begin = std::lower_bound(d.depart.begin(), d.depart.end(), sc.config.begin) - d.depart.begin();
+  if (before_begin > 0)
+    out += fmt("  departing before begin (%.2f s), not simulated: %lld\n", sc.config.begin,
+               static_cast<long long>(before_begin));
   if (d.routing.requests > 0)
     out += fmt("routing: %llu trips (%llu distinct requests)\n", static_cast<unsigned long long>(d.routing.vehicles),
                static_cast<unsigned long long>(d.routing.requests));
