@@ -505,7 +505,8 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
     const float rear = static_cast<float>(mr & 0xFFFFFFFFFFull) / 100.0f;
     // Stop a minimum gap (plus room for the changer's lag check) short of the changer's rear. A vehicle
     // already closer than that drives on past it; the gap then opens behind it.
-    const float gap = rear - pos - p.min_gap - 4.0f;
+    const float lag_reach = (0.25f + s.params.max_accel * dt) * dt + 0.5f;  // the changer's lag check
+    const float gap = rear - pos - fmaxf(p.min_gap, lag_reach) - 1.5f;         // + cell rounding
     if (gap > 0.0f && gap < budget) {
       const float vs = stop_speed(p, speed, v0, gap, dt, s.params.substeps);
       if (vs < cand) cand = vs, reason = kMergeGap;
