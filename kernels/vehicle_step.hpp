@@ -89,13 +89,12 @@ LPSIM_HD BestLanes best_lanes(const NetView& net, const TripView& trips, uint32_
   BestLanes b{};
   const uint32_t len = trips.route_length[v];
   const uint32_t* route = trips.route_edges + trips.route_begin[v];
+  // The current edge and always the next one; further edges while they start within the distance.
   float dist = 0.0f;
-  uint32_t n = 0;
-  while (n < kBestLaneEdges && rp + n < len) {
-    const uint32_t e = route[rp + n];
+  uint32_t n = 1;
+  while (n < kBestLaneEdges && rp + n < len && dist <= kBestLaneDistance) {
+    dist += net.lane_length[net.edge_first_lane[route[rp + n]]];
     ++n;
-    dist += net.lane_length[net.edge_first_lane[e]];
-    if (dist > kBestLaneDistance) break;
   }
   b.levels = n;
   const uint32_t last = route[rp + n - 1];
