@@ -346,14 +346,16 @@ LPSIM_HD bool swap_with_neighbour(const StepContext& s, uint32_t v, int32_t lane
   const float my_rear = pos - length;
   if (mine != merge_key(s.params.step, my_rear)) return false;  // another vehicle's request won
   const float their_rear = static_cast<float>(theirs & 0xFFFFFFFFFFull) / 100.0f;
-  // Their body: the occupied run on target ending at my front's cell and starting at their rear's cell.
-  const int32_t front_cell = static_cast<int32_t>(cell_of(net, target, pos));
+  // Their body: the occupied run on target ending at target's last cell (they stand at its end, as this
+  // vehicle does at its own: the caller checked the same condition from its own cells) and starting at their
+  // rear's cell, after a free cell.
+  const int32_t front_cell = static_cast<int32_t>(lane_cells(net, target)) - 1;
   const int32_t their_rear_cell = static_cast<int32_t>(cell_of(net, target, their_rear));
   const uint8_t* t_cells = s.map_now + net.lane_cell_begin[target];
   if (t_cells[front_cell] == 0 || decode_cell_speed(t_cells[front_cell]) > 0.0f) return false;
   for (int32_t c = their_rear_cell; c <= front_cell; ++c)
     if (t_cells[c] == 0) return false;
-  if (front_cell + 1 < static_cast<int32_t>(lane_cells(net, target)) && t_cells[front_cell + 1] != 0) return false;
+  if (their_rear_cell > 0 && t_cells[their_rear_cell - 1] != 0) return false;
   // My body must fit on target below their run, and theirs on my lane below mine.
   const int32_t my_rear_cell = static_cast<int32_t>(cell_of(net, target, my_rear));
   if (my_rear_cell < their_rear_cell &&
@@ -390,7 +392,9 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
   const bool waiting = s.veh.stopped_steps[v] > 0;
 
   // Stuck side by side at the lane end with a vehicle that needs this lane: swap, standing still.
-  if (speed < kHaltingSpeed && net.lane_length[lane] - pos < 0.5f) {
+  // The same test both vehicles of a swap apply to each other (from the lane map): standing in the last cell.
+  if (decode_cell_speed(encode_cell_speed(speed)) == 0.0f &&
+      cell_of(net, lane, pos) == lane_cells(net, lane) - 1) {
     int32_t to_cross = 0;
     const int32_t target = mandatory_target(s, v, lane, &to_cross);
     if (target >= 0 && swap_with_neighbour(s, v, lane, target)) {
