@@ -227,11 +227,15 @@ LPSIM_HD int32_t mandatory_target(const StepContext& s, uint32_t v, int32_t lane
   return best > lane ? net.lane_left[lane] : net.lane_right[lane];
 }
 
-// A merge request is encoded so that the one nearest the lane end wins an atomic max.
-LPSIM_HD uint64_t merge_key(uint32_t step, float rear_pos) {
+// A merge request: step, the side the changer comes from (1: from the left of the target lane), its rear
+// position in cm. An atomic max picks one per lane (left side first, then nearest the lane end).
+LPSIM_HD uint64_t merge_key(uint32_t step, bool from_left, float rear_pos) {
   const float cm = fminf(fmaxf(rear_pos * 100.0f, 0.0f), 4.0e9f);
-  return (static_cast<uint64_t>(step & 0xFFFFFFu) << 40) | static_cast<uint64_t>(cm);
+  return (static_cast<uint64_t>(step & 0xFFFFFFu) << 40) | (static_cast<uint64_t>(from_left ? 1 : 0) << 39) |
+         static_cast<uint64_t>(cm);
 }
+LPSIM_HD float merge_rear(uint64_t key) { return static_cast<float>(key & 0x7FFFFFFFFFull) / 100.0f; }
+LPSIM_HD bool merge_from_left(uint64_t key) { return ((key >> 39) & 1u) != 0; }
 constexpr float kMergeRequestZone = 30.0f;  // m before the lane end where a blocked changer asks for a gap
 
 /// Approach pass: the first vehicle on its lane (nothing ahead until the lane end) publishes itself, and
@@ -246,7 +250,9 @@ LPSIM_HD void approach_vehicle(StepContext& s, uint32_t v) {
   if (target >= 0 && s.net.lane_length[lane] - pos < kMergeRequestZone * static_cast<float>(to_cross) &&
       s.veh.speed[v] < 2.0f) {
     const float rear = pos - s.types.length[s.trips.type[v]];
-    if (rear > 0.0f) atomic_max_u64(&s.merge_requests[target], merge_key(s.params.step, rear));
+    // target is this lane's right neighbour when this lane is on its left.
+    const bool from_left = target == s.net.lane_right[lane];
+    if (rear > 0.0f) atomic_max_u64(&s.merge_requests[target], merge_key(s.params.step, from_left, rear));
   }
   const int32_t cells = static_cast<int32_t>(lane_cells(s.net, lane));
   const int32_t from = static_cast<int32_t>(cell_of(s.net, lane, pos)) + 1;
@@ -344,8 +350,11 @@ LPSIM_HD bool swap_with_neighbour(const StepContext& s, uint32_t v, int32_t lane
   const float length = s.types.length[s.trips.type[v]];
   const float pos = s.veh.pos[v];
   const float my_rear = pos - length;
-  if (mine != merge_key(s.params.step, my_rear)) return false;  // another vehicle's request won
-  const float their_rear = static_cast<float>(theirs & 0xFFFFFFFFFFull) / 100.0f;
+  const bool target_is_right = target == net.lane_right[lane];
+  if (mine != merge_key(s.params.step, target_is_right, my_rear)) return false;  // another request won
+  // Theirs must come from the target lane's side of this lane.
+  if (merge_from_left(theirs) != !target_is_right) return false;
+  const float their_rear = merge_rear(theirs);
   // Their body: the occupied run on target ending at target's last cell (they stand at its end, as this
   // vehicle does at its own: the caller checked the same condition from its own cells) and starting at their
   // rear's cell, after a free cell.
@@ -505,7 +514,7 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
   // Open a gap for a blocked lane changer waiting beside this lane ahead of us.
   const uint64_t mr = s.merge_requests[lane];
   if (!net.lane_internal[lane] && (mr >> 40) == (s.params.step & 0xFFFFFFu)) {
-    const float rear = static_cast<float>(mr & 0xFFFFFFFFFFull) / 100.0f;
+    const float rear = merge_rear(mr);
     // Stop a minimum gap (plus room for the changer's lag check) short of the changer's rear. A vehicle
     // already closer than that drives on past it; the gap then opens behind it.
     const float lag_reach = (0.25f + s.params.max_accel * dt) * dt + 0.5f;  // the changer's lag check
