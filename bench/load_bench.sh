@@ -118,20 +118,21 @@ report() {
   echo "- runs per case: $runs (medians shown); scenario check/generation before the runs: ${gen_seconds} s"
   echo "- lpsim: $lpsim_state"
   echo
-  echo "| case | wall s | CPU s | peak RSS MiB | vehicles loaded | SUMO(a) time / case time | case RSS / SUMO(a) RSS |"
-  echo "|---|---:|---:|---:|---:|---:|---:|"
-  local key time_ratio mem_ratio
+  echo "| case | wall s | CPU s | peak RSS MiB | vehicles loaded | SUMO(a) CPU / case CPU | SUMO(a) wall / case wall | case RSS / SUMO(a) RSS |"
+  echo "|---|---:|---:|---:|---:|---:|---:|---:|"
+  local key time_ratio cpu_ratio mem_ratio
   for key in "${order[@]}"; do
     if [[ -z "${WALL[$key]:-}" ]]; then
-      echo "| ${LABEL[$key]} | ${NOTE[$key]:-failed} | | | | | |"
+      echo "| ${LABEL[$key]} | ${NOTE[$key]:-failed} | | | | | | |"
       continue
     fi
-    time_ratio="-"; mem_ratio="-"
+    time_ratio="-"; cpu_ratio="-"; mem_ratio="-"
     if [[ "$key" == lpsim_full || "$key" == lpsim_snapshot ]]; then
       time_ratio=$(ratio "$base_wall" "${WALL[$key]}")
+      cpu_ratio=$(ratio "${CPU[sumo_all]:-}" "${CPU[$key]}")
       mem_ratio=$(ratio "${RSS[$key]}" "$base_rss")
     fi
-    echo "| ${LABEL[$key]} | ${WALL[$key]} | ${CPU[$key]} | ${RSS[$key]} | ${LOADED[$key]:--} | $time_ratio | $mem_ratio |"
+    echo "| ${LABEL[$key]} | ${WALL[$key]} | ${CPU[$key]} | ${RSS[$key]} | ${LOADED[$key]:--} | $cpu_ratio | $time_ratio | $mem_ratio |"
   done
   echo
   echo "Commands (run from the repository root; SUMO_HOME=$SUMO_HOME; timed with /usr/bin/time -v):"
