@@ -74,7 +74,13 @@ timed_runs() {
 }
 
 # Values printed by `lpsim info` (empty when the line is absent).
-routing_rate() { sed -n 's/^.*routing: \([0-9]*\) trips in \([0-9.eE+-]*\) s (\([0-9.eE+-]*\) trips\/s).*$/\1 \2 \3/p' "$1" | tail -n 1; }
+# `routing: N trips (M distinct requests)` and `load time: T s (routing S s, X trips/s)` -> "N S X".
+routing_rate() {
+  local n rest
+  n=$(sed -n 's/^routing: \([0-9]*\) trips.*$/\1/p' "$1" | tail -n 1)
+  rest=$(sed -n 's/^load time: .*(routing \([0-9.eE+-]*\) s, \([0-9.eE+-]*\) trips\/s).*$/\1 \2/p' "$1" | tail -n 1)
+  [[ -n "$n" && -n "$rest" ]] && echo "$n $rest"
+}
 free_flow_cost() { sed -n 's/^.*free-flow route cost: \([0-9.eE+-]*\) s.*$/\1/p' "$1" | tail -n 1; }
 
 timed_runs duarouter "${duarouter_cmd[@]}"
@@ -94,7 +100,7 @@ else
   lp_wall=$T_WALL lp_cpu=$T_CPU lp_rss=$T_RSS
   read -r lp_routed lp_route_s lp_rate < <(routing_rate "$logs/lpsim.1.log"; echo) || true
   lp_cost=$(free_flow_cost "$logs/lpsim.1.log")
-  [[ -n "$lp_rate" ]] || lpsim_state="lpsim info printed no 'routing: N trips in S s (X trips/s)' line"
+  [[ -n "$lp_rate" ]] || lpsim_state="lpsim info printed no 'routing: N trips' / 'load time: ... (routing S s, X trips/s)' lines"
   log "free-flow cost of duarouter's routes: ${eval_cmd[*]}"
   if "${eval_cmd[@]}" >"$logs/lpsim_eval.log" 2>&1; then
     dua_cost=$(free_flow_cost "$logs/lpsim_eval.log")
