@@ -99,7 +99,9 @@ LPSIM_HD float idm_free_speed(const IdmParams& p, float speed, float v0, float d
   const float h = dt / static_cast<float>(n);
   float v = speed;
   for (int i = 0; i < n; ++i) v = fmaxf(0.0f, v + idm_free_accel(p, v, v0) * h);
-  return v;
+  // Euler sub-steps can overshoot the desired speed by a little; like SUMO's cap at the lane's maximum
+  // speed, a vehicle that was not faster never ends above it.
+  return speed <= v0 ? fminf(v, v0) : v;
 }
 
 // Shared sub-step loop for a leader or stop point: the gap shrinks by the closing distance of each sub-step

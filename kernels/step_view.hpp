@@ -129,6 +129,7 @@ struct LaneApproach {
   float speed;         // m/s
   uint32_t waiting;    // consecutive steps stopped (deadlock breaking)
   uint32_t held;       // 1: standing at the line for a red light or a full next lane (not a foe now)
+  float reach;         // distance within which it announces its arrival (SUMO's request horizon) [m]
 };
 
 /// Everything one step needs besides the arrays above.

@@ -35,6 +35,8 @@ struct StepContext {
   LaneApproach* approach;   // per lane
   uint64_t* claims;         // per lane
   uint64_t* merge_requests; // per lane: a blocked mandatory lane changer asks followers there to open a gap
+  const uint32_t* yielder_begin;  // [num_conns+1] connections that must yield to each connection (CSR)
+  const uint32_t* yielder;
   // Per-lane output counters (integers: order independent).
   int64_t* cnt_sampled_steps;
   int64_t* cnt_travelled_mm;
@@ -154,10 +156,72 @@ LPSIM_HD bool lane_occupied(const StepContext& s, int32_t lane) {
   return first_occupied(s.map_now, s.net, lane, 0, static_cast<int32_t>(lane_cells(s.net, lane)) - 1) >= 0;
 }
 
+/// The lane after a junction-internal lane (its single link), or -1.
+LPSIM_HD int32_t lane_after_internal(const NetView& net, int32_t lane) {
+  const uint32_t b = net.lane_conn_begin[lane];
+  if (b == net.lane_conn_begin[lane + 1]) return -1;
+  return net.conn_via_lane[b] >= 0 ? net.conn_via_lane[b] : static_cast<int32_t>(net.conn_to_lane[b]);
+}
+
+/// Connection c crosses its foes behind an internal junction: its via lane leads to a second internal lane
+/// (SUMO's cont="1" links, e.g. left turns). Vehicles enter up to the internal junction and yield there.
+LPSIM_HD bool has_internal_junction(const NetView& net, uint32_t c) {
+  const int32_t via = net.conn_via_lane[c];
+  if (via < 0) return false;
+  const int32_t after = lane_after_internal(net, via);
+  return after >= 0 && net.lane_internal[after] != 0;
+}
+
+/// Time until the last vehicle on the junction-internal lanes of connection c (its via lane and the
+/// internal lanes after it, e.g. past an internal junction) has left them with its rear, accelerating at
+/// accel; 0 when they are empty.
+LPSIM_HD float conn_inside_clear_time(const StepContext& s, uint32_t c, float accel) {
+  const NetView& net = s.net;
+  int32_t chain[4];
+  int32_t n = 0;
+  int32_t lane = net.conn_via_lane[c];
+  // A vehicle before an internal junction waits there for this vehicle's link: it is not in the way.
+  if (has_internal_junction(net, c)) lane = lane_after_internal(net, lane);
+  while (n < 4 && lane >= 0 && net.lane_internal[lane]) {
+    chain[n++] = lane;
+    lane = lane_after_internal(net, lane);
+  }
+  // The rear-most occupied cell on the chain belongs to the vehicle that leaves last.
+  float rest = 0.0f;
+  for (int32_t k = n - 1; k >= 0; --k) rest += net.lane_length[chain[k]];
+  for (int32_t k = 0; k < n; ++k) {
+    const int32_t lane = chain[k];
+    rest -= net.lane_length[lane];
+    const int32_t cells = static_cast<int32_t>(lane_cells(net, lane));
+    const int32_t hit = first_occupied(s.map_now, net, lane, 0, cells - 1);
+    if (hit < 0) continue;
+    const float v = decode_cell_speed(s.map_now[net.lane_cell_begin[lane] + static_cast<uint32_t>(hit)]);
+    const float dist = net.lane_length[lane] - static_cast<float>(hit) + rest;
+    return earliest_arrival_time(dist, v, accel, fmaxf(net.lane_speed[lane], 1.0f));
+  }
+  return 0.0f;
+}
+
+/// A vehicle that entered the junction on a link yielding to c is still inside and will not have left
+/// it before this vehicle, arriving at the line in `own_arrival` seconds, gets there: a vehicle on c that
+/// can still stop comfortably waits for it (SUMO's link leaders: prioritised vehicles brake for foes
+/// already in the junction instead of driving through them).
+LPSIM_HD bool yielder_inside(const StepContext& s, uint32_t c, float own_arrival) {
+  for (uint32_t k = s.yielder_begin[c]; k < s.yielder_begin[c + 1]; ++k) {
+    const uint32_t y = s.yielder[k];
+    if (signal_is_red(link_state_of(s, y))) continue;  // cleared on its own green long ago or never entered
+    if (conn_inside_clear_time(s, y, s.params.max_accel) > own_arrival) return true;
+  }
+  return false;
+}
+
 /// Right of way for entering connection c, `dist` metres ahead: every foe link it must yield to is either
 /// closed by its signal, empty inside the junction and without an approaching vehicle that would arrive
-/// before this one has cleared. Circular waits (right_before_left with all approaches busy) are broken by
-/// letting the lowest lane index go once everyone involved stands.
+/// before this one has cleared. Foes beyond their request horizon (the distance within which they could
+/// still stop comfortably after one more step) are not considered: like SUMO, which only knows approaching
+/// vehicles that announced their arrival, the foe then brakes for this vehicle (yielder_inside). Circular
+/// waits (right_before_left with all approaches busy) are broken by letting the lowest lane index go once
+/// everyone involved stands.
 LPSIM_HD bool may_enter(const StepContext& s, uint32_t v, uint32_t c, float dist, float speed, float v0,
                         const IdmParams& p, float length, bool self_waiting) {
   const NetView& net = s.net;
@@ -170,11 +234,14 @@ LPSIM_HD bool may_enter(const StepContext& s, uint32_t v, uint32_t c, float dist
     const uint32_t f = net.conn_foe[k];
     const char fs = link_state_of(s, f);
     if (signal_is_red(fs)) continue;
+    // A foe on its via lane blocks, unless that link has an internal junction: the vehicle there waits
+    // before the crossing (for links that include this one's).
     const int32_t fvia = net.conn_via_lane[f];
-    if (fvia >= 0 && lane_occupied(s, fvia)) return false;
+    if (fvia >= 0 && !has_internal_junction(net, f) && lane_occupied(s, fvia)) return false;
     const uint32_t flane = net.conn_from_lane[f];
     const LaneApproach& a = s.approach[flane];
     if (a.step != s.params.step || a.conn != static_cast<int32_t>(f) || a.held) continue;
+    if (a.dist > a.reach) continue;  // not announced yet: it can still stop for this vehicle
     // The foe is expected at its current speed (as SUMO's announced arrival times), not at its fastest.
     const ApproachingFoe foe{a.dist, a.speed, 0.0f, a.speed};
     if (!foe_conflicts(foe, own_clear, kFoeWindow)) continue;
@@ -264,6 +331,7 @@ LPSIM_HD void approach_vehicle(StepContext& s, uint32_t v) {
   a.speed = s.veh.speed[v];
   a.waiting = s.veh.stopped_steps[v];
   a.held = s.veh.held_at_line[v] != 0 && a.speed < kHaltingSpeed ? 1u : 0u;
+  a.reach = lookahead_distance(idm_of(s, s.trips.type[v]), a.speed, s.params.dt);
   s.approach[lane] = a;
 }
 
@@ -440,6 +508,13 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
   bool last_edge_here = !net.lane_internal[lane] && rp + 1 >= rlen;
   uint8_t reason = kFree;
   bool stop_at_own_line = false;  // the plan stops at the end of the lane the vehicle is on
+  // Connection by which the path entered the junction-internal lane `cur` from a normal lane (-1: none).
+  int32_t entry_conn = -1;
+  if (net.lane_internal[lane] && s.veh.prev[v] >= 0 && !net.lane_internal[s.veh.prev[v]]) {
+    const int32_t pl = s.veh.prev[v];
+    for (uint32_t c = net.lane_conn_begin[pl]; c < net.lane_conn_begin[pl + 1]; ++c)
+      if (net.conn_via_lane[c] == lane) entry_conn = static_cast<int32_t>(c);
+  }
   for (;;) {
     const int32_t cells = static_cast<int32_t>(lane_cells(net, cur));
     const int32_t first = cur == lane ? static_cast<int32_t>(cell_of(net, cur, pos)) + 1 : 0;
@@ -482,7 +557,12 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
           stop = true;
           reason = kNoRoom;
         }
-        if (!stop && !may_enter(s, v, static_cast<uint32_t>(c), end_dist, speed, v0, p, length, waiting))
+        // Links with an internal junction yield at it, inside the junction (SUMO's waiting position).
+        if (!stop && !has_internal_junction(net, static_cast<uint32_t>(c)) &&
+            !may_enter(s, v, static_cast<uint32_t>(c), end_dist, speed, v0, p, length, waiting))
+          stop = true, reason = kYield;
+        if (!stop && can_stop_before(end_dist, speed, p.decel, dt) &&
+            yielder_inside(s, static_cast<uint32_t>(c), speed > kHaltingSpeed ? end_dist / speed : 0.0f))
           stop = true, reason = kYield;
       }
       if (stop) {
@@ -495,6 +575,14 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
         stop_at_own_line = hops == 0;
         break;
       }
+    } else if (entry_conn >= 0 && end_dist <= decision_dist && net.conn_via_lane[entry_conn] == cur &&
+               has_internal_junction(net, static_cast<uint32_t>(entry_conn)) &&
+               !may_enter(s, v, static_cast<uint32_t>(entry_conn), end_dist, speed, v0, p, length, waiting)) {
+      // At the internal junction: wait for the prioritised foes of the link entered.
+      cand = fminf(cand, stop_speed(p, speed, v0, end_dist, dt, s.params.substeps));
+      if (can_stop_before(end_dist, speed, p.emergency_decel, dt)) hard_limit = fminf(hard_limit, end_dist - kClampEps);
+      reason = kYield;
+      break;
     }
     const int32_t via = net.conn_via_lane[c];
     const int32_t nxt = via >= 0 ? via : static_cast<int32_t>(net.conn_to_lane[c]);
@@ -503,6 +591,7 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
     path[hops] = nxt;
     ++hops;
     if (!net.lane_internal[nxt]) ++cur_rp;
+    entry_conn = normal && via >= 0 ? c : -1;
     path_rp[hops - 1] = cur_rp;
     cur = nxt;
     cur_start = end_dist;
