@@ -100,9 +100,19 @@ void copy_to_host(T* dst, const T* src, size_t n) {
   if (n > 0) LPSIM_CUDA_CHECK(cudaMemcpy(dst, src, n * sizeof(T), cudaMemcpyDeviceToHost));
 }
 
-/// Calls f(a.column, b.column) for every column of two vehicle views.
-template <class F>
-void for_each_vehicle_column(const VehicleView& a, const VehicleView& b, F&& f) {
+// The stepper lists every column of the views by hand: a column added to one of them must be added here.
+static_assert(sizeof(VehicleView) == 20 * sizeof(void*), "VehicleView changed: update for_each_vehicle_column");
+static_assert(sizeof(PlanView) == 13 * sizeof(void*), "PlanView changed: update the plan uploads in CudaStepper");
+static_assert(sizeof(NetView) == 20 * sizeof(void*) + sizeof(void*), "NetView changed: update upload_network");
+static_assert(sizeof(TypeView) == 8 * sizeof(void*) && sizeof(TripView) == 7 * sizeof(void*),
+              "TypeView or TripView changed: update upload_demand");
+static_assert(sizeof(StepContext) == sizeof(NetView) + sizeof(TypeView) + sizeof(TripView) + sizeof(VehicleView) +
+                                         sizeof(PlanView) + sizeof(StepParams) + 14 * sizeof(void*),
+              "StepContext changed: update CudaStepper");
+
+/// Calls f(a.column, b.column) for every column of two vehicle views (a may be written: f gets references).
+template <class A, class B, class F>
+void for_each_vehicle_column(A& a, B& b, F&& f) {
   f(a.status, b.status);
   f(a.route_pos, b.route_pos);
   f(a.speed, b.speed);
@@ -135,27 +145,7 @@ class CudaStepper final : public GpuStepper {
     upload_demand(host, sizes);
     const uint32_t nv = sizes.num_vehicles, nl = host.net.num_lanes;
 
-    VehicleView& veh = dev_.veh;
-    veh.status = upload(host.veh.status, nv);
-    veh.route_pos = upload(host.veh.route_pos, nv);
-    veh.speed = upload(host.veh.speed, nv);
-    veh.lane = upload(host.veh.lane, nv);
-    veh.prev = upload(host.veh.prev, nv);
-    veh.prev2 = upload(host.veh.prev2, nv);
-    veh.pos = upload(host.veh.pos, nv);
-    veh.old_lane = upload(host.veh.old_lane, nv);
-    veh.old_prev = upload(host.veh.old_prev, nv);
-    veh.old_prev2 = upload(host.veh.old_prev2, nv);
-    veh.old_pos = upload(host.veh.old_pos, nv);
-    veh.stopped_steps = upload(host.veh.stopped_steps, nv);
-    veh.waiting_steps = upload(host.veh.waiting_steps, nv);
-    veh.waiting_count = upload(host.veh.waiting_count, nv);
-    veh.time_loss = upload(host.veh.time_loss, nv);
-    veh.route_length = upload(host.veh.route_length, nv);
-    veh.arrival_step = upload(host.veh.arrival_step, nv);
-    veh.lane_change_dir = upload(host.veh.lane_change_dir, nv);
-    veh.held_at_line = upload(host.veh.held_at_line, nv);
-    veh.limit_reason = upload(host.veh.limit_reason, nv);
+    for_each_vehicle_column(dev_.veh, host.veh, [&](auto*& dev, auto* h) { dev = upload(h, nv); });
 
     // Plan scratch carries nothing the host reads, but a pass may read an entry it did not write this step
     // (a claim priority, say): start from the host's values so both backends see the same ones.
