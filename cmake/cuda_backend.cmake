@@ -19,17 +19,33 @@ if(LPSIM_WITH_CUDA AND NOT LPSIM_CUDA_SOURCES)
   set(LPSIM_WITH_CUDA OFF)
   message(STATUS "LPSim CUDA backend: nvcc found, but no kernels/*.cu to build yet")
 elseif(LPSIM_WITH_CUDA)
-  enable_language(CUDA)
-  if(NOT DEFINED CMAKE_CUDA_ARCHITECTURES OR CMAKE_CUDA_ARCHITECTURES STREQUAL "52")
+  # Set before enable_language, which otherwise fills in nvcc's own default (sm_52 up to CUDA 12, sm_75 in
+  # CUDA 13). A -DCMAKE_CUDA_ARCHITECTURES given by the user wins.
+  if(NOT DEFINED CMAKE_CUDA_ARCHITECTURES)
     set(CMAKE_CUDA_ARCHITECTURES 80 90)
   endif()
-  set(CMAKE_CUDA_STANDARD 20)
+  enable_language(CUDA)
   find_package(CUDAToolkit REQUIRED)
   add_library(lpsim_cuda STATIC ${LPSIM_CUDA_SOURCES})
   target_include_directories(lpsim_cuda PUBLIC ${PROJECT_SOURCE_DIR}/src ${PROJECT_SOURCE_DIR})
+  # The project-wide add_compile_options are host-compiler flags nvcc rejects ("Unknown option '-Wall'"):
+  # replace them on this target with their nvcc spelling.
   # --fmad=false: identical arithmetic to the CPU build (which uses -ffp-contract=off).
-  target_compile_options(lpsim_cuda PRIVATE $<$<COMPILE_LANGUAGE:CUDA>:--fmad=false>)
+  # CMake before 3.26 knows no C++20 dialect flag for nvcc ("requires the language dialect CUDA20"): tell it.
+  if(NOT DEFINED CMAKE_CUDA20_STANDARD_COMPILE_OPTION)
+    set(CMAKE_CUDA20_STANDARD_COMPILE_OPTION "-std=c++20")
+    set(CMAKE_CUDA20_EXTENSION_COMPILE_OPTION "-std=c++20")
+  endif()
+  set_target_properties(lpsim_cuda PROPERTIES CUDA_STANDARD 20 CUDA_STANDARD_REQUIRED ON CUDA_EXTENSIONS OFF)
+  set_property(TARGET lpsim_cuda PROPERTY COMPILE_OPTIONS "")
+  target_compile_options(lpsim_cuda PRIVATE
+    $<$<COMPILE_LANGUAGE:CUDA>:--fmad=false -Xcompiler=-Wall,-Wextra,-ffp-contract=off>)
   target_link_libraries(lpsim_cuda PUBLIC CUDA::cudart_static)
+  # The engine picks the backend at run time (src/engine/device_select.cpp): every target sees
+  # LPSIM_HAVE_CUDA, and lpsim_core links the kernels. lpsim_core is defined after this file is included,
+  # hence the deferred call (it runs at the end of the top-level CMakeLists.txt).
+  add_compile_definitions(LPSIM_HAVE_CUDA=1)
+  cmake_language(DEFER CALL target_link_libraries lpsim_core PUBLIC lpsim_cuda)
   message(STATUS "LPSim CUDA backend: ON (${CMAKE_CUDA_COMPILER}, sm ${CMAKE_CUDA_ARCHITECTURES})")
 else()
   message(STATUS "LPSim CUDA backend: OFF")

@@ -10,7 +10,7 @@ namespace lpsim {
 
 namespace {
 
-enum class Kind { Path, PathList, Time, Bool, Integer };
+enum class Kind { Path, PathList, Time, Bool, Integer, Device };
 
 // A checked value, handed to the option's store function.
 struct Value {
@@ -19,6 +19,7 @@ struct Value {
   double seconds = 0;
   long long integer = 0;
   bool flag = false;
+  ComputeDevice device = ComputeDevice::Auto;
 };
 
 enum class Check { None, NonNegative, Positive };
@@ -48,6 +49,8 @@ const OptionDef kOptions[] = {
   {"time-to-teleport", "", 0, Kind::Time, Check::None, false, [](ConfigSpec& c, Value&& v) { c.time_to_teleport = v.seconds; }},
   {"ignore-route-errors", "", 0, Kind::Bool, Check::None, false, [](ConfigSpec& c, Value&& v) { c.ignore_route_errors = v.flag; }},
   {"threads", "", 0, Kind::Integer, Check::NonNegative, false, [](ConfigSpec& c, Value&& v) { c.threads = static_cast<int>(v.integer); }},
+  // Not a SUMO option: command line only, so a .sumocfg stays valid for SUMO.
+  {"device", "", 0, Kind::Device, Check::None, true, [](ConfigSpec& c, Value&& v) { c.device = v.device; }},
   {"fcd-output", "", 0, Kind::Path, Check::None, false, [](ConfigSpec& c, Value&& v) { c.outputs.fcd = std::move(v.text); }},
   {"device.fcd.period", "", 0, Kind::Time, Check::NonNegative, false, [](ConfigSpec& c, Value&& v) { c.outputs.fcd_period = v.seconds; }},
   {"tripinfo-output", "", 0, Kind::Path, Check::None, false, [](ConfigSpec& c, Value&& v) { c.outputs.tripinfo = std::move(v.text); }},
@@ -125,6 +128,12 @@ Value convert(const OptionDef& def, std::string_view name, const std::string& va
       v.integer = *n;
       break;
     }
+    case Kind::Device:
+      if (value == "auto") v.device = ComputeDevice::Auto;
+      else if (value == "cpu") v.device = ComputeDevice::Cpu;
+      else if (value == "gpu") v.device = ComputeDevice::Gpu;
+      else bad_value(where, name, value, "expected auto, cpu or gpu");
+      break;
   }
   return v;
 }

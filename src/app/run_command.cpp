@@ -13,6 +13,7 @@
 #include "converters/mean_data_writer.hpp"
 #include "converters/summary_writer.hpp"
 #include "converters/tripinfo_writer.hpp"
+#include "engine/device_select.hpp"
 #include "engine/simulation.hpp"
 
 namespace lpsim {
@@ -59,6 +60,9 @@ int command_run(const std::vector<std::string>& args) {
   opt.seed = static_cast<uint64_t>(config.seed);
   opt.threads = config.threads > 0 ? config.threads : 1;
   opt.time_to_teleport = config.time_to_teleport;
+  const DeviceChoice device = select_device(config.device);
+  opt.gpu = device.gpu;
+  if (config.device != ComputeDevice::Cpu) std::fprintf(stderr, "lpsim: device %s\n", device.description.c_str());
   const auto wall0 = std::chrono::steady_clock::now();
   Simulation sim(sc.network, sc.demand, opt);
 

@@ -10,6 +10,9 @@ struct OutputSpec {
   double fcd_period = 0;  // 0: every step
 };
 
+/// Where `lpsim run` steps the simulation (--device): auto takes a usable CUDA device, else the CPU.
+enum class ComputeDevice { Auto, Cpu, Gpu };
+
 struct ConfigSpec {
   std::string config_file;  // the .sumocfg, if any
   std::string net_file;
@@ -20,6 +23,7 @@ struct ConfigSpec {
   double time_to_teleport = 300;
   bool ignore_route_errors = false;
   int threads = 0;  // 0: all hardware threads
+  ComputeDevice device = ComputeDevice::Auto;
   OutputSpec outputs;
   std::string output_file;  // -o/--output on the command line: LPSim's own result file
 };

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "engine/device_select.hpp"
 #include "kernels/rng.hpp"
 #include "kernels/vehicle_step.hpp"
 
@@ -175,13 +176,22 @@ void Simulation::step() {
   ctx.cnt_left = lc.left.data();
   ctx.cnt_arrived = lc.arrived.data();
 
-  // CPU backend: each pass is one parallel loop over the active vehicles, finished before the next starts.
   const int64_t n = static_cast<int64_t>(active_.size());
-  const uint32_t* act = active_.data();
-  pool_.run(n, [&](int64_t i) { clear_old_footprint(ctx, act[i]); }, kParallelMinVehicles);
-  pool_.run(n, [&](int64_t i) { approach_vehicle(ctx, act[i]); }, kParallelMinVehicles);
-  pool_.run(n, [&](int64_t i) { plan_vehicle(ctx, act[i]); }, kParallelMinVehicles);
-  pool_.run(n, [&](int64_t i) { commit_vehicle(ctx, act[i]); }, kParallelMinVehicles);
+  if (opt_.gpu) {
+    // GPU backend: the same passes on the device; it leaves in ctx's host arrays what the CPU loops would.
+    if (!gpu_)
+      gpu_ = make_gpu_stepper(ctx, engine_net_.signal_table(net_),
+                              GpuStepSizes{demand_.size(), net_.num_edges(), net_.num_connections(), t.size(),
+                                           demand_.route_edges.size()});
+    gpu_->step(ctx, active_.data(), static_cast<uint32_t>(n));
+  } else {
+    // CPU backend: each pass is one parallel loop over the active vehicles, finished before the next starts.
+    const uint32_t* act = active_.data();
+    pool_.run(n, [&](int64_t i) { clear_old_footprint(ctx, act[i]); }, kParallelMinVehicles);
+    pool_.run(n, [&](int64_t i) { approach_vehicle(ctx, act[i]); }, kParallelMinVehicles);
+    pool_.run(n, [&](int64_t i) { plan_vehicle(ctx, act[i]); }, kParallelMinVehicles);
+    pool_.run(n, [&](int64_t i) { commit_vehicle(ctx, act[i]); }, kParallelMinVehicles);
+  }
   counts_.vehicle_updates += static_cast<uint64_t>(n);
 
   time_ms_ += dt_ms_;

@@ -4,6 +4,7 @@
 // backend is a ParallelFor loop over the same functions the CUDA kernels wrap). It never formats text: the
 // runner in src/app samples it and hands the samples to the writers in converters/.
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -11,6 +12,7 @@
 #include "engine/engine_net.hpp"
 #include "engine/parallel_for.hpp"
 #include "engine/samples.hpp"
+#include "kernels/gpu_stepper.hpp"
 #include "kernels/step_view.hpp"
 #include "net/network.hpp"
 
@@ -22,6 +24,7 @@ struct SimulationOptions {
   uint64_t seed = 23423;
   int threads = 1;
   double time_to_teleport = 300;  // s; <= 0: never
+  bool gpu = false;  // run the step's passes on the CUDA device (engine/device_select picks it)
 };
 
 class Simulation {
@@ -119,6 +122,9 @@ class Simulation {
   std::vector<uint32_t> inserted_now_, scratch_;
   std::vector<TripRecord> finished_;
   double depart_delay_sum_ = 0, travel_time_sum_ = 0;
+
+  // GPU backend (options.gpu): created at the first step; runs the passes on the device instead of pool_.
+  std::unique_ptr<GpuStepper> gpu_;
 };
 
 }  // namespace lpsim

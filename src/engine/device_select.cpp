@@ -1,0 +1,38 @@
+#include "engine/device_select.hpp"
+
+#include <stdexcept>
+
+#include "core/error.hpp"
+
+namespace lpsim {
+
+CudaDeviceStatus gpu_status() {
+#if defined(LPSIM_HAVE_CUDA)
+  return cuda_device_status();
+#else
+  return CudaDeviceStatus{false, "built without CUDA"};
+#endif
+}
+
+DeviceChoice select_device(ComputeDevice requested) {
+  if (requested == ComputeDevice::Cpu) return DeviceChoice{false, "cpu (requested)"};
+  const CudaDeviceStatus status = gpu_status();
+  if (status.usable) return DeviceChoice{true, "gpu (" + status.description + ")"};
+  if (requested == ComputeDevice::Gpu)
+    throw InputError(SourceLoc{"command line", 0}, "--device gpu: no usable CUDA device: " + status.description);
+  return DeviceChoice{false, "cpu (no usable CUDA device: " + status.description + ")"};
+}
+
+std::unique_ptr<GpuStepper> make_gpu_stepper(const StepContext& host, const SignalTable& signals,
+                                             const GpuStepSizes& sizes) {
+#if defined(LPSIM_HAVE_CUDA)
+  return make_cuda_stepper(host, signals, sizes);
+#else
+  (void)host;
+  (void)signals;
+  (void)sizes;
+  throw std::runtime_error("the GPU backend was requested, but lpsim was built without CUDA");
+#endif
+}
+
+}  // namespace lpsim

@@ -1,0 +1,197 @@
+// The CUDA backend: `lpsim run --device gpu` writes byte for byte the outputs of `--device cpu` on the
+// bundled scenarios (skipped, saying why, where no usable CUDA device exists), and device selection
+// behaves as documented on any machine (auto falls back to the CPU, gpu without a device is bad input).
+#include <gtest/gtest.h>
+#include <stdlib.h>
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/error.hpp"
+#include "engine/device_select.hpp"
+
+namespace lpsim {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string read_file(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::string line_at(const std::string& s, size_t i) {
+  const size_t b = s.rfind('\n', i == 0 ? 0 : i - 1);
+  const size_t e = s.find('\n', i);
+  return s.substr(b == std::string::npos ? 0 : b + 1, e == std::string::npos ? std::string::npos : e - (b + 1));
+}
+
+// Where two texts first differ, with the line around it on each side.
+std::string first_difference(const std::string& a, const std::string& b) {
+  size_t i = 0;
+  while (i < a.size() && i < b.size() && a[i] == b[i]) ++i;
+  return "byte " + std::to_string(i) + ":\n  cpu: " + line_at(a, i) + "\n  gpu: " + line_at(b, i);
+}
+
+size_t count(const std::string& s, const std::string& needle) {
+  size_t n = 0;
+  for (size_t at = s.find(needle); at != std::string::npos; at = s.find(needle, at + 1)) ++n;
+  return n;
+}
+
+class TempDir {
+ public:
+  TempDir() {
+    std::string pattern = (fs::temp_directory_path() / "lpsim_gpu_XXXXXX").string();
+    if (mkdtemp(pattern.data()) != nullptr) path_ = pattern;
+  }
+  ~TempDir() {
+    if (!path_.empty()) fs::remove_all(path_);
+  }
+  const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
+struct RunResult {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+// Runs `lpsim run <scenario> <args>` in `dir`, capturing stdout and stderr.
+RunResult run_lpsim(const fs::path& dir, const std::string& scenario, const std::string& args) {
+  const std::string cfg = std::string(LPSIM_SCENARIOS_DIR) + "/" + scenario + "/" + scenario + ".sumocfg";
+  const std::string cmd = "cd '" + dir.string() + "' && '" + std::string(LPSIM_BINARY) + "' run '" + cfg + "' " +
+                          args + " > stdout.txt 2> stderr.txt";
+  RunResult r;
+  const int status = std::system(cmd.c_str());
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = read_file(dir / "stdout.txt");
+  r.err = read_file(dir / "stderr.txt");
+  return r;
+}
+
+struct Outputs {
+  std::string fcd, tripinfo, edgedata, summary;
+};
+
+Outputs run_on(const fs::path& root, const std::string& scenario, const std::string& device) {
+  const fs::path dir = root / device;
+  fs::create_directories(dir);
+  const RunResult r = run_lpsim(dir, scenario,
+                                "--device " + device +
+                                    " --fcd-output fcd.xml --tripinfo-output tripinfo.xml"
+                                    " --edgedata-output edgedata.xml --summary-output summary.xml");
+  EXPECT_EQ(r.exit_code, 0) << "--device " << device << ":\n" << r.out << r.err;
+  // The summary's duration attribute is wall time: the only value allowed to differ.
+  static const std::regex duration(" duration=\"[^\"]*\"");
+  return Outputs{read_file(dir / "fcd.xml"), read_file(dir / "tripinfo.xml"), read_file(dir / "edgedata.xml"),
+                 std::regex_replace(read_file(dir / "summary.xml"), duration, " duration=\"masked\"")};
+}
+
+class GpuIdentityTest : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(GpuIdentityTest, GpuOutputsEqualCpuOutputsByteForByte) {
+  const CudaDeviceStatus gpu = gpu_status();
+  if (!gpu.usable) GTEST_SKIP() << "no usable CUDA device (" << gpu.description << "): CPU/GPU identity not checked";
+  TempDir tmp;
+  ASSERT_FALSE(tmp.path().empty());
+  const Outputs cpu = run_on(tmp.path(), GetParam(), "cpu");
+  const Outputs dev = run_on(tmp.path(), GetParam(), "gpu");
+  // The CPU run must have produced real content, or two empty files would pass.
+  EXPECT_GT(count(cpu.tripinfo, "<tripinfo "), 10u);
+  EXPECT_GT(count(cpu.fcd, "<vehicle "), 1000u);
+  EXPECT_GT(count(cpu.edgedata, "<edge "), 10u);
+  EXPECT_TRUE(cpu.fcd == dev.fcd) << "fcd differs at " << first_difference(cpu.fcd, dev.fcd);
+  EXPECT_TRUE(cpu.tripinfo == dev.tripinfo) << "tripinfo differs at " << first_difference(cpu.tripinfo, dev.tripinfo);
+  EXPECT_TRUE(cpu.edgedata == dev.edgedata) << "edgedata differs at " << first_difference(cpu.edgedata, dev.edgedata);
+  EXPECT_TRUE(cpu.summary == dev.summary) << "summary differs at " << first_difference(cpu.summary, dev.summary);
+}
+
+INSTANTIATE_TEST_SUITE_P(BundledScenarios, GpuIdentityTest, ::testing::Values("grid_tls", "random_net"));
+
+TEST(DeviceSelectTest, CpuIsAlwaysTheCpu) {
+  const DeviceChoice c = select_device(ComputeDevice::Cpu);
+  EXPECT_FALSE(c.gpu);
+  EXPECT_EQ(c.description.rfind("cpu", 0), 0u) << c.description;
+}
+
+TEST(DeviceSelectTest, AutoTakesTheGpuExactlyWhenOneIsUsable) {
+  const CudaDeviceStatus gpu = gpu_status();
+  EXPECT_FALSE(gpu.description.empty());
+  const DeviceChoice c = select_device(ComputeDevice::Auto);
+  EXPECT_EQ(c.gpu, gpu.usable);
+  EXPECT_EQ(c.description.rfind(gpu.usable ? "gpu (" : "cpu (", 0), 0u) << c.description;
+  EXPECT_NE(c.description.find(gpu.description), std::string::npos) << c.description;
+}
+
+TEST(DeviceSelectTest, GpuWithoutAUsableDeviceIsBadInputNamingTheReason) {
+  const CudaDeviceStatus gpu = gpu_status();
+  if (gpu.usable) {
+    EXPECT_TRUE(select_device(ComputeDevice::Gpu).gpu);
+    return;
+  }
+  try {
+    select_device(ComputeDevice::Gpu);
+    FAIL() << "--device gpu accepted without a usable GPU";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("--device gpu"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(gpu.description), std::string::npos) << e.what();
+  }
+}
+
+#if !defined(LPSIM_HAVE_CUDA)
+TEST(DeviceSelectTest, BuildWithoutCudaSaysSo) {
+  EXPECT_FALSE(gpu_status().usable);
+  EXPECT_EQ(gpu_status().description, "built without CUDA");
+}
+#endif
+
+TEST(DeviceCliTest, GpuWithoutAUsableDeviceExitsWithStatus2AndOneLine) {
+  const CudaDeviceStatus gpu = gpu_status();
+  if (gpu.usable) GTEST_SKIP() << "a CUDA device is usable (" << gpu.description << ")";
+  TempDir tmp;
+  ASSERT_FALSE(tmp.path().empty());
+  const RunResult r = run_lpsim(tmp.path(), "grid_tls", "--device gpu --end 10");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_EQ(r.err, "lpsim: error: command line: --device gpu: no usable CUDA device: " + gpu.description + "\n");
+  EXPECT_TRUE(r.out.empty()) << r.out;
+}
+
+TEST(DeviceCliTest, UnknownDeviceIsBadInput) {
+  TempDir tmp;
+  ASSERT_FALSE(tmp.path().empty());
+  const RunResult r = run_lpsim(tmp.path(), "grid_tls", "--device tpu --end 10");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_EQ(r.err, "lpsim: error: command line: --device: expected auto, cpu or gpu, got 'tpu'\n");
+}
+
+TEST(DeviceCliTest, AutoPrintsTheChosenDeviceOnOneStderrLine) {
+  TempDir tmp;
+  ASSERT_FALSE(tmp.path().empty());
+  const RunResult r = run_lpsim(tmp.path(), "grid_tls", "--device auto --end 60");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  const DeviceChoice expected = select_device(ComputeDevice::Auto);
+  EXPECT_EQ(r.err, "lpsim: device " + expected.description + "\n");
+  EXPECT_NE(r.out.find("Simulation ended at time: 59.00"), std::string::npos) << r.out;
+}
+
+TEST(DeviceCliTest, CpuPrintsNothingAboutTheDevice) {
+  TempDir tmp;
+  ASSERT_FALSE(tmp.path().empty());
+  const RunResult r = run_lpsim(tmp.path(), "grid_tls", "--device cpu --end 60");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(r.err.empty()) << r.err;
+}
+
+}  // namespace
+}  // namespace lpsim
