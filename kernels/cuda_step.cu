@@ -107,7 +107,7 @@ static_assert(sizeof(NetView) == 20 * sizeof(void*) + sizeof(void*), "NetView ch
 static_assert(sizeof(TypeView) == 8 * sizeof(void*) && sizeof(TripView) == 7 * sizeof(void*),
               "TypeView or TripView changed: update upload_demand");
 static_assert(sizeof(StepContext) == sizeof(NetView) + sizeof(TypeView) + sizeof(TripView) + sizeof(VehicleView) +
-                                         sizeof(PlanView) + sizeof(StepParams) + 14 * sizeof(void*),
+                                         sizeof(PlanView) + sizeof(StepParams) + 16 * sizeof(void*),
               "StepContext changed: update CudaStepper");
 
 /// Calls f(a.column, b.column) for every column of two vehicle views (a may be written: f gets references).
@@ -167,6 +167,9 @@ class CudaStepper final : public GpuStepper {
     dev_.approach = upload(host.approach, nl);
     dev_.claims = upload(host.claims, nl);
     dev_.merge_requests = upload(host.merge_requests, nl);
+    const size_t nc = sizes.num_connections;
+    dev_.yielder_begin = upload(host.yielder_begin, nc + 1);
+    dev_.yielder = upload(host.yielder, host.yielder_begin[nc]);
 
     // The counters of one step, contiguous so that one memset clears them and one copy fetches them.
     int64_t* counters = allocate<int64_t>(static_cast<size_t>(kNumCounters) * nl);

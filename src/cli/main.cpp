@@ -21,7 +21,7 @@ commands:
            lpsim convert -c scenario.sumocfg -o scenario.lpsim
   run      simulate and write SUMO outputs
            lpsim run -c scenario.sumocfg [--threads N] [--end T] [--fcd-output f.xml] [--tripinfo-output f.xml]
-           [--edgedata-output f.xml] [--summary-output f.xml]
+           [--edgedata-output f.xml] [--summary-output f.xml] [--device cpu|auto|gpu]
   version  print the version
 
 options follow SUMO's names: -c, -n/--net-file, -r/--route-files, -a/--additional-files, -b/--begin,

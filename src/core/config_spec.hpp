@@ -23,7 +23,8 @@ struct ConfigSpec {
   double time_to_teleport = 300;
   bool ignore_route_errors = false;
   int threads = 0;  // 0: all hardware threads
-  ComputeDevice device = ComputeDevice::Auto;
+  // CPU until the GPU backend has been checked byte-identical on a GPU (tests/gpu); `--device auto` opts in.
+  ComputeDevice device = ComputeDevice::Cpu;
   OutputSpec outputs;
   std::string output_file;  // -o/--output on the command line: LPSim's own result file
 };
