@@ -274,11 +274,8 @@ LPSIM_HD float approach_speed_limit(float dist, float v_lim, float decel, float 
 }
 
 /// Lane a vehicle must move to (adjacent, towards the nearest lane leading to its next edge), or -1.
-LPSIM_HD int32_t mandatory_target(const StepContext& s, uint32_t v, int32_t lane, int32_t* lanes_to_cross) {
-  const NetView& net = s.net;
-  const uint32_t rp = s.veh.route_pos[v];
-  if (net.lane_internal[lane] || rp + 1 >= s.trips.route_length[v]) return -1;
-  const uint32_t good = best_lanes(s.net, s.trips, v, rp).mask[0];
+/// As mandatory_target, given the best-lane mask `good` of the lane's edge (computed once by the caller).
+LPSIM_HD int32_t mandatory_target_in(const NetView& net, int32_t lane, uint32_t good, int32_t* lanes_to_cross) {
   if (lane_bit(net, static_cast<uint32_t>(lane)) & good) return -1;
   const uint32_t e = net.lane_edge[lane];
   const int32_t first_lane = static_cast<int32_t>(net.edge_first_lane[e]);
@@ -294,6 +291,12 @@ LPSIM_HD int32_t mandatory_target(const StepContext& s, uint32_t v, int32_t lane
   return best > lane ? net.lane_left[lane] : net.lane_right[lane];
 }
 
+LPSIM_HD int32_t mandatory_target(const StepContext& s, uint32_t v, int32_t lane, int32_t* lanes_to_cross) {
+  const uint32_t rp = s.veh.route_pos[v];
+  if (s.net.lane_internal[lane] || rp + 1 >= s.trips.route_length[v]) return -1;
+  return mandatory_target_in(s.net, lane, best_lanes(s.net, s.trips, v, rp).mask[0], lanes_to_cross);
+}
+
 // A merge request: step, the side the changer comes from (1: from the left of the target lane), its rear
 // position in cm. An atomic max picks one per lane (left side first, then nearest the lane end).
 LPSIM_HD uint64_t merge_key(uint32_t step, bool from_left, float rear_pos) {
@@ -303,7 +306,8 @@ LPSIM_HD uint64_t merge_key(uint32_t step, bool from_left, float rear_pos) {
 }
 LPSIM_HD float merge_rear(uint64_t key) { return static_cast<float>(key & 0x7FFFFFFFFFull) / 100.0f; }
 LPSIM_HD bool merge_from_left(uint64_t key) { return ((key >> 39) & 1u) != 0; }
-constexpr float kMergeRequestZone = 30.0f;  // m before the lane end where a blocked changer asks for a gap
+constexpr float kMergeRequestZone = 30.0f;  // m per lane to cross before the lane end where a blocked changer asks for a gap
+constexpr float kMaxLanesToCross = 8.0f;    // bounds the request zone for the cheap pre-test
 
 /// Approach pass: the first vehicle on its lane (nothing ahead until the lane end) publishes itself, and
 /// a vehicle stuck on a wrong lane near its end asks the followers on the target lane to open a gap (as
@@ -313,25 +317,31 @@ LPSIM_HD void approach_vehicle(StepContext& s, uint32_t v) {
   const int32_t lane = s.veh.lane[v];
   const float pos = s.veh.pos[v];
   int32_t to_cross = 0;
-  const int32_t target = mandatory_target(s, v, lane, &to_cross);
-  if (target >= 0 && s.net.lane_length[lane] - pos < kMergeRequestZone * static_cast<float>(to_cross) &&
-      s.veh.speed[v] < 2.0f) {
+  // Cheap tests first: only slow vehicles near their lane's end can be stuck on a wrong lane.
+  const bool may_request = s.veh.speed[v] < 2.0f && s.net.lane_length[lane] - pos < kMergeRequestZone * kMaxLanesToCross;
+  const int32_t target = may_request ? mandatory_target(s, v, lane, &to_cross) : -1;
+  if (target >= 0 && s.net.lane_length[lane] - pos < kMergeRequestZone * static_cast<float>(to_cross)) {
     const float rear = pos - s.types.length[s.trips.type[v]];
     // target is this lane's right neighbour when this lane is on its left.
     const bool from_left = target == s.net.lane_right[lane];
     if (rear > 0.0f) atomic_max_u64(&s.merge_requests[target], merge_key(s.params.step, from_left, rear));
   }
+  // A vehicle farther from the lane end than its reach is ignored by foes (may_enter): it need not publish,
+  // which also spares scanning the rest of long lanes for every vehicle.
+  const float dist = s.net.lane_length[lane] - pos;
+  const float reach = lookahead_distance(idm_of(s, s.trips.type[v]), s.veh.speed[v], s.params.dt);
+  if (dist > reach) return;
   const int32_t cells = static_cast<int32_t>(lane_cells(s.net, lane));
   const int32_t from = static_cast<int32_t>(cell_of(s.net, lane, pos)) + 1;
   if (from < cells && first_occupied(s.map_now, s.net, lane, from, cells - 1) >= 0) return;
   LaneApproach a;
   a.step = s.params.step;
   a.conn = choose_connection(s, v, lane, s.veh.route_pos[v]);
-  a.dist = s.net.lane_length[lane] - pos;
+  a.dist = dist;
   a.speed = s.veh.speed[v];
   a.waiting = s.veh.stopped_steps[v];
   a.held = s.veh.held_at_line[v] != 0 && a.speed < kHaltingSpeed ? 1u : 0u;
-  a.reach = lookahead_distance(idm_of(s, s.trips.type[v]), a.speed, s.params.dt);
+  a.reach = reach;
   s.approach[lane] = a;
 }
 
@@ -630,7 +640,7 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
       bool mandatory = false;
       float urgency = 0.0f;
       int32_t to_cross = 0;
-      if (!here_good && mandatory_target(s, v, lane, &to_cross) == target) {
+      if (!here_good && mandatory_target_in(net, lane, good, &to_cross) == target) {
         mandatory = true;
         urgency = mandatory_lc_urgency(dist_to_lane_end, to_cross, speed, lane_change_default_params());
       }
