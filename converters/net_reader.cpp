@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "converters/route_attributes.hpp"  // split_ids
 #include "converters/tl_logic_reader.hpp"
 #include "converters/vclass.hpp"
 #include "converters/xml_stream.hpp"
@@ -14,21 +15,6 @@ namespace {
 
 bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
 
-std::vector<std::string> split_spaces(std::string_view text) {
-  size_t count = 0;
-  for (size_t i = 0; i < text.size(); ++i)
-    if (!is_space(text[i]) && (i == 0 || is_space(text[i - 1]))) ++count;
-  std::vector<std::string> out;
-  out.reserve(count);
-  size_t i = 0;
-  while (i < text.size()) {
-    while (i < text.size() && is_space(text[i])) ++i;
-    size_t start = i;
-    while (i < text.size() && !is_space(text[i])) ++i;
-    if (i > start) out.emplace_back(text.substr(start, i - start));
-  }
-  return out;
-}
 
 // Long shapes would make one-line error messages unreadable; the start of the value is enough to find it.
 std::string excerpt(const std::string& value) {
@@ -163,8 +149,8 @@ class NetParser {
         net_.tl_logics.push_back(read_tl_logic(xs_));
       } else if (name == "roundabout") {
         RoundaboutSpec r;
-        r.nodes = split_spaces(xs_.get("nodes", ""));
-        r.edges = split_spaces(xs_.get("edges", ""));
+        r.nodes = split_ids(xs_.get("nodes", ""));
+        r.edges = split_ids(xs_.get("edges", ""));
         net_.roundabouts.push_back(std::move(r));
       } else if (name == "location") {
         net_.net_offset = parse_offset(xs_);
@@ -250,8 +236,8 @@ class NetParser {
     j.type = xs_.get("type", "");
     j.x = xs_.number("x", 0);
     j.y = xs_.number("y", 0);
-    if (auto inc = xs_.attr("incLanes")) j.inc_lanes = split_spaces(*inc);
-    if (auto in = xs_.attr("intLanes")) j.int_lanes = split_spaces(*in);
+    if (auto inc = xs_.attr("incLanes")) j.inc_lanes = split_ids(*inc);
+    if (auto in = xs_.attr("intLanes")) j.int_lanes = split_ids(*in);
     net_.junctions.push_back(std::move(j));
   }
 
