@@ -121,6 +121,12 @@ void Simulation::build_yielders() {
     for (uint32_t k = fb[c]; k < fb[c + 1]; ++k) yielder_[fill[f[k]]++] = static_cast<uint32_t>(c);
 }
 
+TripView Simulation::trip_view() const {
+  return TripView{demand_.vehicle_type.data(), demand_.route_begin.data(), demand_.route_length.data(),
+                  demand_.route_edges.data(), demand_.speed_factor.data(), demand_.arrival_pos_kind.data(),
+                  demand_.arrival_pos.data()};
+}
+
 void Simulation::update_signals() {
   const SignalTable table = engine_net_.signal_table(net_);
   for (uint32_t s = 0; s < table.num_signals; ++s) update_signal(table, s, time_ms_, link_state_.data());
@@ -142,9 +148,7 @@ void Simulation::step() {
   const VehicleTypes& t = demand_.types;
   ctx.types = TypeView{t.length.data(), t.min_gap.data(), t.accel.data(), t.decel.data(), t.emergency_decel.data(),
                        t.max_speed.data(), t.tau.data(), t.delta.data()};
-  ctx.trips = TripView{demand_.vehicle_type.data(), demand_.route_begin.data(), demand_.route_length.data(),
-                       demand_.route_edges.data(), demand_.speed_factor.data(), demand_.arrival_pos_kind.data(),
-                       demand_.arrival_pos.data()};
+  ctx.trips = trip_view();
   ctx.veh = VehicleView{ptr(status_),        ptr(route_pos_),     ptr(speed_),          ptr(lane_),
                         ptr(prev_),          ptr(prev2_),         ptr(pos_),            ptr(old_lane_),
                         ptr(old_prev_),      ptr(old_prev2_),     ptr(old_pos_),        ptr(stopped_steps_),
@@ -310,9 +314,7 @@ bool Simulation::try_insert(uint32_t v, uint8_t* map) {
   const float length = t.length[type], min_gap = t.min_gap[type];
   const float dt = static_cast<float>(opt_.step_length);
   const NetView nv = engine_net_.view(net_);
-  const TripView trips{demand_.vehicle_type.data(), demand_.route_begin.data(), demand_.route_length.data(),
-                       demand_.route_edges.data(), demand_.speed_factor.data(), demand_.arrival_pos_kind.data(),
-                       demand_.arrival_pos.data()};
+  const TripView trips = trip_view();
   const uint32_t best = best_lanes(nv, trips, v, rp).mask[0];
   auto leads_on = [&](uint32_t l) { return (lane_bit(nv, l) & best) != 0; };
 

@@ -71,6 +71,7 @@ class Simulation {
   struct StepContextBuilder;
   void build_context();
   void update_signals();
+  TripView trip_view() const;
   void build_yielders();
   void enqueue_due(int64_t until_ms);
   void insert_waiting(uint8_t* map);
