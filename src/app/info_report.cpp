@@ -4,25 +4,12 @@
 #include <cstdio>
 #include <map>
 
+#include "net/junction_type.hpp"
+
 namespace lpsim {
 
 namespace {
 
-const char* junction_type_name(JunctionType t) {
-  switch (t) {
-    case JunctionType::Priority: return "priority";
-    case JunctionType::TrafficLight: return "traffic_light";
-    case JunctionType::RightBeforeLeft: return "right_before_left";
-    case JunctionType::AllwayStop: return "allway_stop";
-    case JunctionType::PriorityStop: return "priority_stop";
-    case JunctionType::Zipper: return "zipper";
-    case JunctionType::DeadEnd: return "dead_end";
-    case JunctionType::Internal: return "internal";
-    case JunctionType::Unregulated: return "unregulated";
-    case JunctionType::Other: return "other";
-  }
-  return "other";
-}
 
 std::string fmt(const char* f, auto... args) {
   char buf[512];

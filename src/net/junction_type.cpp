@@ -29,4 +29,20 @@ JunctionType parse_junction_type(std::string_view type, const SourceLoc& where, 
   throw InputError(where, "junction '" + std::string(junction_id) + "' has unknown type '" + std::string(type) + "'");
 }
 
+const char* junction_type_name(JunctionType t) {
+  switch (t) {
+    case JunctionType::Priority: return "priority";
+    case JunctionType::TrafficLight: return "traffic_light";
+    case JunctionType::RightBeforeLeft: return "right_before_left";
+    case JunctionType::AllwayStop: return "allway_stop";
+    case JunctionType::PriorityStop: return "priority_stop";
+    case JunctionType::Zipper: return "zipper";
+    case JunctionType::DeadEnd: return "dead_end";
+    case JunctionType::Internal: return "internal";
+    case JunctionType::Unregulated: return "unregulated";
+    case JunctionType::Other: return "other";
+  }
+  return "other";
+}
+
 }  // namespace lpsim

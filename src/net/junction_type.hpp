@@ -17,4 +17,7 @@ namespace lpsim {
 /// Any other string raises InputError at `where` naming the junction and the type.
 JunctionType parse_junction_type(std::string_view type, const SourceLoc& where, std::string_view junction_id);
 
+/// The SUMO name of a JunctionType (the first of the names mapped onto it; "other" for Other).
+const char* junction_type_name(JunctionType type);
+
 }  // namespace lpsim

@@ -36,6 +36,7 @@
 #include "converters/net_reader.hpp"
 #include "converters/route_reader.hpp"
 #include "converters/sumocfg_reader.hpp"
+#include "net/junction_type.hpp"
 
 namespace lpsim {
 namespace {
@@ -62,22 +63,6 @@ int64_t ref_int(const std::map<std::string, double>& ref, const std::string& key
   auto it = ref.find(key);
   if (it == ref.end()) throw std::runtime_error("reference has no key " + key);
   return static_cast<int64_t>(std::llround(it->second));
-}
-
-const char* junction_type_name(JunctionType t) {
-  switch (t) {
-    case JunctionType::Priority: return "priority";
-    case JunctionType::TrafficLight: return "traffic_light";
-    case JunctionType::RightBeforeLeft: return "right_before_left";
-    case JunctionType::AllwayStop: return "allway_stop";
-    case JunctionType::PriorityStop: return "priority_stop";
-    case JunctionType::Zipper: return "zipper";
-    case JunctionType::DeadEnd: return "dead_end";
-    case JunctionType::Internal: return "internal";
-    case JunctionType::Unregulated: return "unregulated";
-    case JunctionType::Other: return "other";
-  }
-  return "other";
 }
 
 std::vector<std::string> route_of(const Scenario& sc, uint32_t v) {
