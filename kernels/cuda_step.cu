@@ -101,7 +101,7 @@ void copy_to_host(T* dst, const T* src, size_t n) {
 }
 
 // The stepper lists every column of the views by hand: a column added to one of them must be added here.
-static_assert(sizeof(VehicleView) == 20 * sizeof(void*), "VehicleView changed: update for_each_vehicle_column");
+static_assert(sizeof(VehicleView) == 22 * sizeof(void*), "VehicleView changed: update for_each_vehicle_column");
 static_assert(sizeof(PlanView) == 13 * sizeof(void*), "PlanView changed: update the plan uploads in CudaStepper");
 static_assert(sizeof(NetView) == 20 * sizeof(void*) + sizeof(void*), "NetView changed: update upload_network");
 static_assert(sizeof(TypeView) == 8 * sizeof(void*) && sizeof(TripView) == 7 * sizeof(void*),
@@ -133,6 +133,8 @@ void for_each_vehicle_column(A& a, B& b, F&& f) {
   f(a.lane_change_dir, b.lane_change_dir);
   f(a.held_at_line, b.held_at_line);
   f(a.limit_reason, b.limit_reason);
+  f(a.best_rp, b.best_rp);
+  f(a.best_mask, b.best_mask);
 }
 
 constexpr int kNumCounters = 8;

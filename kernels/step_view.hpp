@@ -90,6 +90,8 @@ struct VehicleView {
   uint8_t* lane_change_dir; // last lane change: 0 none, 1 left, 2 right (for outputs)
   uint8_t* held_at_line;    // last plan stopped at the lane end for a red light or a full next lane
   uint8_t* limit_reason;    // what bounded the last plan's speed (StopReason), for diagnostics and tests
+  uint32_t* best_rp;        // route position best_mask was computed for (0xFFFFFFFF: none yet)
+  uint32_t* best_mask;      // best lanes of the current edge (a pure function of vehicle and route position)
 };
 
 enum StopReason : uint8_t {

@@ -291,10 +291,21 @@ LPSIM_HD int32_t mandatory_target_in(const NetView& net, int32_t lane, uint32_t 
   return best > lane ? net.lane_left[lane] : net.lane_right[lane];
 }
 
+/// Best lanes of the vehicle's current edge, cached per route position (only the vehicle's own thread
+/// reads or writes its cache entries; the value does not depend on when it was computed).
+LPSIM_HD uint32_t current_best_mask(const StepContext& s, uint32_t v) {
+  const uint32_t rp = s.veh.route_pos[v];
+  if (s.veh.best_rp[v] != rp) {
+    s.veh.best_mask[v] = best_lanes(s.net, s.trips, v, rp).mask[0];
+    s.veh.best_rp[v] = rp;
+  }
+  return s.veh.best_mask[v];
+}
+
 LPSIM_HD int32_t mandatory_target(const StepContext& s, uint32_t v, int32_t lane, int32_t* lanes_to_cross) {
   const uint32_t rp = s.veh.route_pos[v];
   if (s.net.lane_internal[lane] || rp + 1 >= s.trips.route_length[v]) return -1;
-  return mandatory_target_in(s.net, lane, best_lanes(s.net, s.trips, v, rp).mask[0], lanes_to_cross);
+  return mandatory_target_in(s.net, lane, current_best_mask(s, v), lanes_to_cross);
 }
 
 // A merge request: step, the side the changer comes from (1: from the left of the target lane), its rear
@@ -634,7 +645,7 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
     const bool left_step = (s.params.step & 1u) == 0;
     const int32_t target = left_step ? net.lane_left[lane] : net.lane_right[lane];
     if (target >= 0) {
-      const uint32_t good = best_lanes(s.net, s.trips, v, rp).mask[0];
+      const uint32_t good = current_best_mask(s, v);
       const bool here_good = (lane_bit(net, static_cast<uint32_t>(lane)) & good) != 0;
       const bool target_good = (lane_bit(net, static_cast<uint32_t>(target)) & good) != 0;
       bool mandatory = false;

@@ -48,6 +48,8 @@ Simulation::Simulation(const Network& net, const Demand& demand, const Simulatio
   lane_change_dir_.assign(nv, 0);
   held_at_line_.assign(nv, 0);
   limit_reason_.assign(nv, 0);
+  best_rp_.assign(nv, 0xFFFFFFFFu);
+  best_mask_.assign(nv, 0);
   claim_prio_.assign(nv, 1);
   arrives_.assign(nv, 0);
   route_pos_.assign(nv, 0);
@@ -153,7 +155,8 @@ void Simulation::step() {
                         ptr(prev_),          ptr(prev2_),         ptr(pos_),            ptr(old_lane_),
                         ptr(old_prev_),      ptr(old_prev2_),     ptr(old_pos_),        ptr(stopped_steps_),
                         ptr(waiting_steps_), ptr(waiting_count_), ptr(time_loss_),      ptr(route_length_),
-                        ptr(arrival_step_),  ptr(lane_change_dir_), ptr(held_at_line_), ptr(limit_reason_)};
+                        ptr(arrival_step_),  ptr(lane_change_dir_), ptr(held_at_line_), ptr(limit_reason_),
+                        ptr(best_rp_),       ptr(best_mask_)};
   ctx.plan = PlanView{ptr(new_speed_), ptr(new_lane_), ptr(new_pos_),  ptr(new_prev_),   ptr(new_prev2_),
                       ptr(claim0_),    ptr(claim1_),   ptr(stop_pos_), ptr(stop_lane_), ptr(arrives_),
                       ptr(new_rp_),    ptr(first_rp_), ptr(claim_prio_)};

@@ -102,7 +102,7 @@ class Simulation {
 
   // Per-vehicle state (see VehicleView) and plan scratch (see PlanView).
   std::vector<uint8_t> status_, lane_change_dir_, arrives_, held_at_line_, limit_reason_, claim_prio_;
-  std::vector<uint32_t> new_rp_, first_rp_, route_pos_, stopped_steps_, waiting_steps_, waiting_count_, arrival_step_;
+  std::vector<uint32_t> best_rp_, best_mask_, new_rp_, first_rp_, route_pos_, stopped_steps_, waiting_steps_, waiting_count_, arrival_step_;
   std::vector<float> speed_, pos_, old_pos_, time_loss_, route_length_;
   std::vector<int32_t> lane_, prev_, prev2_, old_lane_, old_prev_, old_prev2_;
   std::vector<float> new_speed_, new_pos_, stop_pos_;
