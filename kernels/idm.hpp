@@ -56,28 +56,28 @@ LPSIM_HD float idm_pow_delta(float x, float delta) {
 
 /// Desired (free-flow) speed: the lane's limit scaled by the driver's speed factor, capped by the vehicle.
 LPSIM_HD float desired_speed(float lane_speed, float speed_factor, float max_speed) {
-  return fminf(lane_speed * speed_factor, max_speed);
+  return lp_fminf(lane_speed * speed_factor, max_speed);
 }
 
 /// IDM desired gap s* = s0 + max(0, v*T + v*(v - v_leader) / (2*sqrt(a*b))).
 LPSIM_HD float idm_desired_gap(const IdmParams& p, float speed, float leader_speed, float jam_gap) {
   const float two_sqrt_ab = 2.0f * sqrtf(p.accel * p.decel);
   const float dynamic = speed * p.tau + speed * (speed - leader_speed) / two_sqrt_ab;
-  return jam_gap + fmaxf(0.0f, dynamic);
+  return jam_gap + lp_fmaxf(0.0f, dynamic);
 }
 
 /// Free-road acceleration a*(1 - (v/v0)^delta). Above the desired speed the result is bounded by -decel:
 /// the raw IDM term explodes (v = 2*v0 gives -15a) where a real driver just brakes comfortably.
 LPSIM_HD float idm_free_accel(const IdmParams& p, float speed, float v0) {
-  const float ratio = speed / fmaxf(v0, kIdmEps);
-  return fmaxf(p.accel * (1.0f - idm_pow_delta(ratio, p.delta)), -p.decel);
+  const float ratio = speed / lp_fmaxf(v0, kIdmEps);
+  return lp_fmaxf(p.accel * (1.0f - idm_pow_delta(ratio, p.delta)), -p.decel);
 }
 
 /// IDM acceleration towards a leader `gap` metres ahead (bumper to bumper) driving at leader_speed.
 LPSIM_HD float idm_accel(const IdmParams& p, float speed, float v0, float gap, float leader_speed) {
-  const float ratio = speed / fmaxf(v0, kIdmEps);
+  const float ratio = speed / lp_fmaxf(v0, kIdmEps);
   const float s_star = idm_desired_gap(p, speed, leader_speed, p.min_gap);
-  const float s = fmaxf(gap, kIdmEps);
+  const float s = lp_fmaxf(gap, kIdmEps);
   const float interaction = (s_star / s) * (s_star / s);
   return p.accel * (1.0f - idm_pow_delta(ratio, p.delta) - interaction);
 }
@@ -86,9 +86,9 @@ LPSIM_HD float idm_accel(const IdmParams& p, float speed, float v0, float gap, f
 /// standing leader with jam distance 0, so the front bumper may come right up to the line (as SUMO's
 /// stopSpeed, which does not respect minGap at stop points).
 LPSIM_HD float idm_stop_accel(const IdmParams& p, float speed, float v0, float gap) {
-  const float ratio = speed / fmaxf(v0, kIdmEps);
+  const float ratio = speed / lp_fmaxf(v0, kIdmEps);
   const float s_star = idm_desired_gap(p, speed, 0.0f, 0.0f);
-  const float s = fmaxf(gap, kIdmEps);
+  const float s = lp_fmaxf(gap, kIdmEps);
   const float interaction = (s_star / s) * (s_star / s);
   return p.accel * (1.0f - idm_pow_delta(ratio, p.delta) - interaction);
 }
@@ -98,10 +98,10 @@ LPSIM_HD float idm_free_speed(const IdmParams& p, float speed, float v0, float d
   const int n = substeps < 1 ? 1 : substeps;
   const float h = dt / static_cast<float>(n);
   float v = speed;
-  for (int i = 0; i < n; ++i) v = fmaxf(0.0f, v + idm_free_accel(p, v, v0) * h);
+  for (int i = 0; i < n; ++i) v = lp_fmaxf(0.0f, v + idm_free_accel(p, v, v0) * h);
   // Euler sub-steps can overshoot the desired speed by a little; like SUMO's cap at the lane's maximum
   // speed, a vehicle that was not faster never ends above it.
-  return speed <= v0 ? fminf(v, v0) : v;
+  return speed <= v0 ? lp_fminf(v, v0) : v;
 }
 
 // Shared sub-step loop for a leader or stop point: the gap shrinks by the closing distance of each sub-step
@@ -113,13 +113,13 @@ LPSIM_HD float idm_interaction_speed(const IdmParams& p, float speed, float v0, 
   float v = speed;
   float s = gap;
   for (int i = 0; i < n; ++i) {
-    const float ratio = v / fmaxf(v0, kIdmEps);
+    const float ratio = v / lp_fmaxf(v0, kIdmEps);
     const float s_star = idm_desired_gap(p, v, leader_speed, jam_gap);
-    const float s_safe = fmaxf(s, kIdmEps);
+    const float s_safe = lp_fmaxf(s, kIdmEps);
     const float interaction = (s_star / s_safe) * (s_star / s_safe);
     const float acc = p.accel * (1.0f - idm_pow_delta(ratio, p.delta) - interaction);
-    v = fmaxf(0.0f, v + acc * h);
-    s -= fmaxf(0.0f, (v - leader_speed) * h);
+    v = lp_fmaxf(0.0f, v + acc * h);
+    s -= lp_fmaxf(0.0f, (v - leader_speed) * h);
   }
   return v;
 }
@@ -138,7 +138,7 @@ LPSIM_HD float idm_stop_speed(const IdmParams& p, float speed, float v0, float g
 /// Distance covered from now to standstill when braking at `decel` from `speed` under Euler stepping: the
 /// speeds of the next steps are v - b*dt, v - 2*b*dt, ... (each held for dt) until they reach zero.
 LPSIM_HD float stopping_distance(float speed, float decel, float dt) {
-  const float step_loss = fmaxf(decel, kIdmEps) * dt;  // speed lost per step
+  const float step_loss = lp_fmaxf(decel, kIdmEps) * dt;  // speed lost per step
   if (speed <= step_loss) return 0.0f;
   const float n = floorf(speed / step_loss);  // steps that still move
   return dt * (n * speed - step_loss * n * (n + 1.0f) * 0.5f);
@@ -156,14 +156,14 @@ LPSIM_HD float lookahead_distance(const IdmParams& p, float speed, float dt) {
 /// dt*((n+1)*r + b'*n*(n+1)/2), which is solved for the largest n, then r.
 LPSIM_HD float max_speed_within(float budget, float own_decel, float dt) {
   if (budget <= 0.0f || dt <= 0.0f) return 0.0f;
-  const float b = fmaxf(own_decel, kIdmEps) * dt;
+  const float b = lp_fmaxf(own_decel, kIdmEps) * dt;
   const float sum = budget / dt;  // budget expressed as a sum of step speeds
   float n = floorf((sqrtf(1.0f + 8.0f * sum / b) - 1.0f) * 0.5f);
   if (n < 0.0f) n = 0.0f;
   // sqrtf rounding may leave n one off the exact integer; settle it against the defining inequality.
   if (b * (n + 1.0f) * (n + 2.0f) * 0.5f <= sum) n += 1.0f;
   if (n > 0.0f && b * n * (n + 1.0f) * 0.5f > sum) n -= 1.0f;
-  const float r = fminf(fmaxf((sum - b * n * (n + 1.0f) * 0.5f) / (n + 1.0f), 0.0f), b);
+  const float r = lp_fminf(lp_fmaxf((sum - b * n * (n + 1.0f) * 0.5f) / (n + 1.0f), 0.0f), b);
   return n * b + r;
 }
 
@@ -174,7 +174,7 @@ LPSIM_HD float max_speed_within(float budget, float own_decel, float dt) {
 /// vehicle used a speed <= safe_speed last step, then max(0, v - own_decel*dt) is <= safe_speed now, so
 /// own_decel always suffices and there is no collision as long as the leader brakes at most leader_decel.
 LPSIM_HD float safe_speed(float gap, float leader_speed, float leader_decel, float own_decel, float dt) {
-  const float leader_room = stopping_distance(leader_speed, fmaxf(leader_decel, own_decel), dt);
+  const float leader_room = stopping_distance(leader_speed, lp_fmaxf(leader_decel, own_decel), dt);
   return max_speed_within(gap - kSafeGapEps + leader_room, own_decel, dt);
 }
 
@@ -185,7 +185,7 @@ LPSIM_HD float safe_stop_speed(float gap, float decel, float dt) {
 
 /// Whether a vehicle at `speed` can stop before a point `gap` ahead without braking harder than decel.
 LPSIM_HD bool can_stop_before(float gap, float speed, float decel, float dt) {
-  return fmaxf(0.0f, speed - decel * dt) <= safe_stop_speed(gap, decel, dt);
+  return lp_fmaxf(0.0f, speed - decel * dt) <= safe_stop_speed(gap, decel, dt);
 }
 
 /// Next speed following a leader: min(IDM, safe speed). leader_decel is the hardest braking the leader may
@@ -193,7 +193,7 @@ LPSIM_HD bool can_stop_before(float gap, float speed, float decel, float dt) {
 LPSIM_HD float follow_speed(const IdmParams& p, float speed, float v0, float gap, float leader_speed,
                             float leader_decel, float dt, int substeps) {
   const float v_idm = idm_follow_speed(p, speed, v0, gap, leader_speed, dt, substeps);
-  return fminf(v_idm, safe_speed(gap, leader_speed, leader_decel, p.decel, dt));
+  return lp_fminf(v_idm, safe_speed(gap, leader_speed, leader_decel, p.decel, dt));
 }
 
 /// Next speed approaching a stop point: zero once within kStopReachedEps, else min(IDM, safe stop speed).
@@ -204,15 +204,15 @@ LPSIM_HD float stop_speed(const IdmParams& p, float speed, float v0, float gap, 
   const float v_safe = safe_stop_speed(gap, p.decel, dt);
   const float v_idm = idm_stop_speed(p, speed, v0, gap, dt, substeps);
   if (speed < kIdmEps && v_idm < kIdmEps) return v_safe;
-  return fminf(v_idm, v_safe);
+  return lp_fminf(v_idm, v_safe);
 }
 
 /// Final speed for the step from the minimum of all candidate speeds (free, leaders, stop points): never
 /// faster than accelerating at accel, never slower than braking at emergency_decel, never negative.
 LPSIM_HD float finalize_speed(const IdmParams& p, float speed, float candidate, float dt) {
   const float fastest = speed + p.accel * dt;
-  const float slowest = fmaxf(0.0f, speed - p.emergency_decel * dt);
-  return fminf(fmaxf(candidate, slowest), fastest);
+  const float slowest = lp_fmaxf(0.0f, speed - p.emergency_decel * dt);
+  return lp_fminf(lp_fmaxf(candidate, slowest), fastest);
 }
 
 }  // namespace lpsim

@@ -44,7 +44,7 @@ LPSIM_HD bool lc_lead_gap_safe(const IdmParams& self, float self_speed, const Lc
   if (!lead.present) return true;
   if (lead.gap <= 0.0f) return false;
   const float v_safe = safe_speed(lead.gap, lead.speed, lead.idm.emergency_decel, self.decel, dt);
-  return fmaxf(0.0f, self_speed - self.decel * dt) <= v_safe;
+  return lp_fmaxf(0.0f, self_speed - self.decel * dt) <= v_safe;
 }
 
 /// The target lane's follower stays safe behind the changer: braking at its own decel (the "b_safe" hard
@@ -53,7 +53,7 @@ LPSIM_HD bool lc_lag_gap_safe(const IdmParams& self, float self_speed, const LcN
   if (!lag.present) return true;
   if (lag.gap <= 0.0f) return false;
   const float v_safe = safe_speed(lag.gap, self_speed, self.emergency_decel, lag.idm.decel, dt);
-  return fmaxf(0.0f, lag.speed - lag.idm.decel * dt) <= v_safe;
+  return lp_fmaxf(0.0f, lag.speed - lag.idm.decel * dt) <= v_safe;
 }
 
 /// Gap acceptance. urgency in [0, 1] (0 = discretionary, 1 = must change now) scales the braking that the
@@ -61,14 +61,14 @@ LPSIM_HD bool lc_lag_gap_safe(const IdmParams& self, float self_speed, const LcN
 /// accept smaller gaps; the kinematic checks are never relaxed, so no accepted change is unsafe.
 LPSIM_HD bool lc_gaps_acceptable(const IdmParams& self, float self_speed, float self_v0, const LcNeighbor& lead,
                                  const LcNeighbor& lag, float urgency, const LaneChangeParams& lc, float dt) {
-  const float u = fminf(fmaxf(urgency, 0.0f), 1.0f);
+  const float u = lp_fminf(lp_fmaxf(urgency, 0.0f), 1.0f);
   if (!lc_lead_gap_safe(self, self_speed, lead, dt) || !lc_lag_gap_safe(self, self_speed, lag, dt)) return false;
   if (lead.present) {
-    const float b_self = lc.b_safe + u * fmaxf(self.decel - lc.b_safe, 0.0f);
+    const float b_self = lc.b_safe + u * lp_fmaxf(self.decel - lc.b_safe, 0.0f);
     if (idm_accel(self, self_speed, self_v0, lead.gap, lead.speed) < -b_self) return false;
   }
   if (lag.present) {
-    const float b_lag = lc.b_safe + u * fmaxf(lag.idm.decel - lc.b_safe, 0.0f);
+    const float b_lag = lc.b_safe + u * lp_fmaxf(lag.idm.decel - lc.b_safe, 0.0f);
     if (idm_accel(lag.idm, lag.speed, lag.desired_speed, lag.gap, self_speed) < -b_lag) return false;
   }
   return true;
@@ -78,14 +78,14 @@ LPSIM_HD bool lc_gaps_acceptable(const IdmParams& self, float self_speed, float 
 /// do is in mandatory mode: per lane, the larger of a fixed distance and a travel time at current speed.
 LPSIM_HD float mandatory_lc_zone(int lanes_to_cross, float speed, const LaneChangeParams& lc) {
   if (lanes_to_cross <= 0) return 0.0f;
-  return static_cast<float>(lanes_to_cross) * fmaxf(lc.mandatory_dist_per_lane, speed * lc.mandatory_time_per_lane);
+  return static_cast<float>(lanes_to_cross) * lp_fmaxf(lc.mandatory_dist_per_lane, speed * lc.mandatory_time_per_lane);
 }
 
 /// Urgency in [0, 1] of a mandatory change: 0 outside the zone, rising linearly to 1 at the lane's end.
 LPSIM_HD float mandatory_lc_urgency(float dist_to_end, int lanes_to_cross, float speed, const LaneChangeParams& lc) {
   const float zone = mandatory_lc_zone(lanes_to_cross, speed, lc);
   if (zone <= 0.0f || dist_to_end >= zone) return 0.0f;
-  return fminf(fmaxf(1.0f - dist_to_end / zone, 0.0f), 1.0f);
+  return lp_fminf(lp_fmaxf(1.0f - dist_to_end / zone, 0.0f), 1.0f);
 }
 
 /// MOBIL incentive: own acceleration gain plus politeness times the gains of the new follower (usually a

@@ -37,8 +37,8 @@ constexpr float kNeverArrives = 1e30f;
 /// foe's soonest arrival at a conflict point, or a vehicle's own time to clear it.
 LPSIM_HD float earliest_arrival_time(float dist, float speed, float accel, float max_speed) {
   if (dist <= 0.0f) return 0.0f;
-  const float v = fmaxf(speed, 0.0f);
-  const float vmax = fmaxf(max_speed, v);
+  const float v = lp_fmaxf(speed, 0.0f);
+  const float vmax = lp_fmaxf(max_speed, v);
   if (accel <= 0.0f || v >= vmax) return v > 0.0f ? dist / v : kNeverArrives;
   const float t_up = (vmax - v) / accel;
   const float d_up = 0.5f * (v + vmax) * t_up;

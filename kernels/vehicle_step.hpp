@@ -197,7 +197,7 @@ LPSIM_HD float conn_inside_clear_time(const StepContext& s, uint32_t c, float ac
     if (hit < 0) continue;
     const float v = decode_cell_speed(s.map_now[net.lane_cell_begin[lane] + static_cast<uint32_t>(hit)]);
     const float dist = net.lane_length[lane] - static_cast<float>(hit) + rest;
-    return earliest_arrival_time(dist, v, accel, fmaxf(net.lane_speed[lane], 1.0f));
+    return earliest_arrival_time(dist, v, accel, lp_fmaxf(net.lane_speed[lane], 1.0f));
   }
   return 0.0f;
 }
@@ -227,7 +227,7 @@ LPSIM_HD bool may_enter(const StepContext& s, uint32_t v, uint32_t c, float dist
   const NetView& net = s.net;
   const int32_t via = net.conn_via_lane[c];
   const float cross = (via >= 0 ? net.lane_length[via] : 0.0f) + length;
-  const float own_clear = earliest_arrival_time(dist + cross, speed, p.accel, fmaxf(v0, 1.0f));
+  const float own_clear = earliest_arrival_time(dist + cross, speed, p.accel, lp_fmaxf(v0, 1.0f));
   const uint32_t own_lane = net.conn_from_lane[c];
   (void)v;
   for (uint32_t k = net.conn_foe_begin[c]; k < net.conn_foe_begin[c + 1]; ++k) {
@@ -269,8 +269,8 @@ LPSIM_HD bool room_at_start(const StepContext& s, int32_t lane, float need) {
 /// Fastest next speed from which braking at `decel` (Euler steps) gets down to v_lim by the time the front
 /// has covered `dist` metres, and that is at most v_lim if the front would pass the boundary in this step.
 LPSIM_HD float approach_speed_limit(float dist, float v_lim, float decel, float dt) {
-  const float v = max_speed_within(fmaxf(dist, 0.0f) + stopping_distance(v_lim, decel, dt), decel, dt);
-  return v * dt > dist ? fmaxf(v_lim, dist / dt) : fmaxf(v, v_lim);
+  const float v = max_speed_within(lp_fmaxf(dist, 0.0f) + stopping_distance(v_lim, decel, dt), decel, dt);
+  return v * dt > dist ? lp_fmaxf(v_lim, dist / dt) : lp_fmaxf(v, v_lim);
 }
 
 /// Lane a vehicle must move to (adjacent, towards the nearest lane leading to its next edge), or -1.
@@ -311,7 +311,7 @@ LPSIM_HD int32_t mandatory_target(const StepContext& s, uint32_t v, int32_t lane
 // A merge request: step, the side the changer comes from (1: from the left of the target lane), its rear
 // position in cm. An atomic max picks one per lane (left side first, then nearest the lane end).
 LPSIM_HD uint64_t merge_key(uint32_t step, bool from_left, float rear_pos) {
-  const float cm = fminf(fmaxf(rear_pos * 100.0f, 0.0f), 4.0e9f);
+  const float cm = lp_fminf(lp_fmaxf(rear_pos * 100.0f, 0.0f), 4.0e9f);
   return (static_cast<uint64_t>(step & 0xFFFFFFu) << 40) | (static_cast<uint64_t>(from_left ? 1 : 0) << 39) |
          static_cast<uint64_t>(cm);
 }
@@ -512,7 +512,7 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
   }
 
   float cand = idm_free_speed(p, speed, v0, dt, s.params.substeps);
-  const float budget = fminf(lookahead_distance(p, speed, dt) + p.min_gap, kMaxLookahead);
+  const float budget = lp_fminf(lookahead_distance(p, speed, dt) + p.min_gap, kMaxLookahead);
   const float decision_dist = stopping_distance(speed, p.decel, dt) + speed * dt + kDecisionMargin;
 
   // Walk the path ahead: current lane, then the lanes the route leads through, up to the budget.
@@ -545,8 +545,8 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
     if (hit >= 0) {
       const float gap = cur_start + static_cast<float>(hit);
       const float vl = decode_cell_speed(s.map_now[net.lane_cell_begin[cur] + static_cast<uint32_t>(hit)]);
-      cand = fminf(cand, follow_speed(p, speed, v0, gap, vl, s.params.max_emergency_decel, dt, s.params.substeps));
-      hard_limit = fminf(hard_limit, gap - kClampEps);
+      cand = lp_fminf(cand, follow_speed(p, speed, v0, gap, vl, s.params.max_emergency_decel, dt, s.params.substeps));
+      hard_limit = lp_fminf(hard_limit, gap - kClampEps);
       reason = kLeader;
       has_leader = true;
       leader_gap = gap;
@@ -559,8 +559,8 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
     if (normal && cur_rp + 1 >= rlen) break;  // the route ends on this lane: arrival, no boundary to pass
     const int32_t c = choose_connection(s, v, cur, cur_rp);
     if (c < 0) {  // wrong lane for the route (or a dead end): the lane end is a wall until a lane change
-      cand = fminf(cand, stop_speed(p, speed, v0, end_dist, dt, s.params.substeps));
-      hard_limit = fminf(hard_limit, end_dist - kClampEps);
+      cand = lp_fminf(cand, stop_speed(p, speed, v0, end_dist, dt, s.params.substeps));
+      hard_limit = lp_fminf(hard_limit, end_dist - kClampEps);
       reason = kWrongLane;
       stop_at_own_line = hops == 0;
       break;
@@ -587,12 +587,12 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
           stop = true, reason = kYield;
       }
       if (stop) {
-        cand = fminf(cand, stop_speed(p, speed, v0, end_dist, dt, s.params.substeps));
+        cand = lp_fminf(cand, stop_speed(p, speed, v0, end_dist, dt, s.params.substeps));
         if (signal_is_red(st) || link_rule(st) == LinkRule::Closed || signal_is_yellow(st))
-          hard_limit = fminf(hard_limit, end_dist - kClampEps);  // never pass a closed line
+          hard_limit = lp_fminf(hard_limit, end_dist - kClampEps);  // never pass a closed line
         // A yield decision taken in time is also a hard line (the vehicle could stop for it).
         else if (can_stop_before(end_dist, speed, p.emergency_decel, dt))
-          hard_limit = fminf(hard_limit, end_dist - kClampEps);
+          hard_limit = lp_fminf(hard_limit, end_dist - kClampEps);
         stop_at_own_line = hops == 0;
         break;
       }
@@ -600,15 +600,15 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
                has_internal_junction(net, static_cast<uint32_t>(entry_conn)) &&
                !may_enter(s, v, static_cast<uint32_t>(entry_conn), end_dist, speed, v0, p, length, waiting)) {
       // At the internal junction: wait for the prioritised foes of the link entered.
-      cand = fminf(cand, stop_speed(p, speed, v0, end_dist, dt, s.params.substeps));
-      if (can_stop_before(end_dist, speed, p.emergency_decel, dt)) hard_limit = fminf(hard_limit, end_dist - kClampEps);
+      cand = lp_fminf(cand, stop_speed(p, speed, v0, end_dist, dt, s.params.substeps));
+      if (can_stop_before(end_dist, speed, p.emergency_decel, dt)) hard_limit = lp_fminf(hard_limit, end_dist - kClampEps);
       reason = kYield;
       break;
     }
     const int32_t via = net.conn_via_lane[c];
     const int32_t nxt = via >= 0 ? via : static_cast<int32_t>(net.conn_to_lane[c]);
     const float v_lim = desired_speed(net.lane_speed[nxt], sf, vmax);
-    if (v_lim < cand) cand = fminf(cand, approach_speed_limit(end_dist, v_lim, p.decel, dt));
+    if (v_lim < cand) cand = lp_fminf(cand, approach_speed_limit(end_dist, v_lim, p.decel, dt));
     path[hops] = nxt;
     ++hops;
     if (!net.lane_internal[nxt]) ++cur_rp;
@@ -628,7 +628,7 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
     // Stop a minimum gap (plus room for the changer's lag check) short of the changer's rear. A vehicle
     // already closer than that drives on past it; the gap then opens behind it.
     const float lag_reach = (0.25f + s.params.max_accel * dt) * dt + 0.5f;  // the changer's lag check
-    const float gap = rear - pos - fmaxf(p.min_gap, lag_reach) - 1.5f;         // + cell rounding
+    const float gap = rear - pos - lp_fmaxf(p.min_gap, lag_reach) - 1.5f;         // + cell rounding
     if (gap > 0.0f && gap < budget) {
       const float vs = stop_speed(p, speed, v0, gap, dt, s.params.substeps);
       if (vs < cand) cand = vs, reason = kMergeGap;
@@ -663,12 +663,12 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
         if (r.change) {
           new_lane = target;
           change_claim = r.near_start;
-          new_speed = finalize_speed(p, speed, fminf(cand, r.speed_cap), dt);
-          hard_limit = fminf(hard_limit, r.leader_gap - kClampEps);
+          new_speed = finalize_speed(p, speed, lp_fminf(cand, r.speed_cap), dt);
+          hard_limit = lp_fminf(hard_limit, r.leader_gap - kClampEps);
           if (!lane_has_conn_to(net, target, route_edge(s, v, rp + 1))) {
             const float end_dist = net.lane_length[target] - pos;
-            new_speed = fminf(new_speed, fmaxf(0.0f, stop_speed(p, speed, v0, end_dist, dt, s.params.substeps)));
-            hard_limit = fminf(hard_limit, end_dist - kClampEps);
+            new_speed = lp_fminf(new_speed, lp_fmaxf(0.0f, stop_speed(p, speed, v0, end_dist, dt, s.params.substeps)));
+            hard_limit = lp_fminf(hard_limit, end_dist - kClampEps);
           }
           hops = 0;  // the change step never crosses the lane end (checked in try_lane_change)
         }
@@ -678,7 +678,7 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
 
   // Move, clamped to the hard limit.
   float advance = new_speed * dt;
-  if (advance > hard_limit) advance = fmaxf(0.0f, hard_limit);
+  if (advance > hard_limit) advance = lp_fmaxf(0.0f, hard_limit);
   new_speed = advance / dt;
   float npos = pos + advance;
   int32_t nlane = new_lane, nprev = s.veh.prev[v], nprev2 = s.veh.prev2[v];
@@ -719,7 +719,7 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
     atomic_max_u64(&s.claims[nlane], claim_key(s.params.step, 1, v));
   }
   if (npos > net.lane_length[nlane]) npos = net.lane_length[nlane];
-  new_speed = fminf(new_speed, advance / dt);
+  new_speed = lp_fminf(new_speed, advance / dt);
   // Arrival: on the route's last edge, at its arrival position (default: the lane's end).
   out.new_rp[v] = nrp;
   if (!net.lane_internal[nlane] && nrp + 1 >= rlen) {
@@ -805,7 +805,7 @@ LPSIM_HD void commit_vehicle(StepContext& s, uint32_t v) {
   // Per-vehicle counters (tripinfo).
   const float v0 = desired_speed(net.lane_speed[nlane], s.trips.speed_factor[v], s.types.max_speed[type]);
   veh.route_length[v] += driven;
-  if (v0 > 0.0f) veh.time_loss[v] += dt * fmaxf(0.0f, (v0 - nspeed) / v0);
+  if (v0 > 0.0f) veh.time_loss[v] += dt * lp_fmaxf(0.0f, (v0 - nspeed) / v0);
   if (nspeed < kHaltingSpeed) {
     if (veh.stopped_steps[v] == 0) veh.waiting_count[v] += 1;
     veh.stopped_steps[v] += 1;
@@ -833,9 +833,9 @@ LPSIM_HD void commit_vehicle(StepContext& s, uint32_t v) {
   atomic_add_i64(&s.cnt_travelled_mm[nlane], static_cast<int64_t>(driven * 1000.0f + 0.5f));
   if (nspeed < kHaltingSpeed) atomic_add_i64(&s.cnt_waiting_steps[nlane], 1);
   if (v0 > 0.0f)
-    atomic_add_i64(&s.cnt_time_loss_ms[nlane], static_cast<int64_t>(dt * fmaxf(0.0f, (v0 - nspeed) / v0) * 1000.0f + 0.5f));
+    atomic_add_i64(&s.cnt_time_loss_ms[nlane], static_cast<int64_t>(dt * lp_fmaxf(0.0f, (v0 - nspeed) / v0) * 1000.0f + 0.5f));
   atomic_add_i64(&s.cnt_occupied_mm_steps[nlane],
-                 static_cast<int64_t>(fminf(length, fminf(npos, net.lane_length[nlane])) * 1000.0f + 0.5f));
+                 static_cast<int64_t>(lp_fminf(length, lp_fminf(npos, net.lane_length[nlane])) * 1000.0f + 0.5f));
 
   if (arrives) {
     atomic_add_i64(&s.cnt_arrived[nlane], 1);
