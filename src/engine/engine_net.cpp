@@ -26,6 +26,16 @@ EngineNet::EngineNet(const Network& net) {
   } else {
     conn_foe_begin.assign(net.num_connections() + 1, 0);
   }
+  // Reverse of the foe CSR; ascending c keeps each list sorted, independent of anything else.
+  const size_t nc = conn_foe_begin.size() - 1;
+  yielder_begin.assign(nc + 1, 0);
+  for (uint32_t foe : conn_foe) ++yielder_begin[foe + 1];
+  for (size_t c = 0; c < nc; ++c) yielder_begin[c + 1] += yielder_begin[c];
+  yielder.assign(conn_foe.size(), 0);
+  std::vector<uint32_t> fill(yielder_begin.begin(), yielder_begin.end() - 1);
+  for (size_t c = 0; c < nc; ++c)
+    for (uint32_t k = conn_foe_begin[c]; k < conn_foe_begin[c + 1]; ++k)
+      yielder[fill[conn_foe[k]]++] = static_cast<uint32_t>(c);
   const uint32_t ns = net.num_signals();
   durations_ms.resize(net.phase_duration.size());
   for (size_t p = 0; p < net.phase_duration.size(); ++p)

@@ -39,7 +39,6 @@ Simulation::Simulation(const Network& net, const Demand& demand, const Simulatio
   for (int b = 0; b < 2; ++b) map_[b].assign(net.num_cells(), 0);
   link_state_.assign(engine_net_.link_begin.back(), 'r');
   approach_.assign(nl, LaneApproach{0xFFFFFFFFu, -1, 0, 0, 0, 0, 0});
-  build_yielders();
   claims_.assign(nl, 0);
   merge_requests_.assign(nl, 0);
   lane_counters_.resize(nl);
@@ -110,18 +109,6 @@ bool Simulation::finished() const {
   return active_.empty() && waiting_ == 0 && next_departure_ >= demand_.size();
 }
 
-void Simulation::build_yielders() {
-  const std::vector<uint32_t>& fb = engine_net_.conn_foe_begin;
-  const std::vector<uint32_t>& f = engine_net_.conn_foe;
-  const size_t nc = fb.empty() ? 0 : fb.size() - 1;
-  yielder_begin_.assign(nc + 1, 0);
-  for (uint32_t foe : f) ++yielder_begin_[foe + 1];
-  for (size_t c = 0; c < nc; ++c) yielder_begin_[c + 1] += yielder_begin_[c];
-  yielder_.assign(f.size(), 0);
-  std::vector<uint32_t> fill(yielder_begin_.begin(), yielder_begin_.end() - 1);
-  for (size_t c = 0; c < nc; ++c)  // ascending c: each list is sorted, independent of anything else
-    for (uint32_t k = fb[c]; k < fb[c + 1]; ++k) yielder_[fill[f[k]]++] = static_cast<uint32_t>(c);
-}
 
 TripView Simulation::trip_view() const {
   return TripView{demand_.vehicle_type.data(), demand_.route_begin.data(), demand_.route_length.data(),
@@ -171,8 +158,8 @@ void Simulation::step() {
   ctx.approach = approach_.data();
   ctx.claims = claims_.data();
   ctx.merge_requests = merge_requests_.data();
-  ctx.yielder_begin = yielder_begin_.data();
-  ctx.yielder = yielder_.data();
+  ctx.yielder_begin = engine_net_.yielder_begin.data();
+  ctx.yielder = engine_net_.yielder.data();
   LaneCounters& lc = lane_counters_;
   ctx.cnt_sampled_steps = lc.sampled_steps.data();
   ctx.cnt_travelled_mm = lc.travelled_mm.data();

@@ -72,7 +72,6 @@ class Simulation {
   void build_context();
   void update_signals();
   TripView trip_view() const;
-  void build_yielders();
   void enqueue_due(int64_t until_ms);
   void insert_waiting(uint8_t* map);
   bool try_insert(uint32_t v, uint8_t* map);
@@ -96,7 +95,6 @@ class Simulation {
   std::vector<char> link_state_;
   std::vector<LaneApproach> approach_;
   // Reverse of the junction response: for each connection, the connections that must yield to it (CSR).
-  std::vector<uint32_t> yielder_begin_, yielder_;
   std::vector<uint64_t> claims_, merge_requests_;
   LaneCounters lane_counters_;
 
