@@ -7,6 +7,7 @@
 #include <string_view>
 #include <unordered_set>
 
+#include "converters/edge_id_interner.hpp"
 #include "converters/route_attributes.hpp"
 #include "converters/route_vtype.hpp"
 #include "converters/tl_logic_reader.hpp"
@@ -75,6 +76,8 @@ void check_unique_ids(const std::vector<Spec>& items, size_t first_new) {
   }
 }
 
+constexpr uintmax_t kMinBytesPerVehicle = 256;
+
 constexpr std::string_view kUnsupportedDeparts[] = {"triggered", "containerTriggered", "begin", "split"};
 
 class RouteFileReader {
@@ -85,7 +88,14 @@ class RouteFileReader {
         additional_(additional),
         folder_(std::filesystem::path(path).parent_path()),
         first_new_vehicle_(demand.vehicles.size()),
-        first_new_flow_(demand.flows.size()) {
+        first_new_flow_(demand.flows.size()),
+        edge_ids_(demand.edge_names) {
+    // Room for the vehicles a file of this size may hold (a vehicle with its route takes a few hundred
+    // bytes), so the 380-byte specs are not moved again and again while the vector grows. Untouched
+    // capacity costs no memory.
+    std::error_code ec;
+    const auto bytes = std::filesystem::file_size(path, ec);
+    if (!ec) demand.vehicles.reserve(demand.vehicles.size() + bytes / kMinBytesPerVehicle);
     for (const auto& t : demand.vtypes) type_ids_.insert(t.id);
     for (const auto& d : demand.vtype_dists) type_ids_.insert(d.id);
     for (const auto& r : demand.routes) route_ids_.insert(r.id);
@@ -207,21 +217,31 @@ class RouteFileReader {
   }
 
   // Reads the children of a vehicle, trip or flow: a nested <route> or <routeDistribution> gives the path;
-  // anything else (stops, params, ...) is counted as unsupported.
+  // anything else (stops, params, ...) is counted as unsupported. With `interned` (vehicles and trips, read
+  // by the million) a nested route's edges are interned into it instead of filling `edges`.
   void read_path_children(const SourceLoc& loc, std::string_view element, const std::string& id, std::string& route,
-                          std::vector<std::string>& edges) {
+                          std::vector<std::string>& edges, VehicleSpec* interned = nullptr) {
     for_each_child(loc, element, id, [&] {
-      const bool has_path = !route.empty() || !edges.empty();
+      const bool has_path = !route.empty() || !edges.empty() || (interned && interned->edge_ref_count > 0);
       if (xs_.name() == "route") {
         if (has_path) fail(xs_.loc(), element, id, "more than one route (attribute 'route' or nested routes)");
         bool given = false;
+        size_t count = 0;
         xs_.for_each_attr([&](std::string_view key, std::string_view value) {
           if (key != "edges") return;
-          edges = split_ids(value);
           given = true;
+          if (!interned) {
+            edges = split_ids(value);
+            count = edges.size();
+            return;
+          }
+          interned->edge_ref_begin = demand_.edge_refs.size();
+          count = edge_ids_.intern_list(value, demand_.edge_refs);
+          if (count > UINT32_MAX) fail(xs_.loc(), element, id, "nested <route> with more than 2^32 - 1 edges");
+          interned->edge_ref_count = static_cast<uint32_t>(count);
         });
         if (!given) fail(xs_.loc(), element, id, "nested <route> without 'edges'");
-        if (edges.empty()) fail(xs_.loc(), element, id, "nested <route> with empty 'edges'");
+        if (count == 0) fail(xs_.loc(), element, id, "nested <route> with empty 'edges'");
         skip_children_counted();
       } else if (xs_.name() == "routeDistribution") {
         if (has_path) fail(xs_.loc(), element, id, "more than one route (attribute 'route' or nested routes)");
@@ -272,12 +292,12 @@ class RouteFileReader {
     v.to_junction = attrs_.id_value(kToJunction);
     if (attrs_.present[kVia]) v.via = split_ids(attrs_.value[kVia]);
     read_depart_spec(loc, element, id, v.depart_spec);
-    read_path_children(loc, element, v.id, v.route, v.edges);
+    read_path_children(loc, element, v.id, v.route, v.edges, &v);
 
     const bool endpoints = has_endpoints(v.from, v.from_junction, v.to, v.to_junction);
     if (source == DemandSource::Trip && !endpoints)
       fail(loc, element, v.id, "needs 'from' (or 'fromJunction') and 'to' (or 'toJunction')");
-    if (source == DemandSource::Vehicle && v.route.empty() && v.edges.empty() && !endpoints)
+    if (source == DemandSource::Vehicle && v.route.empty() && v.edges.empty() && v.edge_ref_count == 0 && !endpoints)
       fail(loc, element, v.id, "no route: give 'route', a nested <route>, or from/to");
     demand_.vehicles.push_back(std::move(v));
   }
@@ -513,6 +533,7 @@ class RouteFileReader {
   AdditionalSpec& additional_;
   std::filesystem::path folder_;
   size_t first_new_vehicle_, first_new_flow_;
+  EdgeIdInterner edge_ids_;
   std::unordered_set<std::string> type_ids_, route_ids_;
   std::optional<double> interval_begin_, interval_end_;
   TravellerAttrs attrs_;

@@ -72,6 +72,8 @@ class Builder {
       slot = routes_.named(v.route, v.id, opt_.seed, stream, v.loc);
     } else if (!v.edges.empty()) {
       slot = routes_.inline_route(v.edges, "vehicle '" + v.id + "'", v.loc);
+    } else if (v.edge_ref_count > 0) {
+      slot = routes_.interned_route(v.edge_ref_begin, v.edge_ref_count, "vehicle", v.id, v.loc);
     } else {
       slot = trips_.add({v.from, v.to, v.from_junction, v.to_junction, v.via}, kind_name(v.source), v.id, v.loc);
     }

@@ -15,6 +15,7 @@ EdgeLookup::EdgeLookup(const Network& net) : net_(net), index_(net.num_edges()) 
 
 namespace {
 constexpr const char* kNoCarLane = "has no lane a passenger car may use";
+constexpr uint32_t kNotDrivable = 0xFFFFFFFFu;
 }
 
 bool EdgeLookup::outside_car_map(const std::string& reason) { return reason.find(kNoCarLane) != std::string::npos; }
@@ -40,6 +41,13 @@ std::optional<uint32_t> EdgeLookup::drivable(const std::string& id, std::string&
 RouteTable::RouteTable(const DemandSpec& spec, const Network& net, bool ignore_route_errors,
                        std::vector<uint32_t>& route_edges)
     : spec_(spec), net_(net), edges_(net), ignore_(ignore_route_errors), route_edges_(route_edges) {
+  // Interned routes list few distinct edges many times: look each up once. A name that is not drivable is
+  // looked up again for its reason only if a route using it is checked.
+  name_edge_.resize(spec.edge_names.size());
+  std::string reason;
+  for (size_t n = 0; n < spec.edge_names.size(); ++n)
+    name_edge_[n] = edges_.drivable(spec.edge_names[n], reason).value_or(kNotDrivable);
+  route_edges_.reserve(route_edges_.size() + spec.edge_refs.size());
   route_index_.reserve(spec.routes.size());
   for (uint32_t r = 0; r < spec.routes.size(); ++r) {
     const RouteSpec& route = spec.routes[r];
@@ -92,26 +100,52 @@ uint32_t RouteTable::inline_route(const std::vector<std::string>& edges, const s
   return resolve(edges, "the route of " + owner, loc);
 }
 
-uint32_t RouteTable::resolve(const std::vector<std::string>& edges, const std::string& what, const SourceLoc& loc,
-                             const std::string& user) {
-  if (edges.empty()) return add_broken(loc, "no edges in " + what, false, user);
+template <class EdgeAt, class IdAt, class What>
+uint32_t RouteTable::append_checked(size_t n, EdgeAt&& edge_at, IdAt&& id_at, What&& what, const SourceLoc& loc,
+                                    const std::string& user) {
+  if (n == 0) return add_broken(loc, "no edges in " + what(), false, user);
   const auto begin = route_edges_.size();
   std::string reason;
-  for (size_t i = 0; i < edges.size(); ++i) {
-    auto e = edges_.drivable(edges[i], reason);
+  for (size_t i = 0; i < n; ++i) {
+    std::optional<uint32_t> e = edge_at(i, reason);
     if (!e) {
       route_edges_.resize(begin);
-      return add_broken(loc, reason + " in " + what, EdgeLookup::outside_car_map(reason), user);
+      return add_broken(loc, reason + " in " + what(), EdgeLookup::outside_car_map(reason), user);
     }
     if (i > 0 && !net_.connected(route_edges_.back(), *e)) {
       route_edges_.resize(begin);
-      return add_broken(loc, "no connection from edge '" + edges[i - 1] + "' to edge '" + edges[i] + "' in " + what,
+      return add_broken(loc, "no connection from edge '" + id_at(i - 1) + "' to edge '" + id_at(i) + "' in " + what(),
                         false, user);
     }
     route_edges_.push_back(*e);
   }
-  slots_.push_back({static_cast<uint32_t>(begin), static_cast<uint32_t>(edges.size()), -1});
+  slots_.push_back({static_cast<uint32_t>(begin), static_cast<uint32_t>(n), -1});
   return static_cast<uint32_t>(slots_.size() - 1);
+}
+
+uint32_t RouteTable::interned_route(uint64_t begin, uint32_t count, std::string_view kind, std::string_view id,
+                                    const SourceLoc& loc) {
+  auto what = [&] { return "the route of " + std::string(kind) + " '" + std::string(id) + "'"; };
+  if (begin > spec_.edge_refs.size() || count > spec_.edge_refs.size() - begin)
+    throw InputError(loc, "interned route of " + std::string(kind) + " '" + std::string(id) + "' lies outside the edge list");
+  const uint32_t* refs = spec_.edge_refs.data() + begin;
+  return append_checked(
+      count,
+      [&](size_t i, std::string& reason) -> std::optional<uint32_t> {
+        if (refs[i] >= name_edge_.size())
+          throw InputError(loc, "interned route of " + std::string(kind) + " '" + std::string(id) + "' names no edge");
+        const uint32_t e = name_edge_[refs[i]];
+        if (e != kNotDrivable) return e;
+        return edges_.drivable(spec_.edge_names[refs[i]], reason);
+      },
+      [&](size_t i) -> const std::string& { return spec_.edge_names[refs[i]]; }, what, loc, "");
+}
+
+uint32_t RouteTable::resolve(const std::vector<std::string>& edges, const std::string& what, const SourceLoc& loc,
+                             const std::string& user) {
+  return append_checked(
+      edges.size(), [&](size_t i, std::string& reason) { return edges_.drivable(edges[i], reason); },
+      [&](size_t i) -> const std::string& { return edges[i]; }, [&] { return what; }, loc, user);
 }
 
 uint32_t RouteTable::add_resolved(const std::vector<uint32_t>& edges) {

@@ -54,6 +54,10 @@ class RouteTable {
   /// New slot for an inline list of edge ids, checked like a named route; errors at `loc` name `owner`
   /// (e.g. "vehicle 'v1'" or "flow 'f'").
   uint32_t inline_route(const std::vector<std::string>& edges, const std::string& owner, const SourceLoc& loc);
+  /// As inline_route for a route interned by the reader: `count` entries of spec.edge_refs from `begin`.
+  /// Each distinct edge id was resolved once when the table was built; errors name `kind` 'id'.
+  uint32_t interned_route(uint64_t begin, uint32_t count, std::string_view kind, std::string_view id,
+                          const SourceLoc& loc);
 
   /// New slot holding already-resolved edges (a routed trip); connectivity is the router's business.
   uint32_t add_resolved(const std::vector<uint32_t>& edges);
@@ -82,10 +86,16 @@ class RouteTable {
   // `user` (" of vehicle 'x'") is named in a raised error but not stored: a named route is shared.
   uint32_t resolve(const std::vector<std::string>& edges, const std::string& what, const SourceLoc& loc,
                    const std::string& user = "");
+  // The checks of resolve() over `n` edges: edge_at(i, reason) gives the i-th edge's index or nullopt with
+  // the reason, id_at(i) its id, what() names the route (built only for a message).
+  template <class EdgeAt, class IdAt, class What>
+  uint32_t append_checked(size_t n, EdgeAt&& edge_at, IdAt&& id_at, What&& what, const SourceLoc& loc,
+                          const std::string& user);
 
   const DemandSpec& spec_;
   const Network& net_;
   EdgeLookup edges_;
+  std::vector<uint32_t> name_edge_;  // per spec.edge_names: its edge index, or kNotDrivable
   bool ignore_;
   std::vector<uint32_t>& route_edges_;
   std::unordered_map<std::string, uint32_t> route_index_, dist_index_;

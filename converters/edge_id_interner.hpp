@@ -1,0 +1,35 @@
+#pragma once
+// Interning of the edge ids of inline routes while a route file is read: each distinct id is stored once in
+// DemandSpec::edge_names and routes become runs of small indices (DemandSpec::edge_refs). Route files repeat
+// the same few thousand edge ids millions of times; one string per occurrence costs more memory and time
+// than parsing the file.
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace lpsim {
+
+class EdgeIdInterner {
+ public:
+  /// Interns into `names`, indexing the ids already there (a scenario reads several route files).
+  explicit EdgeIdInterner(std::vector<std::string>& names);
+
+  /// Index of `id` in names, appending it when new.
+  uint32_t intern(std::string_view id);
+
+  /// Interns each id of a list separated by spaces, tabs or newlines (empty pieces dropped, as split_ids)
+  /// and appends the indices to `refs`; returns how many were appended.
+  size_t intern_list(std::string_view text, std::vector<uint32_t>& refs);
+
+ private:
+  void rehash(size_t capacity);
+
+  std::vector<std::string>& names_;
+  // Open addressing: slot -> index into names_ (kEmpty when free) and that id's hash.
+  std::vector<uint32_t> slot_name_;
+  std::vector<uint64_t> slot_hash_;
+  size_t mask_ = 0;
+};
+
+}  // namespace lpsim
