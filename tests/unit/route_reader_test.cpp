@@ -181,7 +181,13 @@ TEST_F(RouteReaderTest, VehiclesTripsAndInlineRoutes) {
 
   const auto& v2 = demand_.vehicles[1];
   EXPECT_TRUE(v2.route.empty());
-  EXPECT_EQ(v2.edges, (std::vector<std::string>{"e1", "e2"}));
+  // A vehicle's nested route is interned: its edges are indices into the distinct edge ids.
+  EXPECT_TRUE(v2.edges.empty());
+  ASSERT_EQ(v2.edge_ref_count, 2u);
+  std::vector<std::string> v2_edges;
+  for (uint32_t k = 0; k < v2.edge_ref_count; ++k)
+    v2_edges.push_back(demand_.edge_names.at(demand_.edge_refs.at(v2.edge_ref_begin + k)));
+  EXPECT_EQ(v2_edges, (std::vector<std::string>{"e1", "e2"}));
   EXPECT_EQ(v2.depart_spec.lane, DepartLane::Best);
   EXPECT_EQ(v2.depart_spec.pos, DepartPos::RandomFree);
   EXPECT_EQ(v2.depart_spec.speed, DepartSpeed::Max);
