@@ -25,10 +25,19 @@ class EdgeIdInterner {
  private:
   void rehash(size_t capacity);
 
+  bool same(uint32_t name, std::string_view id) const;
+
   std::vector<std::string>& names_;
-  // Open addressing: slot -> index into names_ (kEmpty when free) and that id's hash.
-  std::vector<uint32_t> slot_name_;
-  std::vector<uint64_t> slot_hash_;
+  // Open addressing: a slot holds an id's hash and its index into names_ (kEmpty when free). The ids are
+  // compared in one contiguous copy (pool_ from offset_[n] to offset_[n + 1]): the strings of names_ lie
+  // scattered and each probe would miss the cache.
+  struct Slot {
+    uint64_t hash;
+    uint32_t name;
+  };
+  std::vector<Slot> slots_;
+  std::string pool_;
+  std::vector<uint32_t> offset_;
   size_t mask_ = 0;
 };
 

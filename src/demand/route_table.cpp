@@ -112,7 +112,7 @@ uint32_t RouteTable::append_checked(size_t n, EdgeAt&& edge_at, IdAt&& id_at, Wh
       route_edges_.resize(begin);
       return add_broken(loc, reason + " in " + what(), EdgeLookup::outside_car_map(reason), user);
     }
-    if (i > 0 && !net_.connected(route_edges_.back(), *e)) {
+    if (i > 0 && !connected(route_edges_.back(), *e)) {
       route_edges_.resize(begin);
       return add_broken(loc, "no connection from edge '" + id_at(i - 1) + "' to edge '" + id_at(i) + "' in " + what(),
                         false, user);

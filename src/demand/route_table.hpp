@@ -86,6 +86,12 @@ class RouteTable {
   // `user` (" of vehicle 'x'") is named in a raised error but not stored: a named route is shared.
   uint32_t resolve(const std::vector<std::string>& edges, const std::string& what, const SourceLoc& loc,
                    const std::string& user = "");
+  // Network::connected, inlined: millions of route steps are checked while loading.
+  bool connected(uint32_t from, uint32_t to) const {
+    for (uint32_t k = net_.edge_succ_begin[from], end = net_.edge_succ_begin[from + 1]; k < end; ++k)
+      if (net_.edge_succ[k] == to) return true;
+    return false;
+  }
   // The checks of resolve() over `n` edges: edge_at(i, reason) gives the i-th edge's index or nullopt with
   // the reason, id_at(i) its id, what() names the route (built only for a message).
   template <class EdgeAt, class IdAt, class What>
