@@ -93,13 +93,21 @@ struct RouteExpectation {
   std::vector<std::string> via;
 };
 
+// A vehicle's inline route: its edges, or the ids of its route as interned by the route reader.
+std::vector<std::string> inline_edges(const DemandSpec& spec, const VehicleSpec& v) {
+  std::vector<std::string> edges = v.edges;
+  for (uint32_t k = 0; k < v.edge_ref_count; ++k) edges.push_back(spec.edge_names.at(spec.edge_refs.at(v.edge_ref_begin + k)));
+  return edges;
+}
+
 class RouteExpectations {
  public:
   explicit RouteExpectations(const DemandSpec& spec) : spec_(spec) {
     for (const auto& r : spec.routes) routes_[r.id] = r.edges;
     for (const auto& rd : spec.route_dists)
       for (const auto& m : rd.members) dist_members_[rd.id].push_back(m.id);
-    for (const auto& v : spec.vehicles) by_vehicle_[v.id] = expectation(v.route, v.edges, v.from, v.to, v.via);
+    for (const auto& v : spec.vehicles)
+      by_vehicle_[v.id] = expectation(v.route, inline_edges(spec, v), v.from, v.to, v.via);
     for (const auto& f : spec.flows) by_flow_[f.id] = expectation(f.route, f.edges, f.from, f.to, f.via);
   }
 
