@@ -70,8 +70,10 @@ LPSIM_HD bool lane_has_conn_to(const NetView& net, int32_t lane, uint32_t edge) 
   return false;
 }
 
-// Strategic lane choice looks this many edges (and at most this far) ahead along the route.
-constexpr uint32_t kBestLaneEdges = 4;
+// Strategic lane choice looks this many edges (and at most this far) ahead along the route. Real nets split
+// junction approaches into edges of a few metres or less; seeing only a few edges would hide a lane
+// requirement just beyond them until the vehicle is trapped on a lane it can no longer leave.
+constexpr uint32_t kBestLaneEdges = 8;
 constexpr float kBestLaneDistance = 600.0f;
 
 /// Bit k set: lane k (rank among the edge's car lanes) of the route's edge rp+level can follow the route for

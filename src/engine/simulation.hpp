@@ -61,6 +61,7 @@ class Simulation {
   int32_t lane(uint32_t v) const { return lane_[v]; }
   float pos(uint32_t v) const { return pos_[v]; }
   float speed(uint32_t v) const { return speed_[v]; }
+  uint32_t route_pos(uint32_t v) const { return route_pos_[v]; }
   /// What bounded the vehicle's speed in its last plan (StopReason in kernels/step_view.hpp).
   uint8_t limit_reason(uint32_t v) const { return limit_reason_[v]; }
   /// Current character of a connection's signal link (or its state when unsignalised).
