@@ -127,6 +127,13 @@ print(total, peak)
 PY
 }
 
+# "wall_s cpu_s rss_mib" from a GNU time -v report written earlier (as measure prints them).
+measure_report() {
+  awk -F': ' '/Elapsed \(wall clock\)/ { n = split($2, p, ":"); w = 0; for (i = 1; i <= n; i++) w = w * 60 + p[i] }
+    /User time/ { c += $2 } /System time/ { c += $2 } /Maximum resident/ { m = $2 / 1024 }
+    END { printf "%.2f %.2f %.1f\n", w, c, m }' "$1"
+}
+
 gpu_works() {
   local probe
   probe=$(find scenarios -name '*.sumocfg' | sort | head -n 1)
@@ -171,12 +178,17 @@ for trips in $trips_list; do
       --lpsim-edges "$dir/edges.csv" --lpsim-od "$dir/od.csv" --threads "$threads" -o "$snap") ||
       { log "convert failed, see $dir/convert.log"; continue; }
     prep+=("| $trips | convert to snapshot, routes included (--threads $threads) | $cw | $cc | $cm |")
+  elif [[ -f "$dir/convert.log.time" ]]; then
+    read -r cw cc cm < <(measure_report "$dir/convert.log.time")
+    prep+=("| $trips | convert to snapshot, routes included (earlier run, $(date -ur "$snap" '+%Y-%m-%d %H:%M UTC')) | $cw | $cc | $cm |")
   fi
   read -r lw lc lm < <(measure "$dir/info.log" "$lpsim" info "$snap") || { log "info failed, see $dir/info.log"; continue; }
   prep+=("| $trips | load the snapshot (lpsim info) | $lw | $lc | $lm |")
   sizes+=("- $trips trips: $(sed -n 's/^junctions: \([0-9]*\).*/\1 nodes/p; s/^edges: \([0-9]*\) normal.*/\1 edges/p;
     s/^lanes: \([0-9]*\) car lanes on normal edges (\([0-9.]*\) lane-km).*/\1 lanes, \2 lane-km/p;
-    s/^lane map: .*(\(.*\))/lane map \1/p; s/^vehicles: \([0-9]*\)$/\1 vehicles/p' "$dir/info.log" | paste -sd, | sed 's/,/, /g')")
+    s/^lane map: .*(\(.*\))/lane map \1/p; s/^vehicles: \([0-9]*\)$/\1 vehicles/p;
+    s/^routing: [0-9]* trips (\([0-9]*\) distinct requests)/\1 distinct routes/p' "$dir/info.log" |
+    paste -sd, | sed 's/,[[:space:]]*/, /g')")
 
   for dev in $devices; do
     [[ $dev == gpu && $gpu_ok != yes ]] && continue
