@@ -108,9 +108,9 @@ class Search {
     return reached == kNone ? std::vector<uint32_t>{} : path_to(static_cast<uint32_t>(reached));
   }
 
-  /// One search from `origin` answering every request in `group` (all have this single origin and no via).
-  void one_to_many(uint32_t origin, const std::vector<uint32_t>& group, const std::vector<RouteRequest>& requests,
-                   std::vector<std::vector<uint32_t>>& out) {
+  /// One search from `origins` answering every request in `group` (all have these origins and no via).
+  void one_to_many(const std::vector<uint32_t>& origins, const std::vector<uint32_t>& group,
+                   const std::vector<RouteRequest>& requests, std::vector<std::vector<uint32_t>>& out) {
     next_version();
     // (destination, position in group) pairs sorted by destination; target_slot_ points at an edge's first pair.
     pairs_.clear();
@@ -126,8 +126,7 @@ class Search {
     for (uint32_t r : group) remaining += requests[r].destinations.empty() ? 0 : 1;
     if (remaining == 0) return;
     answered_.assign(group.size(), 0);
-    const std::vector<uint32_t> seeds{origin};
-    run(seeds, [&](uint32_t e) {
+    run(origins, [&](uint32_t e) {
       if (target_[e] != version_) return false;
       for (uint32_t i = target_slot_[e]; i < pairs_.size() && pairs_[i].first == e; ++i) {
         const uint32_t k = pairs_[i].second;
@@ -195,27 +194,32 @@ std::vector<std::vector<uint32_t>> Router::route_all(const std::vector<RouteRequ
           throw std::out_of_range("route request " + std::to_string(i) + " names edge index " + std::to_string(e) +
                                   " of " + std::to_string(edges));
 
-  // Work items: one per distinct single origin (requests without via share one one-to-many search), and
-  // one per remaining request. Items depend only on the requests, never on the thread count.
-  std::vector<std::pair<uint32_t, uint32_t>> by_origin;  // (origin, request)
+  // Work items: one per distinct origin set (requests without via sharing their origins, e.g. trips between
+  // junctions or zones, share one one-to-many search), and one per request with via. A search settles edges
+  // in the same order whatever it stops on, so sharing gives each request the path its own search would.
+  // Items depend only on the requests, never on the thread count.
+  std::vector<uint32_t> by_origins;  // requests without via, grouped by equal origin lists
   std::vector<uint32_t> singles;
   for (uint32_t i = 0; i < requests.size(); ++i) {
-    const auto& r = requests[i];
-    if (r.origins.size() == 1 && r.via.empty())
-      by_origin.push_back({r.origins[0], i});
+    if (requests[i].via.empty())
+      by_origins.push_back(i);
     else
       singles.push_back(i);
   }
-  std::sort(by_origin.begin(), by_origin.end());
+  std::sort(by_origins.begin(), by_origins.end(), [&](uint32_t a, uint32_t b) {
+    const auto& oa = requests[a].origins;
+    const auto& ob = requests[b].origins;
+    return oa != ob ? oa < ob : a < b;
+  });
   struct Item {
-    uint32_t first, last;  // range in by_origin, or a request in singles when first == last == kSingle
+    uint32_t first, last;  // range in by_origins, or a request in singles when first == last == kSingle
     uint32_t single;
   };
   constexpr uint32_t kSingle = std::numeric_limits<uint32_t>::max();
   std::vector<Item> items;
-  for (uint32_t i = 0; i < by_origin.size();) {
+  for (uint32_t i = 0; i < by_origins.size();) {
     uint32_t j = i;
-    while (j < by_origin.size() && by_origin[j].first == by_origin[i].first) ++j;
+    while (j < by_origins.size() && requests[by_origins[j]].origins == requests[by_origins[i]].origins) ++j;
     items.push_back({i, j, kSingle});
     i = j;
   }
@@ -233,8 +237,8 @@ std::vector<std::vector<uint32_t>> Router::route_all(const std::vector<RouteRequ
         continue;
       }
       group.clear();
-      for (uint32_t i = it.first; i < it.last; ++i) group.push_back(by_origin[i].second);
-      search.one_to_many(by_origin[it.first].first, group, requests, out);
+      for (uint32_t i = it.first; i < it.last; ++i) group.push_back(by_origins[i]);
+      search.one_to_many(requests[group.front()].origins, group, requests, out);
     }
   };
 
