@@ -9,5 +9,6 @@
 // fmaxf / fminf exactly as glibc computes them (NaN and signed-zero cases included), written inline: GCC
 // otherwise calls libm for every use (it may inline only under fast-math), and one definition on host and
 // device keeps the backends bit-identical.
-LPSIM_HD float lp_fmaxf(float a, float b) { return a >= b ? a : (a < b ? b : (b != b ? a : b)); }
-LPSIM_HD float lp_fminf(float a, float b) { return a <= b ? a : (a > b ? b : (b != b ? a : b)); }
+// One comparison and a select (no branches on the hot path).
+LPSIM_HD float lp_fmaxf(float a, float b) { return (a >= b) | (b != b) ? a : b; }
+LPSIM_HD float lp_fminf(float a, float b) { return (a <= b) | (b != b) ? a : b; }
