@@ -121,8 +121,14 @@ LPSIM_HD BestLanes best_lanes(const NetView& net, const TripView& trips, uint32_
   return b;
 }
 
+// A next edge shorter than this leaves no room to change lanes on it (real nets split junction approaches
+// into edges of a few metres or less).
+constexpr float kMinLaneChangeEdge = 15.0f;
+
 /// The connection a vehicle takes at the end of `lane` to reach the route's next edge (index rp+1); prefers
-/// a target lane among the next edge's best lanes. -1: this lane does not lead there.
+/// a target lane among the next edge's best lanes. -1: this lane does not lead there, or only onto lanes of
+/// a short next edge that have no connection to the edge after it (a trap: the vehicle waits here, where it
+/// can still change lanes, as SUMO's vehicles stop where their lane's continuation ends).
 LPSIM_HD int32_t choose_connection(const StepContext& s, uint32_t v, int32_t lane, uint32_t rp) {
   const NetView& net = s.net;
   const uint32_t len = s.trips.route_length[v];
@@ -142,6 +148,19 @@ LPSIM_HD int32_t choose_connection(const StepContext& s, uint32_t v, int32_t lan
     if (net.conn_to_edge[c] != next) continue;
     if (first < 0) first = static_cast<int32_t>(c);
     if (lane_bit(net, net.conn_to_lane[c]) & best.mask[0]) return static_cast<int32_t>(c);
+  }
+  if (first >= 0 && rp + 2 < len && net.lane_length[net.edge_first_lane[next]] < kMinLaneChangeEdge) {
+    const uint32_t after = route_edge(s, v, rp + 2);
+    for (uint32_t c = net.lane_conn_begin[lane]; c < net.lane_conn_begin[lane + 1]; ++c)
+      if (net.conn_to_edge[c] == next && lane_has_conn_to(net, static_cast<int32_t>(net.conn_to_lane[c]), after))
+        return static_cast<int32_t>(c);
+    // A trap only if another lane of this edge avoids it; else there is nothing better to wait for.
+    const uint32_t edge = net.lane_edge[lane];
+    const uint32_t l0 = net.edge_first_lane[edge];
+    for (uint32_t l = l0; l < l0 + net.edge_num_lanes[edge]; ++l)
+      for (uint32_t c = net.lane_conn_begin[l]; c < net.lane_conn_begin[l + 1]; ++c)
+        if (net.conn_to_edge[c] == next && lane_has_conn_to(net, static_cast<int32_t>(net.conn_to_lane[c]), after))
+          return -1;
   }
   return first;
 }
