@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <string_view>
 #include <unordered_set>
 
 #include "net/junction_foes.hpp"
@@ -83,8 +84,15 @@ private:
   int32_t junction_of_internal(const EdgeSpec& e) {
     auto us = e.id.rfind('_');
     if (!e.id.empty() && e.id[0] == ':' && us != std::string::npos && us > 1) {
-      auto it = net_.junction_index.find(e.id.substr(1, us - 1));
-      if (it != net_.junction_index.end()) return static_cast<int32_t>(it->second);
+      // A junction's internal edges come one after another: reuse the previous edge's lookup.
+      const std::string_view name(e.id.data() + 1, us - 1);
+      if (last_internal_junction_ != kNone && name == last_internal_name_) return last_internal_junction_;
+      auto it = net_.junction_index.find(std::string(name));
+      if (it != net_.junction_index.end()) {
+        last_internal_name_.assign(name);
+        last_internal_junction_ = static_cast<int32_t>(it->second);
+        return last_internal_junction_;
+      }
     }
     if (!int_lane_junction_built_) {  // only nets with unusual internal ids pay for this map
       for (uint32_t j = 0; j < spec_.junctions.size(); ++j)
@@ -99,6 +107,8 @@ private:
   }
   std::unordered_map<std::string, int32_t> int_lane_junction_;
   bool int_lane_junction_built_ = false;
+  std::string last_internal_name_;  // junction id of the previous internal edge resolved by its name
+  int32_t last_internal_junction_ = kNone;
 
   void add_edges_and_lanes() {
     const auto& edges = spec_.edges;
@@ -274,6 +284,22 @@ private:
                                 std::to_string(lanes.size()) + " lanes");
   }
 
+  // Consecutive connections mostly share their from-edge and signal: the last lookup of each is kept.
+  struct LastLookup {
+    std::string id;
+    uint32_t index = 0;
+    bool valid = false;
+  };
+  LastLookup last_from_, last_tl_;
+
+  uint32_t cached_edge_of(const ConnectionSpec& c, const std::string& id, const char* role, LastLookup& last) const {
+    if (last.valid && last.id == id) return last.index;
+    last.index = edge_of(c, id, role);
+    last.id = id;
+    last.valid = true;
+    return last.index;
+  }
+
   uint32_t edge_of(const ConnectionSpec& c, const std::string& id, const char* role) const {
     auto it = net_.edge_index.find(id);
     if (it == net_.edge_index.end())
@@ -293,11 +319,11 @@ private:
     std::vector<Conn> kept;
     kept.reserve(spec_.connections.size());
     for (const auto& c : spec_.connections) {
-      if (pedestrian_edges_.count(c.from) || pedestrian_edges_.count(c.to)) {
+      if (!pedestrian_edges_.empty() && (pedestrian_edges_.count(c.from) || pedestrian_edges_.count(c.to))) {
         ++net_.skipped_connections;
         continue;
       }
-      const uint32_t fe = edge_of(c, c.from, "from"), te = edge_of(c, c.to, "to");
+      const uint32_t fe = cached_edge_of(c, c.from, "from", last_from_), te = edge_of(c, c.to, "to");
       const int32_t fl = car_lane(c, fe, c.from_lane, "fromLane");
       const int32_t tl = car_lane(c, te, c.to_lane, "toLane");
       int32_t via = kNone;
@@ -306,7 +332,7 @@ private:
         auto it = net_.lane_index_by_id.find(c.via);
         if (it != net_.lane_index_by_id.end())
           via = static_cast<int32_t>(it->second);
-        else if (non_car_lanes_.count(c.via))
+        else if (!non_car_lanes_.empty() && non_car_lanes_.count(c.via))
           via_ok = false;
         else
           throw InputError(c.loc, "connection from '" + c.from + "' to '" + c.to + "' names unknown via lane '" +
@@ -319,22 +345,26 @@ private:
       Conn k{static_cast<uint32_t>(fl), static_cast<uint32_t>(tl), te, via, kNone, kNone, -1, c.state, c.dir};
       k.junction = net_.edge_is_internal[fe] ? internal_junction_[fe] : net_.edge_to_junction[fe];
       if (!c.tl.empty()) {
-        auto it = net_.signal_index.find(c.tl);
-        // Rail crossings name their junction as tl without a program: SUMO closes them for trains only,
-        // and no trains run here, so road links there are open (unsignalised).
-        if (it == net_.signal_index.end() && is_rail_controlled(c.tl)) {
-          kept.push_back(k);
-          continue;
+        if (!last_tl_.valid || last_tl_.id != c.tl) {
+          auto it = net_.signal_index.find(c.tl);
+          // Rail crossings name their junction as tl without a program: SUMO closes them for trains only,
+          // and no trains run here, so road links there are open (unsignalised).
+          if (it == net_.signal_index.end() && is_rail_controlled(c.tl)) {
+            kept.push_back(k);
+            continue;
+          }
+          if (it == net_.signal_index.end())
+            throw InputError(c.loc, "connection from '" + c.from + "' to '" + c.to + "' names tlLogic '" + c.tl +
+                                        "' which has no program");
+          last_tl_ = {c.tl, it->second, true};
         }
-        if (it == net_.signal_index.end())
-          throw InputError(c.loc, "connection from '" + c.from + "' to '" + c.to + "' names tlLogic '" + c.tl +
-                                      "' which has no program");
-        const uint32_t links = signal_links(it->second);
+        const uint32_t signal = last_tl_.index;
+        const uint32_t links = signal_links(signal);
         if (c.link_index < 0 || static_cast<uint32_t>(c.link_index) >= links)
           throw InputError(c.loc, "connection from '" + c.from + "' to '" + c.to + "' has linkIndex " +
                                       std::to_string(c.link_index) + " but tlLogic '" + c.tl + "' controls " +
                                       std::to_string(links) + " links");
-        k.signal = static_cast<int32_t>(it->second);
+        k.signal = static_cast<int32_t>(signal);
         k.link = static_cast<int16_t>(c.link_index);
       }
       kept.push_back(k);
