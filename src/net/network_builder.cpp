@@ -46,7 +46,8 @@ private:
   const std::vector<TlLogicSpec>& overrides_;
   Network net_;
 
-  std::vector<uint32_t> spec_lane_offset_;  // per spec edge: first slot in spec_lane_car_
+  std::vector<uint32_t> spec_lane_offset_;  // per spec edge: first slot in spec_lane_car_ (and the total last)
+  std::vector<uint8_t> spec_lanes_by_position_;  // per spec edge: 1 when lane k has index k for every k
   std::vector<int32_t> spec_lane_car_;      // per spec lane: car lane index or kNone
   std::vector<uint32_t> edge_spec_;         // per network edge: index of its EdgeSpec
   std::vector<const LaneSpec*> lane_spec_;  // per car lane: its LaneSpec
@@ -72,9 +73,18 @@ private:
     }
   }
 
-  int32_t junction_of(const EdgeSpec& e, const std::string& id, const char* role) const {
+  int32_t junction_of(const EdgeSpec& e, const std::string& id, const char* role) {
+    // Edges are mostly listed by their from-junction: reuse the previous lookup of the same from-id.
+    const bool from = role[0] == 'f';
+    if (from && last_junction_ != kNone && id == last_junction_id_) return last_junction_;
     auto it = net_.junction_index.find(id);
-    if (it != net_.junction_index.end()) return static_cast<int32_t>(it->second);
+    if (it != net_.junction_index.end()) {
+      if (from) {
+        last_junction_id_ = id;
+        last_junction_ = static_cast<int32_t>(it->second);
+      }
+      return static_cast<int32_t>(it->second);
+    }
     // Connector edges may end in districts that are not junctions; a normal edge must have both ends.
     if (e.function == EdgeFunction::Connector) return kNone;
     throw InputError(e.loc, "edge '" + e.id + "' names unknown " + role + " junction '" + id + "'");
@@ -107,6 +117,8 @@ private:
   }
   std::unordered_map<std::string, int32_t> int_lane_junction_;
   bool int_lane_junction_built_ = false;
+  std::string last_junction_id_;     // id of the last from-junction found by junction_of
+  int32_t last_junction_ = kNone;
   std::string last_internal_name_;  // junction id of the previous internal edge resolved by its name
   int32_t last_internal_junction_ = kNone;
 
@@ -114,7 +126,8 @@ private:
     const auto& edges = spec_.edges;
     size_t spec_lanes = 0;
     for (const auto& e : edges) spec_lanes += e.lanes.size();
-    spec_lane_offset_.resize(edges.size());
+    spec_lane_offset_.resize(edges.size() + 1);
+    spec_lanes_by_position_.resize(edges.size());
     spec_lane_car_.assign(spec_lanes, kNone);
     net_.edge_index.reserve(edges.size());
     net_.lane_index_by_id.reserve(spec_lanes);
@@ -131,6 +144,10 @@ private:
       const EdgeSpec& e = edges[se];
       spec_lane_offset_[se] = offset;
       offset += static_cast<uint32_t>(e.lanes.size());
+      spec_lane_offset_[se + 1] = offset;
+      bool by_position = true;
+      for (uint32_t k = 0; k < e.lanes.size(); ++k) by_position = by_position && e.lanes[k].index == static_cast<int>(k);
+      spec_lanes_by_position_[se] = by_position ? 1 : 0;
       if (e.function == EdgeFunction::Crossing || e.function == EdgeFunction::WalkingArea) {
         pedestrian_edges_.insert(e.id);
         for (const auto& l : e.lanes) non_car_lanes_.insert(l.id);
@@ -276,6 +293,10 @@ private:
   // edge has no lane with that index.
   int32_t car_lane(const ConnectionSpec& c, uint32_t ei, int index, const char* role) const {
     const uint32_t se = edge_spec_[ei];
+    // Lanes listed in index order (as the net reader stores them): the index is the slot.
+    const uint32_t first = spec_lane_offset_[se], count = spec_lane_offset_[se + 1] - first;
+    if (spec_lanes_by_position_[se] && index >= 0 && static_cast<uint32_t>(index) < count)
+      return spec_lane_car_[first + static_cast<uint32_t>(index)];
     const auto& lanes = spec_.edges[se].lanes;
     for (uint32_t k = 0; k < lanes.size(); ++k)
       if (lanes[k].index == index) return spec_lane_car_[spec_lane_offset_[se] + k];
