@@ -1,6 +1,7 @@
 #include "net/network_builder.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -312,6 +313,18 @@ private:
     bool valid = false;
   };
   LastLookup last_from_, last_tl_;
+  // A from-edge's lanes lead to the same few edges: the last kRecentTo to-edge lookups are kept.
+  static constexpr size_t kRecentTo = 4;
+  std::array<LastLookup, kRecentTo> recent_to_;
+  size_t recent_to_next_ = 0;
+
+  uint32_t to_edge_of(const ConnectionSpec& c) {
+    for (const auto& r : recent_to_)
+      if (r.valid && r.id == c.to) return r.index;
+    LastLookup& slot = recent_to_[recent_to_next_];
+    recent_to_next_ = (recent_to_next_ + 1) % kRecentTo;
+    return cached_edge_of(c, c.to, "to", slot);
+  }
 
   uint32_t cached_edge_of(const ConnectionSpec& c, const std::string& id, const char* role, LastLookup& last) const {
     if (last.valid && last.id == id) return last.index;
@@ -344,7 +357,7 @@ private:
         ++net_.skipped_connections;
         continue;
       }
-      const uint32_t fe = cached_edge_of(c, c.from, "from", last_from_), te = edge_of(c, c.to, "to");
+      const uint32_t fe = cached_edge_of(c, c.from, "from", last_from_), te = to_edge_of(c);
       const int32_t fl = car_lane(c, fe, c.from_lane, "fromLane");
       const int32_t tl = car_lane(c, te, c.to_lane, "toLane");
       int32_t via = kNone;
