@@ -131,6 +131,19 @@ private:
     spec_lanes_by_position_.resize(edges.size());
     spec_lane_car_.assign(spec_lanes, kNone);
     net_.edge_index.reserve(edges.size());
+    // Edge columns grow to at most one entry per spec edge: reserving avoids regrowing (and re-faulting)
+    // multi-megabyte arrays on large nets.
+    net_.edge_id.reserve(edges.size());
+    net_.edge_is_internal.reserve(edges.size());
+    net_.edge_from_junction.reserve(edges.size());
+    net_.edge_to_junction.reserve(edges.size());
+    internal_junction_.reserve(edges.size());
+    net_.edge_priority.reserve(edges.size());
+    edge_spec_.reserve(edges.size());
+    net_.edge_first_lane.reserve(edges.size());
+    net_.edge_num_lanes.reserve(edges.size());
+    net_.edge_length.reserve(edges.size());
+    net_.edge_speed.reserve(edges.size());
     net_.lane_index_by_id.reserve(spec_lanes);
     net_.lane_id.reserve(spec_lanes);
     lane_spec_.reserve(spec_lanes);
