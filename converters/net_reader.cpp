@@ -1,5 +1,6 @@
 #include "converters/net_reader.hpp"
 
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <filesystem>
@@ -20,6 +21,34 @@ bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; 
 std::string excerpt(const std::string& value) {
   return value.size() <= 60 ? value : value.substr(0, 57) + "...";
 }
+
+// The values of a fixed set of attributes of the current element, captured in one pass over its attributes
+// (XmlStream::for_each_attr) into buffers reused from element to element: no per-attribute lookup or string
+// allocation for elements read by the hundred thousand. value(k) is null when key k is absent.
+template <size_t N>
+class AttrCapture {
+ public:
+  explicit AttrCapture(const std::array<std::string_view, N>& keys) : keys_(keys) {}
+
+  void read(const XmlStream& xs) {
+    present_.fill(false);
+    xs.for_each_attr([this](std::string_view name, std::string_view value) {
+      for (size_t k = 0; k < N; ++k)
+        if (name == keys_[k]) {
+          values_[k].assign(value.data(), value.size());
+          present_[k] = true;
+          return;
+        }
+    });
+  }
+  const std::string* value(size_t k) const { return present_[k] ? &values_[k] : nullptr; }
+  std::string text(size_t k) const { return present_[k] ? values_[k] : std::string(); }
+
+ private:
+  std::array<std::string_view, N> keys_;
+  std::array<std::string, N> values_;
+  std::array<bool, N> present_{};
+};
 
 // from_chars on one coordinate; SUMO writes plain decimals, no leading '+'.
 bool parse_coord(const char*& p, const char* end, double& out) {
@@ -59,8 +88,7 @@ std::vector<Point> parse_shape(const XmlStream& xs, const char* key, const std::
   return shape;
 }
 
-double required_non_negative(const XmlStream& xs, const char* key) {
-  auto v = xs.attr(key);
+double required_non_negative(const XmlStream& xs, const char* key, const std::string* v) {
   if (!v) xs.fail(std::string("missing attribute '") + key + "'");
   auto d = parse_double(*v);
   if (!d) xs.fail(std::string("attribute '") + key + "' is not a finite number: '" + *v + "'");
@@ -68,8 +96,7 @@ double required_non_negative(const XmlStream& xs, const char* key) {
   return *d;
 }
 
-int required_index(const XmlStream& xs, const char* key) {
-  auto v = xs.attr(key);
+int required_index(const XmlStream& xs, const char* key, const std::string* v) {
   if (!v) xs.fail(std::string("missing attribute '") + key + "'");
   auto i = parse_integer(*v);
   if (!i || *i < 0 || *i > 1'000'000)
@@ -77,8 +104,28 @@ int required_index(const XmlStream& xs, const char* key) {
   return static_cast<int>(*i);
 }
 
-EdgeFunction parse_function(const XmlStream& xs) {
-  auto f = xs.attr("function");
+const std::string& required(const XmlStream& xs, const char* key, const std::string* v) {
+  if (!v) xs.fail(std::string("missing attribute '") + key + "'");
+  return *v;
+}
+
+// As XmlStream::number.
+double number(const XmlStream& xs, const char* key, const std::string* v, double fallback) {
+  if (!v) return fallback;
+  auto d = parse_double(*v);
+  if (!d) xs.fail(std::string("attribute '") + key + "' is not a finite number: '" + *v + "'");
+  return *d;
+}
+
+// As XmlStream::integer.
+long long integer(const XmlStream& xs, const char* key, const std::string* v, long long fallback) {
+  if (!v) return fallback;
+  auto i = parse_integer(*v);
+  if (!i) xs.fail(std::string("attribute '") + key + "' is not an integer: '" + *v + "'");
+  return *i;
+}
+
+EdgeFunction parse_function(const XmlStream& xs, const std::string* f) {
   if (!f || *f == "normal") return EdgeFunction::Normal;
   if (*f == "internal") return EdgeFunction::Internal;
   if (*f == "connector") return EdgeFunction::Connector;
@@ -89,8 +136,7 @@ EdgeFunction parse_function(const XmlStream& xs) {
 
 // SUMO writes link directions as one letter, except "invalid" for links without a direction; that one is
 // stored as 'T' as net_spec.hpp documents (note SUMO also uses 'T' for a left-hand-traffic turnaround).
-char parse_dir(const XmlStream& xs) {
-  auto d = xs.attr("dir");
+char parse_dir(const XmlStream& xs, const std::string* d) {
   if (!d) return 's';
   if (*d == "invalid") return 'T';
   if (d->size() != 1 || std::string_view("stTlrLR").find((*d)[0]) == std::string_view::npos)
@@ -98,8 +144,7 @@ char parse_dir(const XmlStream& xs) {
   return (*d)[0];
 }
 
-char parse_state(const XmlStream& xs) {
-  auto s = xs.attr("state");
+char parse_state(const XmlStream& xs, const std::string* s) {
   if (!s) return 'M';
   if (s->size() != 1) xs.fail("link state must be one character: state='" + *s + "'");
   return (*s)[0];
@@ -175,20 +220,26 @@ class NetParser {
     net_.junctions.reserve(bytes / 600);
   }
 
+  // Checks run in the order of the attributes below, so the first problem reported is always the same one.
+  enum EdgeAttr { kEdgeId, kEdgeFunction, kEdgeFrom, kEdgeTo, kEdgePriority, kEdgeType };
+  AttrCapture<6> edge_attrs_{{"id", "function", "from", "to", "priority", "type"}};
+
   void read_edge() {
+    const auto& a = edge_attrs_;
+    edge_attrs_.read(xs_);
     EdgeSpec e;
     e.loc = xs_.loc();
-    e.id = xs_.required("id");
-    e.function = parse_function(xs_);
+    e.id = required(xs_, "id", a.value(kEdgeId));
+    e.function = parse_function(xs_, a.value(kEdgeFunction));
     if (e.function == EdgeFunction::Normal) {
-      e.from = xs_.required("from");
-      e.to = xs_.required("to");
+      e.from = required(xs_, "from", a.value(kEdgeFrom));
+      e.to = required(xs_, "to", a.value(kEdgeTo));
     } else {
-      e.from = xs_.get("from", "");
-      e.to = xs_.get("to", "");
+      e.from = a.text(kEdgeFrom);
+      e.to = a.text(kEdgeTo);
     }
-    e.priority = static_cast<int>(xs_.integer("priority", -1));
-    e.type = xs_.get("type", "");
+    e.priority = static_cast<int>(integer(xs_, "priority", a.value(kEdgePriority), -1));
+    e.type = a.text(kEdgeType);
     const int depth = xs_.depth();
     e.lanes.reserve(4);
     for (;;) {
@@ -202,20 +253,25 @@ class NetParser {
     net_.edges.push_back(std::move(e));
   }
 
+  enum LaneAttr { kLaneId, kLaneIndex, kLaneSpeed, kLaneLength, kLaneAllow, kLaneDisallow, kLaneShape };
+  AttrCapture<7> lane_attrs_{{"id", "index", "speed", "length", "allow", "disallow", "shape"}};
+
   LaneSpec read_lane(EdgeFunction function) {
+    const auto& a = lane_attrs_;
+    lane_attrs_.read(xs_);
     LaneSpec l;
     l.loc = xs_.loc();
-    l.id = xs_.required("id");
-    l.index = required_index(xs_, "index");
-    l.speed = required_non_negative(xs_, "speed");
-    l.length = required_non_negative(xs_, "length");
-    l.allow = xs_.get("allow", "");
-    l.disallow = xs_.get("disallow", "");
+    l.id = required(xs_, "id", a.value(kLaneId));
+    l.index = required_index(xs_, "index", a.value(kLaneIndex));
+    l.speed = required_non_negative(xs_, "speed", a.value(kLaneSpeed));
+    l.length = required_non_negative(xs_, "length", a.value(kLaneLength));
+    l.allow = a.text(kLaneAllow);
+    l.disallow = a.text(kLaneDisallow);
     // Crossings and walking areas belong to pedestrians whatever their lists say.
     l.passenger_allowed = function != EdgeFunction::Crossing && function != EdgeFunction::WalkingArea &&
                           passenger_allowed(l.allow, l.disallow);
     if (!l.passenger_allowed) ++net_.skipped_non_car_lanes;
-    if (auto shape = xs_.attr("shape")) l.shape = parse_shape(xs_, "shape", *shape);
+    if (auto shape = a.value(kLaneShape)) l.shape = parse_shape(xs_, "shape", *shape);
     return l;
   }
 
@@ -229,27 +285,37 @@ class NetParser {
 
   bool in_junction_ = false;
 
+  enum JunctionAttr { kJunctionId, kJunctionType, kJunctionX, kJunctionY, kJunctionInc, kJunctionInt };
+  AttrCapture<6> junction_attrs_{{"id", "type", "x", "y", "incLanes", "intLanes"}};
+
   void read_junction() {
+    const auto& a = junction_attrs_;
+    junction_attrs_.read(xs_);
     JunctionSpec j;
     j.loc = xs_.loc();
-    j.id = xs_.required("id");
-    j.type = xs_.get("type", "");
-    j.x = xs_.number("x", 0);
-    j.y = xs_.number("y", 0);
-    if (auto inc = xs_.attr("incLanes")) j.inc_lanes = split_ids(*inc);
-    if (auto in = xs_.attr("intLanes")) j.int_lanes = split_ids(*in);
+    j.id = required(xs_, "id", a.value(kJunctionId));
+    j.type = a.text(kJunctionType);
+    j.x = number(xs_, "x", a.value(kJunctionX), 0);
+    j.y = number(xs_, "y", a.value(kJunctionY), 0);
+    if (auto inc = a.value(kJunctionInc)) j.inc_lanes = split_ids(*inc);
+    if (auto in = a.value(kJunctionInt)) j.int_lanes = split_ids(*in);
     net_.junctions.push_back(std::move(j));
   }
 
   // <request index response foes>: which links of the junction this link yields to / conflicts with.
   // SUMO writes the bit of link j at character (n-1-j).
+  enum RequestAttr { kRequestIndex, kRequestResponse, kRequestFoes };
+  AttrCapture<3> request_attrs_{{"index", "response", "foes"}};
+
   void read_request() {
+    const auto& a = request_attrs_;
+    request_attrs_.read(xs_);
     JunctionSpec& j = net_.junctions.back();
-    long long index = xs_.integer("index", -1);
-    if (index < 0 || index > 4096) xs_.fail("request index out of range: " + xs_.get("index", ""));
-    std::string response = xs_.required("response"), foes = xs_.get("foes", "");
-    for (char c : response + foes)
-      if (c != '0' && c != '1') xs_.fail("request bits must be 0 or 1: '" + response + "'");
+    long long index = integer(xs_, "index", a.value(kRequestIndex), -1);
+    if (index < 0 || index > 4096) xs_.fail("request index out of range: " + a.text(kRequestIndex));
+    std::string response = required(xs_, "response", a.value(kRequestResponse)), foes = a.text(kRequestFoes);
+    auto bits = [](const std::string& s) { return s.find_first_not_of("01") == std::string::npos; };
+    if (!bits(response) || !bits(foes)) xs_.fail("request bits must be 0 or 1: '" + response + "'");
     const auto i = static_cast<size_t>(index);
     if (j.response.size() <= i) {
       j.response.resize(i + 1);
@@ -259,20 +325,25 @@ class NetParser {
     j.foes[i] = std::move(foes);
   }
 
+  enum ConnectionAttr { kConnFrom, kConnTo, kConnFromLane, kConnToLane, kConnVia, kConnTl, kConnLink, kConnDir, kConnState };
+  AttrCapture<9> connection_attrs_{{"from", "to", "fromLane", "toLane", "via", "tl", "linkIndex", "dir", "state"}};
+
   void read_connection() {
+    const auto& a = connection_attrs_;
+    connection_attrs_.read(xs_);
     ConnectionSpec c;
     c.loc = xs_.loc();
-    c.from = xs_.required("from");
-    c.to = xs_.required("to");
-    c.from_lane = required_index(xs_, "fromLane");
-    c.to_lane = required_index(xs_, "toLane");
-    c.via = xs_.get("via", "");
-    c.tl = xs_.get("tl", "");
-    long long link = xs_.integer("linkIndex", -1);
-    if (link < -1 || link > 1'000'000) xs_.fail("attribute 'linkIndex' out of range: '" + xs_.required("linkIndex") + "'");
+    c.from = required(xs_, "from", a.value(kConnFrom));
+    c.to = required(xs_, "to", a.value(kConnTo));
+    c.from_lane = required_index(xs_, "fromLane", a.value(kConnFromLane));
+    c.to_lane = required_index(xs_, "toLane", a.value(kConnToLane));
+    c.via = a.text(kConnVia);
+    c.tl = a.text(kConnTl);
+    long long link = integer(xs_, "linkIndex", a.value(kConnLink), -1);
+    if (link < -1 || link > 1'000'000) xs_.fail("attribute 'linkIndex' out of range: '" + a.text(kConnLink) + "'");
     c.link_index = static_cast<int>(link);
-    c.dir = parse_dir(xs_);
-    c.state = parse_state(xs_);
+    c.dir = parse_dir(xs_, a.value(kConnDir));
+    c.state = parse_state(xs_, a.value(kConnState));
     net_.connections.push_back(std::move(c));
   }
 

@@ -1,11 +1,15 @@
 #include "xml_stream.hpp"
 
-#include <libxml/xmlreader.h>
+#include <libxml/parser.h>
+#include <libxml/SAX2.h>
+#include <libxml/xmlIO.h>
 #include <sys/stat.h>
 
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <vector>
 
 namespace lpsim {
 
@@ -17,28 +21,149 @@ std::string context_label(const XmlStream& xs) {
   return label + ">";
 }
 
-// libxml2 reports errors through a callback; keep the first message so the exception names the cause.
-void remember_error(void* arg, const char* msg, xmlParserSeverities severity, xmlTextReaderLocatorPtr loc) {
-  auto* first = static_cast<std::pair<std::string, int>*>(arg);
-  if (severity != XML_PARSER_SEVERITY_ERROR && severity != XML_PARSER_SEVERITY_VALIDITY_ERROR) return;
-  if (!first->first.empty()) return;
-  first->first = msg ? msg : "malformed XML";
-  while (!first->first.empty() && (first->first.back() == '\n' || first->first.back() == ' '))
-    first->first.pop_back();
-  // The locator is the parser context: its input line is where parsing failed (the reader's node line
-  // would be the enclosing element's).
-  auto* ctxt = reinterpret_cast<xmlParserCtxtPtr>(loc);
-  first->second = ctxt && ctxt->input ? ctxt->input->line : xmlTextReaderLocatorLineNumber(loc);
-  // The reader reports a file cut short as "extra content"; say what it usually means.
-  if (first->first.find("Extra content at the end of the document") != std::string::npos)
-    first->first = "premature end of data or content after the root element (truncated file?)";
-}
-
 }  // namespace
 
+// libxml2's SAX2 push parser, fed a chunk of the file at a time. Its callbacks queue the chunk's element
+// starts and ends with their attributes; next() hands them out one by one and feeds the next chunk when the
+// queue is empty. No document tree is built and attribute values are copied once, into a buffer reused
+// from chunk to chunk.
 struct XmlStream::Impl {
-  xmlTextReaderPtr reader = nullptr;
+  struct Attr {
+    const xmlChar* name;  // the parser's dictionary string (valid while the parser lives)
+    size_t value_begin, value_size;  // in `values`
+  };
+  struct Queued {
+    Event event;
+    const xmlChar* name;
+    int depth, line;
+    size_t attr_begin, attr_end;  // in `attrs`
+  };
+
+  xmlParserCtxtPtr ctxt = nullptr;
+  xmlParserInputBufferPtr input = nullptr;  // the file; its read callback decompresses gzip
+  bool input_done = false;
+  std::vector<char> chunk;
+  std::vector<Queued> queue;
+  size_t queue_next = 0;
+  std::vector<Attr> attrs;
+  std::string values;
+  int depth = 0;
+  size_t current_attr_begin = 0, current_attr_end = 0;  // attributes of the last event (none unless Start)
   std::pair<std::string, int> first_error;
+  int entity_line = 0;        // line of the first entity reference, 0 if none
+  size_t entity_at = 0;       // queue position it comes before: events up to it are handed out first
+
+  ~Impl() {
+    if (ctxt) {
+      if (ctxt->myDoc) xmlFreeDoc(ctxt->myDoc);
+      xmlFreeParserCtxt(ctxt);
+    }
+    if (input) xmlFreeParserInputBuffer(input);
+  }
+
+  int parser_line() const { return ctxt && ctxt->input ? ctxt->input->line : 0; }
+
+  // Predefined and character references arrive decoded, except '&', which the parser (not substituting
+  // entities) passes on as "&#38;"; any other '&' is a reference to a declared entity, which is refused.
+  void append_value(const xmlChar* begin, const xmlChar* end) {
+    const char* p = reinterpret_cast<const char*>(begin);
+    const char* e = reinterpret_cast<const char*>(end);
+    const char* amp = static_cast<const char*>(std::memchr(p, '&', static_cast<size_t>(e - p)));
+    if (!amp) {
+      values.append(p, e);
+      return;
+    }
+    while (p < e) {
+      if (*p != '&') {
+        values.push_back(*p++);
+      } else if (e - p >= 5 && std::memcmp(p, "&#38;", 5) == 0) {
+        values.push_back('&');
+        p += 5;
+      } else {
+        note_entity();
+        values.push_back(*p++);
+      }
+    }
+  }
+
+  static void on_start(void* self, const xmlChar* localname, const xmlChar* prefix, const xmlChar*, int nb_namespaces,
+                       const xmlChar** namespaces, int nb_attributes, int nb_defaulted, const xmlChar** attributes) {
+    auto* im = of(self);
+    xmlParserCtxtPtr ctxt = im->ctxt;
+    Queued q{Event::Start, qualified(ctxt, prefix, localname), im->depth++, im->parser_line(), im->attrs.size(), 0};
+    // Namespace declarations first, then attributes, each in document order (as xmlTextReader lists them).
+    for (int i = 0; i < nb_namespaces; ++i) {
+      const xmlChar* ns_prefix = namespaces[2 * i];
+      const xmlChar* uri = namespaces[2 * i + 1];
+      const xmlChar* name = ns_prefix ? xmlDictQLookup(ctxt->dict, BAD_CAST "xmlns", ns_prefix) : BAD_CAST "xmlns";
+      const size_t begin = im->values.size();
+      if (uri) im->values.append(reinterpret_cast<const char*>(uri));
+      im->attrs.push_back(Attr{name, begin, im->values.size() - begin});
+    }
+    // Defaults from a DTD's ATTLIST are not part of the element unless asked for (as libxml2's own SAX2).
+    if (nb_defaulted != 0 && (ctxt->loadsubset & XML_COMPLETE_ATTRS) == 0) nb_attributes -= nb_defaulted;
+    for (int i = 0; i < nb_attributes; ++i) {
+      const xmlChar** a = attributes + 5 * i;  // localname, prefix, URI, value, end
+      const size_t begin = im->values.size();
+      im->append_value(a[3], a[4]);
+      im->attrs.push_back(Attr{qualified(ctxt, a[1], a[0]), begin, im->values.size() - begin});
+    }
+    q.attr_end = im->attrs.size();
+    im->queue.push_back(q);
+  }
+
+  static void on_end(void* self, const xmlChar* localname, const xmlChar* prefix, const xmlChar*) {
+    auto* im = of(self);
+    const int depth = --im->depth;
+    const xmlChar* name = qualified(im->ctxt, prefix, localname);
+    // An element without children ends on the line it started (as the empty element it usually is).
+    int line = im->parser_line();
+    if (!im->queue.empty() && im->queue.back().event == Event::Start && im->queue.back().depth == depth)
+      line = im->queue.back().line;
+    im->queue.push_back(Queued{Event::End, name, depth, line, 0, 0});
+  }
+
+  static void on_reference(void* self, const xmlChar*) {
+    auto* im = of(self);
+    im->note_entity();
+  }
+
+  void note_entity() {
+    if (entity_line != 0) return;
+    entity_line = parser_line();
+    entity_at = queue.size();
+  }
+
+  // Keep the first error (not warnings) so the exception names the cause and the line where parsing failed.
+  static void on_error(void* self, xmlErrorPtr error) {
+    auto* im = of(self);
+    if (!error || error->level < XML_ERR_ERROR || !im->first_error.first.empty()) return;
+    std::string msg = error->message ? error->message : "malformed XML";
+    while (!msg.empty() && (msg.back() == '\n' || msg.back() == ' ')) msg.pop_back();
+    if (msg.empty()) msg = "malformed XML";
+    // The parser reports a file cut short as "extra content"; say what it usually means.
+    if (msg.find("Extra content at the end of the document") != std::string::npos)
+      msg = "premature end of data or content after the root element (truncated file?)";
+    im->first_error = {msg, im->parser_line()};
+  }
+
+  // libxml2's own SAX2 handlers (kept for the DTD) need the parser as their user data, so the stream's
+  // state hangs off the parser's _private pointer.
+  static Impl* of(void* parser) { return static_cast<Impl*>(static_cast<xmlParserCtxtPtr>(parser)->_private); }
+
+  static const xmlChar* qualified(xmlParserCtxtPtr ctxt, const xmlChar* prefix, const xmlChar* localname) {
+    return prefix ? xmlDictQLookup(ctxt->dict, prefix, localname) : localname;
+  }
+
+  // Reads the next chunk of the file into the parser; false once the whole file has been parsed.
+  bool feed() {
+    if (input_done) return false;
+    chunk.resize(1 << 16);
+    const int got = input->readcallback ? input->readcallback(input->context, chunk.data(), static_cast<int>(chunk.size())) : -1;
+    if (got <= 0) input_done = true;  // end of file, or a read error: the parser reports what it has
+    xmlParseChunk(ctxt, chunk.data(), got > 0 ? got : 0, input_done ? 1 : 0);
+    return true;
+  }
 };
 
 XmlStream::XmlStream(const std::string& path) : impl_(std::make_unique<Impl>()), path_(path) {
@@ -51,76 +176,81 @@ XmlStream::XmlStream(const std::string& path) : impl_(std::make_unique<Impl>()),
   } else {
     throw InputError(SourceLoc{path, 0}, "cannot read file");
   }
+  // libxml2 decompresses gzip input transparently here.
+  impl_->input = xmlParserInputBufferCreateFilename(path.c_str(), XML_CHAR_ENCODING_NONE);
+  if (!impl_->input) throw InputError(SourceLoc{path, 0}, "cannot open as XML");
+
+  // libxml2's default SAX2 handlers (they keep the internal DTD subset, so entity references are recognised
+  // as such), with element events, references and errors going to this stream and text, comments and
+  // processing instructions ignored.
+  xmlSAXHandler sax;
+  std::memset(&sax, 0, sizeof sax);
+  xmlSAXVersion(&sax, 2);
+  sax.startElementNs = &Impl::on_start;
+  sax.endElementNs = &Impl::on_end;
+  sax.reference = &Impl::on_reference;
+  sax.serror = &Impl::on_error;
+  sax.error = nullptr;
+  sax.warning = nullptr;
+  sax.fatalError = nullptr;
+  sax.characters = nullptr;
+  sax.ignorableWhitespace = nullptr;
+  sax.cdataBlock = nullptr;
+  sax.comment = nullptr;
+  sax.processingInstruction = nullptr;
+  impl_->ctxt = xmlCreatePushParserCtxt(&sax, nullptr, nullptr, 0, path.c_str());
+  if (!impl_->ctxt) throw InputError(SourceLoc{path, 0}, "cannot open as XML");
+  impl_->ctxt->_private = impl_.get();
   // No XML_PARSE_NOENT (no entity substitution), no DTDLOAD/DTDVALID, NONET: safe on untrusted input.
   // HUGE lifts libxml2's limits on text size for very large networks, not on entity expansion.
-  // BIG_LINES: element line numbers above 65535 stay exact.
-  impl_->reader = xmlReaderForFile(path.c_str(), nullptr,
-                                   XML_PARSE_NONET | XML_PARSE_HUGE | XML_PARSE_NOCDATA | XML_PARSE_BIG_LINES);
-  if (!impl_->reader) throw InputError(SourceLoc{path, 0}, "cannot open as XML");
-  xmlTextReaderSetErrorHandler(impl_->reader, remember_error, &impl_->first_error);
+  xmlCtxtUseOptions(impl_->ctxt, XML_PARSE_NONET | XML_PARSE_HUGE | XML_PARSE_NOCDATA | XML_PARSE_BIG_LINES);
 }
 
-XmlStream::~XmlStream() {
-  if (impl_ && impl_->reader) xmlFreeTextReader(impl_->reader);
-}
+XmlStream::~XmlStream() = default;
 
 XmlStream::Event XmlStream::next() {
-  if (pending_end_) {
-    pending_end_ = false;
-    return Event::End;
-  }
+  Impl& im = *impl_;
   for (;;) {
-    int rc = xmlTextReaderRead(impl_->reader);
-    if (rc == 0) {
-      if (!impl_->first_error.first.empty())
-        throw InputError(SourceLoc{path_, impl_->first_error.second}, "malformed XML: " + impl_->first_error.first);
+    if (im.entity_line != 0 && im.queue_next == im.entity_at)
+      throw InputError(SourceLoc{path_, im.entity_line}, "entity references are not supported");
+    if (im.queue_next < im.queue.size()) {
+      const Impl::Queued& q = im.queue[im.queue_next++];
+      name_.assign(reinterpret_cast<const char*>(q.name));
+      depth_ = q.depth;
+      line_ = q.line;
+      im.current_attr_begin = q.attr_begin;
+      im.current_attr_end = q.attr_end;
+      return q.event;
+    }
+    // Everything parsed before the parser stopped has been handed out: report why it stopped.
+    if (!im.first_error.first.empty() && (im.ctxt->disableSAX || im.input_done))
+      throw InputError(SourceLoc{path_, im.first_error.second}, "malformed XML: " + im.first_error.first);
+    im.queue.clear();
+    im.queue_next = 0;
+    im.attrs.clear();
+    im.values.clear();
+    im.current_attr_begin = im.current_attr_end = 0;
+    if (!im.feed() && im.queue.empty()) {
+      if (im.first_error.first.empty() && !im.ctxt->wellFormed)
+        throw InputError(SourceLoc{path_, line_}, "malformed XML: malformed or truncated XML");
       return Event::Eof;
     }
-    if (rc < 0) {
-      int line = impl_->first_error.second > 0 ? impl_->first_error.second : line_;
-      std::string why = impl_->first_error.first.empty() ? "malformed or truncated XML" : impl_->first_error.first;
-      throw InputError(SourceLoc{path_, line}, "malformed XML: " + why);
-    }
-    int type = xmlTextReaderNodeType(impl_->reader);
-    if (type == XML_READER_TYPE_ELEMENT) {
-      const xmlChar* n = xmlTextReaderConstName(impl_->reader);
-      name_ = n ? reinterpret_cast<const char*>(n) : "";
-      depth_ = xmlTextReaderDepth(impl_->reader);
-      // The parser reads ahead by a buffer, so take the element's own line (exact with XML_PARSE_BIG_LINES).
-      long node_line = xmlGetLineNo(xmlTextReaderCurrentNode(impl_->reader));
-      line_ = node_line > 0 ? static_cast<int>(node_line) : xmlTextReaderGetParserLineNumber(impl_->reader);
-      pending_end_ = xmlTextReaderIsEmptyElement(impl_->reader) == 1;
-      return Event::Start;
-    }
-    if (type == XML_READER_TYPE_END_ELEMENT) {
-      const xmlChar* n = xmlTextReaderConstName(impl_->reader);
-      name_ = n ? reinterpret_cast<const char*>(n) : "";
-      depth_ = xmlTextReaderDepth(impl_->reader);
-      line_ = xmlTextReaderGetParserLineNumber(impl_->reader);
-      return Event::End;
-    }
-    if (type == XML_READER_TYPE_ENTITY_REFERENCE)
-      throw InputError(SourceLoc{path_, xmlTextReaderGetParserLineNumber(impl_->reader)},
-                       "entity references are not supported");
   }
 }
 
 std::optional<std::string> XmlStream::attr(const char* key) const {
-  xmlChar* v = xmlTextReaderGetAttribute(impl_->reader, reinterpret_cast<const xmlChar*>(key));
-  if (!v) return std::nullopt;
-  std::string s(reinterpret_cast<const char*>(v));
-  xmlFree(v);
-  return s;
+  const Impl& im = *impl_;
+  for (size_t i = im.current_attr_begin; i < im.current_attr_end; ++i)
+    if (std::strcmp(reinterpret_cast<const char*>(im.attrs[i].name), key) == 0)
+      return im.values.substr(im.attrs[i].value_begin, im.attrs[i].value_size);
+  return std::nullopt;
 }
 
 void XmlStream::for_each_attr_impl(void* visit, void (*call)(void*, std::string_view, std::string_view)) const {
-  xmlTextReaderPtr r = impl_->reader;
-  for (int rc = xmlTextReaderMoveToFirstAttribute(r); rc == 1; rc = xmlTextReaderMoveToNextAttribute(r)) {
-    const xmlChar* n = xmlTextReaderConstName(r);
-    const xmlChar* v = xmlTextReaderConstValue(r);
-    call(visit, n ? reinterpret_cast<const char*>(n) : "", v ? reinterpret_cast<const char*>(v) : "");
-  }
-  xmlTextReaderMoveToElement(r);
+  const Impl& im = *impl_;
+  for (size_t i = im.current_attr_begin; i < im.current_attr_end; ++i)
+    call(visit, reinterpret_cast<const char*>(im.attrs[i].name),
+         std::string_view(im.values.data() + im.attrs[i].value_begin, im.attrs[i].value_size));
 }
 
 std::string XmlStream::required(const char* key) const {

@@ -1,5 +1,5 @@
 #pragma once
-// Streaming, safe XML reading on top of libxml2's xmlTextReader: never builds a document tree, reads
+// Streaming, safe XML reading on top of libxml2's SAX2 push parser: never builds a document tree, reads
 // .xml and .xml.gz alike, and has entity substitution, DTD loading and network access switched off.
 // Every error it raises names file:line.
 #include <memory>
@@ -63,7 +63,6 @@ class XmlStream {
   std::unique_ptr<Impl> impl_;
   std::string path_, name_;
   int depth_ = 0, line_ = 0;
-  bool pending_end_ = false;
 };
 
 /// Strict parse of a whole string as a finite double; nullopt when it is not one.

@@ -1,9 +1,11 @@
 #include "net/network_builder.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <string>
+#include <string_view>
 #include <unordered_set>
 
 #include "net/junction_foes.hpp"
@@ -45,7 +47,8 @@ private:
   const std::vector<TlLogicSpec>& overrides_;
   Network net_;
 
-  std::vector<uint32_t> spec_lane_offset_;  // per spec edge: first slot in spec_lane_car_
+  std::vector<uint32_t> spec_lane_offset_;  // per spec edge: first slot in spec_lane_car_ (and the total last)
+  std::vector<uint8_t> spec_lanes_by_position_;  // per spec edge: 1 when lane k has index k for every k
   std::vector<int32_t> spec_lane_car_;      // per spec lane: car lane index or kNone
   std::vector<uint32_t> edge_spec_;         // per network edge: index of its EdgeSpec
   std::vector<const LaneSpec*> lane_spec_;  // per car lane: its LaneSpec
@@ -71,9 +74,18 @@ private:
     }
   }
 
-  int32_t junction_of(const EdgeSpec& e, const std::string& id, const char* role) const {
+  int32_t junction_of(const EdgeSpec& e, const std::string& id, const char* role) {
+    // Edges are mostly listed by their from-junction: reuse the previous lookup of the same from-id.
+    const bool from = role[0] == 'f';
+    if (from && last_junction_ != kNone && id == last_junction_id_) return last_junction_;
     auto it = net_.junction_index.find(id);
-    if (it != net_.junction_index.end()) return static_cast<int32_t>(it->second);
+    if (it != net_.junction_index.end()) {
+      if (from) {
+        last_junction_id_ = id;
+        last_junction_ = static_cast<int32_t>(it->second);
+      }
+      return static_cast<int32_t>(it->second);
+    }
     // Connector edges may end in districts that are not junctions; a normal edge must have both ends.
     if (e.function == EdgeFunction::Connector) return kNone;
     throw InputError(e.loc, "edge '" + e.id + "' names unknown " + role + " junction '" + id + "'");
@@ -83,8 +95,15 @@ private:
   int32_t junction_of_internal(const EdgeSpec& e) {
     auto us = e.id.rfind('_');
     if (!e.id.empty() && e.id[0] == ':' && us != std::string::npos && us > 1) {
-      auto it = net_.junction_index.find(e.id.substr(1, us - 1));
-      if (it != net_.junction_index.end()) return static_cast<int32_t>(it->second);
+      // A junction's internal edges come one after another: reuse the previous edge's lookup.
+      const std::string_view name(e.id.data() + 1, us - 1);
+      if (last_internal_junction_ != kNone && name == last_internal_name_) return last_internal_junction_;
+      auto it = net_.junction_index.find(std::string(name));
+      if (it != net_.junction_index.end()) {
+        last_internal_name_.assign(name);
+        last_internal_junction_ = static_cast<int32_t>(it->second);
+        return last_internal_junction_;
+      }
     }
     if (!int_lane_junction_built_) {  // only nets with unusual internal ids pay for this map
       for (uint32_t j = 0; j < spec_.junctions.size(); ++j)
@@ -99,14 +118,32 @@ private:
   }
   std::unordered_map<std::string, int32_t> int_lane_junction_;
   bool int_lane_junction_built_ = false;
+  std::string last_junction_id_;     // id of the last from-junction found by junction_of
+  int32_t last_junction_ = kNone;
+  std::string last_internal_name_;  // junction id of the previous internal edge resolved by its name
+  int32_t last_internal_junction_ = kNone;
 
   void add_edges_and_lanes() {
     const auto& edges = spec_.edges;
     size_t spec_lanes = 0;
     for (const auto& e : edges) spec_lanes += e.lanes.size();
-    spec_lane_offset_.resize(edges.size());
+    spec_lane_offset_.resize(edges.size() + 1);
+    spec_lanes_by_position_.resize(edges.size());
     spec_lane_car_.assign(spec_lanes, kNone);
     net_.edge_index.reserve(edges.size());
+    // Edge columns grow to at most one entry per spec edge: reserving avoids regrowing (and re-faulting)
+    // multi-megabyte arrays on large nets.
+    net_.edge_id.reserve(edges.size());
+    net_.edge_is_internal.reserve(edges.size());
+    net_.edge_from_junction.reserve(edges.size());
+    net_.edge_to_junction.reserve(edges.size());
+    internal_junction_.reserve(edges.size());
+    net_.edge_priority.reserve(edges.size());
+    edge_spec_.reserve(edges.size());
+    net_.edge_first_lane.reserve(edges.size());
+    net_.edge_num_lanes.reserve(edges.size());
+    net_.edge_length.reserve(edges.size());
+    net_.edge_speed.reserve(edges.size());
     net_.lane_index_by_id.reserve(spec_lanes);
     net_.lane_id.reserve(spec_lanes);
     lane_spec_.reserve(spec_lanes);
@@ -121,6 +158,10 @@ private:
       const EdgeSpec& e = edges[se];
       spec_lane_offset_[se] = offset;
       offset += static_cast<uint32_t>(e.lanes.size());
+      spec_lane_offset_[se + 1] = offset;
+      bool by_position = true;
+      for (uint32_t k = 0; k < e.lanes.size(); ++k) by_position = by_position && e.lanes[k].index == static_cast<int>(k);
+      spec_lanes_by_position_[se] = by_position ? 1 : 0;
       if (e.function == EdgeFunction::Crossing || e.function == EdgeFunction::WalkingArea) {
         pedestrian_edges_.insert(e.id);
         for (const auto& l : e.lanes) non_car_lanes_.insert(l.id);
@@ -266,12 +307,44 @@ private:
   // edge has no lane with that index.
   int32_t car_lane(const ConnectionSpec& c, uint32_t ei, int index, const char* role) const {
     const uint32_t se = edge_spec_[ei];
+    // Lanes listed in index order (as the net reader stores them): the index is the slot.
+    const uint32_t first = spec_lane_offset_[se], count = spec_lane_offset_[se + 1] - first;
+    if (spec_lanes_by_position_[se] && index >= 0 && static_cast<uint32_t>(index) < count)
+      return spec_lane_car_[first + static_cast<uint32_t>(index)];
     const auto& lanes = spec_.edges[se].lanes;
     for (uint32_t k = 0; k < lanes.size(); ++k)
       if (lanes[k].index == index) return spec_lane_car_[spec_lane_offset_[se] + k];
     throw InputError(c.loc, "connection from '" + c.from + "' to '" + c.to + "' names " + role + " " +
                                 std::to_string(index) + " but edge '" + net_.edge_id[ei] + "' has " +
                                 std::to_string(lanes.size()) + " lanes");
+  }
+
+  // Consecutive connections mostly share their from-edge and signal: the last lookup of each is kept.
+  struct LastLookup {
+    std::string id;
+    uint32_t index = 0;
+    bool valid = false;
+  };
+  LastLookup last_from_, last_tl_;
+  // A from-edge's lanes lead to the same few edges: the last kRecentTo to-edge lookups are kept.
+  static constexpr size_t kRecentTo = 4;
+  std::array<LastLookup, kRecentTo> recent_to_;
+  size_t recent_to_next_ = 0;
+
+  uint32_t to_edge_of(const ConnectionSpec& c) {
+    for (const auto& r : recent_to_)
+      if (r.valid && r.id == c.to) return r.index;
+    LastLookup& slot = recent_to_[recent_to_next_];
+    recent_to_next_ = (recent_to_next_ + 1) % kRecentTo;
+    return cached_edge_of(c, c.to, "to", slot);
+  }
+
+  uint32_t cached_edge_of(const ConnectionSpec& c, const std::string& id, const char* role, LastLookup& last) const {
+    if (last.valid && last.id == id) return last.index;
+    last.index = edge_of(c, id, role);
+    last.id = id;
+    last.valid = true;
+    return last.index;
   }
 
   uint32_t edge_of(const ConnectionSpec& c, const std::string& id, const char* role) const {
@@ -293,11 +366,11 @@ private:
     std::vector<Conn> kept;
     kept.reserve(spec_.connections.size());
     for (const auto& c : spec_.connections) {
-      if (pedestrian_edges_.count(c.from) || pedestrian_edges_.count(c.to)) {
+      if (!pedestrian_edges_.empty() && (pedestrian_edges_.count(c.from) || pedestrian_edges_.count(c.to))) {
         ++net_.skipped_connections;
         continue;
       }
-      const uint32_t fe = edge_of(c, c.from, "from"), te = edge_of(c, c.to, "to");
+      const uint32_t fe = cached_edge_of(c, c.from, "from", last_from_), te = to_edge_of(c);
       const int32_t fl = car_lane(c, fe, c.from_lane, "fromLane");
       const int32_t tl = car_lane(c, te, c.to_lane, "toLane");
       int32_t via = kNone;
@@ -306,7 +379,7 @@ private:
         auto it = net_.lane_index_by_id.find(c.via);
         if (it != net_.lane_index_by_id.end())
           via = static_cast<int32_t>(it->second);
-        else if (non_car_lanes_.count(c.via))
+        else if (!non_car_lanes_.empty() && non_car_lanes_.count(c.via))
           via_ok = false;
         else
           throw InputError(c.loc, "connection from '" + c.from + "' to '" + c.to + "' names unknown via lane '" +
@@ -319,22 +392,26 @@ private:
       Conn k{static_cast<uint32_t>(fl), static_cast<uint32_t>(tl), te, via, kNone, kNone, -1, c.state, c.dir};
       k.junction = net_.edge_is_internal[fe] ? internal_junction_[fe] : net_.edge_to_junction[fe];
       if (!c.tl.empty()) {
-        auto it = net_.signal_index.find(c.tl);
-        // Rail crossings name their junction as tl without a program: SUMO closes them for trains only,
-        // and no trains run here, so road links there are open (unsignalised).
-        if (it == net_.signal_index.end() && is_rail_controlled(c.tl)) {
-          kept.push_back(k);
-          continue;
+        if (!last_tl_.valid || last_tl_.id != c.tl) {
+          auto it = net_.signal_index.find(c.tl);
+          // Rail crossings name their junction as tl without a program: SUMO closes them for trains only,
+          // and no trains run here, so road links there are open (unsignalised).
+          if (it == net_.signal_index.end() && is_rail_controlled(c.tl)) {
+            kept.push_back(k);
+            continue;
+          }
+          if (it == net_.signal_index.end())
+            throw InputError(c.loc, "connection from '" + c.from + "' to '" + c.to + "' names tlLogic '" + c.tl +
+                                        "' which has no program");
+          last_tl_ = {c.tl, it->second, true};
         }
-        if (it == net_.signal_index.end())
-          throw InputError(c.loc, "connection from '" + c.from + "' to '" + c.to + "' names tlLogic '" + c.tl +
-                                      "' which has no program");
-        const uint32_t links = signal_links(it->second);
+        const uint32_t signal = last_tl_.index;
+        const uint32_t links = signal_links(signal);
         if (c.link_index < 0 || static_cast<uint32_t>(c.link_index) >= links)
           throw InputError(c.loc, "connection from '" + c.from + "' to '" + c.to + "' has linkIndex " +
                                       std::to_string(c.link_index) + " but tlLogic '" + c.tl + "' controls " +
                                       std::to_string(links) + " links");
-        k.signal = static_cast<int32_t>(it->second);
+        k.signal = static_cast<int32_t>(signal);
         k.link = static_cast<int16_t>(c.link_index);
       }
       kept.push_back(k);
