@@ -15,15 +15,15 @@ ParallelFor::~ParallelFor() {
   for (auto& w : workers_) w.join();
 }
 
-void ParallelFor::chunk(int index, int64_t n, const std::function<void(int64_t)>& body) const {
+void ParallelFor::chunk(int index, int64_t n, const RangeBody& body) const {
   const int64_t t = threads();
   const int64_t begin = n * index / t, end = n * (index + 1) / t;
-  for (int64_t i = begin; i < end; ++i) body(i);
+  if (begin < end) body(begin, end);
 }
 
-void ParallelFor::run(int64_t n, const std::function<void(int64_t)>& body, int64_t serial_below) {
+void ParallelFor::run(int64_t n, const RangeBody& body, int64_t serial_below) {
   if (workers_.empty() || n < serial_below) {
-    for (int64_t i = 0; i < n; ++i) body(i);
+    if (n > 0) body(0, n);
     return;
   }
   {
@@ -43,7 +43,7 @@ void ParallelFor::work(int index) {
   uint64_t seen = 0;
   for (;;) {
     int64_t n;
-    const std::function<void(int64_t)>* body;
+    const RangeBody* body;
     {
       std::unique_lock<std::mutex> lock(mutex_);
       start_.wait(lock, [&] { return stop_ || generation_ != seen; });

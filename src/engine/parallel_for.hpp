@@ -21,13 +21,15 @@ class ParallelFor {
   ParallelFor& operator=(const ParallelFor&) = delete;
 
   int threads() const { return static_cast<int>(workers_.size()) + 1; }
-  /// Calls body(i) for every i in [0, n), split over the team; returns when all are done. Ranges smaller
-  /// than `serial_below` run on the calling thread.
-  void run(int64_t n, const std::function<void(int64_t)>& body, int64_t serial_below = 0);
+  /// Calls body(begin, end) on contiguous sub-ranges covering [0, n), one per thread of the team; returns
+  /// when all are done (a range, not an index, per call: one indirect call per thread, not per vehicle).
+  /// Ranges smaller than `serial_below` run on the calling thread as one call.
+  using RangeBody = std::function<void(int64_t begin, int64_t end)>;
+  void run(int64_t n, const RangeBody& body, int64_t serial_below = 0);
 
  private:
   void work(int index);
-  void chunk(int index, int64_t n, const std::function<void(int64_t)>& body) const;
+  void chunk(int index, int64_t n, const RangeBody& body) const;
 
   std::vector<std::thread> workers_;
   std::mutex mutex_;
@@ -36,7 +38,7 @@ class ParallelFor {
   int pending_ = 0;
   bool stop_ = false;
   int64_t n_ = 0;
-  const std::function<void(int64_t)>* body_ = nullptr;
+  const RangeBody* body_ = nullptr;
 };
 
 }  // namespace lpsim

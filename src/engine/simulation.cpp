@@ -181,10 +181,10 @@ void Simulation::step() {
   } else {
     // CPU backend: each pass is one parallel loop over the active vehicles, finished before the next starts.
     const uint32_t* act = active_.data();
-    pool_.run(n, [&](int64_t i) { clear_old_footprint(ctx, act[i]); }, kParallelMinVehicles);
-    pool_.run(n, [&](int64_t i) { approach_vehicle(ctx, act[i]); }, kParallelMinVehicles);
-    pool_.run(n, [&](int64_t i) { plan_vehicle(ctx, act[i]); }, kParallelMinVehicles);
-    pool_.run(n, [&](int64_t i) { commit_vehicle(ctx, act[i]); }, kParallelMinVehicles);
+    pool_.run(n, [&](int64_t b, int64_t e) { for (int64_t i = b; i < e; ++i) clear_old_footprint(ctx, act[i]); }, kParallelMinVehicles);
+    pool_.run(n, [&](int64_t b, int64_t e) { for (int64_t i = b; i < e; ++i) approach_vehicle(ctx, act[i]); }, kParallelMinVehicles);
+    pool_.run(n, [&](int64_t b, int64_t e) { for (int64_t i = b; i < e; ++i) plan_vehicle(ctx, act[i]); }, kParallelMinVehicles);
+    pool_.run(n, [&](int64_t b, int64_t e) { for (int64_t i = b; i < e; ++i) commit_vehicle(ctx, act[i]); }, kParallelMinVehicles);
   }
   counts_.vehicle_updates += static_cast<uint64_t>(n);
 
