@@ -63,6 +63,7 @@ int command_run(const std::vector<std::string>& args) {
   const DeviceChoice device = select_device(config.device);
   opt.gpu = device.gpu;
   if (config.device != ComputeDevice::Cpu) std::fprintf(stderr, "lpsim: device %s\n", device.description.c_str());
+  opt.lane_counters = !sc.mean_data.empty() || !config.outputs.edgedata.empty() || !config.outputs.lanedata.empty();
   const auto wall0 = std::chrono::steady_clock::now();
   Simulation sim(sc.network, sc.demand, opt);
 

@@ -169,6 +169,10 @@ void Simulation::step() {
   ctx.cnt_entered = lc.entered.data();
   ctx.cnt_left = lc.left.data();
   ctx.cnt_arrived = lc.arrived.data();
+  if (!opt_.lane_counters && !opt_.gpu) {
+    ctx.cnt_sampled_steps = ctx.cnt_travelled_mm = ctx.cnt_waiting_steps = ctx.cnt_time_loss_ms = nullptr;
+    ctx.cnt_occupied_mm_steps = ctx.cnt_entered = ctx.cnt_left = ctx.cnt_arrived = nullptr;
+  }
 
   const int64_t n = static_cast<int64_t>(active_.size());
   if (opt_.gpu) {

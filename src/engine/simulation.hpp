@@ -25,6 +25,9 @@ struct SimulationOptions {
   int threads = 1;
   double time_to_teleport = 300;  // s; <= 0: never
   bool gpu = false;  // run the step's passes on the CUDA device (engine/device_select picks it)
+  // Accumulate the per-lane edgeData/laneData counters (lane_counters()). Off when no such output is
+  // requested: the CPU backend then skips their atomics (the GPU backend keeps them).
+  bool lane_counters = true;
 };
 
 class Simulation {
