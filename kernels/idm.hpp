@@ -99,15 +99,8 @@ LPSIM_HD float idm_free_speed(const IdmParams& p, float speed, float v0, float d
   if (speed == v0 && v0 >= kIdmEps) return v0;
   const int n = substeps < 1 ? 1 : substeps;
   const float h = dt / static_cast<float>(n);
-  const float v0_safe = lp_fmaxf(v0, kIdmEps);  // as in idm_free_accel, hoisted
-  const bool delta4 = p.delta == 4.0f;
   float v = speed;
-  for (int i = 0; i < n; ++i) {
-    const float ratio = v / v0_safe;
-    const float r2 = ratio * ratio;
-    const float pow_term = delta4 ? r2 * r2 : idm_pow_delta(ratio, p.delta);
-    v = lp_fmaxf(0.0f, v + lp_fmaxf(p.accel * (1.0f - pow_term), -p.decel) * h);
-  }
+  for (int i = 0; i < n; ++i) v = lp_fmaxf(0.0f, v + idm_free_accel(p, v, v0) * h);
   // Euler sub-steps can overshoot the desired speed by a little; like SUMO's cap at the lane's maximum
   // speed, a vehicle that was not faster never ends above it.
   return speed <= v0 ? lp_fminf(v, v0) : v;
@@ -119,21 +112,14 @@ LPSIM_HD float idm_interaction_speed(const IdmParams& p, float speed, float v0, 
                                      float jam_gap, float dt, int substeps) {
   const int n = substeps < 1 ? 1 : substeps;
   const float h = dt / static_cast<float>(n);
-  // Loop invariants hoisted by hand (the same operations as idm_desired_gap / idm_accel, so the same bits):
-  // the sub-steps form one dependency chain, and this is the engine's hottest loop.
-  const float v0_safe = lp_fmaxf(v0, kIdmEps);
-  const float two_sqrt_ab = 2.0f * sqrtf(p.accel * p.decel);
-  const bool delta4 = p.delta == 4.0f;
   float v = speed;
   float s = gap;
   for (int i = 0; i < n; ++i) {
-    const float ratio = v / v0_safe;
-    const float dynamic = v * p.tau + v * (v - leader_speed) / two_sqrt_ab;
-    const float s_star = jam_gap + lp_fmaxf(0.0f, dynamic);
-    const float q = s_star / lp_fmaxf(s, kIdmEps);
-    const float r2 = ratio * ratio;
-    const float pow_term = delta4 ? r2 * r2 : idm_pow_delta(ratio, p.delta);
-    const float acc = p.accel * (1.0f - pow_term - q * q);
+    const float ratio = v / lp_fmaxf(v0, kIdmEps);
+    const float s_star = idm_desired_gap(p, v, leader_speed, jam_gap);
+    const float s_safe = lp_fmaxf(s, kIdmEps);
+    const float interaction = (s_star / s_safe) * (s_star / s_safe);
+    const float acc = p.accel * (1.0f - idm_pow_delta(ratio, p.delta) - interaction);
     v = lp_fmaxf(0.0f, v + acc * h);
     s -= lp_fmaxf(0.0f, (v - leader_speed) * h);
   }

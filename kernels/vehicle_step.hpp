@@ -125,6 +125,14 @@ LPSIM_HD BestLanes best_lanes(const NetView& net, const TripView& trips, uint32_
 // into edges of a few metres or less).
 constexpr float kMinLaneChangeEdge = 15.0f;
 
+/// A connection from `lane` to edge `next` onto a lane that continues to edge `after`, or -1.
+LPSIM_HD int32_t conn_through(const NetView& net, int32_t lane, uint32_t next, uint32_t after) {
+  for (uint32_t c = net.lane_conn_begin[lane]; c < net.lane_conn_begin[lane + 1]; ++c)
+    if (net.conn_to_edge[c] == next && lane_has_conn_to(net, static_cast<int32_t>(net.conn_to_lane[c]), after))
+      return static_cast<int32_t>(c);
+  return -1;
+}
+
 /// The connection a vehicle takes at the end of `lane` to reach the route's next edge (index rp+1); prefers
 /// a target lane among the next edge's best lanes. -1: this lane does not lead there, or only onto lanes of
 /// a short next edge that have no connection to the edge after it (a trap: the vehicle waits here, where it
@@ -151,16 +159,13 @@ LPSIM_HD int32_t choose_connection(const StepContext& s, uint32_t v, int32_t lan
   }
   if (first >= 0 && rp + 2 < len && net.lane_length[net.edge_first_lane[next]] < kMinLaneChangeEdge) {
     const uint32_t after = route_edge(s, v, rp + 2);
-    for (uint32_t c = net.lane_conn_begin[lane]; c < net.lane_conn_begin[lane + 1]; ++c)
-      if (net.conn_to_edge[c] == next && lane_has_conn_to(net, static_cast<int32_t>(net.conn_to_lane[c]), after))
-        return static_cast<int32_t>(c);
+    const int32_t through = conn_through(net, lane, next, after);
+    if (through >= 0) return through;
     // A trap only if another lane of this edge avoids it; else there is nothing better to wait for.
     const uint32_t edge = net.lane_edge[lane];
     const uint32_t l0 = net.edge_first_lane[edge];
     for (uint32_t l = l0; l < l0 + net.edge_num_lanes[edge]; ++l)
-      for (uint32_t c = net.lane_conn_begin[l]; c < net.lane_conn_begin[l + 1]; ++c)
-        if (net.conn_to_edge[c] == next && lane_has_conn_to(net, static_cast<int32_t>(net.conn_to_lane[c]), after))
-          return -1;
+      if (conn_through(net, static_cast<int32_t>(l), next, after) >= 0) return -1;
   }
   return first;
 }

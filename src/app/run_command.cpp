@@ -63,11 +63,14 @@ int command_run(const std::vector<std::string>& args) {
   const DeviceChoice device = select_device(config.device);
   opt.gpu = device.gpu;
   if (config.device != ComputeDevice::Cpu) std::fprintf(stderr, "lpsim: device %s\n", device.description.c_str());
-  opt.lane_counters = !sc.mean_data.empty() || !config.outputs.edgedata.empty() || !config.outputs.lanedata.empty();
+  const OutputSpec& out = config.outputs;
+  std::vector<MeanDataSpec> specs = sc.mean_data;
+  if (!out.edgedata.empty()) specs.push_back(MeanDataSpec{"edgedata", out.edgedata, false, -1, -1, -1, false, false, {}});
+  if (!out.lanedata.empty()) specs.push_back(MeanDataSpec{"lanedata", out.lanedata, true, -1, -1, -1, false, false, {}});
+  opt.lane_counters = !specs.empty();
   const auto wall0 = std::chrono::steady_clock::now();
   Simulation sim(sc.network, sc.demand, opt);
 
-  const OutputSpec& out = config.outputs;
   std::unique_ptr<FcdWriter> fcd;
   std::unique_ptr<TripinfoWriter> tripinfo;
   std::unique_ptr<SummaryWriter> summary;
@@ -79,9 +82,6 @@ int command_run(const std::vector<std::string>& args) {
   }
   if (!out.summary.empty()) summary = std::make_unique<SummaryWriter>(out.summary);
   std::vector<MeanDataOutput> mean;
-  std::vector<MeanDataSpec> specs = sc.mean_data;
-  if (!out.edgedata.empty()) specs.push_back(MeanDataSpec{"edgedata", out.edgedata, false, -1, -1, -1, false, false, {}});
-  if (!out.lanedata.empty()) specs.push_back(MeanDataSpec{"lanedata", out.lanedata, true, -1, -1, -1, false, false, {}});
   for (auto& s : specs) {
     MeanDataOutput m;
     m.spec = s;

@@ -160,18 +160,17 @@ void Simulation::step() {
   ctx.merge_requests = merge_requests_.data();
   ctx.yielder_begin = engine_net_.yielder_begin.data();
   ctx.yielder = engine_net_.yielder.data();
-  LaneCounters& lc = lane_counters_;
-  ctx.cnt_sampled_steps = lc.sampled_steps.data();
-  ctx.cnt_travelled_mm = lc.travelled_mm.data();
-  ctx.cnt_waiting_steps = lc.waiting_steps.data();
-  ctx.cnt_time_loss_ms = lc.time_loss_ms.data();
-  ctx.cnt_occupied_mm_steps = lc.occupied_mm_steps.data();
-  ctx.cnt_entered = lc.entered.data();
-  ctx.cnt_left = lc.left.data();
-  ctx.cnt_arrived = lc.arrived.data();
-  if (!opt_.lane_counters && !opt_.gpu) {
-    ctx.cnt_sampled_steps = ctx.cnt_travelled_mm = ctx.cnt_waiting_steps = ctx.cnt_time_loss_ms = nullptr;
-    ctx.cnt_occupied_mm_steps = ctx.cnt_entered = ctx.cnt_left = ctx.cnt_arrived = nullptr;
+  // Left null (ctx is zeroed) when no output wants them: the passes then skip their atomics.
+  if (opt_.lane_counters || opt_.gpu) {
+    LaneCounters& lc = lane_counters_;
+    ctx.cnt_sampled_steps = lc.sampled_steps.data();
+    ctx.cnt_travelled_mm = lc.travelled_mm.data();
+    ctx.cnt_waiting_steps = lc.waiting_steps.data();
+    ctx.cnt_time_loss_ms = lc.time_loss_ms.data();
+    ctx.cnt_occupied_mm_steps = lc.occupied_mm_steps.data();
+    ctx.cnt_entered = lc.entered.data();
+    ctx.cnt_left = lc.left.data();
+    ctx.cnt_arrived = lc.arrived.data();
   }
 
   const int64_t n = static_cast<int64_t>(active_.size());
@@ -185,10 +184,14 @@ void Simulation::step() {
   } else {
     // CPU backend: each pass is one parallel loop over the active vehicles, finished before the next starts.
     const uint32_t* act = active_.data();
-    pool_.run(n, [&](int64_t b, int64_t e) { for (int64_t i = b; i < e; ++i) clear_old_footprint(ctx, act[i]); }, kParallelMinVehicles);
-    pool_.run(n, [&](int64_t b, int64_t e) { for (int64_t i = b; i < e; ++i) approach_vehicle(ctx, act[i]); }, kParallelMinVehicles);
-    pool_.run(n, [&](int64_t b, int64_t e) { for (int64_t i = b; i < e; ++i) plan_vehicle(ctx, act[i]); }, kParallelMinVehicles);
-    pool_.run(n, [&](int64_t b, int64_t e) { for (int64_t i = b; i < e; ++i) commit_vehicle(ctx, act[i]); }, kParallelMinVehicles);
+    auto pass = [&](auto vehicle_pass) {
+      pool_.run(n, [&](int64_t b, int64_t e) { for (int64_t i = b; i < e; ++i) vehicle_pass(ctx, act[i]); },
+                kParallelMinVehicles);
+    };
+    pass(clear_old_footprint);
+    pass(approach_vehicle);
+    pass(plan_vehicle);
+    pass(commit_vehicle);
   }
   counts_.vehicle_updates += static_cast<uint64_t>(n);
 
