@@ -53,24 +53,11 @@ __global__ void signals_kernel(SignalTable table, int64_t time_ms, char* link_st
   if (s < table.num_signals) update_signal(table, s, time_ms, link_state);
 }
 
-__global__ void clear_kernel(StepContext ctx, const uint32_t* active, uint32_t n) {
+// One thread per active vehicle, running one of the step's passes (the same functions the CPU backend loops over).
+template <void (*VehiclePass)(StepContext&, uint32_t)>
+__global__ void pass_kernel(StepContext ctx, const uint32_t* active, uint32_t n) {
   const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
-  if (i < n) clear_old_footprint(ctx, active[i]);
-}
-
-__global__ void approach_kernel(StepContext ctx, const uint32_t* active, uint32_t n) {
-  const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
-  if (i < n) approach_vehicle(ctx, active[i]);
-}
-
-__global__ void plan_kernel(StepContext ctx, const uint32_t* active, uint32_t n) {
-  const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
-  if (i < n) plan_vehicle(ctx, active[i]);
-}
-
-__global__ void commit_kernel(StepContext ctx, const uint32_t* active, uint32_t n) {
-  const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
-  if (i < n) commit_vehicle(ctx, active[i]);
+  if (i < n) VehiclePass(ctx, active[i]);
 }
 
 /// One cudaMalloc'd allocation, freed with its owner.
@@ -206,14 +193,14 @@ class CudaStepper final : public GpuStepper {
     LPSIM_CUDA_CHECK(cudaMemset(counters_, 0, kNumCounters * nl * sizeof(int64_t)));
 
     const uint32_t grid = blocks_for(n);
-    clear_kernel<<<grid, kBlock>>>(ctx, active_, n);
-    LPSIM_CUDA_CHECK_LAUNCH(clear_kernel);
-    approach_kernel<<<grid, kBlock>>>(ctx, active_, n);
-    LPSIM_CUDA_CHECK_LAUNCH(approach_kernel);
-    plan_kernel<<<grid, kBlock>>>(ctx, active_, n);
-    LPSIM_CUDA_CHECK_LAUNCH(plan_kernel);
-    commit_kernel<<<grid, kBlock>>>(ctx, active_, n);
-    LPSIM_CUDA_CHECK_LAUNCH(commit_kernel);
+    pass_kernel<clear_old_footprint><<<grid, kBlock>>>(ctx, active_, n);
+    LPSIM_CUDA_CHECK_LAUNCH(clear_old_footprint);
+    pass_kernel<approach_vehicle><<<grid, kBlock>>>(ctx, active_, n);
+    LPSIM_CUDA_CHECK_LAUNCH(approach_vehicle);
+    pass_kernel<plan_vehicle><<<grid, kBlock>>>(ctx, active_, n);
+    LPSIM_CUDA_CHECK_LAUNCH(plan_vehicle);
+    pass_kernel<commit_vehicle><<<grid, kBlock>>>(ctx, active_, n);
+    LPSIM_CUDA_CHECK_LAUNCH(commit_vehicle);
     LPSIM_CUDA_CHECK(cudaDeviceSynchronize());  // a fault inside the passes is reported here
 
     for_each_vehicle_column(dev_.veh, host.veh, [&](auto* dev, auto* h) { copy_to_host(h + lo, dev + lo, hi - lo); });
@@ -366,7 +353,7 @@ CudaDeviceStatus cuda_device_status() {
   }
   // The kernels may lack an image for this architecture (built for sm_80 and sm_90 plus their PTX).
   cudaFuncAttributes attr{};
-  rc = cudaFuncGetAttributes(&attr, plan_kernel);
+  rc = cudaFuncGetAttributes(&attr, pass_kernel<plan_vehicle>);
   if (rc != cudaSuccess) {
     status.description = name + " cannot run this build's kernels: " + cudaGetErrorString(rc);
     cudaGetLastError();
