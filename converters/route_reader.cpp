@@ -194,6 +194,18 @@ class RouteFileReader {
     return *d;
   }
 
+  // type, route, from/to (edges or junctions) and via: the same attributes on a vehicle, trip or flow.
+  template <class Spec>
+  void read_type_and_path(Spec& spec) const {
+    if (attrs_.present[kType]) spec.type = attrs_.value[kType];
+    if (attrs_.present[kRoute]) spec.route = attrs_.id_value(kRoute);
+    spec.from = attrs_.id_value(kFrom);
+    spec.to = attrs_.id_value(kTo);
+    spec.from_junction = attrs_.id_value(kFromJunction);
+    spec.to_junction = attrs_.id_value(kToJunction);
+    if (attrs_.present[kVia]) spec.via = split_ids(attrs_.value[kVia]);
+  }
+
   void read_depart_spec(const SourceLoc& loc, std::string_view element, std::string_view id, DepartSpec& d) const {
     if (auto* v = attrs_.get(kDepartLane); v && !parse_depart_lane(*v, d))
       fail(loc, element, id, "unknown departLane '" + *v + "' (first, random, free, allowed, best or a lane index)");
@@ -284,13 +296,7 @@ class RouteFileReader {
     v.id = id;
     v.source = source;
     v.depart = time_attr(kDepart, loc, element, id, 0);
-    if (attrs_.present[kType]) v.type = attrs_.value[kType];
-    if (attrs_.present[kRoute]) v.route = attrs_.id_value(kRoute);
-    v.from = attrs_.id_value(kFrom);
-    v.to = attrs_.id_value(kTo);
-    v.from_junction = attrs_.id_value(kFromJunction);
-    v.to_junction = attrs_.id_value(kToJunction);
-    if (attrs_.present[kVia]) v.via = split_ids(attrs_.value[kVia]);
+    read_type_and_path(v);
     read_depart_spec(loc, element, id, v.depart_spec);
     read_path_children(loc, element, v.id, v.route, v.edges, &v);
 
@@ -345,13 +351,7 @@ class RouteFileReader {
     if (rates == 0 && f.number < 0)
       fail(loc, element, id, "needs one of 'period', 'vehsPerHour', 'perHour', 'probability' or 'number'");
 
-    if (attrs_.present[kType]) f.type = attrs_.value[kType];
-    if (attrs_.present[kRoute]) f.route = attrs_.id_value(kRoute);
-    f.from = attrs_.id_value(kFrom);
-    f.to = attrs_.id_value(kTo);
-    f.from_junction = attrs_.id_value(kFromJunction);
-    f.to_junction = attrs_.id_value(kToJunction);
-    if (attrs_.present[kVia]) f.via = split_ids(attrs_.value[kVia]);
+    read_type_and_path(f);
     read_depart_spec(loc, element, id, f.depart_spec);
     read_path_children(loc, element, f.id, f.route, f.edges);
     if (f.route.empty() && f.edges.empty() && !has_endpoints(f.from, f.from_junction, f.to, f.to_junction))

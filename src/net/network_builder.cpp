@@ -461,17 +461,10 @@ private:
       if (net_.edge_is_internal[e]) continue;
       found.clear();
       ++mark;
+      // Start from the edge's own lanes (normal lanes are never reached again: connections from internal
+      // lanes that lead to a normal edge end the walk).
       const uint32_t l0 = net_.edge_first_lane[e], l1 = l0 + net_.edge_num_lanes[e];
-      for (uint32_t l = l0; l < l1; ++l)
-        for (uint32_t c = net_.lane_conn_begin[l]; c < net_.lane_conn_begin[l + 1]; ++c) {
-          const uint32_t t = net_.conn_to_edge[c];
-          if (!net_.edge_is_internal[t]) {
-            found.push_back(t);
-          } else if (lane_mark[net_.conn_to_lane[c]] != mark) {
-            lane_mark[net_.conn_to_lane[c]] = mark;
-            stack.push_back(net_.conn_to_lane[c]);
-          }
-        }
+      for (uint32_t l = l0; l < l1; ++l) stack.push_back(l);
       while (!stack.empty()) {
         const uint32_t l = stack.back();
         stack.pop_back();
