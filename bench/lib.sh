@@ -1,5 +1,5 @@
 # Shared helpers of the benchmark scripts (sourced, not run).
-# Timing uses GNU time (/usr/bin/time -v): wall clock, user+sys CPU and peak resident set size.
+# Timing uses GNU time -v (/usr/bin/time, or $GNU_TIME): wall clock, user+sys CPU and peak resident set size.
 
 export SUMO_HOME="${SUMO_HOME:-/usr/share/sumo}"
 
@@ -15,7 +15,7 @@ _elapsed_seconds() {
 measure() {
   local logfile="$1"; shift
   local status=0
-  /usr/bin/time -v -o "$logfile.time" "$@" >"$logfile" 2>&1 || status=$?
+  "${GNU_TIME:-/usr/bin/time}" -v -o "$logfile.time" "$@" >"$logfile" 2>&1 || status=$?
   local elapsed user sys rss
   elapsed=$(sed -n 's/^.*Elapsed (wall clock) time (h:mm:ss or m:ss): //p' "$logfile.time")
   user=$(sed -n 's/^.*User time (seconds): //p' "$logfile.time")

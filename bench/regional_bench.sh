@@ -16,6 +16,7 @@
 #
 # Usage: bench/regional_bench.sh [--trips "1000000 3000000 9000000"] [--devices "cpu gpu"] [--threads N]
 #          [--end T] [--step-length 0.5] [--runs N] [--warmup N] [--seed 42] [--tiles 8] [--lpsim PATH]
+#          [--bayarea DIR (the base network; default ../shared/lpsim_bayarea_tertiary)]
 #        bench/regional_bench.sh --selftest    (generator determinism + a tiny scenario loads; ~1 min)
 # --end caps the simulated time (default: the whole 12 h); capped runs are marked "capped" in the table.
 # --runs: medians over N timed runs; --warmup: untimed runs before them (default 1 on a GPU, 0 on the CPU).
@@ -34,7 +35,9 @@ warmup=""
 seed=42
 tiles=8
 lpsim=build/lpsim
+bayarea=()
 selftest=0
+python=${PYTHON:-python3}
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --trips) trips_list="$2"; shift 2 ;;
@@ -47,6 +50,7 @@ while [[ $# -gt 0 ]]; do
     --seed) seed="$2"; shift 2 ;;
     --tiles) tiles="$2"; shift 2 ;;
     --lpsim) lpsim="$2"; shift 2 ;;
+    --bayarea) bayarea=(--bayarea "$2"); shift 2 ;;
     --selftest) selftest=1; shift ;;
     -h|--help) sed -n '2,22p' "$0"; exit 0 ;;
     *) echo "unknown option $1" >&2; exit 2 ;;
@@ -64,9 +68,9 @@ if [[ $selftest == 1 ]]; then
   tmp=$(mktemp -d)
   trap 'rm -rf "$tmp"' EXIT
   small=(--tiles 2 --scale 0.25 --trips 3000 --hours 1)
-  /usr/bin/python3 "$gen" "${small[@]}" --seed 7 --out "$tmp/a" 2>/dev/null
-  /usr/bin/python3 "$gen" "${small[@]}" --seed 7 --out "$tmp/b" 2>/dev/null
-  /usr/bin/python3 "$gen" "${small[@]}" --seed 8 --out "$tmp/c" 2>/dev/null
+  "$python" "$gen" "${small[@]}" --seed 7 --out "$tmp/a" 2>/dev/null
+  "$python" "$gen" "${small[@]}" --seed 7 --out "$tmp/b" 2>/dev/null
+  "$python" "$gen" "${small[@]}" --seed 8 --out "$tmp/c" 2>/dev/null
   fail=0
   for f in nodes.csv edges.csv od.csv; do
     cmp -s "$tmp/a/$f" "$tmp/b/$f" || { echo "FAIL: $f differs between two runs with seed 7"; fail=1; }
@@ -88,7 +92,7 @@ fi
 
 # --- bytes of device state per vehicle, from the column types the CUDA backend allocates ---
 state_bytes() {
-  /usr/bin/python3 - kernels/step_view.hpp kernels/cuda_step.cu <<'PY'
+  "$python" - kernels/step_view.hpp kernels/cuda_step.cu <<'PY'
 import re, sys
 size = {"uint8_t": 1, "int8_t": 1, "char": 1, "int16_t": 2, "uint16_t": 2, "uint32_t": 4, "int32_t": 4,
         "float": 4, "uint64_t": 8, "int64_t": 8, "double": 8}
@@ -114,7 +118,7 @@ PY
 
 # Sum and maximum over steps of running vehicles in a SUMO-format summary file.
 updates_of() {
-  /usr/bin/python3 - "$1" <<'PY'
+  "$python" - "$1" <<'PY'
 import sys, xml.etree.ElementTree as ET
 total = peak = 0
 for _, el in ET.iterparse(sys.argv[1]):
@@ -167,8 +171,8 @@ for trips in $trips_list; do
   if ! grep -qE "$want" "$dir/scenario.txt" 2>/dev/null; then
     log "generating $dir"
     rm -f "$dir/regional.lpsim"
-    read -r gw gc gm < <(measure "$dir.gen.log" /usr/bin/python3 "$gen" --trips "$trips" --seed "$seed" \
-      --tiles "$tiles" --hours "$hours" --out "$dir") || { log "generation failed, see $dir.gen.log"; continue; }
+    read -r gw gc gm < <(measure "$dir.gen.log" "$python" "$gen" --trips "$trips" --seed "$seed" \
+      --tiles "$tiles" --hours "$hours" "${bayarea[@]}" --out "$dir") || { log "generation failed, see $dir.gen.log"; continue; }
     prep+=("| $trips | generate (tools/make_regional_scenario.py) | $gw | $gc | $gm |")
   fi
   snap="$dir/regional.lpsim"
