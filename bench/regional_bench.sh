@@ -5,7 +5,7 @@
 #
 # Per trip count: the CSV scenario is generated (if missing) and converted once into a snapshot with its routes
 # (`lpsim convert`: CSV load + routing, timed and reported apart); the runs load the snapshot. Per case:
-#   vehicle-updates  sum over steps of running vehicles (from --summary-output, as bench/engine_bench.sh),
+#   vehicle-updates  sum over steps of the vehicles the passes visited (the run's own count, no output files),
 #   sim wall s       the run's own "Duration" (simulation only: load excluded),
 #   sim CPU s        CPU s of the run minus CPU s of `lpsim info` on the same snapshot (the load),
 #   updates/s        vehicle-updates / sim wall s;  sim s per wall s: simulated seconds / sim wall s,
@@ -116,21 +116,6 @@ print(per_vehicle, per_route_edge, "; ".join(parts))
 PY
 }
 
-# Sum and maximum over steps of running vehicles in a SUMO-format summary file.
-updates_of() {
-  "$python" - "$1" <<'PY'
-import sys, xml.etree.ElementTree as ET
-total = peak = 0
-for _, el in ET.iterparse(sys.argv[1]):
-    if el.tag == "step":
-        r = int(el.get("running"))
-        total += r
-        peak = max(peak, r)
-        el.clear()
-print(total, peak)
-PY
-}
-
 # "wall_s cpu_s rss_mib" from a GNU time -v report written earlier (as measure prints them).
 measure_report() {
   awk -F': ' '/Elapsed \(wall clock\)/ { n = split($2, p, ":"); w = 0; for (i = 1; i <= n; i++) w = w * 60 + p[i] }
@@ -197,9 +182,7 @@ for trips in $trips_list; do
   for dev in $devices; do
     [[ $dev == gpu && $gpu_ok != yes ]] && continue
     nwarm=${warmup:-$([[ $dev == gpu ]] && echo 1 || echo 0)}
-    summary="$dir/$dev.summary.xml"
-    cmd=("$lpsim" run "$snap" --device "$dev" --threads "$threads" --step-length "$step" --end "$end"
-         --summary-output "$summary")
+    cmd=("$lpsim" run "$snap" --device "$dev" --threads "$threads" --step-length "$step" --end "$end")
     walls=(); cpus=(); rsss=(); gmems=()
     for ((r = 1 - nwarm; r <= runs; r++)); do
       log "$trips $dev run $r/$runs${r:+}: ${cmd[*]}"
@@ -220,7 +203,7 @@ for trips in $trips_list; do
     [[ ${#walls[@]} -gt 0 ]] || continue
     wall=$(median "${walls[@]}"); cpu=$(median "${cpus[@]}"); rss=$(median "${rsss[@]}")
     gmem=$([[ $dev == gpu ]] && median "${gmems[@]}" || echo "-")
-    read -r n peak < <(updates_of "$summary")
+    read -r n peak < <(sed -n 's/^ Vehicle updates: \([0-9]*\) (peak running \([0-9]*\))/\1 \2/p' "$dir/$dev.log")
     simulated=$(sed -n 's/^Simulation ended at time: //p' "$dir/$dev.log")
     ups=$(awk -v n="$n" -v w="$wall" 'BEGIN { printf "%.3g", n / w }')
     upc=$(awk -v n="$n" -v c="$cpu" 'BEGIN { if (c > 0) printf "%.3g", n / c; else print "n/a" }')

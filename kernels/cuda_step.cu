@@ -1,32 +1,28 @@
-// CUDA backend: thin kernels over the same step functions the CPU backend runs (kernels/vehicle_step.hpp,
-// kernels/signal_step.hpp), one thread per active vehicle or per signal, and the GpuStepper that owns the
-// device arrays. Built with --fmad=false (and the CPU with -ffp-contract=off), so both compute bit-identical
-// floats; the only read-modify-writes are integer atomics, whose result does not depend on thread order.
+// CUDA backend: thin kernels over the same functions the CPU backend runs (kernels/vehicle_step.hpp,
+// kernels/signal_step.hpp, kernels/insert_vehicle.hpp), one thread per active vehicle, per signal or per
+// edge with waiting vehicles, and the GpuStepper that owns the run state on the device. Built with
+// --fmad=false (and the CPU with -ffp-contract=off), so both compute bit-identical floats; the only
+// read-modify-writes are integer atomics, whose result does not depend on thread order.
 //
-// What crosses the bus per step. This first integration keeps the host work of the CPU backend (arrivals,
-// teleports, insertion, rebuilding the active list) on the host, so the stepper mirrors what it touches:
-//   host -> device before the passes:
-//     - the active list;
-//     - the vehicle-state columns (VehicleView) over the index range [first active, last active]: the host
-//       inserted vehicles there and moved teleporting ones on; the device touches no vehicle outside it;
-//     - the lane map the step reads (the host wrote the footprints of inserted vehicles into it).
-//   device -> host after the passes:
-//     - the same vehicle-state range (arrivals, teleports, FCD, tripinfo and summary read it);
-//     - the lane map the step wrote (insertion checks free cells in it);
-//     - the step's per-lane counter increments, added to the host's counters.
-// Uploaded once: network, signal programs, vehicle types, trips, the initial plan scratch, lane approaches,
-// claims and merge requests. Link states, plan scratch, approaches, claims and merge requests then live on
-// the device only.
-// Next step (what the issue asks for): move insertion, teleports and the active-list compaction to the
-// device, so that nothing but outputs (FCD samples, finished trips, counters at interval ends) is copied.
+// The device holds the run state for the whole run: vehicle columns, plan scratch, both lane maps (a step
+// clears only the cells its vehicles left), signal states, the active list (ascending vehicle indices, kept
+// so by a stable compaction and a merge) and the edgeData counters. What crosses the bus per step:
+//   device -> host: a tally (vehicles kept, running, ended) and the step's arrivals and teleports;
+//   host -> device: the teleport decisions, the queue heads to insert, the vehicles inserted;
+//   device -> host: how many of each queue head were inserted, and where.
+// Outputs fetch more only when they sample: FCD and summary the active vehicles' positions, edgeData the
+// counters at the end of an interval.
 #include <cuda_runtime.h>
 
 #include <algorithm>
+#include <cub/device/device_merge.cuh>
+#include <cub/device/device_select.cuh>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "kernels/gpu_stepper.hpp"
+#include "kernels/insert_vehicle.hpp"
 #include "kernels/signal_step.hpp"
 #include "kernels/vehicle_step.hpp"
 
@@ -60,14 +56,71 @@ __global__ void pass_kernel(StepContext ctx, const uint32_t* active, uint32_t n)
   if (i < n) VehiclePass(ctx, active[i]);
 }
 
-/// One cudaMalloc'd allocation, freed with its owner.
+/// What the host reads after a step's passes (GpuStepOutcome).
+struct StepTally {
+  uint32_t kept;
+  uint32_t running;
+  uint32_t ends;
+};
+
+// After the commit pass: records arrivals and teleports, flags the vehicles that stay active and counts
+// them. Every thread of a block reaches the block-wide counts (no early return).
+__global__ void finish_kernel(VehicleView veh, const uint32_t* active, uint32_t n, uint32_t steps_done,
+                              uint32_t teleport_steps, uint8_t* keep, VehicleEnd* ends, StepTally* tally) {
+  const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  bool kept = false, running = false;
+  if (i < n) {
+    const uint32_t v = active[i];
+    const uint32_t kind = step_end_kind(veh, v, steps_done, teleport_steps);
+    if (kind != kEndNone) ends[atomicAdd(&tally->ends, 1u)] = vehicle_end(veh, v, kind);
+    kept = stays_active(veh, v);
+    running = kept && veh.status[v] == kRunning;
+    keep[i] = kept ? 1 : 0;
+  }
+  const int k = __syncthreads_count(kept), r = __syncthreads_count(running);
+  if (threadIdx.x == 0) {
+    if (k > 0) atomicAdd(&tally->kept, static_cast<uint32_t>(k));
+    if (r > 0) atomicAdd(&tally->running, static_cast<uint32_t>(r));
+  }
+}
+
+__global__ void teleport_kernel(VehicleView veh, const TeleportMove* moves, uint32_t n, uint32_t steps_done) {
+  const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i < n) apply_teleport_move(veh, moves[i], steps_done);
+}
+
+__global__ void insert_kernel(StepContext ctx, DepartView depart, InsertParams p, uint8_t* map, InsertBatch b) {
+  const uint32_t slot = blockIdx.x * blockDim.x + threadIdx.x;
+  if (slot < b.num_slots) insert_queue_head(ctx, depart, p, map, b, slot);
+}
+
+__global__ void sample_kernel(VehicleView veh, const uint32_t* active, uint32_t n, uint8_t* status, int32_t* lane,
+                              float* pos, float* speed) {
+  const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i >= n) return;
+  const uint32_t v = active[i];
+  status[i] = veh.status[v];
+  lane[i] = veh.lane[v];
+  pos[i] = veh.pos[v];
+  speed[i] = veh.speed[v];
+}
+
+struct AscendingIndex {
+  __device__ bool operator()(uint32_t a, uint32_t b) const { return a < b; }
+};
+
+/// One cudaMalloc'd allocation (or none), freed with its owner.
 class DeviceBuffer {
  public:
+  DeviceBuffer() = default;
   explicit DeviceBuffer(size_t bytes) { LPSIM_CUDA_CHECK(cudaMalloc(&ptr_, std::max<size_t>(bytes, 1))); }
   DeviceBuffer(DeviceBuffer&& other) noexcept : ptr_(other.ptr_) { other.ptr_ = nullptr; }
   DeviceBuffer(const DeviceBuffer&) = delete;
   DeviceBuffer& operator=(const DeviceBuffer&) = delete;
-  DeviceBuffer& operator=(DeviceBuffer&&) = delete;
+  DeviceBuffer& operator=(DeviceBuffer&& other) noexcept {
+    std::swap(ptr_, other.ptr_);
+    return *this;
+  }
   ~DeviceBuffer() {
     if (ptr_ != nullptr) cudaFree(ptr_);  // no throw from a destructor; a failed free leaks at worst
   }
@@ -124,18 +177,38 @@ void for_each_vehicle_column(A& a, B& b, F&& f) {
   f(a.best_mask, b.best_mask);
 }
 
-constexpr int kNumCounters = 8;
+static_assert(sizeof(DepartView) == 6 * sizeof(void*), "DepartView changed: update the depart uploads");
+
+/// A device array that grows on demand (its contents are not kept when it grows).
+template <class T>
+class ScratchArray {
+ public:
+  T* get(size_t n) {
+    if (n > capacity_) {
+      capacity_ = std::max(n, capacity_ + capacity_ / 2);
+      buffer_ = DeviceBuffer(capacity_ * sizeof(T));
+    }
+    return static_cast<T*>(buffer_.get());
+  }
+
+ private:
+  DeviceBuffer buffer_;
+  size_t capacity_ = 0;
+};
 
 class CudaStepper final : public GpuStepper {
  public:
-  CudaStepper(const StepContext& host, const SignalTable& signals, const GpuStepSizes& sizes) {
+  CudaStepper(const StepContext& host, const SignalTable& signals, const GpuStepSizes& sizes, const DepartView& depart,
+              const uint8_t* other_map, int map_now, const std::vector<uint32_t>& active, bool lane_counters) {
     upload_network(host.net, sizes);
     upload_signals(signals);
     upload_demand(host, sizes);
     const uint32_t nv = sizes.num_vehicles, nl = host.net.num_lanes;
+    num_vehicles_ = nv;
+    depart_ = DepartView{upload(depart.lane_kind, nv), upload(depart.lane, nv),       upload(depart.pos_kind, nv),
+                         upload(depart.pos, nv),       upload(depart.speed_kind, nv), upload(depart.speed, nv)};
 
     for_each_vehicle_column(dev_.veh, host.veh, [&](auto*& dev, auto* h) { dev = upload(h, nv); });
-
     // Plan scratch carries nothing the host reads, but a pass may read an entry it did not write this step
     // (a claim priority, say): start from the host's values so both backends see the same ones.
     PlanView& plan = dev_.plan;
@@ -160,60 +233,172 @@ class CudaStepper final : public GpuStepper {
     dev_.yielder_begin = upload(host.yielder_begin, nc + 1);
     dev_.yielder = upload(host.yielder, host.yielder_begin[nc]);
 
-    // The counters of one step, contiguous so that one memset clears them and one copy fetches them.
-    int64_t* counters = allocate<int64_t>(static_cast<size_t>(kNumCounters) * nl);
-    int64_t** columns[kNumCounters] = {&dev_.cnt_sampled_steps, &dev_.cnt_travelled_mm,  &dev_.cnt_waiting_steps,
-                                       &dev_.cnt_time_loss_ms,  &dev_.cnt_occupied_mm_steps, &dev_.cnt_entered,
-                                       &dev_.cnt_left,          &dev_.cnt_arrived};
-    for (int k = 0; k < kNumCounters; ++k) *columns[k] = counters + static_cast<size_t>(k) * nl;
-    counters_ = counters;
-    counter_delta_.resize(static_cast<size_t>(kNumCounters) * nl);
+    // The counters, contiguous so that one copy fetches them and one memset clears them.
+    num_lanes_ = nl;
+    if (lane_counters) {
+      counters_ = allocate<int64_t>(static_cast<size_t>(kNumLaneCounters) * nl);
+      LPSIM_CUDA_CHECK(cudaMemset(counters_, 0, kNumLaneCounters * static_cast<size_t>(nl) * sizeof(int64_t)));
+      int64_t** columns[kNumLaneCounters - 1] = {&dev_.cnt_sampled_steps, &dev_.cnt_travelled_mm,
+                                                 &dev_.cnt_waiting_steps, &dev_.cnt_time_loss_ms,
+                                                 &dev_.cnt_occupied_mm_steps, &dev_.cnt_entered,
+                                                 &dev_.cnt_left,          &dev_.cnt_arrived};
+      for (int k = 0; k < kNumLaneCounters - 1; ++k) *columns[k] = counters_ + static_cast<size_t>(k) * nl;
+      cnt_departed_ = counters_ + static_cast<size_t>(kNumLaneCounters - 1) * nl;
+    }
 
     cells_ = host.net.lane_cell_begin[nl];
-    for (auto& m : map_) m = allocate<uint8_t>(cells_);
-    active_ = allocate<uint32_t>(nv);
+    map_[map_now] = upload(host.map_now, cells_);
+    map_[1 - map_now] = upload(other_map, cells_);
+
+    for (auto& a : active_) a = allocate<uint32_t>(nv);
+    copy_to_device(active_[0], active.data(), active.size());
+    num_active_ = static_cast<uint32_t>(active.size());
+    kept_ = allocate<uint32_t>(nv);
+    keep_ = allocate<uint8_t>(nv);
+    tally_dev_ = allocate<StepTally>(1);
+    LPSIM_CUDA_CHECK(cudaMallocHost(&tally_host_, sizeof(StepTally)));
   }
 
-  void step(const StepContext& host, const uint32_t* active, uint32_t n) override {
+  ~CudaStepper() override {
+    if (tally_host_ != nullptr) cudaFreeHost(tally_host_);
+  }
+
+  void step(const StepParams& params, int map_now, uint32_t steps_done, GpuStepOutcome& out) override {
     StepContext ctx = dev_;
-    ctx.params = host.params;
-    ctx.map_now = device_map(host.map_now, true);
-    ctx.map_next = device_map(host.map_next, false);
+    ctx.params = params;
+    ctx.map_now = map_[map_now];
+    ctx.map_next = map_[1 - map_now];
     if (signals_.num_signals > 0) {
-      signals_kernel<<<blocks_for(signals_.num_signals), kBlock>>>(signals_, host.params.time_ms, link_state_);
+      signals_kernel<<<blocks_for(signals_.num_signals), kBlock>>>(signals_, params.time_ms, link_state_);
       LPSIM_CUDA_CHECK_LAUNCH(signals_kernel);
     }
+    const uint32_t n = num_active_;
+    out.ends.clear();
+    out.kept = out.running = 0;
+    kept_count_ = 0;
     if (n == 0) return;  // nothing on the road: no pass writes anything
 
-    // Active vehicles are ascending, so [lo, hi) holds every vehicle the passes touch.
-    const size_t lo = active[0], hi = static_cast<size_t>(active[n - 1]) + 1;
-    copy_to_device(active_, active, n);
-    for_each_vehicle_column(dev_.veh, host.veh, [&](auto* dev, auto* h) { copy_to_device(dev + lo, h + lo, hi - lo); });
-    const size_t nl = host.net.num_lanes;
-    LPSIM_CUDA_CHECK(cudaMemset(counters_, 0, kNumCounters * nl * sizeof(int64_t)));
-
+    const uint32_t* active = active_[cur_active_];
     const uint32_t grid = blocks_for(n);
-    pass_kernel<clear_old_footprint><<<grid, kBlock>>>(ctx, active_, n);
+    pass_kernel<clear_old_footprint><<<grid, kBlock>>>(ctx, active, n);
     LPSIM_CUDA_CHECK_LAUNCH(clear_old_footprint);
-    pass_kernel<approach_vehicle><<<grid, kBlock>>>(ctx, active_, n);
+    pass_kernel<approach_vehicle><<<grid, kBlock>>>(ctx, active, n);
     LPSIM_CUDA_CHECK_LAUNCH(approach_vehicle);
-    pass_kernel<plan_vehicle><<<grid, kBlock>>>(ctx, active_, n);
+    pass_kernel<plan_vehicle><<<grid, kBlock>>>(ctx, active, n);
     LPSIM_CUDA_CHECK_LAUNCH(plan_vehicle);
-    pass_kernel<commit_vehicle><<<grid, kBlock>>>(ctx, active_, n);
+    pass_kernel<commit_vehicle><<<grid, kBlock>>>(ctx, active, n);
     LPSIM_CUDA_CHECK_LAUNCH(commit_vehicle);
-    LPSIM_CUDA_CHECK(cudaDeviceSynchronize());  // a fault inside the passes is reported here
 
-    for_each_vehicle_column(dev_.veh, host.veh, [&](auto* dev, auto* h) { copy_to_host(h + lo, dev + lo, hi - lo); });
-    copy_to_host(host.map_next, ctx.map_next, cells_);
-    copy_to_host(counter_delta_.data(), counters_, counter_delta_.size());
-    int64_t* const host_columns[kNumCounters] = {host.cnt_sampled_steps, host.cnt_travelled_mm,
-                                                 host.cnt_waiting_steps, host.cnt_time_loss_ms,
-                                                 host.cnt_occupied_mm_steps, host.cnt_entered,
-                                                 host.cnt_left,          host.cnt_arrived};
-    for (int k = 0; k < kNumCounters; ++k) {
-      const int64_t* delta = counter_delta_.data() + static_cast<size_t>(k) * nl;
-      for (size_t l = 0; l < nl; ++l) host_columns[k][l] += delta[l];
+    VehicleEnd* ends = ends_.get(n);
+    LPSIM_CUDA_CHECK(cudaMemsetAsync(tally_dev_, 0, sizeof(StepTally)));
+    finish_kernel<<<grid, kBlock>>>(ctx.veh, active, n, steps_done, params.teleport_steps, keep_, ends, tally_dev_);
+    LPSIM_CUDA_CHECK_LAUNCH(finish_kernel);
+    // Waits for the passes: a fault inside them is reported here.
+    LPSIM_CUDA_CHECK(cudaMemcpy(tally_host_, tally_dev_, sizeof(StepTally), cudaMemcpyDeviceToHost));
+    out.kept = kept_count_ = tally_host_->kept;
+    out.running = tally_host_->running;
+    out.ends.resize(tally_host_->ends);
+    copy_to_host(out.ends.data(), ends, out.ends.size());
+  }
+
+  void apply_teleports(const std::vector<TeleportMove>& moves, uint32_t steps_done) override {
+    const uint32_t n = static_cast<uint32_t>(moves.size());
+    if (n == 0) return;
+    TeleportMove* dev = moves_.get(n);
+    copy_to_device(dev, moves.data(), n);
+    teleport_kernel<<<blocks_for(n), kBlock>>>(dev_.veh, dev, n, steps_done);
+    LPSIM_CUDA_CHECK_LAUNCH(teleport_kernel);
+  }
+
+  void insert(const InsertBatch& batch, uint32_t num_entries, const InsertParams& p, int map) override {
+    const uint32_t slots = batch.num_slots;
+    if (slots == 0) return;
+    // One upload of the slots' edges, bounds and entries; one download of what was inserted and where.
+    uint32_t* in = batch_in_.get(2 * static_cast<size_t>(slots) + 1 + num_entries);
+    staging_in_.assign(batch.edge, batch.edge + slots);
+    staging_in_.insert(staging_in_.end(), batch.begin, batch.begin + slots + 1);
+    staging_in_.insert(staging_in_.end(), batch.entry, batch.entry + num_entries);
+    copy_to_device(in, staging_in_.data(), staging_in_.size());
+    const size_t out_words = static_cast<size_t>(slots) + 3 * static_cast<size_t>(num_entries);
+    uint32_t* out = batch_out_.get(out_words);
+    InsertBatch dev{slots,
+                    in,
+                    in + slots,
+                    in + 2 * slots + 1,
+                    out,
+                    reinterpret_cast<int32_t*>(out + slots),
+                    reinterpret_cast<float*>(out + slots + num_entries),
+                    reinterpret_cast<float*>(out + slots + 2 * static_cast<size_t>(num_entries))};
+    InsertParams params = p;
+    params.cnt_departed = cnt_departed_;
+    params.cnt_entered = dev_.cnt_entered;
+    StepContext ctx = dev_;
+    insert_kernel<<<blocks_for(slots), kBlock>>>(ctx, depart_, params, map_[map], dev);
+    LPSIM_CUDA_CHECK_LAUNCH(insert_kernel);
+    staging_out_.resize(out_words);
+    copy_to_host(staging_out_.data(), out, out_words);
+    std::copy_n(staging_out_.data(), slots, batch.inserted);
+    std::copy_n(reinterpret_cast<const int32_t*>(staging_out_.data() + slots), num_entries, batch.out_lane);
+    std::copy_n(reinterpret_cast<const float*>(staging_out_.data() + slots + num_entries), num_entries, batch.out_pos);
+    std::copy_n(reinterpret_cast<const float*>(staging_out_.data() + slots + 2 * static_cast<size_t>(num_entries)),
+                num_entries, batch.out_speed);
+  }
+
+  void rebuild_active(const std::vector<uint32_t>& added) override {
+    const uint32_t n = num_active_, kept = kept_count_, na = static_cast<uint32_t>(added.size());
+    if (kept == n && na == 0) return;  // nobody left, nobody joined
+    uint32_t* from = active_[cur_active_];
+    uint32_t* to = active_[1 - cur_active_];
+    if (n > 0) {
+      size_t bytes = 0;
+      LPSIM_CUDA_CHECK(cub::DeviceSelect::Flagged(nullptr, bytes, from, keep_, kept_, num_selected_.get(1), n));
+      LPSIM_CUDA_CHECK(cub::DeviceSelect::Flagged(temp_.get(bytes), bytes, from, keep_, kept_, num_selected_.get(1), n));
     }
+    uint32_t* add = added_.get(na);
+    copy_to_device(add, added.data(), na);
+    size_t bytes = 0;
+    LPSIM_CUDA_CHECK(cub::DeviceMerge::MergeKeys(nullptr, bytes, kept_, kept, add, na, to, AscendingIndex{}));
+    LPSIM_CUDA_CHECK(cub::DeviceMerge::MergeKeys(temp_.get(bytes), bytes, kept_, kept, add, na, to, AscendingIndex{}));
+    cur_active_ = 1 - cur_active_;
+    num_active_ = kept + na;
+  }
+
+  void sample(std::vector<uint32_t>& active, std::vector<uint8_t>& status, std::vector<int32_t>& lane,
+              std::vector<float>& pos, std::vector<float>& speed) override {
+    const uint32_t n = num_active_;
+    active.resize(n);
+    status.resize(n);
+    lane.resize(n);
+    pos.resize(n);
+    speed.resize(n);
+    if (n == 0) return;
+    uint8_t* st = sample_status_.get(n);
+    int32_t* ln = sample_lane_.get(n);
+    float* ps = sample_pos_.get(n);
+    float* sp = sample_speed_.get(n);
+    sample_kernel<<<blocks_for(n), kBlock>>>(dev_.veh, active_[cur_active_], n, st, ln, ps, sp);
+    LPSIM_CUDA_CHECK_LAUNCH(sample_kernel);
+    copy_to_host(active.data(), active_[cur_active_], n);
+    copy_to_host(status.data(), st, n);
+    copy_to_host(lane.data(), ln, n);
+    copy_to_host(pos.data(), ps, n);
+    copy_to_host(speed.data(), sp, n);
+  }
+
+  void drain_counters(int64_t* const* columns) override {
+    if (counters_ == nullptr) return;
+    const size_t nl = num_lanes_;
+    std::vector<int64_t> all(kNumLaneCounters * nl);
+    copy_to_host(all.data(), counters_, all.size());
+    LPSIM_CUDA_CHECK(cudaMemset(counters_, 0, all.size() * sizeof(int64_t)));
+    for (int k = 0; k < kNumLaneCounters; ++k)
+      for (size_t l = 0; l < nl; ++l) columns[k][l] += all[static_cast<size_t>(k) * nl + l];
+  }
+
+  void download_state(const StepContext& host, int map, char* link_state) override {
+    for_each_vehicle_column(dev_.veh, host.veh, [&](auto* dev, auto* h) { copy_to_host(h, dev, num_vehicles_); });
+    copy_to_host(host.map_next, map_[map], cells_);
+    copy_to_host(link_state, link_state_, num_links_);
   }
 
  private:
@@ -259,7 +444,8 @@ class CudaStepper final : public GpuStepper {
     const uint32_t ns = h.num_signals;
     // NetView's signal_link_begin is the same table as the signal program's link_begin.
     dev_.net.signal_link_begin = upload(h.link_begin, static_cast<size_t>(ns) + 1);
-    link_state_ = allocate<char>(h.link_begin[ns]);
+    num_links_ = h.link_begin[ns];
+    link_state_ = allocate<char>(num_links_);
     dev_.link_state = link_state_;
     signals_ = SignalTable{};
     signals_.num_signals = ns;
@@ -291,32 +477,32 @@ class CudaStepper final : public GpuStepper {
                           upload(h.trips.arrival_pos, nv)};
   }
 
-  /// The device copy of one of the host's two lane maps. Both sides keep their copies equal: the map a step
-  /// reads is uploaded (the host inserted into it), the one it writes is downloaded, and neither side
-  /// changes a map between these points.
-  uint8_t* device_map(const uint8_t* host, bool read_by_step) {
-    int slot = host == host_map_[0] ? 0 : (host == host_map_[1] ? 1 : -1);
-    bool first_use = false;
-    if (slot < 0) {
-      slot = host_map_[0] == nullptr ? 0 : (host_map_[1] == nullptr ? 1 : -1);
-      if (slot < 0) throw std::logic_error("GpuStepper: the host switched to a third lane-map buffer");
-      host_map_[slot] = host;
-      first_use = true;
-    }
-    if (read_by_step || first_use) copy_to_device(map_[slot], host, cells_);
-    return map_[slot];
-  }
-
-  std::vector<DeviceBuffer> buffers_;  // every allocation, freed in the stepper's destructor
+  std::vector<DeviceBuffer> buffers_;  // every fixed allocation, freed in the stepper's destructor
   StepContext dev_{};                  // device pointers; params and lane maps filled per step
+  DepartView depart_{};
   SignalTable signals_{};
   char* link_state_ = nullptr;
-  int64_t* counters_ = nullptr;
-  std::vector<int64_t> counter_delta_;
+  uint32_t num_links_ = 0, num_vehicles_ = 0, num_lanes_ = 0;
+  int64_t* counters_ = nullptr;  // kNumLaneCounters columns; null without lane counters
+  int64_t* cnt_departed_ = nullptr;
   uint64_t cells_ = 0;
   uint8_t* map_[2] = {nullptr, nullptr};
-  const uint8_t* host_map_[2] = {nullptr, nullptr};
-  uint32_t* active_ = nullptr;
+  // The active list, ping-ponged between two buffers by rebuild_active.
+  uint32_t* active_[2] = {nullptr, nullptr};
+  int cur_active_ = 0;
+  uint32_t num_active_ = 0, kept_count_ = 0;
+  uint32_t* kept_ = nullptr;  // the kept vehicles, compacted
+  uint8_t* keep_ = nullptr;   // per active index: stays active
+  StepTally* tally_dev_ = nullptr;
+  StepTally* tally_host_ = nullptr;  // pinned
+  ScratchArray<VehicleEnd> ends_;
+  ScratchArray<TeleportMove> moves_;
+  ScratchArray<uint32_t> batch_in_, batch_out_, added_, num_selected_;
+  ScratchArray<unsigned char> temp_;
+  ScratchArray<uint8_t> sample_status_;
+  ScratchArray<int32_t> sample_lane_;
+  ScratchArray<float> sample_pos_, sample_speed_;
+  std::vector<uint32_t> staging_in_, staging_out_;
 };
 
 }  // namespace
@@ -365,8 +551,10 @@ CudaDeviceStatus cuda_device_status() {
 }
 
 std::unique_ptr<GpuStepper> make_cuda_stepper(const StepContext& host, const SignalTable& signals,
-                                              const GpuStepSizes& sizes) {
-  return std::make_unique<CudaStepper>(host, signals, sizes);
+                                              const GpuStepSizes& sizes, const DepartView& depart,
+                                              const uint8_t* other_map, int map_now,
+                                              const std::vector<uint32_t>& active, bool lane_counters) {
+  return std::make_unique<CudaStepper>(host, signals, sizes, depart, other_map, map_now, active, lane_counters);
 }
 
 }  // namespace lpsim

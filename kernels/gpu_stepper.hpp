@@ -2,13 +2,21 @@
 // The CUDA backend as host code sees it: plain C++, no CUDA types, so the engine includes it without nvcc.
 // The implementation (kernels/cuda_step.cu) exists only in builds that define LPSIM_HAVE_CUDA; the engine
 // reaches it through src/engine/device_select, which reports "built without CUDA" otherwise.
+//
+// The device owns the run state (vehicle columns, both lane maps, signal states, the active list, the
+// edgeData counters); the host keeps the insertion queues, the trip records and the outputs. Per step only
+// small things cross the bus: the step's tally and its arrivals and teleports (device to host), teleport
+// decisions and the queue heads to insert (host to device), and which of those were inserted (back).
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
+
+#include "kernels/insert_vehicle.hpp"
+#include "kernels/step_view.hpp"
 
 namespace lpsim {
 
-struct StepContext;
 struct SignalTable;
 
 /// Whether a CUDA device can run the step's kernels, and which one (or why not).
@@ -26,24 +34,52 @@ struct GpuStepSizes {
   uint64_t num_route_edges = 0;
 };
 
-/// Runs a step's passes on a device. Owns device copies of every array in a StepContext.
+/// The per-lane edgeData/laneData counter columns, in LaneCounters' order (src/engine/samples.hpp).
+constexpr int kNumLaneCounters = 9;
+
+/// What the host learns after a step's passes.
+struct GpuStepOutcome {
+  uint32_t kept = 0;             // vehicles staying in the active list
+  uint32_t running = 0;          // of those, running
+  std::vector<VehicleEnd> ends;  // arrivals and teleports of the step, in no particular order
+};
+
+/// Runs the step on a device that holds the whole run state.
 class GpuStepper {
  public:
   virtual ~GpuStepper() = default;
-  /// One step, on the device: signal states, then clear / approach / plan / commit over `active`
-  /// (ascending vehicle indices). `host` is the CPU backend's context for the same step: the stepper
-  /// copies in what the host changed since the last step and leaves in `host` exactly what the CPU
-  /// backend would have left there (vehicle state, the lane map written, lane counters added).
-  virtual void step(const StepContext& host, const uint32_t* active, uint32_t num_active) = 0;
+  /// Signal states, then clear / approach / plan / commit over the active list, reading lane map
+  /// `map_now` (0 or 1) and writing the other; then each vehicle's end of step. `steps_done` is the step
+  /// count after this step (arrivals are stamped with it).
+  virtual void step(const StepParams& params, int map_now, uint32_t steps_done, GpuStepOutcome& out) = 0;
+  /// Applies the host's decisions for this step's teleports.
+  virtual void apply_teleports(const std::vector<TeleportMove>& moves, uint32_t steps_done) = 0;
+  /// Inserts from the batch's queue heads into lane map `map` (the host's InsertBatch arrays: inputs are
+  /// read, outputs written back). `p`'s counter pointers are ignored: the device's own are used.
+  virtual void insert(const InsertBatch& batch, uint32_t num_entries, const InsertParams& p, int map) = 0;
+  /// The next active list: the vehicles kept (their order unchanged) merged with `added` (ascending, none
+  /// of them kept). Both ascending, so the list stays ascending.
+  virtual void rebuild_active(const std::vector<uint32_t>& added) = 0;
+  /// The active list and each active vehicle's status, lane, position and speed (outputs).
+  virtual void sample(std::vector<uint32_t>& active, std::vector<uint8_t>& status, std::vector<int32_t>& lane,
+                      std::vector<float>& pos, std::vector<float>& speed) = 0;
+  /// Adds the device's counters to `columns` (kNumLaneCounters host columns of num_lanes each) and zeroes them.
+  virtual void drain_counters(int64_t* const* columns) = 0;
+  /// Copies every vehicle column into the host arrays of `host`, lane map `map` into host.map_next, and the
+  /// signal states into `link_state`.
+  virtual void download_state(const StepContext& host, int map, char* link_state) = 0;
 };
 
 #if defined(LPSIM_HAVE_CUDA)
 /// Checks device 0: present, driver recent enough, and able to run this build's kernels.
 CudaDeviceStatus cuda_device_status();
-/// A stepper on device 0 holding the network, types and trips of `host` and its initial vehicle state.
-/// Throws std::runtime_error naming the failed CUDA call and its file:line.
+/// A stepper on device 0 holding the network, types and trips of `host`, its state after the host's first
+/// insertion (both lane maps, vehicle columns) and the active list. With `lane_counters` the passes count
+/// into the device's own counters (drain_counters), without it they skip the counting. Throws std::runtime_error naming the failed CUDA call and its file:line.
 std::unique_ptr<GpuStepper> make_cuda_stepper(const StepContext& host, const SignalTable& signals,
-                                              const GpuStepSizes& sizes);
+                                              const GpuStepSizes& sizes, const DepartView& depart,
+                                              const uint8_t* other_map, int map_now,
+                                              const std::vector<uint32_t>& active, bool lane_counters);
 #endif
 
 }  // namespace lpsim

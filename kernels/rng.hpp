@@ -25,8 +25,8 @@ LPSIM_HD float rng_uniform(uint64_t seed, uint64_t stream, uint64_t counter) {
   return static_cast<float>(rng_bits(seed, stream, counter) >> 40) * (1.0f / 16777216.0f);
 }
 
-/// Uniform double in [0, 1) with 53 random bits (host-side draws while loading demand).
-inline double rng_uniform_double(uint64_t seed, uint64_t stream, uint64_t counter) {
+/// Uniform double in [0, 1) with 53 random bits (demand draws while loading; departure draws).
+LPSIM_HD double rng_uniform_double(uint64_t seed, uint64_t stream, uint64_t counter) {
   return static_cast<double>(rng_bits(seed, stream, counter) >> 11) * (1.0 / 9007199254740992.0);
 }
 

@@ -146,4 +146,24 @@ struct StepParams {
   uint32_t teleport_steps;    // 0: never teleport
 };
 
+/// A vehicle that arrived or started a teleport in a step, as the host sees it (trip record, teleport).
+struct VehicleEnd {
+  uint32_t vehicle;
+  uint32_t kind;  // kEndArrived or kEndTeleport (kernels/vehicle_step.hpp)
+  int32_t lane;
+  float pos;
+  float speed;
+  float route_length;
+  float time_loss;
+  uint32_t route_pos;
+  uint32_t waiting_steps;
+  uint32_t waiting_count;
+};
+
+/// What becomes of a teleporting vehicle (decided on the host, which owns the insertion queues).
+struct TeleportMove {
+  uint32_t vehicle;
+  uint32_t ends_trip;  // 1: past the end of its route, its trip ends; 0: re-enters at the next route edge
+};
+
 }  // namespace lpsim

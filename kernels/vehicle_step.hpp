@@ -891,4 +891,40 @@ LPSIM_HD void commit_vehicle(StepContext& s, uint32_t v) {
   apply_footprint(s.map_next, net, Footprint{nlane, nprev, nprev2, npos}, length, encode_cell_speed(nspeed));
 }
 
+
+// --- After the passes: which vehicles left the road this step, and which stay in the active list. ---
+
+enum : uint32_t { kEndNone = 0, kEndArrived = 1, kEndTeleport = 2 };
+
+/// A vehicle that arrived in the step just done (steps_done counts it), or started a teleport in it (its
+/// clock ran out: a teleport already handed to the host has its clock reset).
+LPSIM_HD uint32_t step_end_kind(const VehicleView& veh, uint32_t v, uint32_t steps_done, uint32_t teleport_steps) {
+  if (veh.status[v] == kArrived && veh.arrival_step[v] == steps_done) return kEndArrived;
+  if (veh.status[v] == kTeleporting && teleport_steps > 0 && veh.stopped_steps[v] >= teleport_steps) return kEndTeleport;
+  return kEndNone;
+}
+
+/// Running vehicles stay in the active list, and those that left the road this step for one more step: the
+/// next step's clear pass removes their footprint.
+LPSIM_HD bool stays_active(const VehicleView& veh, uint32_t v) { return veh.status[v] == kRunning || veh.old_lane[v] >= 0; }
+
+/// What the host needs of a vehicle that arrived or started a teleport (trip record, route position).
+LPSIM_HD VehicleEnd vehicle_end(const VehicleView& veh, uint32_t v, uint32_t kind) {
+  return VehicleEnd{v,           kind,         veh.lane[v],          veh.pos[v],           veh.speed[v],
+                    veh.route_length[v], veh.time_loss[v], veh.route_pos[v], veh.waiting_steps[v],
+                    veh.waiting_count[v]};
+}
+
+/// The host's decision for a teleporting vehicle: its trip ends (past the end of its route), or it waits to
+/// re-enter at the next edge of its route.
+LPSIM_HD void apply_teleport_move(const VehicleView& veh, const TeleportMove& m, uint32_t steps_done) {
+  if (m.ends_trip) {
+    veh.status[m.vehicle] = kArrived;
+    veh.arrival_step[m.vehicle] = steps_done;
+  } else {
+    veh.route_pos[m.vehicle] += 1;
+    veh.stopped_steps[m.vehicle] = 0;
+  }
+}
+
 }  // namespace lpsim

@@ -32,6 +32,7 @@ struct MeanDataOutput {
 struct RunTotals {
   double duration = 0, route_length = 0, waiting = 0, time_loss = 0, depart_delay = 0;
   uint64_t trips = 0;
+  uint64_t peak_running = 0;
 };
 
 void print_progress(const Simulation& sim, double wall, double end) {
@@ -128,6 +129,7 @@ int command_run(const std::vector<std::string>& args) {
   // As SUMO: with an end time the last step simulated starts at end - step (outputs run to end - step).
   while (!(end >= 0 ? sim.time() + config.step_length > end - 1e-9 : sim.finished())) {
     sim.step();
+    totals.peak_running = std::max<uint64_t>(totals.peak_running, sim.counts().running);
     emit();
     for (auto& m : mean)
       if (m.spec.period > 0 && sim.time() + 1e-9 >= m.interval_begin + m.spec.period)
@@ -156,6 +158,8 @@ int command_run(const std::vector<std::string>& args) {
   std::printf("Performance:\n Duration: %.3fs (load %.3fs)\n", wall, sc.load_seconds);
   std::printf(" Real time factor: %.6g\n", wall > 0 ? (sim.time() - config.begin) / wall : 0.0);
   std::printf(" UPS: %.6f\n", wall > 0 ? static_cast<double>(c.vehicle_updates) / wall : 0.0);
+  std::printf(" Vehicle updates: %llu (peak running %llu)\n", static_cast<unsigned long long>(c.vehicle_updates),
+              static_cast<unsigned long long>(totals.peak_running));
   std::printf(" Threads: %d\n", opt.threads);
   std::printf("Vehicles:\n Inserted: %llu (Loaded: %llu)\n Running: %llu\n Waiting: %llu\n Arrived: %llu\n",
               static_cast<unsigned long long>(c.inserted), static_cast<unsigned long long>(c.loaded),

@@ -24,13 +24,20 @@ DeviceChoice select_device(ComputeDevice requested) {
 }
 
 std::unique_ptr<GpuStepper> make_gpu_stepper(const StepContext& host, const SignalTable& signals,
-                                             const GpuStepSizes& sizes) {
+                                             const GpuStepSizes& sizes, const DepartView& depart,
+                                             const uint8_t* other_map, int map_now,
+                                             const std::vector<uint32_t>& active, bool lane_counters) {
 #if defined(LPSIM_HAVE_CUDA)
-  return make_cuda_stepper(host, signals, sizes);
+  return make_cuda_stepper(host, signals, sizes, depart, other_map, map_now, active, lane_counters);
 #else
   (void)host;
   (void)signals;
   (void)sizes;
+  (void)depart;
+  (void)other_map;
+  (void)map_now;
+  (void)active;
+  (void)lane_counters;
   throw std::runtime_error("the GPU backend was requested, but lpsim was built without CUDA");
 #endif
 }

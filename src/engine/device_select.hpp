@@ -25,6 +25,8 @@ DeviceChoice select_device(ComputeDevice requested);
 
 /// The CUDA stepper (see kernels/gpu_stepper.hpp). Throws std::runtime_error in a build without CUDA.
 std::unique_ptr<GpuStepper> make_gpu_stepper(const StepContext& host, const SignalTable& signals,
-                                             const GpuStepSizes& sizes);
+                                             const GpuStepSizes& sizes, const DepartView& depart,
+                                             const uint8_t* other_map, int map_now,
+                                             const std::vector<uint32_t>& active, bool lane_counters);
 
 }  // namespace lpsim

@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "engine/device_select.hpp"
-#include "kernels/rng.hpp"
+#include "kernels/insert_vehicle.hpp"
 #include "kernels/vehicle_step.hpp"
 
 namespace lpsim {
@@ -21,8 +21,24 @@ T* ptr(std::vector<T>& v) {
 // Fewer active vehicles than this run the passes on the calling thread.
 constexpr int64_t kParallelMinVehicles = 2048;
 
-// Salt for departure draws (random lane / position), apart from every other use of the RNG.
-constexpr uint64_t kDepartRngSalt = 0x4445504152545F31ull;
+// kernels/insert_vehicle.hpp reads the demand's depart kinds as plain bytes.
+static_assert(kDepartLaneGiven == uint8_t(DepartLane::Given) && kDepartLaneRandom == uint8_t(DepartLane::Random) &&
+              kDepartLaneFree == uint8_t(DepartLane::Free) && kDepartLaneBest == uint8_t(DepartLane::Best));
+static_assert(kDepartPosGiven == uint8_t(DepartPos::Given) && kDepartPosRandom == uint8_t(DepartPos::Random) &&
+              kDepartPosRandomFree == uint8_t(DepartPos::RandomFree));
+static_assert(kDepartSpeedGiven == uint8_t(DepartSpeed::Given) && kDepartSpeedZero == uint8_t(DepartSpeed::Zero) &&
+              kDepartSpeedRandom == uint8_t(DepartSpeed::Random) && kDepartSpeedMax == uint8_t(DepartSpeed::Max) &&
+              kDepartSpeedDesired == uint8_t(DepartSpeed::Desired) &&
+              kDepartSpeedLimit == uint8_t(DepartSpeed::SpeedLimit) && kDepartSpeedLast == uint8_t(DepartSpeed::Last) &&
+              kDepartSpeedAvg == uint8_t(DepartSpeed::Avg));
+
+// The LaneCounters columns in the order the GPU stepper keeps them.
+std::vector<int64_t>* counter_columns(LaneCounters& c, int k) {
+  std::vector<int64_t>* columns[kNumLaneCounters] = {&c.sampled_steps, &c.travelled_mm, &c.waiting_steps,
+                                                     &c.time_loss_ms,  &c.occupied_mm_steps, &c.entered,
+                                                     &c.left,          &c.arrived,       &c.departed};
+  return columns[k];
+}
 
 }  // namespace
 
@@ -99,16 +115,23 @@ Simulation::Simulation(const Network& net, const Demand& demand, const Simulatio
     ++counts_.removed;
     ++next_departure_;
   }
+  teleport_steps_ =
+      opt_.time_to_teleport > 0 ? static_cast<uint32_t>(std::ceil(opt_.time_to_teleport / opt_.step_length)) : 0;
   update_signals();
   enqueue_due(time_ms_);
-  insert_waiting(map_[cur_].data());
+  insert_waiting(cur_);
   rebuild_active();
 }
 
 bool Simulation::finished() const {
-  return active_.empty() && waiting_ == 0 && next_departure_ >= demand_.size();
+  return num_active_ == 0 && waiting_ == 0 && next_departure_ >= demand_.size();
 }
 
+
+DepartView Simulation::depart_view() const {
+  return DepartView{demand_.depart_lane_kind.data(), demand_.depart_lane.data(), demand_.depart_pos_kind.data(),
+                    demand_.depart_pos.data(), demand_.depart_speed_kind.data(), demand_.depart_speed.data()};
+}
 
 TripView Simulation::trip_view() const {
   return TripView{demand_.vehicle_type.data(), demand_.route_begin.data(), demand_.route_length.data(),
@@ -122,16 +145,13 @@ void Simulation::update_signals() {
 }
 
 char Simulation::link_state(uint32_t conn) const {
+  sync_host();
   const int32_t sig = net_.conn_signal[conn];
   if (sig < 0 || net_.conn_link_index[conn] < 0) return net_.conn_state[conn];
   return link_state_[engine_net_.link_begin[static_cast<size_t>(sig)] + static_cast<uint32_t>(net_.conn_link_index[conn])];
 }
 
-void Simulation::step() {
-  const uint8_t* map_now = map_[cur_].data();
-  uint8_t* map_next = map_[1 - cur_].data();
-  update_signals();
-
+StepContext Simulation::context(const uint8_t* map_now, uint8_t* map_next) {
   StepContext ctx{};
   ctx.net = engine_net_.view(net_);
   const VehicleTypes& t = demand_.types;
@@ -148,10 +168,8 @@ void Simulation::step() {
                       ptr(claim0_),    ptr(claim1_),   ptr(stop_pos_), ptr(stop_lane_), ptr(arrives_),
                       ptr(new_rp_),    ptr(first_rp_), ptr(claim_prio_)};
   const float dt = static_cast<float>(dt_ms_) / 1000.0f;
-  const uint32_t teleport_steps =
-      opt_.time_to_teleport > 0 ? static_cast<uint32_t>(std::ceil(opt_.time_to_teleport / opt_.step_length)) : 0;
   ctx.params = StepParams{step_, time_ms_, dt, opt_.seed, idm_default_substeps(dt), max_accel_, max_emergency_decel_,
-                          teleport_steps};
+                          teleport_steps_};
   ctx.map_now = map_now;
   ctx.map_next = map_next;
   ctx.link_state = link_state_.data();
@@ -161,7 +179,7 @@ void Simulation::step() {
   ctx.yielder_begin = engine_net_.yielder_begin.data();
   ctx.yielder = engine_net_.yielder.data();
   // Left null (ctx is zeroed) when no output wants them: the passes then skip their atomics.
-  if (opt_.lane_counters || opt_.gpu) {
+  if (opt_.lane_counters) {
     LaneCounters& lc = lane_counters_;
     ctx.cnt_sampled_steps = lc.sampled_steps.data();
     ctx.cnt_travelled_mm = lc.travelled_mm.data();
@@ -172,39 +190,92 @@ void Simulation::step() {
     ctx.cnt_left = lc.left.data();
     ctx.cnt_arrived = lc.arrived.data();
   }
+  return ctx;
+}
 
+void Simulation::step() {
+  if (opt_.gpu) step_gpu();
+  else step_cpu();
+}
+
+void Simulation::step_cpu() {
+  update_signals();
+  StepContext ctx = context(map_[cur_].data(), map_[1 - cur_].data());
+  // Each pass is one parallel loop over the active vehicles, finished before the next starts.
   const int64_t n = static_cast<int64_t>(active_.size());
-  if (opt_.gpu) {
-    // GPU backend: the same passes on the device; it leaves in ctx's host arrays what the CPU loops would.
-    if (!gpu_)
-      gpu_ = make_gpu_stepper(ctx, engine_net_.signal_table(net_),
-                              GpuStepSizes{demand_.size(), net_.num_edges(), net_.num_connections(), t.size(),
-                                           demand_.route_edges.size()});
-    gpu_->step(ctx, active_.data(), static_cast<uint32_t>(n));
-  } else {
-    // CPU backend: each pass is one parallel loop over the active vehicles, finished before the next starts.
-    const uint32_t* act = active_.data();
-    auto pass = [&](auto vehicle_pass) {
-      pool_.run(n, [&](int64_t b, int64_t e) { for (int64_t i = b; i < e; ++i) vehicle_pass(ctx, act[i]); },
-                kParallelMinVehicles);
-    };
-    pass(clear_old_footprint);
-    pass(approach_vehicle);
-    pass(plan_vehicle);
-    pass(commit_vehicle);
-  }
+  const uint32_t* act = active_.data();
+  auto pass = [&](auto vehicle_pass) {
+    pool_.run(n, [&](int64_t b, int64_t e) { for (int64_t i = b; i < e; ++i) vehicle_pass(ctx, act[i]); },
+              kParallelMinVehicles);
+  };
+  pass(clear_old_footprint);
+  pass(approach_vehicle);
+  pass(plan_vehicle);
+  pass(commit_vehicle);
   counts_.vehicle_updates += static_cast<uint64_t>(n);
 
   time_ms_ += dt_ms_;
   ++step_;
-  handle_departures_from_road();
+  ends_.clear();
+  for (uint32_t v : active_) {
+    const uint32_t kind = step_end_kind(ctx.veh, v, step_, teleport_steps_);
+    if (kind != kEndNone) ends_.push_back(vehicle_end(ctx.veh, v, kind));
+  }
+  handle_vehicle_ends(ends_);
+  for (const TeleportMove& m : moves_) apply_teleport_move(ctx.veh, m, step_);
   enqueue_due(time_ms_);
-  insert_waiting(map_next);
+  insert_waiting(1 - cur_);
   cur_ = 1 - cur_;
   rebuild_active();
 }
 
-void Simulation::record_trip(uint32_t v, bool teleported) {
+void Simulation::step_gpu() {
+  if (!gpu_) {
+    // The device takes over the state as the host left it (signals of the current time, first insertions).
+    const StepContext ctx = context(map_[cur_].data(), map_[1 - cur_].data());
+    gpu_ = make_gpu_stepper(ctx, engine_net_.signal_table(net_),
+                            GpuStepSizes{demand_.size(), net_.num_edges(), net_.num_connections(),
+                                         demand_.types.size(), demand_.route_edges.size()},
+                            depart_view(), map_[1 - cur_].data(), cur_, active_, opt_.lane_counters);
+  }
+  const float dt = static_cast<float>(dt_ms_) / 1000.0f;
+  const StepParams params{step_, time_ms_, dt, opt_.seed, idm_default_substeps(dt), max_accel_, max_emergency_decel_,
+                          teleport_steps_};
+  GpuStepOutcome out;
+  out.ends.swap(ends_);
+  gpu_->step(params, cur_, step_ + 1, out);
+  counts_.vehicle_updates += num_active_;
+
+  time_ms_ += dt_ms_;
+  ++step_;
+  // The host handles arrivals and teleports in vehicle order, as the CPU backend does.
+  std::sort(out.ends.begin(), out.ends.end(),
+            [](const VehicleEnd& a, const VehicleEnd& b) { return a.vehicle < b.vehicle; });
+  handle_vehicle_ends(out.ends);
+  if (!moves_.empty()) gpu_->apply_teleports(moves_, step_);
+  enqueue_due(time_ms_);
+  insert_waiting(1 - cur_);
+  cur_ = 1 - cur_;
+
+  // Inserted vehicles join the active list; one that teleported in this step and came straight back is
+  // in it already (kept for its old footprint).
+  std::vector<uint32_t>& added = scratch_;
+  added.clear();
+  std::sort(inserted_now_.begin(), inserted_now_.end());
+  for (uint32_t v : inserted_now_) {
+    const bool kept = std::any_of(moves_.begin(), moves_.end(), [v](const TeleportMove& m) { return m.vehicle == v; });
+    if (!kept) added.push_back(v);
+  }
+  gpu_->rebuild_active(added);
+  num_active_ = out.kept + static_cast<uint32_t>(added.size());
+  counts_.running = out.running + static_cast<uint64_t>(inserted_now_.size());
+  counts_.waiting = waiting_;
+  inserted_now_.clear();
+  ends_.swap(out.ends);
+}
+
+void Simulation::record_trip(const VehicleEnd& e, bool teleported) {
+  const uint32_t v = e.vehicle;
   ++counts_.arrived;
   TripRecord r;
   r.vehicle = v;
@@ -212,46 +283,47 @@ void Simulation::record_trip(uint32_t v, bool teleported) {
   r.depart_delay = depart_time_[v] - demand_.depart[v];
   r.arrival = time();
   r.depart_lane = static_cast<uint32_t>(depart_lane_[v]);
-  r.arrival_lane = static_cast<uint32_t>(lane_[v]);
+  r.arrival_lane = static_cast<uint32_t>(e.lane);
   r.depart_pos = depart_pos_[v];
   r.depart_speed = depart_speed_[v];
-  r.arrival_pos = pos_[v];
-  r.arrival_speed = teleported ? 0.0f : speed_[v];
-  r.route_length = route_length_[v];
-  r.waiting_time = static_cast<double>(waiting_steps_[v]) * opt_.step_length;
-  r.waiting_count = waiting_count_[v];
-  r.time_loss = time_loss_[v];
+  r.arrival_pos = e.pos;
+  r.arrival_speed = teleported ? 0.0f : e.speed;
+  r.route_length = e.route_length;
+  r.waiting_time = static_cast<double>(e.waiting_steps) * opt_.step_length;
+  r.waiting_count = e.waiting_count;
+  r.time_loss = e.time_loss;
   r.speed_factor = demand_.speed_factor[v];
   r.teleported = teleported;
   travel_time_sum_ += r.arrival - r.depart;
   finished_.push_back(r);
 }
 
-// Arrivals become trip records; teleporting vehicles re-enter at the next edge of their route.
-void Simulation::handle_departures_from_road() {
-  for (uint32_t v : active_) {
-    if (status_[v] == kArrived && arrival_step_[v] == step_ && !teleport_pending_[v]) {
-      record_trip(v, false);
-    } else if (status_[v] == kTeleporting && !teleport_pending_[v]) {
-      ++counts_.teleports;
-      const uint32_t rp = route_pos_[v];
-      if (rp + 1 >= demand_.route_length[v]) {
-        // Teleported past the end of its route: the trip ends here.
-        status_[v] = kArrived;
-        arrival_step_[v] = step_;
-        record_trip(v, true);
-        continue;
-      }
-      route_pos_[v] = rp + 1;
-      stopped_steps_[v] = 0;
-      teleport_pending_[v] = 1;
-      const uint32_t e = demand_.route_edges[demand_.route_begin[v] + rp + 1];
-      auto& q = queue_[e];
-      // Teleported vehicles go first: they have been on the road already.
-      q.insert(q.begin() + queue_head_[e], v);
-      if (queue_head_[e] + 1 == q.size()) queued_edges_.insert(std::lower_bound(queued_edges_.begin(), queued_edges_.end(), e), e);
-      ++waiting_;
+// Arrivals (ascending by vehicle) become trip records; teleporting vehicles re-enter at the next edge of
+// their route (moves_ says which, for the backend to apply).
+void Simulation::handle_vehicle_ends(const std::vector<VehicleEnd>& ends) {
+  moves_.clear();
+  for (const VehicleEnd& e : ends) {
+    if (e.kind == kEndArrived) {
+      record_trip(e, false);
+      continue;
     }
+    ++counts_.teleports;
+    const uint32_t v = e.vehicle;
+    if (e.route_pos + 1 >= demand_.route_length[v]) {
+      // Teleported past the end of its route: the trip ends here.
+      moves_.push_back(TeleportMove{v, 1});
+      record_trip(e, true);
+      continue;
+    }
+    moves_.push_back(TeleportMove{v, 0});
+    teleport_pending_[v] = 1;
+    const uint32_t edge = demand_.route_edges[demand_.route_begin[v] + e.route_pos + 1];
+    auto& q = queue_[edge];
+    // Teleported vehicles go first: they have been on the road already.
+    q.insert(q.begin() + queue_head_[edge], v);
+    if (queue_head_[edge] + 1 == q.size())
+      queued_edges_.insert(std::lower_bound(queued_edges_.begin(), queued_edges_.end(), edge), edge);
+    ++waiting_;
   }
 }
 
@@ -281,169 +353,70 @@ void Simulation::enqueue_due(int64_t until_ms) {
   }
 }
 
-void Simulation::insert_waiting(uint8_t* map) {
-  inserted_now_.clear();
-  std::vector<uint32_t>& still = scratch_;
-  still.clear();
+void Simulation::insert_waiting(int map_index) {
+  // The head of each queue (up to kMaxInsertPerEdge), edges ascending.
+  batch_edge_.clear();
+  batch_begin_.assign(1, 0);
+  batch_entry_.clear();
   for (uint32_t e : queued_edges_) {
-    auto& q = queue_[e];
-    while (queue_head_[e] < q.size() && try_insert(q[queue_head_[e]], map)) {
-      inserted_now_.push_back(q[queue_head_[e]]);
+    const auto& q = queue_[e];
+    const size_t end = std::min<size_t>(q.size(), queue_head_[e] + kMaxInsertPerEdge);
+    for (size_t i = queue_head_[e]; i < end; ++i) batch_entry_.push_back(q[i] | (teleport_pending_[q[i]] ? kInsertTeleported : 0u));
+    batch_edge_.push_back(e);
+    batch_begin_.push_back(static_cast<uint32_t>(batch_entry_.size()));
+  }
+  const size_t entries = batch_entry_.size();
+  batch_inserted_.assign(batch_edge_.size(), 0);
+  batch_lane_.resize(entries);
+  batch_pos_.resize(entries);
+  batch_speed_.resize(entries);
+  const InsertBatch batch{static_cast<uint32_t>(batch_edge_.size()), batch_edge_.data(), batch_begin_.data(),
+                          batch_entry_.data(), batch_inserted_.data(), batch_lane_.data(), batch_pos_.data(),
+                          batch_speed_.data()};
+  // The config's step length as given (not the millisecond-rounded step): the insertion checks use it.
+  const InsertParams params{static_cast<float>(opt_.step_length), opt_.seed, max_emergency_decel_, min_decel_,
+                            lane_counters_.departed.data(), lane_counters_.entered.data()};
+  if (entries > 0) {
+    if (gpu_) {
+      gpu_->insert(batch, static_cast<uint32_t>(entries), params, map_index);
+    } else {
+      uint8_t* map = map_[map_index].data();
+      const StepContext ctx = context(map_[cur_].data(), map);
+      const DepartView depart = depart_view();
+      for (uint32_t slot = 0; slot < batch.num_slots; ++slot) insert_queue_head(ctx, depart, params, map, batch, slot);
+    }
+  }
+
+  // Advance the queues past the inserted heads and record the departures, in the order of the batch.
+  inserted_now_.clear();
+  std::vector<uint32_t> still;
+  for (uint32_t slot = 0; slot < batch.num_slots; ++slot) {
+    const uint32_t e = batch_edge_[slot];
+    for (uint32_t i = batch_begin_[slot]; i < batch_begin_[slot] + batch_inserted_[slot]; ++i) {
+      const uint32_t v = batch_entry_[i] & ~kInsertTeleported;
+      if (batch_entry_[i] & kInsertTeleported) {
+        teleport_pending_[v] = 0;
+      } else {
+        ++counts_.inserted;
+        depart_delay_sum_ += time() - demand_.depart[v];
+        depart_time_[v] = static_cast<float>(time());
+        depart_lane_[v] = batch_lane_[i];
+        depart_pos_[v] = batch_pos_[i];
+        depart_speed_[v] = batch_speed_[i];
+      }
+      inserted_now_.push_back(v);
       ++queue_head_[e];
       --waiting_;
     }
-    if (queue_head_[e] < q.size()) still.push_back(e);
-    else {
+    auto& q = queue_[e];
+    if (queue_head_[e] < q.size()) {
+      still.push_back(e);
+    } else {
       q.clear();
       queue_head_[e] = 0;
     }
   }
-  queued_edges_.assign(still.begin(), still.end());
-}
-
-bool Simulation::try_insert(uint32_t v, uint8_t* map) {
-  const bool teleported = teleport_pending_[v] != 0;
-  const uint32_t rp = route_pos_[v];
-  const uint32_t e = demand_.route_edges[demand_.route_begin[v] + rp];
-  const uint32_t first = net_.edge_first_lane[e], nlanes = net_.edge_num_lanes[e];
-  const uint32_t type = demand_.vehicle_type[v];
-  const VehicleTypes& t = demand_.types;
-  const float length = t.length[type], min_gap = t.min_gap[type];
-  const float dt = static_cast<float>(opt_.step_length);
-  const NetView nv = engine_net_.view(net_);
-  const TripView trips = trip_view();
-  const uint32_t best = best_lanes(nv, trips, v, rp).mask[0];
-  auto leads_on = [&](uint32_t l) { return (lane_bit(nv, l) & best) != 0; };
-
-  // Candidate lanes in the order they are tried.
-  uint32_t candidates[64];
-  uint32_t nc = 0;
-  const auto kind = teleported ? DepartLane::Best : static_cast<DepartLane>(demand_.depart_lane_kind[v]);
-  switch (kind) {
-    case DepartLane::Given:  // the demand builder maps SUMO's index to the rank among car lanes
-      if (demand_.depart_lane[v] >= 0 && static_cast<uint32_t>(demand_.depart_lane[v]) < nlanes)
-        candidates[nc++] = first + static_cast<uint32_t>(demand_.depart_lane[v]);
-      break;
-    case DepartLane::Random: {
-      const uint64_t draw = rng_bits(opt_.seed ^ kDepartRngSalt, v, 0);
-      candidates[nc++] = first + static_cast<uint32_t>(draw % nlanes);
-      break;
-    }
-    case DepartLane::Best:  // as SUMO: only lanes that lead on along the route (wait for one otherwise)
-      for (uint32_t l = first; l < first + nlanes && nc < 64; ++l)
-        if (leads_on(l)) candidates[nc++] = l;
-      if (!teleported) break;
-      [[fallthrough]];
-    case DepartLane::Free:
-      for (uint32_t l = first; l < first + nlanes && nc < 64; ++l)
-        if (leads_on(l)) candidates[nc++] = l;
-      for (uint32_t l = first; l < first + nlanes && nc < 64; ++l)
-        if (!leads_on(l)) candidates[nc++] = l;
-      break;
-    default:
-      candidates[nc++] = first;
-  }
-  if (nc == 0) candidates[nc++] = first;
-
-  for (uint32_t k = 0; k < nc; ++k) {
-    const uint32_t l = candidates[k];
-    const float lane_len = net_.lane_length[l];
-    float pos = std::min(lane_len, length + 0.1f);
-    if (!teleported) {
-      switch (static_cast<DepartPos>(demand_.depart_pos_kind[v])) {
-        case DepartPos::Given: {
-          const float p = demand_.depart_pos[v];
-          pos = std::clamp(p, 0.0f, lane_len);  // negative values were made absolute by the builder
-          break;
-        }
-        case DepartPos::Random:
-        case DepartPos::RandomFree:
-          pos = std::min(lane_len, length + static_cast<float>(rng_uniform_double(opt_.seed ^ kDepartRngSalt, v, 1)) *
-                                                std::max(0.0f, lane_len - length));
-          break;
-        default:
-          break;
-      }
-    }
-    const float v0 = desired_speed(net_.lane_speed[l], demand_.speed_factor[v], t.max_speed[type]);
-    float speed = 0;
-    bool speed_given = false;
-    if (!teleported) {
-      switch (static_cast<DepartSpeed>(demand_.depart_speed_kind[v])) {
-        case DepartSpeed::Given:
-          speed = demand_.depart_speed[v];
-          speed_given = true;
-          break;
-        case DepartSpeed::Max:
-        case DepartSpeed::Desired:
-        case DepartSpeed::SpeedLimit:
-        case DepartSpeed::Avg:
-        case DepartSpeed::Last:
-          speed = v0;
-          break;
-        case DepartSpeed::Random:
-          speed = v0 * static_cast<float>(rng_uniform_double(opt_.seed ^ kDepartRngSalt, v, 2));
-          break;
-        default:
-          break;
-      }
-    }
-    // Body cells must be free.
-    const int32_t rear_cell = static_cast<int32_t>(cell_of(nv, static_cast<int32_t>(l), pos - length));
-    const int32_t front_cell = static_cast<int32_t>(cell_of(nv, static_cast<int32_t>(l), pos));
-    if (first_occupied(map, nv, static_cast<int32_t>(l), rear_cell, front_cell) >= 0) continue;
-    // Leader ahead: the inserted vehicle must be able to follow it safely.
-    const int32_t cells = static_cast<int32_t>(lane_cells(nv, static_cast<int32_t>(l)));
-    const IdmParams p{t.accel[type], t.decel[type], t.emergency_decel[type], t.tau[type], min_gap, t.delta[type]};
-    const int32_t look = front_cell + 1 + static_cast<int32_t>(lookahead_distance(p, speed, dt) + min_gap);
-    const int32_t ahead = front_cell + 1 < cells
-                              ? first_occupied(map, nv, static_cast<int32_t>(l), front_cell + 1, std::min(look, cells - 1))
-                              : -1;
-    if (ahead >= 0) {
-      const float gap = static_cast<float>(ahead) - pos;
-      const float vl = decode_cell_speed(map[nv.lane_cell_begin[l] + static_cast<uint32_t>(ahead)]);
-      if (gap < min_gap) continue;
-      const float safe = safe_speed(gap, vl, max_emergency_decel_, p.decel, dt);
-      if (speed > safe) {
-        if (speed_given) continue;
-        speed = safe;
-      }
-    }
-    // Follower behind: it must be able to stay safe behind the new vehicle.
-    if (rear_cell > 0) {
-      const int32_t back = std::max(0, rear_cell - 1 - static_cast<int32_t>(lookahead_distance(p, net_.lane_speed[l], dt)));
-      const int32_t lag = last_occupied(map, nv, static_cast<int32_t>(l), back, rear_cell - 1);
-      if (lag >= 0) {
-        const float gap = (pos - length) - static_cast<float>(lag + 1);
-        const float vl = decode_cell_speed(map[nv.lane_cell_begin[l] + static_cast<uint32_t>(lag)]) + 0.25f;
-        if (gap <= 0 || std::max(0.0f, vl - min_decel_ * dt) > safe_speed(gap, speed, max_emergency_decel_, min_decel_, dt))
-          continue;
-      }
-    }
-    // Insert.
-    status_[v] = kRunning;
-    lane_[v] = static_cast<int32_t>(l);
-    pos_[v] = pos;
-    speed_[v] = speed;
-    prev_[v] = -1;
-    prev2_[v] = -1;
-    stopped_steps_[v] = 0;
-    apply_footprint(map, nv, Footprint{static_cast<int32_t>(l), -1, -1, pos}, length, encode_cell_speed(speed));
-    if (!teleported) {
-      ++counts_.inserted;
-      depart_delay_sum_ += time() - demand_.depart[v];
-      depart_time_[v] = static_cast<float>(time());
-      depart_lane_[v] = static_cast<int32_t>(l);
-      depart_pos_[v] = pos;
-      depart_speed_[v] = speed;
-      ++lane_counters_.departed[l];
-    } else {
-      teleport_pending_[v] = 0;
-      ++lane_counters_.entered[l];
-    }
-    return true;
-  }
-  return false;
+  queued_edges_.swap(still);
 }
 
 void Simulation::rebuild_active() {
@@ -452,19 +425,62 @@ void Simulation::rebuild_active() {
   // Member scratch buffers: fresh large vectors every step would cost page faults.
   std::vector<uint32_t>& next = scratch_;
   next.clear();
+  const StepContext ctx = context(nullptr, nullptr);
   for (uint32_t v : active_)
-    if (status_[v] == kRunning || old_lane_[v] >= 0) next.push_back(v);
+    if (stays_active(ctx.veh, v)) next.push_back(v);
   std::sort(inserted_now_.begin(), inserted_now_.end());
   active_.clear();
   std::set_union(next.begin(), next.end(), inserted_now_.begin(), inserted_now_.end(), std::back_inserter(active_));
   inserted_now_.clear();
+  num_active_ = static_cast<uint32_t>(active_.size());
   uint64_t running = 0;
   for (uint32_t v : active_) running += status_[v] == kRunning;
   counts_.running = running;
   counts_.waiting = waiting_;
 }
 
+// On the GPU backend the host arrays are a copy fetched on demand, at most once per step (const: they only
+// mirror the device's state, which stays as it is).
+void Simulation::sync_sample() const {
+  if (!gpu_ || sampled_step_ == step_) return;
+  auto* self = const_cast<Simulation*>(this);
+  std::vector<uint8_t> status;
+  std::vector<int32_t> lane;
+  std::vector<float> pos, speed;
+  self->gpu_->sample(self->active_, status, lane, pos, speed);
+  for (size_t i = 0; i < active_.size(); ++i) {
+    const uint32_t v = active_[i];
+    self->status_[v] = status[i];
+    self->lane_[v] = lane[i];
+    self->pos_[v] = pos[i];
+    self->speed_[v] = speed[i];
+  }
+  sampled_step_ = step_;
+}
+
+void Simulation::sync_host() const {
+  if (!gpu_ || synced_step_ == step_) return;
+  auto* self = const_cast<Simulation*>(this);
+  std::vector<uint8_t> status;
+  std::vector<int32_t> lane;
+  std::vector<float> pos, speed;
+  self->gpu_->sample(self->active_, status, lane, pos, speed);
+  self->gpu_->download_state(self->context(nullptr, self->map_[cur_].data()), cur_, self->link_state_.data());
+  sampled_step_ = synced_step_ = step_;
+}
+
+const LaneCounters& Simulation::lane_counters() const {
+  if (gpu_ && opt_.lane_counters) {
+    auto* self = const_cast<Simulation*>(this);
+    int64_t* columns[kNumLaneCounters];
+    for (int k = 0; k < kNumLaneCounters; ++k) columns[k] = counter_columns(self->lane_counters_, k)->data();
+    self->gpu_->drain_counters(columns);
+  }
+  return lane_counters_;
+}
+
 void Simulation::sample_fcd(FcdFrame& frame) const {
+  sync_sample();
   frame.time = time();
   frame.vehicle.clear();
   frame.lane.clear();
@@ -495,6 +511,7 @@ SummaryRow Simulation::summary_row() const {
   r.arrived = counts_.arrived;
   r.ended = counts_.arrived;
   r.teleports = counts_.teleports;
+  sync_sample();
   double speed_sum = 0, rel_sum = 0;
   uint64_t running = 0, halting = 0;
   const VehicleTypes& t = demand_.types;
@@ -519,6 +536,7 @@ SummaryRow Simulation::summary_row() const {
 }
 
 std::string Simulation::check_lane_map() const {
+  sync_host();
   std::vector<int64_t> owner(net_.num_cells(), -1);
   const NetView nv = engine_net_.view(net_);
   std::vector<uint8_t> expect(net_.num_cells(), 0);

@@ -13,6 +13,7 @@
 #include "engine/parallel_for.hpp"
 #include "engine/samples.hpp"
 #include "kernels/gpu_stepper.hpp"
+#include "kernels/insert_vehicle.hpp"
 #include "kernels/step_view.hpp"
 #include "net/network.hpp"
 
@@ -24,9 +25,11 @@ struct SimulationOptions {
   uint64_t seed = 23423;
   int threads = 1;
   double time_to_teleport = 300;  // s; <= 0: never
-  bool gpu = false;  // run the step's passes on the CUDA device (engine/device_select picks it)
+  // Run the step on the CUDA device (engine/device_select picks it). The device then owns the vehicle state
+  // and lane maps; the host keeps the insertion queues and reads back only what outputs and teleports need.
+  bool gpu = false;
   // Accumulate the per-lane edgeData/laneData counters (lane_counters()). Off when no such output is
-  // requested: the CPU backend then skips their atomics (the GPU backend keeps them).
+  // requested: the passes then skip their atomics.
   bool lane_counters = true;
 };
 
@@ -49,9 +52,8 @@ class Simulation {
 
   /// Positions of running vehicles now.
   void sample_fcd(FcdFrame& frame) const;
-  /// edgeData/laneData counters accumulated since the last reset.
-  const LaneCounters& lane_counters() const { return lane_counters_; }
-  void reset_lane_counters() { lane_counters_.clear(); }
+  /// edgeData/laneData counters accumulated since the start.
+  const LaneCounters& lane_counters() const;
   /// Trips that ended since the last call, in order of arrival then vehicle index.
   std::vector<TripRecord> take_finished_trips();
   SummaryRow summary_row() const;
@@ -59,29 +61,35 @@ class Simulation {
   /// Test support: recomputes the lane map from every running vehicle's footprint and reports the first
   /// cell two vehicles share or a mismatch with the engine's map ("" when consistent).
   std::string check_lane_map() const;
-  /// Test support: read access to vehicle state.
-  uint8_t status(uint32_t v) const { return status_[v]; }
-  int32_t lane(uint32_t v) const { return lane_[v]; }
-  float pos(uint32_t v) const { return pos_[v]; }
-  float speed(uint32_t v) const { return speed_[v]; }
-  uint32_t route_pos(uint32_t v) const { return route_pos_[v]; }
+  /// Test support: read access to vehicle state (on the GPU backend, each step's state is fetched from the
+  /// device at the first such call).
+  uint8_t status(uint32_t v) const { return sync_host(), status_[v]; }
+  int32_t lane(uint32_t v) const { return sync_host(), lane_[v]; }
+  float pos(uint32_t v) const { return sync_host(), pos_[v]; }
+  float speed(uint32_t v) const { return sync_host(), speed_[v]; }
+  uint32_t route_pos(uint32_t v) const { return sync_host(), route_pos_[v]; }
   /// What bounded the vehicle's speed in its last plan (StopReason in kernels/step_view.hpp).
-  uint8_t limit_reason(uint32_t v) const { return limit_reason_[v]; }
+  uint8_t limit_reason(uint32_t v) const { return sync_host(), limit_reason_[v]; }
   /// Current character of a connection's signal link (or its state when unsignalised).
   char link_state(uint32_t conn) const;
-  const std::vector<uint32_t>& active() const { return active_; }
+  const std::vector<uint32_t>& active() const { return sync_host(), active_; }
+  /// Test support: the vehicles that teleported in the last step (and whether that ended their trip).
+  const std::vector<TeleportMove>& teleports_of_last_step() const { return moves_; }
 
  private:
-  struct StepContextBuilder;
-  void build_context();
+  StepContext context(const uint8_t* map_now, uint8_t* map_next);
+  void step_cpu();
+  void step_gpu();
   void update_signals();
   TripView trip_view() const;
+  DepartView depart_view() const;
   void enqueue_due(int64_t until_ms);
-  void insert_waiting(uint8_t* map);
-  bool try_insert(uint32_t v, uint8_t* map);
-  void handle_departures_from_road();
-  void record_trip(uint32_t v, bool teleported);
+  void insert_waiting(int map_index);
+  void handle_vehicle_ends(const std::vector<VehicleEnd>& ends);
+  void record_trip(const VehicleEnd& e, bool teleported);
   void rebuild_active();
+  void sync_sample() const;
+  void sync_host() const;
 
   const Network& net_;
   const Demand& demand_;
@@ -93,7 +101,8 @@ class Simulation {
   Counts counts_;
   float max_accel_ = 2.6f, max_emergency_decel_ = 9.0f, min_decel_ = 4.5f;
 
-  // Lane maps: map_[cur_] is the state now; the other is written by the step.
+  // Lane maps: map_[cur_] is the state now; the other is written by the step. On the GPU backend the
+  // device's copies are the real ones (these are refreshed by sync_host for tests).
   std::vector<uint8_t> map_[2];
   int cur_ = 0;
   std::vector<char> link_state_;
@@ -121,13 +130,23 @@ class Simulation {
   std::vector<uint32_t> queued_edges_;        // edges with a non-empty queue, ascending
   uint64_t waiting_ = 0;
 
-  std::vector<uint32_t> active_;   // vehicles the passes visit, ascending
+  std::vector<uint32_t> active_;   // vehicles the passes visit, ascending (GPU backend: kept on the device)
+  uint32_t num_active_ = 0;
+  uint32_t teleport_steps_ = 0;    // stopped steps before a teleport (0: never)
   std::vector<uint32_t> inserted_now_, scratch_;
+  // This step's queue heads handed to insertion (InsertBatch), and what came back.
+  std::vector<uint32_t> batch_edge_, batch_begin_, batch_entry_, batch_inserted_;
+  std::vector<int32_t> batch_lane_;
+  std::vector<float> batch_pos_, batch_speed_;
+  std::vector<VehicleEnd> ends_;
+  std::vector<TeleportMove> moves_;
   std::vector<TripRecord> finished_;
   double depart_delay_sum_ = 0, travel_time_sum_ = 0;
 
-  // GPU backend (options.gpu): created at the first step; runs the passes on the device instead of pool_.
+  // GPU backend (options.gpu): created at the first step from the host state, then the owner of it.
   std::unique_ptr<GpuStepper> gpu_;
+  // Test and output support on the GPU backend: the step whose state was last fetched into the host arrays.
+  mutable uint32_t synced_step_ = 0xFFFFFFFFu, sampled_step_ = 0xFFFFFFFFu;
 };
 
 }  // namespace lpsim

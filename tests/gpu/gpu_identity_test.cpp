@@ -84,11 +84,11 @@ struct Outputs {
   std::string fcd, tripinfo, edgedata, summary;
 };
 
-Outputs run_on(const fs::path& root, const std::string& scenario, const std::string& device) {
+Outputs run_on(const fs::path& root, const std::string& scenario, const std::string& args, const std::string& device) {
   const fs::path dir = root / device;
   fs::create_directories(dir);
   const RunResult r = run_lpsim(dir, scenario,
-                                "--device " + device +
+                                "--device " + device + " " + args +
                                     " --fcd-output fcd.xml --tripinfo-output tripinfo.xml"
                                     " --edgedata-output edgedata.xml --summary-output summary.xml");
   EXPECT_EQ(r.exit_code, 0) << "--device " << device << ":\n" << r.out << r.err;
@@ -98,15 +98,27 @@ Outputs run_on(const fs::path& root, const std::string& scenario, const std::str
                  std::regex_replace(read_file(dir / "summary.xml"), duration, " duration=\"masked\"")};
 }
 
-class GpuIdentityTest : public ::testing::TestWithParam<const char*> {};
+struct IdentityCase {
+  friend void PrintTo(const IdentityCase& c, std::ostream* os) { *os << c.name; }
+  const char* name;      // test name
+  const char* scenario;  // bundled scenario
+  const char* args;      // extra lpsim run options
+  bool teleports;        // the case must teleport vehicles (checks that path too)
+};
+
+class GpuIdentityTest : public ::testing::TestWithParam<IdentityCase> {};
 
 TEST_P(GpuIdentityTest, GpuOutputsEqualCpuOutputsByteForByte) {
   const CudaDeviceStatus gpu = gpu_status();
   if (!gpu.usable) GTEST_SKIP() << "no usable CUDA device (" << gpu.description << "): CPU/GPU identity not checked";
   TempDir tmp;
   ASSERT_FALSE(tmp.path().empty());
-  const Outputs cpu = run_on(tmp.path(), GetParam(), "cpu");
-  const Outputs dev = run_on(tmp.path(), GetParam(), "gpu");
+  const IdentityCase& c = GetParam();
+  const Outputs cpu = run_on(tmp.path(), c.scenario, c.args, "cpu");
+  const Outputs dev = run_on(tmp.path(), c.scenario, c.args, "gpu");
+  if (c.teleports) {
+    EXPECT_TRUE(std::regex_search(cpu.summary, std::regex(" teleports=\"[1-9]"))) << "no teleport in the CPU run";
+  }
   // The CPU run must have produced real content, or two empty files would pass.
   EXPECT_GT(count(cpu.tripinfo, "<tripinfo "), 10u);
   EXPECT_GT(count(cpu.fcd, "<vehicle "), 1000u);
@@ -117,7 +129,15 @@ TEST_P(GpuIdentityTest, GpuOutputsEqualCpuOutputsByteForByte) {
   EXPECT_TRUE(cpu.summary == dev.summary) << "summary differs at " << first_difference(cpu.summary, dev.summary);
 }
 
-INSTANTIATE_TEST_SUITE_P(BundledScenarios, GpuIdentityTest, ::testing::Values("grid_tls", "random_net"));
+// Signals (grid_tls), right of way (random_net), random departures and flows (flows), 0.5 s steps with
+// edgeData intervals, and teleports with re-insertion (a short time-to-teleport on the signalised grid).
+INSTANTIATE_TEST_SUITE_P(
+    BundledScenarios, GpuIdentityTest,
+    ::testing::Values(IdentityCase{"grid_tls", "grid_tls", "", false}, IdentityCase{"random_net", "random_net", "", false},
+                      IdentityCase{"flows", "flows", "", false},
+                      IdentityCase{"grid_tls_half_step", "grid_tls", "--step-length 0.5", false},
+                      IdentityCase{"grid_tls_teleports", "grid_tls", "--time-to-teleport 20", true}),
+    [](const ::testing::TestParamInfo<IdentityCase>& info) { return std::string(info.param.name); });
 
 TEST(DeviceSelectTest, CpuIsAlwaysTheCpu) {
   const DeviceChoice c = select_device(ComputeDevice::Cpu);

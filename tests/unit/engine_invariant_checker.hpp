@@ -254,6 +254,14 @@ class InvariantChecker {
       return;
     }
 
+    // A vehicle that teleported this step and re-entered at once was put on its next route edge without
+    // driving there (possibly past a red light).
+    const auto& jumps = sim_.teleports_of_last_step();
+    if (std::any_of(jumps.begin(), jumps.end(), [v](const TeleportMove& m) { return m.vehicle == v; })) {
+      ++stats_.teleport_jumps;
+      return;
+    }
+
     // The speed of a step is chosen on the lane the vehicle starts it on; a vehicle entering a slower lane
     // may carry more than that lane's limit into it (as in SUMO) but must not gain speed above it.
     const int32_t old_lane = lane_[v];

@@ -57,6 +57,15 @@ TEST(EngineInvariantsTest, SpeedWithinLimitOfEnteredLane) {
   }
 }
 
+// A short time-to-teleport: stuck vehicles jump to their next route edge and re-enter from the queue there.
+TEST(EngineInvariantsTest, GridTlsWithTeleportsEveryStep) {
+  const Scenario sc = load_sumo_scenario("grid_tls", {"--time-to-teleport", "20"});
+  const RunResult r = run_checked(sc, "grid_tls with teleports", 1, 1);
+  EXPECT_GT(r.counts.teleports, 100u);
+  EXPECT_GT(r.stats.teleport_jumps, 0u);
+  EXPECT_EQ(r.counts.arrived + r.counts.removed, r.counts.loaded);
+}
+
 TEST(EngineInvariantsTest, GridTlsHalfSecondSteps) {
   const Scenario sc = load_sumo_scenario("grid_tls", {"--step-length", "0.5"});
   ASSERT_EQ(sc.config.step_length, 0.5);
