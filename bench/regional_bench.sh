@@ -15,10 +15,11 @@
 # Writes bench/work/regional/results.md.
 #
 # Usage: bench/regional_bench.sh [--trips "1000000 3000000 9000000"] [--devices "cpu gpu"] [--threads N]
-#          [--end T] [--step-length 0.5] [--runs N] [--warmup N] [--seed 42] [--tiles 8] [--lpsim PATH]
+#          [--end T] [--cpu-end T] [--step-length 0.5] [--runs N] [--warmup N] [--seed 42] [--tiles 8] [--lpsim PATH]
 #          [--bayarea DIR (the base network; default ../shared/lpsim_bayarea_tertiary)]
 #        bench/regional_bench.sh --selftest    (generator determinism + a tiny scenario loads; ~1 min)
-# --end caps the simulated time (default: the whole 12 h); capped runs are marked "capped" in the table.
+# --end caps the simulated time (default: the whole 12 h), --cpu-end that of the CPU runs alone; capped runs
+# are marked "capped" in the table. LPSIM_GPU_TIMING=1 makes GPU runs print where their time goes.
 # --runs: medians over N timed runs; --warmup: untimed runs before them (default 1 on a GPU, 0 on the CPU).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -29,6 +30,7 @@ devices="cpu gpu"
 threads=$(nproc)
 hours=12
 end=""
+cpu_end=""
 step=0.5
 runs=1
 warmup=""
@@ -44,6 +46,7 @@ while [[ $# -gt 0 ]]; do
     --devices) devices="$2"; shift 2 ;;
     --threads) threads="$2"; shift 2 ;;
     --end) end="$2"; shift 2 ;;
+    --cpu-end) cpu_end="$2"; shift 2 ;;
     --step-length) step="$2"; shift 2 ;;
     --runs) runs="$2"; shift 2 ;;
     --warmup) warmup="$2"; shift 2 ;;
@@ -148,6 +151,7 @@ if [[ " $devices " == *" gpu "* ]]; then
 fi
 
 rows=()
+states=()
 prep=()
 sizes=()
 for trips in $trips_list; do
@@ -182,7 +186,10 @@ for trips in $trips_list; do
   for dev in $devices; do
     [[ $dev == gpu && $gpu_ok != yes ]] && continue
     nwarm=${warmup:-$([[ $dev == gpu ]] && echo 1 || echo 0)}
-    cmd=("$lpsim" run "$snap" --device "$dev" --threads "$threads" --step-length "$step" --end "$end")
+    dev_end=$end
+    [[ $dev == cpu && -n "$cpu_end" ]] && dev_end=$cpu_end
+    dev_capped=$(awk -v e="$dev_end" -v f="$full" 'BEGIN { print (e < f) ? "yes" : "no" }')
+    cmd=("$lpsim" run "$snap" --device "$dev" --threads "$threads" --step-length "$step" --end "$dev_end")
     walls=(); cpus=(); rsss=(); gmems=()
     for ((r = 1 - nwarm; r <= runs; r++)); do
       log "$trips $dev run $r/$runs${r:+}: ${cmd[*]}"
@@ -209,7 +216,8 @@ for trips in $trips_list; do
     upc=$(awk -v n="$n" -v c="$cpu" 'BEGIN { if (c > 0) printf "%.3g", n / c; else print "n/a" }')
     rtf=$(awk -v s="$simulated" -v w="$wall" 'BEGIN { printf "%.1f", s / w }')
     label=$dev; [[ $dev == cpu ]] && label="cpu ($threads threads)"
-    rows+=("| $trips | $label | $simulated$([[ $capped == yes ]] && echo ' (capped)') | $n | $peak | $wall | $cpu | $ups | $upc | $rtf | $rss | $gmem |")
+    [[ $dev == gpu ]] && states+=("- $trips trips, measured by the run (LPSIM_GPU_TIMING=1): $(sed -n 's/^GPU state: //p' "$dir/$dev.log")")
+    rows+=("| $trips | $label | $simulated$([[ $dev_capped == yes ]] && echo ' (capped)' || true) | $n | $peak | $wall | $cpu | $ups | $upc | $rtf | $rss | $gmem |")
   done
 done
 
@@ -219,6 +227,7 @@ done
   machine_info
   echo "- devices: $devices (GPU backend usable here: $gpu_ok); threads: $threads; runs: $runs (medians)"
   [[ $capped == yes ]] && echo "- **capped**: simulated only 0..$end s of the ${hours} h demand (--end $end)"
+  [[ -n "$cpu_end" ]] && echo "- CPU runs **capped** at 0..$cpu_end s (--cpu-end $cpu_end)"
   printf '%s\n' "${sizes[@]}"
   echo
   echo "| trips | step | wall s | CPU s | peak RSS MiB |"
@@ -229,8 +238,9 @@ done
   echo "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
   printf '%s\n' "${rows[@]}"
   echo
-  echo "- CUDA backend device state: **$bytes_vehicle B per vehicle + $bytes_route_edge B per route edge** (target ≤ 64 B + 4 B);"
+  echo "- CUDA backend device state (static count of the view columns): **$bytes_vehicle B per vehicle + $bytes_route_edge B per route edge** (target ≤ 64 B + 4 B);"
   echo "  $bytes_parts (kernels/step_view.hpp, kernels/cuda_step.cu). Allocated for every loaded vehicle, not only running ones."
+  [[ ${#states[@]} -gt 0 ]] && printf '%s\n' "${states[@]}"
   echo
   echo "Commands: \`bench/regional_bench.sh --trips \"$trips_list\" --devices \"$devices\" --threads $threads --end $end --runs $runs\`"
 } | tee "$work/results.md"

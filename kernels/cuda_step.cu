@@ -15,6 +15,9 @@
 #include <cuda_runtime.h>
 
 #include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
 #include <cub/device/device_merge.cuh>
 #include <cub/device/device_select.cuh>
 #include <stdexcept>
@@ -196,15 +199,97 @@ class ScratchArray {
   size_t capacity_ = 0;
 };
 
+/// Page-locked host memory that grows on demand (contents not kept): copies from and to it run at full
+/// bus speed, with no staging copy inside the driver.
+template <class T>
+class PinnedArray {
+ public:
+  PinnedArray() = default;
+  PinnedArray(const PinnedArray&) = delete;
+  PinnedArray& operator=(const PinnedArray&) = delete;
+  ~PinnedArray() {
+    if (ptr_ != nullptr) cudaFreeHost(ptr_);
+  }
+  T* get(size_t n) {
+    if (n > capacity_) {
+      if (ptr_ != nullptr) cudaFreeHost(ptr_);
+      ptr_ = nullptr;
+      capacity_ = std::max(n, capacity_ + capacity_ / 2);
+      LPSIM_CUDA_CHECK(cudaMallocHost(&ptr_, capacity_ * sizeof(T)));
+    }
+    return ptr_;
+  }
+
+ private:
+  T* ptr_ = nullptr;
+  size_t capacity_ = 0;
+};
+
+/// Where a run's time goes, printed at the end when LPSIM_GPU_TIMING is set: device time of each kernel
+/// phase (events, read at the step's one synchronisation) and host wall time of each stepper call.
+class PhaseTimer {
+ public:
+  static constexpr int kEvents = 7;  // start, signals, clear, approach, plan, commit, finish
+  PhaseTimer() : on_(std::getenv("LPSIM_GPU_TIMING") != nullptr) {
+    if (on_)
+      for (auto& e : events_) LPSIM_CUDA_CHECK(cudaEventCreate(&e));
+  }
+  ~PhaseTimer() {
+    if (!on_) return;
+    static const char* kernel[kEvents - 1] = {"signals", "clear", "approach", "plan", "commit", "finish"};
+    std::fprintf(stderr, "GPU timing over %llu steps (ms total):", static_cast<unsigned long long>(steps_));
+    for (int k = 0; k < kEvents - 1; ++k) std::fprintf(stderr, " %s %.1f", kernel[k], device_ms_[k]);
+    static const char* call[4] = {"step()", "apply_teleports()", "insert()", "rebuild_active()"};
+    for (int k = 0; k < 4; ++k) std::fprintf(stderr, " | %s %.1f", call[k], host_ms_[k]);
+    std::fprintf(stderr, "\n");
+    std::fprintf(stderr,
+                 "GPU state: %.1f MiB in fixed allocations; %llu B per loaded vehicle (%llu vehicles), "
+                 "route edges %.1f MiB\n",
+                 static_cast<double>(bytes_total_) / 1048576.0, static_cast<unsigned long long>(per_vehicle_),
+                 static_cast<unsigned long long>(vehicles_), static_cast<double>(route_bytes_) / 1048576.0);
+    for (auto& e : events_) cudaEventDestroy(e);
+  }
+  void mark(int k) {
+    if (on_) cudaEventRecord(events_[k]);
+  }
+  /// After a synchronisation that covers the last mark.
+  void collect() {
+    if (!on_) return;
+    ++steps_;
+    for (int k = 1; k < kEvents; ++k) {
+      float ms = 0;
+      if (cudaEventElapsedTime(&ms, events_[k - 1], events_[k]) == cudaSuccess) device_ms_[k - 1] += ms;
+    }
+  }
+  void set_state_bytes(uint64_t total, uint64_t per_vehicle, uint64_t vehicles, uint64_t route_bytes) {
+    bytes_total_ = total;
+    per_vehicle_ = per_vehicle;
+    vehicles_ = vehicles;
+    route_bytes_ = route_bytes;
+  }
+  /// Host wall time of one stepper call, from its start (`t0`) to now.
+  void add_host(int k, std::chrono::steady_clock::time_point t0) {
+    if (on_) host_ms_[k] += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  }
+
+ private:
+  bool on_;
+  uint64_t bytes_total_ = 0, per_vehicle_ = 0, vehicles_ = 0, route_bytes_ = 0;
+  cudaEvent_t events_[kEvents] = {};
+  double device_ms_[kEvents - 1] = {};
+  double host_ms_[4] = {};
+  unsigned long long steps_ = 0;
+};
+
 class CudaStepper final : public GpuStepper {
  public:
   CudaStepper(const StepContext& host, const SignalTable& signals, const GpuStepSizes& sizes, const DepartView& depart,
               const uint8_t* other_map, int map_now, const std::vector<uint32_t>& active, bool lane_counters) {
+    num_vehicles_ = sizes.num_vehicles;
     upload_network(host.net, sizes);
     upload_signals(signals);
     upload_demand(host, sizes);
     const uint32_t nv = sizes.num_vehicles, nl = host.net.num_lanes;
-    num_vehicles_ = nv;
     depart_ = DepartView{upload(depart.lane_kind, nv), upload(depart.lane, nv),       upload(depart.pos_kind, nv),
                          upload(depart.pos, nv),       upload(depart.speed_kind, nv), upload(depart.speed, nv)};
 
@@ -257,6 +342,7 @@ class CudaStepper final : public GpuStepper {
     keep_ = allocate<uint8_t>(nv);
     tally_dev_ = allocate<StepTally>(1);
     LPSIM_CUDA_CHECK(cudaMallocHost(&tally_host_, sizeof(StepTally)));
+    timer_.set_state_bytes(bytes_total_, bytes_per_vehicle_, nv, sizes.num_route_edges * sizeof(uint32_t));
   }
 
   ~CudaStepper() override {
@@ -264,6 +350,13 @@ class CudaStepper final : public GpuStepper {
   }
 
   void step(const StepParams& params, int map_now, uint32_t steps_done, GpuStepOutcome& out) override {
+    const auto t0 = std::chrono::steady_clock::now();
+    run_step(params, map_now, steps_done, out);
+    timer_.add_host(0, t0);
+  }
+
+  void run_step(const StepParams& params, int map_now, uint32_t steps_done, GpuStepOutcome& out) {
+    timer_.mark(0);
     StepContext ctx = dev_;
     ctx.params = params;
     ctx.map_now = map_[map_now];
@@ -272,6 +365,7 @@ class CudaStepper final : public GpuStepper {
       signals_kernel<<<blocks_for(signals_.num_signals), kBlock>>>(signals_, params.time_ms, link_state_);
       LPSIM_CUDA_CHECK_LAUNCH(signals_kernel);
     }
+    timer_.mark(1);
     const uint32_t n = num_active_;
     out.ends.clear();
     out.kept = out.running = 0;
@@ -282,19 +376,25 @@ class CudaStepper final : public GpuStepper {
     const uint32_t grid = blocks_for(n);
     pass_kernel<clear_old_footprint><<<grid, kBlock>>>(ctx, active, n);
     LPSIM_CUDA_CHECK_LAUNCH(clear_old_footprint);
+    timer_.mark(2);
     pass_kernel<approach_vehicle><<<grid, kBlock>>>(ctx, active, n);
     LPSIM_CUDA_CHECK_LAUNCH(approach_vehicle);
+    timer_.mark(3);
     pass_kernel<plan_vehicle><<<grid, kBlock>>>(ctx, active, n);
     LPSIM_CUDA_CHECK_LAUNCH(plan_vehicle);
+    timer_.mark(4);
     pass_kernel<commit_vehicle><<<grid, kBlock>>>(ctx, active, n);
     LPSIM_CUDA_CHECK_LAUNCH(commit_vehicle);
+    timer_.mark(5);
 
     VehicleEnd* ends = ends_.get(n);
     LPSIM_CUDA_CHECK(cudaMemsetAsync(tally_dev_, 0, sizeof(StepTally)));
     finish_kernel<<<grid, kBlock>>>(ctx.veh, active, n, steps_done, params.teleport_steps, keep_, ends, tally_dev_);
     LPSIM_CUDA_CHECK_LAUNCH(finish_kernel);
+    timer_.mark(6);
     // Waits for the passes: a fault inside them is reported here.
     LPSIM_CUDA_CHECK(cudaMemcpy(tally_host_, tally_dev_, sizeof(StepTally), cudaMemcpyDeviceToHost));
+    timer_.collect();
     out.kept = kept_count_ = tally_host_->kept;
     out.running = tally_host_->running;
     out.ends.resize(tally_host_->ends);
@@ -302,23 +402,28 @@ class CudaStepper final : public GpuStepper {
   }
 
   void apply_teleports(const std::vector<TeleportMove>& moves, uint32_t steps_done) override {
+    const auto t0 = std::chrono::steady_clock::now();
     const uint32_t n = static_cast<uint32_t>(moves.size());
     if (n == 0) return;
     TeleportMove* dev = moves_.get(n);
     copy_to_device(dev, moves.data(), n);
     teleport_kernel<<<blocks_for(n), kBlock>>>(dev_.veh, dev, n, steps_done);
     LPSIM_CUDA_CHECK_LAUNCH(teleport_kernel);
+    timer_.add_host(1, t0);
   }
 
   void insert(const InsertBatch& batch, uint32_t num_entries, const InsertParams& p, int map) override {
+    const auto t0 = std::chrono::steady_clock::now();
     const uint32_t slots = batch.num_slots;
     if (slots == 0) return;
     // One upload of the slots' edges, bounds and entries; one download of what was inserted and where.
-    uint32_t* in = batch_in_.get(2 * static_cast<size_t>(slots) + 1 + num_entries);
-    staging_in_.assign(batch.edge, batch.edge + slots);
-    staging_in_.insert(staging_in_.end(), batch.begin, batch.begin + slots + 1);
-    staging_in_.insert(staging_in_.end(), batch.entry, batch.entry + num_entries);
-    copy_to_device(in, staging_in_.data(), staging_in_.size());
+    const size_t in_words = 2 * static_cast<size_t>(slots) + 1 + num_entries;
+    uint32_t* in = batch_in_.get(in_words);
+    uint32_t* staged = staging_in_.get(in_words);
+    std::copy_n(batch.edge, slots, staged);
+    std::copy_n(batch.begin, slots + 1, staged + slots);
+    std::copy_n(batch.entry, num_entries, staged + 2 * slots + 1);
+    copy_to_device(in, staged, in_words);
     const size_t out_words = static_cast<size_t>(slots) + 3 * static_cast<size_t>(num_entries);
     uint32_t* out = batch_out_.get(out_words);
     InsertBatch dev{slots,
@@ -335,16 +440,23 @@ class CudaStepper final : public GpuStepper {
     StepContext ctx = dev_;
     insert_kernel<<<blocks_for(slots), kBlock>>>(ctx, depart_, params, map_[map], dev);
     LPSIM_CUDA_CHECK_LAUNCH(insert_kernel);
-    staging_out_.resize(out_words);
-    copy_to_host(staging_out_.data(), out, out_words);
-    std::copy_n(staging_out_.data(), slots, batch.inserted);
-    std::copy_n(reinterpret_cast<const int32_t*>(staging_out_.data() + slots), num_entries, batch.out_lane);
-    std::copy_n(reinterpret_cast<const float*>(staging_out_.data() + slots + num_entries), num_entries, batch.out_pos);
-    std::copy_n(reinterpret_cast<const float*>(staging_out_.data() + slots + 2 * static_cast<size_t>(num_entries)),
-                num_entries, batch.out_speed);
+    uint32_t* back = staging_out_.get(out_words);
+    copy_to_host(back, out, out_words);
+    std::copy_n(back, slots, batch.inserted);
+    std::copy_n(reinterpret_cast<const int32_t*>(back + slots), num_entries, batch.out_lane);
+    std::copy_n(reinterpret_cast<const float*>(back + slots + num_entries), num_entries, batch.out_pos);
+    std::copy_n(reinterpret_cast<const float*>(back + slots + 2 * static_cast<size_t>(num_entries)), num_entries,
+                batch.out_speed);
+    timer_.add_host(2, t0);
   }
 
   void rebuild_active(const std::vector<uint32_t>& added) override {
+    const auto t0 = std::chrono::steady_clock::now();
+    rebuild(added);
+    timer_.add_host(3, t0);
+  }
+
+  void rebuild(const std::vector<uint32_t>& added) {
     const uint32_t n = num_active_, kept = kept_count_, na = static_cast<uint32_t>(added.size());
     if (kept == n && na == 0) return;  // nobody left, nobody joined
     uint32_t* from = active_[cur_active_];
@@ -405,6 +517,8 @@ class CudaStepper final : public GpuStepper {
   template <class T>
   T* allocate(size_t n) {
     buffers_.emplace_back(n * sizeof(T));
+    bytes_total_ += n * sizeof(T);
+    if (n == num_vehicles_) bytes_per_vehicle_ += sizeof(T);  // one entry per loaded vehicle
     return static_cast<T*>(buffers_.back().get());
   }
 
@@ -483,6 +597,7 @@ class CudaStepper final : public GpuStepper {
   SignalTable signals_{};
   char* link_state_ = nullptr;
   uint32_t num_links_ = 0, num_vehicles_ = 0, num_lanes_ = 0;
+  uint64_t bytes_total_ = 0, bytes_per_vehicle_ = 0;  // fixed allocations (scratch arrays not included)
   int64_t* counters_ = nullptr;  // kNumLaneCounters columns; null without lane counters
   int64_t* cnt_departed_ = nullptr;
   uint64_t cells_ = 0;
@@ -502,7 +617,8 @@ class CudaStepper final : public GpuStepper {
   ScratchArray<uint8_t> sample_status_;
   ScratchArray<int32_t> sample_lane_;
   ScratchArray<float> sample_pos_, sample_speed_;
-  std::vector<uint32_t> staging_in_, staging_out_;
+  PinnedArray<uint32_t> staging_in_, staging_out_;
+  PhaseTimer timer_;
 };
 
 }  // namespace
