@@ -63,7 +63,8 @@ class GpuStepper {
   /// The active list and each active vehicle's status, lane, position and speed (outputs).
   virtual void sample(std::vector<uint32_t>& active, std::vector<uint8_t>& status, std::vector<int32_t>& lane,
                       std::vector<float>& pos, std::vector<float>& speed) = 0;
-  /// Adds the device's counters to `columns` (kNumLaneCounters host columns of num_lanes each) and zeroes them.
+  /// Adds the device's counters to `columns` (kNumLaneCounters host columns of num_lanes each) and zeroes
+  /// them.
   virtual void drain_counters(int64_t* const* columns) = 0;
   /// Copies every vehicle column into the host arrays of `host`, lane map `map` into host.map_next, and the
   /// signal states into `link_state`.
@@ -75,7 +76,8 @@ class GpuStepper {
 CudaDeviceStatus cuda_device_status();
 /// A stepper on device 0 holding the network, types and trips of `host`, its state after the host's first
 /// insertion (both lane maps, vehicle columns) and the active list. With `lane_counters` the passes count
-/// into the device's own counters (drain_counters), without it they skip the counting. Throws std::runtime_error naming the failed CUDA call and its file:line.
+/// into the device's own counters (drain_counters), without it they skip the counting. Throws
+/// std::runtime_error naming the failed CUDA call and its file:line.
 std::unique_ptr<GpuStepper> make_cuda_stepper(const StepContext& host, const SignalTable& signals,
                                               const GpuStepSizes& sizes, const DepartView& depart,
                                               const uint8_t* other_map, int map_now,

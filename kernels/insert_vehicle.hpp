@@ -60,8 +60,9 @@ struct InsertParams {
 
 /// Tries to put vehicle v (entry flags included) on the road at the start of its current route edge, writing
 /// its footprint into `map`. Returns false, changing nothing, when no candidate lane has room.
-LPSIM_HD bool try_insert_vehicle(const StepContext& s, const DepartView& d, const InsertParams& p, uint8_t* map,
-                                 uint32_t entry, int32_t* out_lane, float* out_pos, float* out_speed) {
+LPSIM_HD bool try_insert_vehicle(const StepContext& s, const DepartView& d, const InsertParams& p,
+                                 uint8_t* map, uint32_t entry, int32_t* out_lane, float* out_pos,
+                                 float* out_speed) {
   const uint32_t v = entry & ~kInsertTeleported;
   const bool teleported = (entry & kInsertTeleported) != 0;
   const NetView& net = s.net;
@@ -78,7 +79,8 @@ LPSIM_HD bool try_insert_vehicle(const StepContext& s, const DepartView& d, cons
   uint32_t nc = 0;
   const uint8_t kind = teleported ? kDepartLaneBest : d.lane_kind[v];
   if (kind == kDepartLaneGiven) {  // the demand builder maps SUMO's index to the rank among car lanes
-    if (d.lane[v] >= 0 && static_cast<uint32_t>(d.lane[v]) < nlanes) candidates[nc++] = first + static_cast<uint32_t>(d.lane[v]);
+    if (d.lane[v] >= 0 && static_cast<uint32_t>(d.lane[v]) < nlanes)
+      candidates[nc++] = first + static_cast<uint32_t>(d.lane[v]);
   } else if (kind == kDepartLaneRandom) {
     candidates[nc++] = first + static_cast<uint32_t>(rng_bits(seed, v, 0) % nlanes);
   } else if (kind == kDepartLaneBest || kind == kDepartLaneFree) {
@@ -132,8 +134,9 @@ LPSIM_HD bool try_insert_vehicle(const StepContext& s, const DepartView& d, cons
     // Leader ahead: the inserted vehicle must be able to follow it safely.
     const int32_t cells = static_cast<int32_t>(lane_cells(net, li));
     const int32_t look = front_cell + 1 + static_cast<int32_t>(lookahead_distance(ip, speed, p.dt) + min_gap);
-    const int32_t ahead =
-        front_cell + 1 < cells ? first_occupied(map, net, li, front_cell + 1, look < cells - 1 ? look : cells - 1) : -1;
+    const int32_t ahead = front_cell + 1 < cells ? first_occupied(map, net, li, front_cell + 1,
+                                                                  look < cells - 1 ? look : cells - 1)
+                                                 : -1;
     if (ahead >= 0) {
       const float gap = static_cast<float>(ahead) - pos;
       const float vl = decode_cell_speed(map[net.lane_cell_begin[l] + static_cast<uint32_t>(ahead)]);
@@ -146,12 +149,14 @@ LPSIM_HD bool try_insert_vehicle(const StepContext& s, const DepartView& d, cons
     }
     // Follower behind: it must be able to stay safe behind the new vehicle.
     if (rear_cell > 0) {
-      const int32_t reach = rear_cell - 1 - static_cast<int32_t>(lookahead_distance(ip, net.lane_speed[l], p.dt));
+      const int32_t reach =
+          rear_cell - 1 - static_cast<int32_t>(lookahead_distance(ip, net.lane_speed[l], p.dt));
       const int32_t lag = last_occupied(map, net, li, reach > 0 ? reach : 0, rear_cell - 1);
       if (lag >= 0) {
         const float gap = (pos - length) - static_cast<float>(lag + 1);
         const float vl = decode_cell_speed(map[net.lane_cell_begin[l] + static_cast<uint32_t>(lag)]) + 0.25f;
-        if (gap <= 0 || lp_fmaxf(0.0f, vl - p.min_decel * p.dt) > safe_speed(gap, speed, p.max_emergency_decel, p.min_decel, p.dt))
+        if (gap <= 0 || lp_fmaxf(0.0f, vl - p.min_decel * p.dt) >
+                            safe_speed(gap, speed, p.max_emergency_decel, p.min_decel, p.dt))
           continue;
       }
     }
@@ -175,8 +180,8 @@ LPSIM_HD bool try_insert_vehicle(const StepContext& s, const DepartView& d, cons
 }
 
 /// Inserts the head of one slot's queue until a vehicle does not fit.
-LPSIM_HD void insert_queue_head(const StepContext& s, const DepartView& d, const InsertParams& p, uint8_t* map,
-                                const InsertBatch& b, uint32_t slot) {
+LPSIM_HD void insert_queue_head(const StepContext& s, const DepartView& d, const InsertParams& p,
+                                uint8_t* map, const InsertBatch& b, uint32_t slot) {
   uint32_t n = 0;
   for (uint32_t i = b.begin[slot]; i < b.begin[slot + 1]; ++i, ++n)
     if (!try_insert_vehicle(s, d, p, map, b.entry[i], &b.out_lane[i], &b.out_pos[i], &b.out_speed[i])) break;

@@ -25,7 +25,8 @@ class GpuInvariantsTest : public ::testing::Test {
  protected:
   void SetUp() override {
     const CudaDeviceStatus gpu = gpu_status();
-    if (!gpu.usable) GTEST_SKIP() << "no usable CUDA device (" << gpu.description << "): GPU invariants not checked";
+    if (!gpu.usable)
+      GTEST_SKIP() << "no usable CUDA device (" << gpu.description << "): GPU invariants not checked";
   }
 };
 
