@@ -460,13 +460,10 @@ void Simulation::sync_sample() const {
 
 void Simulation::sync_host() const {
   if (!gpu_ || synced_step_ == step_) return;
+  sync_sample();  // the active list
   auto* self = const_cast<Simulation*>(this);
-  std::vector<uint8_t> status;
-  std::vector<int32_t> lane;
-  std::vector<float> pos, speed;
-  self->gpu_->sample(self->active_, status, lane, pos, speed);
   self->gpu_->download_state(self->context(nullptr, self->map_[cur_].data()), cur_, self->link_state_.data());
-  sampled_step_ = synced_step_ = step_;
+  synced_step_ = step_;
 }
 
 const LaneCounters& Simulation::lane_counters() const {
