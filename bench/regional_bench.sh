@@ -10,8 +10,8 @@
 #   sim CPU s        CPU s of the run minus CPU s of `lpsim info` on the same snapshot (the load),
 #   updates/s        vehicle-updates / sim wall s;  sim s per wall s: simulated seconds / sim wall s,
 #   peak RSS, and on a GPU peak GPU memory (nvidia-smi sampled every 100 ms, minus the idle level).
-# Also prints the CUDA backend's bytes of device state per vehicle, summed from the column types of
-# kernels/step_view.hpp (VehicleView, PlanView, TripView) and the per-vehicle allocations of kernels/cuda_step.cu.
+# GPU runs set LPSIM_GPU_TIMING=1: the run prints where its time goes and the CUDA backend's device state per
+# loaded vehicle, counted from its own allocations (reported below the table).
 # Writes bench/work/regional/results.md.
 #
 # Usage: bench/regional_bench.sh [--trips "1000000 3000000 9000000"] [--devices "cpu gpu"] [--threads N]
@@ -19,7 +19,7 @@
 #          [--bayarea DIR (the base network; default ../shared/lpsim_bayarea_tertiary)]
 #        bench/regional_bench.sh --selftest    (generator determinism + a tiny scenario loads; ~1 min)
 # --end caps the simulated time (default: the whole 12 h), --cpu-end that of the CPU runs alone; capped runs
-# are marked "capped" in the table. LPSIM_GPU_TIMING=1 makes GPU runs print where their time goes.
+# are marked "capped" in the table.
 # --runs: medians over N timed runs; --warmup: untimed runs before them (default 1 on a GPU, 0 on the CPU).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -93,32 +93,6 @@ if [[ $selftest == 1 ]]; then
   exit "$fail"
 fi
 
-# --- bytes of device state per vehicle, from the column types the CUDA backend allocates ---
-state_bytes() {
-  "$python" - kernels/step_view.hpp kernels/cuda_step.cu <<'PY'
-import re, sys
-size = {"uint8_t": 1, "int8_t": 1, "char": 1, "int16_t": 2, "uint16_t": 2, "uint32_t": 4, "int32_t": 4,
-        "float": 4, "uint64_t": 8, "int64_t": 8, "double": 8}
-views = open(sys.argv[1]).read()
-per_vehicle, per_route_edge, parts = 0, 0, []
-for name in ("VehicleView", "PlanView", "TripView"):
-    body = re.search(r"struct %s \{(.*?)\n\};" % name, views, re.S).group(1)
-    total = 0
-    for t, field in re.findall(r"^\s*(?:const )?(\w+)\*\s*(\w+);", body, re.M):
-        if field == "route_edges":
-            per_route_edge += size[t]
-        else:
-            total += size[t]
-    parts.append("%s %d" % (name, total))
-    per_vehicle += total
-stepper = open(sys.argv[2]).read()
-extra = sum(size[t] for t in re.findall(r"allocate<(\w+)>\(nv\)", stepper))
-parts.append("other per-vehicle buffers %d" % extra)
-per_vehicle += extra
-print(per_vehicle, per_route_edge, "; ".join(parts))
-PY
-}
-
 # "wall_s cpu_s rss_mib" from a GNU time -v report written earlier (as measure prints them).
 measure_report() {
   awk -F': ' '/Elapsed \(wall clock\)/ { n = split($2, p, ":"); w = 0; for (i = 1; i <= n; i++) w = w * 60 + p[i] }
@@ -144,7 +118,6 @@ gpu_sampler_stop() {
 }
 
 [[ -x "$lpsim" ]] || { echo "no $lpsim: build it first (tools/build.sh)" >&2; exit 2; }
-read -r bytes_vehicle bytes_route_edge bytes_parts < <(state_bytes)
 gpu_ok=no
 if [[ " $devices " == *" gpu "* ]]; then
   if gpu_works; then gpu_ok=yes; else log "GPU backend not usable here: $(tail -n 1 "$work/gpu_probe.log")"; fi
@@ -189,7 +162,10 @@ for trips in $trips_list; do
     dev_end=$end
     [[ $dev == cpu && -n "$cpu_end" ]] && dev_end=$cpu_end
     dev_capped=$(awk -v e="$dev_end" -v f="$full" 'BEGIN { print (e < f) ? "yes" : "no" }')
-    cmd=("$lpsim" run "$snap" --device "$dev" --threads "$threads" --step-length "$step" --end "$dev_end")
+    run_env=()
+    [[ $dev == gpu ]] && run_env=(env LPSIM_GPU_TIMING=1)
+    cmd=("${run_env[@]}" "$lpsim" run "$snap" --device "$dev" --threads "$threads" --step-length "$step"
+         --end "$dev_end")
     walls=(); cpus=(); rsss=(); gmems=()
     for ((r = 1 - nwarm; r <= runs; r++)); do
       log "$trips $dev run $r/$runs${r:+}: ${cmd[*]}"
@@ -216,7 +192,7 @@ for trips in $trips_list; do
     upc=$(awk -v n="$n" -v c="$cpu" 'BEGIN { if (c > 0) printf "%.3g", n / c; else print "n/a" }')
     rtf=$(awk -v s="$simulated" -v w="$wall" 'BEGIN { printf "%.1f", s / w }')
     label=$dev; [[ $dev == cpu ]] && label="cpu ($threads threads)"
-    [[ $dev == gpu ]] && states+=("- $trips trips, measured by the run (LPSIM_GPU_TIMING=1): $(sed -n 's/^GPU state: //p' "$dir/$dev.log")")
+    [[ $dev == gpu ]] && states+=("- $trips trips: $(sed -n 's/^GPU state: //p' "$dir/$dev.log")")
     rows+=("| $trips | $label | $simulated$([[ $dev_capped == yes ]] && echo ' (capped)' || true) | $n | $peak | $wall | $cpu | $ups | $upc | $rtf | $rss | $gmem |")
   done
 done
@@ -238,9 +214,10 @@ done
   echo "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
   printf '%s\n' "${rows[@]}"
   echo
-  echo "- CUDA backend device state (static count of the view columns): **$bytes_vehicle B per vehicle + $bytes_route_edge B per route edge** (target ≤ 64 B + 4 B);"
-  echo "  $bytes_parts (kernels/step_view.hpp, kernels/cuda_step.cu). Allocated for every loaded vehicle, not only running ones."
-  [[ ${#states[@]} -gt 0 ]] && printf '%s\n' "${states[@]}"
+  if [[ ${#states[@]} -gt 0 ]]; then
+    echo "CUDA backend device state, counted by the runs (target ≤ 64 B per vehicle + 4 B per route edge):"
+    printf '%s\n' "${states[@]}"
+  fi
   echo
   echo "Commands: \`bench/regional_bench.sh --trips \"$trips_list\" --devices \"$devices\" --threads $threads --end $end --runs $runs\`"
 } | tee "$work/results.md"

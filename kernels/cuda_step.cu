@@ -437,8 +437,7 @@ class CudaStepper final : public GpuStepper {
     InsertParams params = p;
     params.cnt_departed = cnt_departed_;
     params.cnt_entered = dev_.cnt_entered;
-    StepContext ctx = dev_;
-    insert_kernel<<<blocks_for(slots), kBlock>>>(ctx, depart_, params, map_[map], dev);
+    insert_kernel<<<blocks_for(slots), kBlock>>>(dev_, depart_, params, map_[map], dev);
     LPSIM_CUDA_CHECK_LAUNCH(insert_kernel);
     uint32_t* back = staging_out_.get(out_words);
     copy_to_host(back, out, out_words);

@@ -151,6 +151,21 @@ char Simulation::link_state(uint32_t conn) const {
   return link_state_[engine_net_.link_begin[static_cast<size_t>(sig)] + static_cast<uint32_t>(net_.conn_link_index[conn])];
 }
 
+VehicleView Simulation::vehicle_view() {
+  return VehicleView{ptr(status_),        ptr(route_pos_),     ptr(speed_),          ptr(lane_),
+                     ptr(prev_),          ptr(prev2_),         ptr(pos_),            ptr(old_lane_),
+                     ptr(old_prev_),      ptr(old_prev2_),     ptr(old_pos_),        ptr(stopped_steps_),
+                     ptr(waiting_steps_), ptr(waiting_count_), ptr(time_loss_),      ptr(route_length_),
+                     ptr(arrival_step_),  ptr(lane_change_dir_), ptr(held_at_line_), ptr(limit_reason_),
+                     ptr(best_rp_),       ptr(best_mask_)};
+}
+
+StepParams Simulation::step_params() const {
+  const float dt = static_cast<float>(dt_ms_) / 1000.0f;
+  return StepParams{step_, time_ms_, dt, opt_.seed, idm_default_substeps(dt), max_accel_, max_emergency_decel_,
+                    teleport_steps_};
+}
+
 StepContext Simulation::context(const uint8_t* map_now, uint8_t* map_next) {
   StepContext ctx{};
   ctx.net = engine_net_.view(net_);
@@ -158,18 +173,11 @@ StepContext Simulation::context(const uint8_t* map_now, uint8_t* map_next) {
   ctx.types = TypeView{t.length.data(), t.min_gap.data(), t.accel.data(), t.decel.data(), t.emergency_decel.data(),
                        t.max_speed.data(), t.tau.data(), t.delta.data()};
   ctx.trips = trip_view();
-  ctx.veh = VehicleView{ptr(status_),        ptr(route_pos_),     ptr(speed_),          ptr(lane_),
-                        ptr(prev_),          ptr(prev2_),         ptr(pos_),            ptr(old_lane_),
-                        ptr(old_prev_),      ptr(old_prev2_),     ptr(old_pos_),        ptr(stopped_steps_),
-                        ptr(waiting_steps_), ptr(waiting_count_), ptr(time_loss_),      ptr(route_length_),
-                        ptr(arrival_step_),  ptr(lane_change_dir_), ptr(held_at_line_), ptr(limit_reason_),
-                        ptr(best_rp_),       ptr(best_mask_)};
+  ctx.veh = vehicle_view();
   ctx.plan = PlanView{ptr(new_speed_), ptr(new_lane_), ptr(new_pos_),  ptr(new_prev_),   ptr(new_prev2_),
                       ptr(claim0_),    ptr(claim1_),   ptr(stop_pos_), ptr(stop_lane_), ptr(arrives_),
                       ptr(new_rp_),    ptr(first_rp_), ptr(claim_prio_)};
-  const float dt = static_cast<float>(dt_ms_) / 1000.0f;
-  ctx.params = StepParams{step_, time_ms_, dt, opt_.seed, idm_default_substeps(dt), max_accel_, max_emergency_decel_,
-                          teleport_steps_};
+  ctx.params = step_params();
   ctx.map_now = map_now;
   ctx.map_next = map_next;
   ctx.link_state = link_state_.data();
@@ -238,12 +246,9 @@ void Simulation::step_gpu() {
                                          demand_.types.size(), demand_.route_edges.size()},
                             depart_view(), map_[1 - cur_].data(), cur_, active_, opt_.lane_counters);
   }
-  const float dt = static_cast<float>(dt_ms_) / 1000.0f;
-  const StepParams params{step_, time_ms_, dt, opt_.seed, idm_default_substeps(dt), max_accel_, max_emergency_decel_,
-                          teleport_steps_};
   GpuStepOutcome out;
   out.ends.swap(ends_);
-  gpu_->step(params, cur_, step_ + 1, out);
+  gpu_->step(step_params(), cur_, step_ + 1, out);
   counts_.vehicle_updates += num_active_;
 
   time_ms_ += dt_ms_;
@@ -389,7 +394,8 @@ void Simulation::insert_waiting(int map_index) {
 
   // Advance the queues past the inserted heads and record the departures, in the order of the batch.
   inserted_now_.clear();
-  std::vector<uint32_t> still;
+  std::vector<uint32_t>& still = scratch_;
+  still.clear();
   for (uint32_t slot = 0; slot < batch.num_slots; ++slot) {
     const uint32_t e = batch_edge_[slot];
     for (uint32_t i = batch_begin_[slot]; i < batch_begin_[slot] + batch_inserted_[slot]; ++i) {
@@ -425,9 +431,9 @@ void Simulation::rebuild_active() {
   // Member scratch buffers: fresh large vectors every step would cost page faults.
   std::vector<uint32_t>& next = scratch_;
   next.clear();
-  const StepContext ctx = context(nullptr, nullptr);
+  const VehicleView veh = vehicle_view();
   for (uint32_t v : active_)
-    if (stays_active(ctx.veh, v)) next.push_back(v);
+    if (stays_active(veh, v)) next.push_back(v);
   std::sort(inserted_now_.begin(), inserted_now_.end());
   active_.clear();
   std::set_union(next.begin(), next.end(), inserted_now_.begin(), inserted_now_.end(), std::back_inserter(active_));

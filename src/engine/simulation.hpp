@@ -77,6 +77,8 @@ class Simulation {
   const std::vector<TeleportMove>& teleports_of_last_step() const { return moves_; }
 
  private:
+  VehicleView vehicle_view();
+  StepParams step_params() const;
   StepContext context(const uint8_t* map_now, uint8_t* map_next);
   void step_cpu();
   void step_gpu();

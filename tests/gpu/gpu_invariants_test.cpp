@@ -14,11 +14,7 @@ namespace {
 RunResult run_checked_on_gpu(const Scenario& sc, const std::string& name) {
   SimulationOptions options = options_of(sc.config, 1);
   options.gpu = true;
-  Simulation sim(sc.network, sc.demand, options);
-  InvariantChecker checker(sc, sim, 1);
-  checker.run_to_end(7200);
-  checker.expect_no_failures(name + " on the GPU");
-  return RunResult{checker.stats(), sim.counts(), sim.finished(), checker.failure_count()};
+  return run_checked(sc, name + " on the GPU", options, 1);
 }
 
 class GpuInvariantsTest : public ::testing::Test {

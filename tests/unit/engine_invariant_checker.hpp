@@ -343,13 +343,18 @@ struct RunResult {
   uint64_t failures = 0;
 };
 
-inline RunResult run_checked(const Scenario& sc, const std::string& name, int threads, uint32_t lane_map_every,
-                      double max_time = 7200) {
-  Simulation sim(sc.network, sc.demand, options_of(sc.config, threads));
+inline RunResult run_checked(const Scenario& sc, const std::string& name, const SimulationOptions& options,
+                             uint32_t lane_map_every, double max_time = 7200) {
+  Simulation sim(sc.network, sc.demand, options);
   InvariantChecker checker(sc, sim, lane_map_every);
   checker.run_to_end(max_time);
   checker.expect_no_failures(name);
   return RunResult{checker.stats(), sim.counts(), sim.finished(), checker.failure_count()};
+}
+
+inline RunResult run_checked(const Scenario& sc, const std::string& name, int threads, uint32_t lane_map_every,
+                      double max_time = 7200) {
+  return run_checked(sc, name, options_of(sc.config, threads), lane_map_every, max_time);
 }
 
 inline void expect_all_arrived(const RunResult& r, const std::string& name) {
