@@ -153,31 +153,32 @@ static_assert(sizeof(StepContext) == sizeof(NetView) + sizeof(TypeView) + sizeof
                                          sizeof(PlanView) + sizeof(StepParams) + 16 * sizeof(void*),
               "StepContext changed: update CudaStepper");
 
-/// Calls f(a.column, b.column) for every column of two vehicle views (a may be written: f gets references).
+/// Calls f(a.column, b.column, entries per vehicle) for every column of two vehicle views (a may be written: f
+/// gets references).
 template <class A, class B, class F>
 void for_each_vehicle_column(A& a, B& b, F&& f) {
-  f(a.status, b.status);
-  f(a.route_pos, b.route_pos);
-  f(a.speed, b.speed);
-  f(a.lane, b.lane);
-  f(a.prev, b.prev);
-  f(a.prev2, b.prev2);
-  f(a.pos, b.pos);
-  f(a.old_lane, b.old_lane);
-  f(a.old_prev, b.old_prev);
-  f(a.old_prev2, b.old_prev2);
-  f(a.old_pos, b.old_pos);
-  f(a.stopped_steps, b.stopped_steps);
-  f(a.waiting_steps, b.waiting_steps);
-  f(a.waiting_count, b.waiting_count);
-  f(a.time_loss, b.time_loss);
-  f(a.route_length, b.route_length);
-  f(a.arrival_step, b.arrival_step);
-  f(a.lane_change_dir, b.lane_change_dir);
-  f(a.held_at_line, b.held_at_line);
-  f(a.limit_reason, b.limit_reason);
-  f(a.best_rp, b.best_rp);
-  f(a.best_mask, b.best_mask);
+  f(a.status, b.status, 1u);
+  f(a.route_pos, b.route_pos, 1u);
+  f(a.speed, b.speed, 1u);
+  f(a.lane, b.lane, 1u);
+  f(a.prev, b.prev, 1u);
+  f(a.prev2, b.prev2, 1u);
+  f(a.pos, b.pos, 1u);
+  f(a.old_lane, b.old_lane, 1u);
+  f(a.old_prev, b.old_prev, 1u);
+  f(a.old_prev2, b.old_prev2, 1u);
+  f(a.old_pos, b.old_pos, 1u);
+  f(a.stopped_steps, b.stopped_steps, 1u);
+  f(a.waiting_steps, b.waiting_steps, 1u);
+  f(a.waiting_count, b.waiting_count, 1u);
+  f(a.time_loss, b.time_loss, 1u);
+  f(a.route_length, b.route_length, 1u);
+  f(a.arrival_step, b.arrival_step, 1u);
+  f(a.lane_change_dir, b.lane_change_dir, 1u);
+  f(a.held_at_line, b.held_at_line, 1u);
+  f(a.limit_reason, b.limit_reason, 1u);
+  f(a.best_rp, b.best_rp, kBestLaneSlots);
+  f(a.best_mask, b.best_mask, kBestLaneSlots);
 }
 
 static_assert(sizeof(DepartView) == 6 * sizeof(void*), "DepartView changed: update the depart uploads");
@@ -293,7 +294,8 @@ class CudaStepper final : public GpuStepper {
     depart_ = DepartView{upload(depart.lane_kind, nv), upload(depart.lane, nv),       upload(depart.pos_kind, nv),
                          upload(depart.pos, nv),       upload(depart.speed_kind, nv), upload(depart.speed, nv)};
 
-    for_each_vehicle_column(dev_.veh, host.veh, [&](auto*& dev, auto* h) { dev = upload(h, nv); });
+    for_each_vehicle_column(dev_.veh, host.veh,
+                            [&](auto*& dev, auto* h, uint32_t per) { dev = upload(h, static_cast<size_t>(nv) * per); });
     // Plan scratch carries nothing the host reads, but a pass may read an entry it did not write this step
     // (a claim priority, say): start from the host's values so both backends see the same ones.
     PlanView& plan = dev_.plan;
@@ -507,7 +509,9 @@ class CudaStepper final : public GpuStepper {
   }
 
   void download_state(const StepContext& host, int map, char* link_state) override {
-    for_each_vehicle_column(dev_.veh, host.veh, [&](auto* dev, auto* h) { copy_to_host(h, dev, num_vehicles_); });
+    for_each_vehicle_column(dev_.veh, host.veh, [&](auto* dev, auto* h, uint32_t per) {
+      copy_to_host(h, dev, static_cast<size_t>(num_vehicles_) * per);
+    });
     copy_to_host(host.map_next, map_[map], cells_);
     copy_to_host(link_state, link_state_, num_links_);
   }

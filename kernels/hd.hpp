@@ -6,9 +6,9 @@
 #define LPSIM_HD inline
 #endif
 
-// fmaxf / fminf exactly as glibc computes them (NaN and signed-zero cases included), written inline: GCC
-// otherwise calls libm for every use (it may inline only under fast-math), and one definition on host and
-// device keeps the backends bit-identical.
-// One comparison and a select (no branches on the hot path).
-LPSIM_HD float lp_fmaxf(float a, float b) { return (a >= b) | (b != b) ? a : b; }
-LPSIM_HD float lp_fminf(float a, float b) { return (a <= b) | (b != b) ? a : b; }
+// Maximum / minimum written inline, one definition on host and device so the backends stay bit-identical
+// (GCC otherwise calls libm's fmaxf for every use). As glibc's fmaxf/fminf for all inputs the model produces:
+// equal values (+0 and -0 included) give `a`, a NaN `b` gives `a`. A NaN `a` is passed through rather than
+// dropped: the model's quantities are finite, and this form compiles to a single maxss/minss, no branches.
+LPSIM_HD float lp_fmaxf(float a, float b) { return b > a ? b : a; }
+LPSIM_HD float lp_fminf(float a, float b) { return b < a ? b : a; }

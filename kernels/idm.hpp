@@ -59,18 +59,43 @@ LPSIM_HD float desired_speed(float lane_speed, float speed_factor, float max_spe
   return lp_fminf(lane_speed * speed_factor, max_speed);
 }
 
+// x^delta as a function object, so sub-step loops pick the exponent's code once per call instead of testing
+// delta in every sub-step: PowDelta4 for SUMO's default 4 (most vTypes), PowDeltaAny otherwise. Both give
+// idm_pow_delta's bits.
+struct PowDelta4 {
+  LPSIM_HD float operator()(float x) const {
+    const float x2 = x * x;
+    return x2 * x2;
+  }
+};
+struct PowDeltaAny {
+  float delta;
+  LPSIM_HD float operator()(float x) const { return idm_pow_delta(x, delta); }
+};
+
+/// 2*sqrt(a*b), the denominator of the IDM's braking term (computed once per call, not per sub-step).
+LPSIM_HD float idm_two_sqrt_ab(const IdmParams& p) { return 2.0f * sqrtf(p.accel * p.decel); }
+
+LPSIM_HD float idm_desired_gap_with(float two_sqrt_ab, float tau, float speed, float leader_speed, float jam_gap) {
+  const float dynamic = speed * tau + speed * (speed - leader_speed) / two_sqrt_ab;
+  return jam_gap + lp_fmaxf(0.0f, dynamic);
+}
+
 /// IDM desired gap s* = s0 + max(0, v*T + v*(v - v_leader) / (2*sqrt(a*b))).
 LPSIM_HD float idm_desired_gap(const IdmParams& p, float speed, float leader_speed, float jam_gap) {
-  const float two_sqrt_ab = 2.0f * sqrtf(p.accel * p.decel);
-  const float dynamic = speed * p.tau + speed * (speed - leader_speed) / two_sqrt_ab;
-  return jam_gap + lp_fmaxf(0.0f, dynamic);
+  return idm_desired_gap_with(idm_two_sqrt_ab(p), p.tau, speed, leader_speed, jam_gap);
+}
+
+template <class Pow>
+LPSIM_HD float idm_free_accel_with(const IdmParams& p, Pow pow_delta, float speed, float v0) {
+  const float ratio = speed / lp_fmaxf(v0, kIdmEps);
+  return lp_fmaxf(p.accel * (1.0f - pow_delta(ratio)), -p.decel);
 }
 
 /// Free-road acceleration a*(1 - (v/v0)^delta). Above the desired speed the result is bounded by -decel:
 /// the raw IDM term explodes (v = 2*v0 gives -15a) where a real driver just brakes comfortably.
 LPSIM_HD float idm_free_accel(const IdmParams& p, float speed, float v0) {
-  const float ratio = speed / lp_fmaxf(v0, kIdmEps);
-  return lp_fmaxf(p.accel * (1.0f - idm_pow_delta(ratio, p.delta)), -p.decel);
+  return idm_free_accel_with(p, PowDeltaAny{p.delta}, speed, v0);
 }
 
 /// IDM acceleration towards a leader `gap` metres ahead (bumper to bumper) driving at leader_speed.
@@ -93,37 +118,73 @@ LPSIM_HD float idm_stop_accel(const IdmParams& p, float speed, float v0, float g
   return p.accel * (1.0f - idm_pow_delta(ratio, p.delta) - interaction);
 }
 
-/// IDM speed after dt on a free road, integrated in `substeps` equal speed updates.
-LPSIM_HD float idm_free_speed(const IdmParams& p, float speed, float v0, float dt, int substeps) {
-  // Cruising at the desired speed: every sub-step adds exactly zero (v/v0 is exactly 1).
-  if (speed == v0 && v0 >= kIdmEps) return v0;
-  const int n = substeps < 1 ? 1 : substeps;
+LPSIM_HD int idm_substep_count(int substeps) { return substeps < 1 ? 1 : substeps; }
+
+// Cruising at the desired speed: every free-road sub-step adds exactly zero (v/v0 is exactly 1).
+LPSIM_HD bool idm_cruising(float speed, float v0) { return speed == v0 && v0 >= kIdmEps; }
+
+// One free-road Euler sub-step of h seconds.
+template <class Pow>
+LPSIM_HD float idm_free_substep(const IdmParams& p, Pow pow_delta, float v, float v0, float h) {
+  return lp_fmaxf(0.0f, v + idm_free_accel_with(p, pow_delta, v, v0) * h);
+}
+
+// Euler sub-steps can overshoot the desired speed by a little; like SUMO's cap at the lane's maximum speed,
+// a vehicle that was not faster never ends above it.
+LPSIM_HD float idm_free_result(float speed, float v0, float v) { return speed <= v0 ? lp_fminf(v, v0) : v; }
+
+template <class Pow>
+LPSIM_HD float idm_free_speed_with(const IdmParams& p, Pow pow_delta, float speed, float v0, float dt, int substeps) {
+  if (idm_cruising(speed, v0)) return v0;
+  const int n = idm_substep_count(substeps);
   const float h = dt / static_cast<float>(n);
   float v = speed;
-  for (int i = 0; i < n; ++i) v = lp_fmaxf(0.0f, v + idm_free_accel(p, v, v0) * h);
-  // Euler sub-steps can overshoot the desired speed by a little; like SUMO's cap at the lane's maximum
-  // speed, a vehicle that was not faster never ends above it.
-  return speed <= v0 ? lp_fminf(v, v0) : v;
+  for (int i = 0; i < n; ++i) v = idm_free_substep(p, pow_delta, v, v0, h);
+  return idm_free_result(speed, v0, v);
+}
+
+/// IDM speed after dt on a free road, integrated in `substeps` equal speed updates.
+LPSIM_HD float idm_free_speed(const IdmParams& p, float speed, float v0, float dt, int substeps) {
+  if (p.delta == 4.0f) return idm_free_speed_with(p, PowDelta4{}, speed, v0, dt, substeps);
+  return idm_free_speed_with(p, PowDeltaAny{p.delta}, speed, v0, dt, substeps);
 }
 
 // Shared sub-step loop for a leader or stop point: the gap shrinks by the closing distance of each sub-step
 // (never grows, as in SUMO, which assumes the leader keeps its speed). jam_gap selects leader vs stop.
-LPSIM_HD float idm_interaction_speed(const IdmParams& p, float speed, float v0, float gap, float leader_speed,
-                                     float jam_gap, float dt, int substeps) {
-  const int n = substeps < 1 ? 1 : substeps;
+// With free_speed set, the free-road speed (idm_free_speed) is integrated in the same loop: the two chains
+// are independent and latency-bound (divisions), so interleaving them lets the CPU overlap them. Each chain
+// performs exactly the operations of its separate computation, so results are bit-identical either way.
+template <class Pow>
+LPSIM_HD float idm_interaction_speed_with(const IdmParams& p, Pow pow_delta, float speed, float v0, float gap,
+                                          float leader_speed, float jam_gap, float dt, int substeps,
+                                          float* free_speed) {
+  const int n = idm_substep_count(substeps);
   const float h = dt / static_cast<float>(n);
+  const float two_sqrt_ab = idm_two_sqrt_ab(p);
+  const bool free_loop = free_speed != nullptr && !idm_cruising(speed, v0);
   float v = speed;
+  float vf = speed;
   float s = gap;
   for (int i = 0; i < n; ++i) {
+    if (free_loop) vf = idm_free_substep(p, pow_delta, vf, v0, h);
     const float ratio = v / lp_fmaxf(v0, kIdmEps);
-    const float s_star = idm_desired_gap(p, v, leader_speed, jam_gap);
+    const float s_star = idm_desired_gap_with(two_sqrt_ab, p.tau, v, leader_speed, jam_gap);
     const float s_safe = lp_fmaxf(s, kIdmEps);
     const float interaction = (s_star / s_safe) * (s_star / s_safe);
-    const float acc = p.accel * (1.0f - idm_pow_delta(ratio, p.delta) - interaction);
+    const float acc = p.accel * (1.0f - pow_delta(ratio) - interaction);
     v = lp_fmaxf(0.0f, v + acc * h);
     s -= lp_fmaxf(0.0f, (v - leader_speed) * h);
   }
+  if (free_speed != nullptr) *free_speed = free_loop ? idm_free_result(speed, v0, vf) : v0;
   return v;
+}
+
+LPSIM_HD float idm_interaction_speed(const IdmParams& p, float speed, float v0, float gap, float leader_speed,
+                                     float jam_gap, float dt, int substeps, float* free_speed = nullptr) {
+  if (p.delta == 4.0f)
+    return idm_interaction_speed_with(p, PowDelta4{}, speed, v0, gap, leader_speed, jam_gap, dt, substeps, free_speed);
+  return idm_interaction_speed_with(p, PowDeltaAny{p.delta}, speed, v0, gap, leader_speed, jam_gap, dt, substeps,
+                                    free_speed);
 }
 
 /// IDM speed after dt following a leader (IDM only; see follow_speed for the version with the safety cap).
@@ -192,22 +253,31 @@ LPSIM_HD bool can_stop_before(float gap, float speed, float decel, float dt) {
 
 /// Next speed following a leader: min(IDM, safe speed). leader_decel is the hardest braking the leader may
 /// use (its emergency decel for the hard guarantee); the follower plans with its comfortable decel.
+/// With free_speed set, also stores idm_free_speed's result there (computed alongside, same bits).
 LPSIM_HD float follow_speed(const IdmParams& p, float speed, float v0, float gap, float leader_speed,
-                            float leader_decel, float dt, int substeps) {
+                            float leader_decel, float dt, int substeps, float* free_speed = nullptr) {
   // Standing within the jam distance of a standing leader: every IDM sub-step gives exactly 0 (the interaction
   // term is at least 1), and the safe speed is never negative. Common in queues, so worth the test.
-  if (speed == 0.0f && leader_speed == 0.0f && gap <= p.min_gap) return 0.0f;
-  const float v_idm = idm_follow_speed(p, speed, v0, gap, leader_speed, dt, substeps);
+  if (speed == 0.0f && leader_speed == 0.0f && gap <= p.min_gap) {
+    if (free_speed != nullptr) *free_speed = idm_free_speed(p, speed, v0, dt, substeps);
+    return 0.0f;
+  }
+  const float v_idm = idm_interaction_speed(p, speed, v0, gap, leader_speed, p.min_gap, dt, substeps, free_speed);
   return lp_fminf(v_idm, safe_speed(gap, leader_speed, leader_decel, p.decel, dt));
 }
 
 /// Next speed approaching a stop point: zero once within kStopReachedEps, else min(IDM, safe stop speed).
 /// A standing vehicle close to the line gets a zero IDM speed (its own first sub-step closes too much of
 /// the gap); like SUMO it then moves up with the safe stop speed instead of standing short of the line.
-LPSIM_HD float stop_speed(const IdmParams& p, float speed, float v0, float gap, float dt, int substeps) {
-  if (gap < kStopReachedEps) return 0.0f;
+/// With free_speed set, also stores idm_free_speed's result there (computed alongside, same bits).
+LPSIM_HD float stop_speed(const IdmParams& p, float speed, float v0, float gap, float dt, int substeps,
+                          float* free_speed = nullptr) {
+  if (gap < kStopReachedEps) {
+    if (free_speed != nullptr) *free_speed = idm_free_speed(p, speed, v0, dt, substeps);
+    return 0.0f;
+  }
   const float v_safe = safe_stop_speed(gap, p.decel, dt);
-  const float v_idm = idm_stop_speed(p, speed, v0, gap, dt, substeps);
+  const float v_idm = idm_interaction_speed(p, speed, v0, gap, 0.0f, 0.0f, dt, substeps, free_speed);
   if (speed < kIdmEps && v_idm < kIdmEps) return v_safe;
   return lp_fminf(v_idm, v_safe);
 }

@@ -90,9 +90,13 @@ struct VehicleView {
   uint8_t* lane_change_dir; // last lane change: 0 none, 1 left, 2 right (for outputs)
   uint8_t* held_at_line;    // last plan stopped at the lane end for a red light or a full next lane
   uint8_t* limit_reason;    // what bounded the last plan's speed (StopReason), for diagnostics and tests
-  uint32_t* best_rp;        // route position best_mask was computed for (0xFFFFFFFF: none yet)
-  uint32_t* best_mask;      // best lanes of the current edge (a pure function of vehicle and route position)
+  // Cache of best lanes (a pure function of vehicle and route position): kBestLaneSlots entries per vehicle,
+  // vehicle v's at [v * kBestLaneSlots, (v + 1) * kBestLaneSlots).
+  uint32_t* best_rp;        // route position an entry was computed for (0xFFFFFFFF: none yet)
+  uint32_t* best_mask;      // best lanes of that route edge
 };
+
+constexpr uint32_t kBestLaneSlots = 4;  // a power of two
 
 enum StopReason : uint8_t {
   kFree = 0, kLeader = 1, kWrongLane = 2, kSignal = 3, kHaltRule = 4, kNoRoom = 5, kYield = 6, kMergeGap = 7,

@@ -121,6 +121,21 @@ LPSIM_HD BestLanes best_lanes(const NetView& net, const TripView& trips, uint32_
   return b;
 }
 
+/// Best lanes of route edge rp of vehicle v, cached in kBestLaneSlots entries per vehicle, direct-mapped by
+/// route position so the edges a step asks for (current, next, the one after) never evict each other. Only
+/// the vehicle's own thread reads or writes its entries; the value does not depend on when it was computed.
+LPSIM_HD uint32_t best_mask_at(const StepContext& s, uint32_t v, uint32_t rp) {
+  const uint32_t slot = v * kBestLaneSlots + (rp & (kBestLaneSlots - 1u));
+  if (s.veh.best_rp[slot] != rp) {
+    s.veh.best_mask[slot] = best_lanes(s.net, s.trips, v, rp).mask[0];
+    s.veh.best_rp[slot] = rp;
+  }
+  return s.veh.best_mask[slot];
+}
+
+/// Best lanes of the vehicle's current edge.
+LPSIM_HD uint32_t current_best_mask(const StepContext& s, uint32_t v) { return best_mask_at(s, v, s.veh.route_pos[v]); }
+
 // A next edge shorter than this leaves no room to change lanes on it (real nets split junction approaches
 // into edges of a few metres or less).
 constexpr float kMinLaneChangeEdge = 15.0f;
@@ -151,11 +166,11 @@ LPSIM_HD int32_t choose_connection(const StepContext& s, uint32_t v, int32_t lan
   }
   if (rp + 1 >= len) return -1;
   const uint32_t next = route_edge(s, v, rp + 1);
-  const BestLanes best = best_lanes(s.net, s.trips, v, rp + 1);
+  const uint32_t best = best_mask_at(s, v, rp + 1);
   for (uint32_t c = net.lane_conn_begin[lane]; c < net.lane_conn_begin[lane + 1]; ++c) {
     if (net.conn_to_edge[c] != next) continue;
     if (first < 0) first = static_cast<int32_t>(c);
-    if (lane_bit(net, net.conn_to_lane[c]) & best.mask[0]) return static_cast<int32_t>(c);
+    if (lane_bit(net, net.conn_to_lane[c]) & best) return static_cast<int32_t>(c);
   }
   if (first >= 0 && rp + 2 < len && net.lane_length[net.edge_first_lane[next]] < kMinLaneChangeEdge) {
     const uint32_t after = route_edge(s, v, rp + 2);
@@ -317,16 +332,6 @@ LPSIM_HD int32_t mandatory_target_in(const NetView& net, int32_t lane, uint32_t 
   return best > lane ? net.lane_left[lane] : net.lane_right[lane];
 }
 
-/// Best lanes of the vehicle's current edge, cached per route position (only the vehicle's own thread
-/// reads or writes its cache entries; the value does not depend on when it was computed).
-LPSIM_HD uint32_t current_best_mask(const StepContext& s, uint32_t v) {
-  const uint32_t rp = s.veh.route_pos[v];
-  if (s.veh.best_rp[v] != rp) {
-    s.veh.best_mask[v] = best_lanes(s.net, s.trips, v, rp).mask[0];
-    s.veh.best_rp[v] = rp;
-  }
-  return s.veh.best_mask[v];
-}
 
 LPSIM_HD int32_t mandatory_target(const StepContext& s, uint32_t v, int32_t lane, int32_t* lanes_to_cross) {
   const uint32_t rp = s.veh.route_pos[v];
@@ -537,7 +542,12 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
     }
   }
 
-  float cand = idm_free_speed(p, speed, v0, dt, s.params.substeps);
+  // Speed bounds found along the path; the free-road speed joins them after the walk. It is computed with
+  // the first IDM interaction on the path (one loop for both: see idm_interaction_speed), else on its own.
+  // min is exact, so the result equals taking the free speed first: an approach limit skipped here because
+  // v_lim >= cand is at least v_lim, and so could not have lowered the minimum either.
+  float cand = 1e30f;
+  float free_speed = -1.0f;
   const float budget = lp_fminf(lookahead_distance(p, speed, dt) + p.min_gap, kMaxLookahead);
   const float decision_dist = stopping_distance(speed, p.decel, dt) + speed * dt + kDecisionMargin;
 
@@ -571,7 +581,8 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
     if (hit >= 0) {
       const float gap = cur_start + static_cast<float>(hit);
       const float vl = decode_cell_speed(s.map_now[net.lane_cell_begin[cur] + static_cast<uint32_t>(hit)]);
-      cand = lp_fminf(cand, follow_speed(p, speed, v0, gap, vl, s.params.max_emergency_decel, dt, s.params.substeps));
+      cand = lp_fminf(cand, follow_speed(p, speed, v0, gap, vl, s.params.max_emergency_decel, dt, s.params.substeps,
+                                         &free_speed));
       hard_limit = lp_fminf(hard_limit, gap - kClampEps);
       reason = kLeader;
       has_leader = true;
@@ -585,7 +596,7 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
     if (normal && cur_rp + 1 >= rlen) break;  // the route ends on this lane: arrival, no boundary to pass
     const int32_t c = choose_connection(s, v, cur, cur_rp);
     if (c < 0) {  // wrong lane for the route (or a dead end): the lane end is a wall until a lane change
-      cand = lp_fminf(cand, stop_speed(p, speed, v0, end_dist, dt, s.params.substeps));
+      cand = lp_fminf(cand, stop_speed(p, speed, v0, end_dist, dt, s.params.substeps, &free_speed));
       hard_limit = lp_fminf(hard_limit, end_dist - kClampEps);
       reason = kWrongLane;
       stop_at_own_line = hops == 0;
@@ -613,7 +624,7 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
           stop = true, reason = kYield;
       }
       if (stop) {
-        cand = lp_fminf(cand, stop_speed(p, speed, v0, end_dist, dt, s.params.substeps));
+        cand = lp_fminf(cand, stop_speed(p, speed, v0, end_dist, dt, s.params.substeps, &free_speed));
         if (signal_is_red(st) || link_rule(st) == LinkRule::Closed || signal_is_yellow(st))
           hard_limit = lp_fminf(hard_limit, end_dist - kClampEps);  // never pass a closed line
         // A yield decision taken in time is also a hard line (the vehicle could stop for it).
@@ -626,7 +637,7 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
                has_internal_junction(net, static_cast<uint32_t>(entry_conn)) &&
                !may_enter(s, v, static_cast<uint32_t>(entry_conn), end_dist, speed, v0, p, length, waiting)) {
       // At the internal junction: wait for the prioritised foes of the link entered.
-      cand = lp_fminf(cand, stop_speed(p, speed, v0, end_dist, dt, s.params.substeps));
+      cand = lp_fminf(cand, stop_speed(p, speed, v0, end_dist, dt, s.params.substeps, &free_speed));
       if (can_stop_before(end_dist, speed, p.emergency_decel, dt)) hard_limit = lp_fminf(hard_limit, end_dist - kClampEps);
       reason = kYield;
       break;
@@ -643,6 +654,8 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
     cur = nxt;
     cur_start = end_dist;
   }
+  if (free_speed < 0.0f) free_speed = idm_free_speed(p, speed, v0, dt, s.params.substeps);
+  cand = lp_fminf(free_speed, cand);
 
   // A vehicle that stops at its own lane's end (red, full next lane, yielding, wrong lane) will not enter the
   // junction now: foes need not yield to it (SUMO's approaching vehicles that will not pass).

@@ -63,8 +63,8 @@ Simulation::Simulation(const Network& net, const Demand& demand, const Simulatio
   lane_change_dir_.assign(nv, 0);
   held_at_line_.assign(nv, 0);
   limit_reason_.assign(nv, 0);
-  best_rp_.assign(nv, 0xFFFFFFFFu);
-  best_mask_.assign(nv, 0);
+  best_rp_.assign(nv * kBestLaneSlots, 0xFFFFFFFFu);
+  best_mask_.assign(nv * kBestLaneSlots, 0);
   claim_prio_.assign(nv, 1);
   arrives_.assign(nv, 0);
   route_pos_.assign(nv, 0);

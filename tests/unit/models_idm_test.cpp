@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 
 #include "kernels/idm.hpp"
 #include "kernels/rng.hpp"
@@ -188,6 +189,64 @@ TEST(ModelsIdm, FollowAndStopSpeedCombineIdmWithSafety) {
   const float creep = stop_speed(kP, 0.0f, 20.0f, 5.0f, 1.0f, 4);
   EXPECT_GT(creep, 0.0f);
   EXPECT_LE(creep * 1.0f, 5.0f);
+}
+
+// The IDM integrated one sub-step at a time through the generic helpers (idm_free_accel, idm_desired_gap,
+// idm_pow_delta): what the fast paths (exponent picked once per call, free-road chain interleaved with the
+// leader's) must reproduce bit for bit.
+float reference_free_speed(const IdmParams& p, float speed, float v0, float dt, int n) {
+  if (speed == v0 && v0 >= kIdmEps) return v0;
+  float v = speed;
+  for (int i = 0; i < n; ++i) v = lp_fmaxf(0.0f, v + idm_free_accel(p, v, v0) * (dt / static_cast<float>(n)));
+  return speed <= v0 ? lp_fminf(v, v0) : v;
+}
+
+float reference_interaction_speed(const IdmParams& p, float speed, float v0, float gap, float vl, float jam,
+                                  float dt, int n) {
+  const float h = dt / static_cast<float>(n);
+  float v = speed, s = gap;
+  for (int i = 0; i < n; ++i) {
+    const float q = idm_desired_gap(p, v, vl, jam) / lp_fmaxf(s, kIdmEps);
+    v = lp_fmaxf(0.0f, v + p.accel * (1.0f - idm_pow_delta(v / lp_fmaxf(v0, kIdmEps), p.delta) - q * q) * h);
+    s -= lp_fmaxf(0.0f, (v - vl) * h);
+  }
+  return v;
+}
+
+uint32_t bits(float x) {
+  uint32_t b;
+  std::memcpy(&b, &x, sizeof b);
+  return b;
+}
+
+TEST(ModelsIdm, FreeSpeedComputedAlongsideALeaderIsBitIdentical) {
+  int cases = 0;
+  for (float delta : {4.0f, 2.0f, 3.5f})
+    for (int n : {1, 2, 4})
+      for (uint64_t k = 0; k < 400; ++k) {
+        IdmParams p = kP;
+        p.delta = delta;
+        const float v0 = draw(11, 1, k, 0.0f, 40.0f);
+        // Every fourth case cruises at exactly the desired speed (the free road's shortcut).
+        const float speed = k % 4 == 0 ? v0 : draw(11, 2, k, 0.0f, 45.0f);
+        const float gap = draw(11, 3, k, 0.0f, 120.0f);
+        const float vl = k % 5 == 0 ? 0.0f : draw(11, 4, k, 0.0f, 40.0f);
+        const float free_ref = reference_free_speed(p, speed, v0, 1.0f, n);
+        ASSERT_EQ(bits(idm_free_speed(p, speed, v0, 1.0f, n)), bits(free_ref)) << k;
+        ASSERT_EQ(bits(idm_follow_speed(p, speed, v0, gap, vl, 1.0f, n)),
+                  bits(reference_interaction_speed(p, speed, v0, gap, vl, p.min_gap, 1.0f, n)))
+            << k;
+        float free_follow = -1.0f, free_stop = -1.0f;
+        ASSERT_EQ(bits(follow_speed(p, speed, v0, gap, vl, 9.0f, 1.0f, n, &free_follow)),
+                  bits(follow_speed(p, speed, v0, gap, vl, 9.0f, 1.0f, n)))
+            << k;
+        ASSERT_EQ(bits(free_follow), bits(free_ref)) << k;
+        ASSERT_EQ(bits(stop_speed(p, speed, v0, gap, 1.0f, n, &free_stop)), bits(stop_speed(p, speed, v0, gap, 1.0f, n)))
+            << k;
+        ASSERT_EQ(bits(free_stop), bits(free_ref)) << k;
+        ++cases;
+      }
+  EXPECT_EQ(cases, 3600);
 }
 
 TEST(ModelsIdm, FinalizeSpeedClampsToPhysicalLimits) {
