@@ -7,8 +7,8 @@
 #endif
 
 // Maximum / minimum written inline, one definition on host and device so the backends stay bit-identical
-// (GCC otherwise calls libm's fmaxf for every use). As glibc's fmaxf/fminf for all inputs the model produces:
-// equal values (+0 and -0 included) give `a`, a NaN `b` gives `a`. A NaN `a` is passed through rather than
-// dropped: the model's quantities are finite, and this form compiles to a single maxss/minss, no branches.
+// (GCC otherwise calls libm's fmaxf for every use). Equal values (+0 and -0 included) give `a`; a NaN `b`
+// gives `a`, as fmaxf does. A NaN `a` is passed through rather than dropped: the model's quantities are
+// finite, and this form compiles to a single maxss/minss, with no branches.
 LPSIM_HD float lp_fmaxf(float a, float b) { return b > a ? b : a; }
 LPSIM_HD float lp_fminf(float a, float b) { return b < a ? b : a; }
