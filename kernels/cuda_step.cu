@@ -22,6 +22,7 @@
 #include <cub/device/device_select.cuh>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "kernels/gpu_stepper.hpp"
@@ -53,10 +54,10 @@ __global__ void signals_kernel(SignalTable table, int64_t time_ms, char* link_st
 }
 
 // One thread per active vehicle, running one of the step's passes (the same functions the CPU backend loops over).
-template <void (*VehiclePass)(StepContext&, uint32_t)>
+template <void (*VehiclePass)(StepContext&, uint32_t, uint32_t)>
 __global__ void pass_kernel(StepContext ctx, const uint32_t* active, uint32_t n) {
   const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
-  if (i < n) VehiclePass(ctx, active[i]);
+  if (i < n) VehiclePass(ctx, i, active[i]);
 }
 
 /// What the host reads after a step's passes (GpuStepOutcome).
@@ -145,7 +146,7 @@ void copy_to_host(T* dst, const T* src, size_t n) {
 
 // The stepper lists every column of the views by hand: a column added to one of them must be added here.
 static_assert(sizeof(VehicleView) == 22 * sizeof(void*), "VehicleView changed: update for_each_vehicle_column");
-static_assert(sizeof(PlanView) == 13 * sizeof(void*), "PlanView changed: update the plan uploads in CudaStepper");
+static_assert(sizeof(PlanView) == 13 * sizeof(void*), "PlanView changed: update reserve_plan_slots");
 static_assert(sizeof(NetView) == 20 * sizeof(void*) + sizeof(void*), "NetView changed: update upload_network");
 static_assert(sizeof(TypeView) == 8 * sizeof(void*) && sizeof(TripView) == 7 * sizeof(void*),
               "TypeView or TripView changed: update upload_demand");
@@ -177,8 +178,8 @@ void for_each_vehicle_column(A& a, B& b, F&& f) {
   f(a.lane_change_dir, b.lane_change_dir, 1u);
   f(a.held_at_line, b.held_at_line, 1u);
   f(a.limit_reason, b.limit_reason, 1u);
-  f(a.best_rp, b.best_rp, kBestLaneSlots);
-  f(a.best_mask, b.best_mask, kBestLaneSlots);
+  f(a.best_rp, b.best_rp, kBestLaneEntries);
+  f(a.best_mask, b.best_mask, kBestLaneEntries);
 }
 
 static_assert(sizeof(DepartView) == 6 * sizeof(void*), "DepartView changed: update the depart uploads");
@@ -294,25 +295,10 @@ class CudaStepper final : public GpuStepper {
     depart_ = DepartView{upload(depart.lane_kind, nv), upload(depart.lane, nv),       upload(depart.pos_kind, nv),
                          upload(depart.pos, nv),       upload(depart.speed_kind, nv), upload(depart.speed, nv)};
 
-    for_each_vehicle_column(dev_.veh, host.veh,
-                            [&](auto*& dev, auto* h, uint32_t per) { dev = upload(h, static_cast<size_t>(nv) * per); });
-    // Plan scratch carries nothing the host reads, but a pass may read an entry it did not write this step
-    // (a claim priority, say): start from the host's values so both backends see the same ones.
-    PlanView& plan = dev_.plan;
-    plan.new_speed = upload(host.plan.new_speed, nv);
-    plan.new_lane = upload(host.plan.new_lane, nv);
-    plan.new_pos = upload(host.plan.new_pos, nv);
-    plan.new_prev = upload(host.plan.new_prev, nv);
-    plan.new_prev2 = upload(host.plan.new_prev2, nv);
-    plan.claim_lane0 = upload(host.plan.claim_lane0, nv);
-    plan.claim_lane1 = upload(host.plan.claim_lane1, nv);
-    plan.stop_pos = upload(host.plan.stop_pos, nv);
-    plan.stop_lane = upload(host.plan.stop_lane, nv);
-    plan.arrives = upload(host.plan.arrives, nv);
-    plan.new_rp = upload(host.plan.new_rp, nv);
-    plan.first_rp = upload(host.plan.first_rp, nv);
-    plan.claim_prio = upload(host.plan.claim_prio, nv);
-
+    for_each_vehicle_column(dev_.veh, host.veh, [&](auto*& dev, auto* h, uint32_t per) {
+      dev = upload(h, static_cast<size_t>(nv) * per);
+      if (per > 1) bytes_per_vehicle_ += sizeof(*h) * per;  // allocate() counts only arrays of exactly nv
+    });
     dev_.approach = upload(host.approach, nl);
     dev_.claims = upload(host.claims, nl);
     dev_.merge_requests = upload(host.merge_requests, nl);
@@ -359,6 +345,7 @@ class CudaStepper final : public GpuStepper {
 
   void run_step(const StepParams& params, int map_now, uint32_t steps_done, GpuStepOutcome& out) {
     timer_.mark(0);
+    reserve_plan_slots(num_active_);
     StepContext ctx = dev_;
     ctx.params = params;
     ctx.map_now = map_[map_now];
@@ -517,6 +504,29 @@ class CudaStepper final : public GpuStepper {
   }
 
  private:
+  /// Plan scratch, one entry per active-list position (PlanView): one allocation carved into the columns,
+  /// regrown by half again when the active list outgrows it. The plan pass writes every entry the commit
+  /// pass reads, so the contents need not survive a regrowth.
+  void reserve_plan_slots(uint32_t n) {
+    if (n <= plan_capacity_) return;
+    const size_t c = std::max<size_t>(n, plan_capacity_ + plan_capacity_ / 2);
+    constexpr size_t kWordColumns = 11, kByteColumns = 2;
+    const size_t words = (kWordColumns * 4 * c + 255) / 256 * 256;  // keeps the byte columns aligned
+    plan_buffer_ = DeviceBuffer(words + kByteColumns * c);
+    char* base = static_cast<char*>(plan_buffer_.get());
+    auto carve = [&](auto*& column, size_t bytes) {
+      column = reinterpret_cast<std::remove_reference_t<decltype(column)>>(base);
+      base += bytes * c;
+    };
+    PlanView& p = dev_.plan;
+    carve(p.new_speed, 4), carve(p.new_lane, 4), carve(p.new_pos, 4), carve(p.new_prev, 4), carve(p.new_prev2, 4);
+    carve(p.claim_lane0, 4), carve(p.claim_lane1, 4), carve(p.stop_pos, 4), carve(p.stop_lane, 4);
+    carve(p.new_rp, 4), carve(p.first_rp, 4);
+    base = static_cast<char*>(plan_buffer_.get()) + words;
+    carve(p.arrives, 1), carve(p.claim_prio, 1);
+    plan_capacity_ = c;
+  }
+
   template <class T>
   T* allocate(size_t n) {
     buffers_.emplace_back(n * sizeof(T));
@@ -601,6 +611,8 @@ class CudaStepper final : public GpuStepper {
   char* link_state_ = nullptr;
   uint32_t num_links_ = 0, num_vehicles_ = 0, num_lanes_ = 0;
   uint64_t bytes_total_ = 0, bytes_per_vehicle_ = 0;  // fixed allocations (scratch arrays not included)
+  DeviceBuffer plan_buffer_;
+  size_t plan_capacity_ = 0;
   int64_t* counters_ = nullptr;  // kNumLaneCounters columns; null without lane counters
   int64_t* cnt_departed_ = nullptr;
   uint64_t cells_ = 0;

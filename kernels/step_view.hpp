@@ -90,20 +90,22 @@ struct VehicleView {
   uint8_t* lane_change_dir; // last lane change: 0 none, 1 left, 2 right (for outputs)
   uint8_t* held_at_line;    // last plan stopped at the lane end for a red light or a full next lane
   uint8_t* limit_reason;    // what bounded the last plan's speed (StopReason), for diagnostics and tests
-  // Cache of best lanes (a pure function of vehicle and route position): kBestLaneSlots entries per vehicle,
-  // vehicle v's at [v * kBestLaneSlots, (v + 1) * kBestLaneSlots).
+  // Cache of best lanes (a pure function of vehicle and route position): kBestLaneEntries per vehicle,
+  // vehicle v's at [v * kBestLaneEntries, (v + 1) * kBestLaneEntries).
   uint32_t* best_rp;        // route position an entry was computed for (0xFFFFFFFF: none yet)
   uint32_t* best_mask;      // best lanes of that route edge
 };
 
-constexpr uint32_t kBestLaneSlots = 4;  // a power of two
+constexpr uint32_t kBestLaneEntries = 4;  // a power of two
 
 enum StopReason : uint8_t {
   kFree = 0, kLeader = 1, kWrongLane = 2, kSignal = 3, kHaltRule = 4, kNoRoom = 5, kYield = 6, kMergeGap = 7,
   kSwap = 8
 };
 
-/// What a vehicle decided this step, between the plan and the commit passes.
+/// What a vehicle decided this step, between the plan and the commit passes. Indexed by the vehicle's
+/// position in the step's active list (its slot), not by vehicle: these columns scale with the vehicles on
+/// the road, not with the whole demand, and are read in active-list order.
 struct PlanView {
   float* new_speed;
   int32_t* new_lane;   // lane of the front after the move

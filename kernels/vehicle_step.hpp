@@ -121,16 +121,16 @@ LPSIM_HD BestLanes best_lanes(const NetView& net, const TripView& trips, uint32_
   return b;
 }
 
-/// Best lanes of route edge rp of vehicle v, cached in kBestLaneSlots entries per vehicle, direct-mapped by
+/// Best lanes of route edge rp of vehicle v, cached in kBestLaneEntries entries per vehicle, direct-mapped by
 /// route position so the edges a step asks for (current, next, the one after) never evict each other. Only
 /// the vehicle's own thread reads or writes its entries; the value does not depend on when it was computed.
 LPSIM_HD uint32_t best_mask_at(const StepContext& s, uint32_t v, uint32_t rp) {
-  const uint32_t slot = v * kBestLaneSlots + (rp & (kBestLaneSlots - 1u));
-  if (s.veh.best_rp[slot] != rp) {
-    s.veh.best_mask[slot] = best_lanes(s.net, s.trips, v, rp).mask[0];
-    s.veh.best_rp[slot] = rp;
+  const uint32_t entry = v * kBestLaneEntries + (rp & (kBestLaneEntries - 1u));
+  if (s.veh.best_rp[entry] != rp) {
+    s.veh.best_mask[entry] = best_lanes(s.net, s.trips, v, rp).mask[0];
+    s.veh.best_rp[entry] = rp;
   }
-  return s.veh.best_mask[slot];
+  return s.veh.best_mask[entry];
 }
 
 /// Best lanes of the vehicle's current edge.
@@ -354,7 +354,7 @@ constexpr float kMaxLanesToCross = 8.0f;    // bounds the request zone for the c
 /// Approach pass: the first vehicle on its lane (nothing ahead until the lane end) publishes itself, and
 /// a vehicle stuck on a wrong lane near its end asks the followers on the target lane to open a gap (as
 /// SUMO's cooperative lane changing does), so queues cannot lock it out forever.
-LPSIM_HD void approach_vehicle(StepContext& s, uint32_t v) {
+LPSIM_HD void approach_vehicle(StepContext& s, uint32_t /*slot*/, uint32_t v) {
   if (s.veh.status[v] != kRunning) return;
   const int32_t lane = s.veh.lane[v];
   const float pos = s.veh.pos[v];
@@ -498,12 +498,14 @@ LPSIM_HD bool swap_with_neighbour(const StepContext& s, uint32_t v, int32_t lane
   return my_rear > 0.0f && their_rear > 0.0f;
 }
 
-/// Plan pass for one running vehicle.
-LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
+/// Plan pass for one running vehicle, `slot` its position in this step's active list (where its plan goes).
+/// Every plan entry the commit pass reads is written here in every step.
+LPSIM_HD void plan_vehicle(StepContext& s, uint32_t slot, uint32_t v) {
   PlanView& out = s.plan;
-  out.claim_lane0[v] = -1;
-  out.claim_lane1[v] = -1;
-  out.arrives[v] = 0;
+  out.claim_lane0[slot] = -1;
+  out.claim_lane1[slot] = -1;
+  out.arrives[slot] = 0;
+  out.claim_prio[slot] = 1;
   if (s.veh.status[v] != kRunning) return;
   const NetView& net = s.net;
   const uint32_t type = s.trips.type[v];
@@ -529,15 +531,15 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
     if (target >= 0 && swap_with_neighbour(s, v, lane, target)) {
       s.veh.held_at_line[v] = 0;
       s.veh.limit_reason[v] = kSwap;
-      out.new_speed[v] = 0.0f;
-      out.new_lane[v] = target;
-      out.new_pos[v] = pos;
-      out.new_prev[v] = -1;
-      out.new_prev2[v] = -1;
-      out.stop_lane[v] = target;
-      out.stop_pos[v] = pos;
-      out.new_rp[v] = rp;
-      out.first_rp[v] = rp;
+      out.new_speed[slot] = 0.0f;
+      out.new_lane[slot] = target;
+      out.new_pos[slot] = pos;
+      out.new_prev[slot] = -1;
+      out.new_prev2[slot] = -1;
+      out.stop_lane[slot] = target;
+      out.stop_pos[slot] = pos;
+      out.new_rp[slot] = rp;
+      out.first_rp[slot] = rp;
       return;
     }
   }
@@ -725,42 +727,42 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
     nprev = -1;  // a lane change moves the whole body across
     nprev2 = -1;
   }
-  out.stop_lane[v] = new_lane;
-  out.stop_pos[v] = npos;
-  out.claim_prio[v] = 1;
+  out.stop_lane[slot] = new_lane;
+  out.stop_pos[slot] = npos;
+  out.claim_prio[slot] = 1;
   int32_t claims = 0;
   if (change_claim) {  // lowest priority; losing it means staying in the old lane at the same position
-    out.claim_prio[v] = 0;
-    out.claim_lane0[v] = new_lane;
-    out.stop_lane[v] = lane;
-    out.stop_pos[v] = npos + kClampEps;
+    out.claim_prio[slot] = 0;
+    out.claim_lane0[slot] = new_lane;
+    out.stop_lane[slot] = lane;
+    out.stop_pos[slot] = npos + kClampEps;
     atomic_max_u64(&s.claims[new_lane], claim_key(s.params.step, 0, v));
   }
   uint32_t nrp = rp;
-  out.first_rp[v] = rp;
+  out.first_rp[slot] = rp;
   for (int32_t h = 0; h < hops && npos > net.lane_length[nlane]; ++h) {
     if (claims == 2) {  // at most two lane entries per step: stop at the end of the second lane
       npos = net.lane_length[nlane];
       break;
     }
     if (claims == 0) {
-      out.stop_lane[v] = nlane;
-      out.stop_pos[v] = net.lane_length[nlane];
+      out.stop_lane[slot] = nlane;
+      out.stop_pos[slot] = net.lane_length[nlane];
     }
     npos -= net.lane_length[nlane];
     nprev2 = nprev;
     nprev = nlane;
     nlane = path[h];
     nrp = path_rp[h];
-    if (claims == 0) out.claim_lane0[v] = nlane, out.first_rp[v] = nrp;
-    else out.claim_lane1[v] = nlane;
+    if (claims == 0) out.claim_lane0[slot] = nlane, out.first_rp[slot] = nrp;
+    else out.claim_lane1[slot] = nlane;
     ++claims;
     atomic_max_u64(&s.claims[nlane], claim_key(s.params.step, 1, v));
   }
   if (npos > net.lane_length[nlane]) npos = net.lane_length[nlane];
   new_speed = lp_fminf(new_speed, advance / dt);
   // Arrival: on the route's last edge, at its arrival position (default: the lane's end).
-  out.new_rp[v] = nrp;
+  out.new_rp[slot] = nrp;
   if (!net.lane_internal[nlane] && nrp + 1 >= rlen) {
     float arrival = net.lane_length[nlane];
     if (s.trips.arrival_pos_kind[v] == 0) {  // ArrivalPos::Given; negative counts from the end
@@ -768,23 +770,23 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t v) {
       arrival = a < 0.0f ? net.lane_length[nlane] + a : a;
       if (arrival > net.lane_length[nlane]) arrival = net.lane_length[nlane];
     }
-    if (npos >= arrival - kClampEps) out.arrives[v] = 1;
+    if (npos >= arrival - kClampEps) out.arrives[slot] = 1;
   }
-  out.new_speed[v] = new_speed;
-  out.new_lane[v] = nlane;
-  out.new_pos[v] = npos;
-  out.new_prev[v] = nprev;
-  out.new_prev2[v] = nprev2;
+  out.new_speed[slot] = new_speed;
+  out.new_lane[slot] = nlane;
+  out.new_pos[slot] = npos;
+  out.new_prev[slot] = nprev;
+  out.new_prev2[slot] = nprev2;
 }
 
 /// Clears the footprint a vehicle had one step ago from the buffer that is about to be written.
-LPSIM_HD void clear_old_footprint(StepContext& s, uint32_t v) {
+LPSIM_HD void clear_old_footprint(StepContext& s, uint32_t /*slot*/, uint32_t v) {
   const Footprint fp{s.veh.old_lane[v], s.veh.old_prev[v], s.veh.old_prev2[v], s.veh.old_pos[v]};
   apply_footprint(s.map_next, s.net, fp, s.types.length[s.trips.type[v]], 0);
 }
 
-/// Commit pass for one vehicle: settle claims, write the new footprint, update counters.
-LPSIM_HD void commit_vehicle(StepContext& s, uint32_t v) {
+/// Commit pass for one vehicle (its plan at `slot`): settle claims, write the new footprint, update counters.
+LPSIM_HD void commit_vehicle(StepContext& s, uint32_t slot, uint32_t v) {
   VehicleView& veh = s.veh;
   // The footprint at the start of this step becomes "one step ago" (cleared two buffers later).
   veh.old_lane[v] = veh.status[v] == kRunning ? veh.lane[v] : -1;
@@ -800,18 +802,18 @@ LPSIM_HD void commit_vehicle(StepContext& s, uint32_t v) {
   const int32_t lane = veh.lane[v];
   const float pos = veh.pos[v];
 
-  int32_t nlane = plan.new_lane[v], nprev = plan.new_prev[v], nprev2 = plan.new_prev2[v];
-  float npos = plan.new_pos[v], nspeed = plan.new_speed[v];
-  bool arrives = plan.arrives[v] != 0;
-  const uint64_t key = claim_key(s.params.step, plan.claim_prio[v], v);
-  const int32_t c0 = plan.claim_lane0[v], c1 = plan.claim_lane1[v];
+  int32_t nlane = plan.new_lane[slot], nprev = plan.new_prev[slot], nprev2 = plan.new_prev2[slot];
+  float npos = plan.new_pos[slot], nspeed = plan.new_speed[slot];
+  bool arrives = plan.arrives[slot] != 0;
+  const uint64_t key = claim_key(s.params.step, plan.claim_prio[slot], v);
+  const int32_t c0 = plan.claim_lane0[slot], c1 = plan.claim_lane1[slot];
   const bool lost0 = c0 >= 0 && s.claims[c0] != key;
   const bool lost1 = c1 >= 0 && s.claims[c1] != key;
   if (lost0 || lost1) {
     arrives = false;
     if (lost0) {  // stay on the lane before the first claimed one, at its end
-      nlane = plan.stop_lane[v];
-      npos = plan.stop_pos[v] - kClampEps;
+      nlane = plan.stop_lane[slot];
+      npos = plan.stop_pos[slot] - kClampEps;
       if (nlane == lane) {
         nprev = veh.prev[v];
         nprev2 = veh.prev2[v];
@@ -835,10 +837,10 @@ LPSIM_HD void commit_vehicle(StepContext& s, uint32_t v) {
   else driven = npos - pos;  // lane change: longitudinal advance only
   if (driven < 0.0f) driven = 0.0f;
   nspeed = driven / dt;
-  if (nspeed > plan.new_speed[v]) nspeed = plan.new_speed[v];
+  if (nspeed > plan.new_speed[slot]) nspeed = plan.new_speed[slot];
 
   // Route position follows the front over every normal edge it entered (as planned, or up to the fallback).
-  const uint32_t rp = lost0 ? veh.route_pos[v] : (lost1 ? plan.first_rp[v] : plan.new_rp[v]);
+  const uint32_t rp = lost0 ? veh.route_pos[v] : (lost1 ? plan.first_rp[slot] : plan.new_rp[slot]);
   veh.route_pos[v] = rp;
 
   // Per-vehicle counters (tripinfo).

@@ -63,13 +63,9 @@ Simulation::Simulation(const Network& net, const Demand& demand, const Simulatio
   lane_change_dir_.assign(nv, 0);
   held_at_line_.assign(nv, 0);
   limit_reason_.assign(nv, 0);
-  best_rp_.assign(nv * kBestLaneSlots, 0xFFFFFFFFu);
-  best_mask_.assign(nv * kBestLaneSlots, 0);
-  claim_prio_.assign(nv, 1);
-  arrives_.assign(nv, 0);
+  best_rp_.assign(nv * kBestLaneEntries, 0xFFFFFFFFu);
+  best_mask_.assign(nv * kBestLaneEntries, 0);
   route_pos_.assign(nv, 0);
-  new_rp_.assign(nv, 0);
-  first_rp_.assign(nv, 0);
   stopped_steps_.assign(nv, 0);
   waiting_steps_.assign(nv, 0);
   waiting_count_.assign(nv, 0);
@@ -85,15 +81,6 @@ Simulation::Simulation(const Network& net, const Demand& demand, const Simulatio
   old_lane_.assign(nv, -1);
   old_prev_.assign(nv, -1);
   old_prev2_.assign(nv, -1);
-  new_speed_.assign(nv, 0);
-  new_pos_.assign(nv, 0);
-  stop_pos_.assign(nv, 0);
-  new_lane_.assign(nv, -1);
-  new_prev_.assign(nv, -1);
-  new_prev2_.assign(nv, -1);
-  claim0_.assign(nv, -1);
-  claim1_.assign(nv, -1);
-  stop_lane_.assign(nv, -1);
   teleport_pending_.assign(nv, 0);
   depart_time_.assign(nv, 0);
   depart_pos_.assign(nv, 0);
@@ -151,6 +138,23 @@ char Simulation::link_state(uint32_t conn) const {
   return link_state_[engine_net_.link_begin[static_cast<size_t>(sig)] + static_cast<uint32_t>(net_.conn_link_index[conn])];
 }
 
+void Simulation::PlanColumns::reserve_slots(size_t n) {
+  if (new_speed.size() >= n) return;
+  // Grows by half again so a slowly growing active list does not resize every step. Contents are scratch:
+  // the plan pass writes every entry the commit pass reads.
+  const size_t c = std::max(n, new_speed.size() + new_speed.size() / 2);
+  for (auto* col : {&new_speed, &new_pos, &stop_pos}) col->resize(c);
+  for (auto* col : {&new_lane, &new_prev, &new_prev2, &claim0, &claim1, &stop_lane}) col->resize(c);
+  for (auto* col : {&arrives, &claim_prio}) col->resize(c);
+  for (auto* col : {&new_rp, &first_rp}) col->resize(c);
+}
+
+PlanView Simulation::PlanColumns::view() {
+  return PlanView{ptr(new_speed), ptr(new_lane), ptr(new_pos),  ptr(new_prev),  ptr(new_prev2),
+                  ptr(claim0),    ptr(claim1),   ptr(stop_pos), ptr(stop_lane), ptr(arrives),
+                  ptr(new_rp),    ptr(first_rp), ptr(claim_prio)};
+}
+
 VehicleView Simulation::vehicle_view() {
   return VehicleView{ptr(status_),        ptr(route_pos_),     ptr(speed_),          ptr(lane_),
                      ptr(prev_),          ptr(prev2_),         ptr(pos_),            ptr(old_lane_),
@@ -174,9 +178,7 @@ StepContext Simulation::context(const uint8_t* map_now, uint8_t* map_next) {
                        t.max_speed.data(), t.tau.data(), t.delta.data()};
   ctx.trips = trip_view();
   ctx.veh = vehicle_view();
-  ctx.plan = PlanView{ptr(new_speed_), ptr(new_lane_), ptr(new_pos_),  ptr(new_prev_),   ptr(new_prev2_),
-                      ptr(claim0_),    ptr(claim1_),   ptr(stop_pos_), ptr(stop_lane_), ptr(arrives_),
-                      ptr(new_rp_),    ptr(first_rp_), ptr(claim_prio_)};
+  ctx.plan = plan_.view();
   ctx.params = step_params();
   ctx.map_now = map_now;
   ctx.map_next = map_next;
@@ -208,12 +210,16 @@ void Simulation::step() {
 
 void Simulation::step_cpu() {
   update_signals();
+  plan_.reserve_slots(active_.size());
   StepContext ctx = context(map_[cur_].data(), map_[1 - cur_].data());
   // Each pass is one parallel loop over the active vehicles, finished before the next starts.
   const int64_t n = static_cast<int64_t>(active_.size());
   const uint32_t* act = active_.data();
   auto pass = [&](auto vehicle_pass) {
-    pool_.run(n, [&](int64_t b, int64_t e) { for (int64_t i = b; i < e; ++i) vehicle_pass(ctx, act[i]); },
+    pool_.run(n,
+              [&](int64_t b, int64_t e) {
+                for (int64_t i = b; i < e; ++i) vehicle_pass(ctx, static_cast<uint32_t>(i), act[i]);
+              },
               kParallelMinVehicles);
   };
   pass(clear_old_footprint);

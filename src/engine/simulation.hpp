@@ -113,13 +113,20 @@ class Simulation {
   std::vector<uint64_t> claims_, merge_requests_;
   LaneCounters lane_counters_;
 
-  // Per-vehicle state (see VehicleView) and plan scratch (see PlanView).
-  std::vector<uint8_t> status_, lane_change_dir_, arrives_, held_at_line_, limit_reason_, claim_prio_;
-  std::vector<uint32_t> best_rp_, best_mask_, new_rp_, first_rp_, route_pos_, stopped_steps_, waiting_steps_, waiting_count_, arrival_step_;
+  // Per-vehicle state (see VehicleView).
+  std::vector<uint8_t> status_, lane_change_dir_, held_at_line_, limit_reason_;
+  std::vector<uint32_t> best_rp_, best_mask_, route_pos_, stopped_steps_, waiting_steps_, waiting_count_, arrival_step_;
   std::vector<float> speed_, pos_, old_pos_, time_loss_, route_length_;
   std::vector<int32_t> lane_, prev_, prev2_, old_lane_, old_prev_, old_prev2_;
-  std::vector<float> new_speed_, new_pos_, stop_pos_;
-  std::vector<int32_t> new_lane_, new_prev_, new_prev2_, claim0_, claim1_, stop_lane_;
+  // Plan scratch (see PlanView): one entry per position in the active list, grown with it.
+  struct PlanColumns {
+    std::vector<float> new_speed, new_pos, stop_pos;
+    std::vector<int32_t> new_lane, new_prev, new_prev2, claim0, claim1, stop_lane;
+    std::vector<uint8_t> arrives, claim_prio;
+    std::vector<uint32_t> new_rp, first_rp;
+    void reserve_slots(size_t n);
+    PlanView view();
+  } plan_;
   std::vector<uint8_t> teleport_pending_;
   // Departure records for tripinfo.
   std::vector<float> depart_time_, depart_pos_, depart_speed_;
