@@ -96,7 +96,7 @@ struct VehicleView {
   uint32_t* best_mask;      // best lanes of that route edge
 };
 
-constexpr uint32_t kBestLaneEntries = 4;  // a power of two
+constexpr uint32_t kBestLaneEntries = 2;  // a power of two
 
 enum StopReason : uint8_t {
   kFree = 0, kLeader = 1, kWrongLane = 2, kSignal = 3, kHaltRule = 4, kNoRoom = 5, kYield = 6, kMergeGap = 7,
