@@ -89,7 +89,8 @@ std::string resolve(const std::string& path, const std::string& base_dir) {
   throw InputError(where.loc, label + ": " + expected + ", got '" + value + "'");
 }
 
-Value convert(const OptionDef& def, std::string_view name, const std::string& value, const OptionSource& where) {
+Value convert(const OptionDef& def, std::string_view name, const std::string& value,
+              const OptionSource& where) {
   Value v;
   switch (def.kind) {
     case Kind::Path:
@@ -129,10 +130,14 @@ Value convert(const OptionDef& def, std::string_view name, const std::string& va
       break;
     }
     case Kind::Device:
-      if (value == "auto") v.device = ComputeDevice::Auto;
-      else if (value == "cpu") v.device = ComputeDevice::Cpu;
-      else if (value == "gpu") v.device = ComputeDevice::Gpu;
-      else bad_value(where, name, value, "expected auto, cpu or gpu");
+      if (value == "auto")
+        v.device = ComputeDevice::Auto;
+      else if (value == "cpu")
+        v.device = ComputeDevice::Cpu;
+      else if (value == "gpu")
+        v.device = ComputeDevice::Gpu;
+      else
+        bad_value(where, name, value, "expected auto, cpu or gpu");
       break;
   }
   return v;
@@ -145,7 +150,8 @@ bool looks_like_option(const std::string& arg) {
 
 }  // namespace
 
-bool apply_option(ConfigSpec& config, std::string_view name, const std::string& value, const OptionSource& where) {
+bool apply_option(ConfigSpec& config, std::string_view name, const std::string& value,
+                  const OptionSource& where) {
   const OptionDef* def = find_long(name);
   if (!def || (def->command_line_only && !where.command_line)) return false;
   def->store(config, convert(*def, name, value, where));
@@ -165,7 +171,8 @@ std::optional<double> parse_sumo_time(std::string_view text) {
   size_t start = 0;
   for (;;) {
     size_t colon = text.find(':', start);
-    parts.push_back(text.substr(start, colon == std::string_view::npos ? std::string_view::npos : colon - start));
+    parts.push_back(
+        text.substr(start, colon == std::string_view::npos ? std::string_view::npos : colon - start));
     if (colon == std::string_view::npos) break;
     start = colon + 1;
   }

@@ -13,8 +13,8 @@ namespace lpsim {
 
 /// Where an option's value came from: names it in errors and anchors relative paths.
 struct OptionSource {
-  SourceLoc loc;           // cfg file:line, or {"command line", 0}
-  std::string base_dir;    // relative paths are resolved against it; empty: kept as given
+  SourceLoc loc;              // cfg file:line, or {"command line", 0}
+  std::string base_dir;       // relative paths are resolved against it; empty: kept as given
   bool command_line = false;  // errors then say "--name" rather than "<name>"
 };
 
@@ -22,7 +22,8 @@ struct OptionSource {
 /// its text value to `config`. Returns false when LPSim does not know the name. Options that make sense
 /// only on the command line (configuration-file, output) are unknown when `where.command_line` is false.
 /// A bad value raises InputError naming where, the option and the value.
-bool apply_option(ConfigSpec& config, std::string_view name, const std::string& value, const OptionSource& where);
+bool apply_option(ConfigSpec& config, std::string_view name, const std::string& value,
+                  const OptionSource& where);
 
 /// SUMO time value: seconds ("3600", "0.5", "-1") or "h:m:s" / "d:h:m:s" (parts non-negative, the last
 /// may have a fraction; a leading '-' negates the whole). nullopt when it is none of these.
@@ -36,6 +37,7 @@ std::optional<bool> parse_sumo_bool(std::string_view text);
 /// true/false. A configuration file (-c) is read first; every other option overrides it wherever it appears.
 /// Arguments not starting with '-' (and all after "--") are positional: they go to `positional`, or raise
 /// InputError when `positional` is null. Unknown options and missing values raise InputError naming them.
-ConfigSpec parse_cli_options(const std::vector<std::string>& args, std::vector<std::string>* positional = nullptr);
+ConfigSpec parse_cli_options(const std::vector<std::string>& args,
+                             std::vector<std::string>* positional = nullptr);
 
 }  // namespace lpsim

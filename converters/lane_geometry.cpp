@@ -50,7 +50,8 @@ LaneGeometry::LaneGeometry(const Network& net)
     double length = 0;
     for (uint32_t i = first; i < end; ++i) {
       if (i > first) {
-        length += std::hypot(double(net.shape_x[i]) - net.shape_x[i - 1], double(net.shape_y[i]) - net.shape_y[i - 1]);
+        length += std::hypot(double(net.shape_x[i]) - net.shape_x[i - 1],
+                             double(net.shape_y[i]) - net.shape_y[i - 1]);
       }
       cumulative_[i] = length;
     }

@@ -48,7 +48,7 @@ class LaneGeometry {
 
  private:
   const Network& net_;
-  std::vector<double> cumulative_;  // per shape point: shape length from the lane's first point
+  std::vector<double> cumulative_;    // per shape point: shape length from the lane's first point
   std::vector<int32_t> predecessor_;  // per lane: unique incoming lane, kNone if none or several
 };
 

@@ -47,7 +47,8 @@ struct MeanDataTotals {
 };
 
 /// Sums lanes [first_lane, first_lane + lanes) of `counters`; dt is the step length in seconds.
-MeanDataTotals sum_lane_counters(const LaneCounters& counters, uint32_t first_lane, uint32_t lanes, double dt);
+MeanDataTotals sum_lane_counters(const LaneCounters& counters, uint32_t first_lane, uint32_t lanes,
+                                 double dt);
 
 /// Derived measures (see the header comment); meaningful only when totals.sampled_seconds > 0.
 struct MeanDataMeasures {
@@ -56,8 +57,8 @@ struct MeanDataMeasures {
   double speed = 0, speed_relative = 0;
 };
 
-MeanDataMeasures derive_mean_data(const MeanDataTotals& totals, double length, uint32_t lanes, double speed_limit,
-                                  double interval_seconds, double min_vehicle_length);
+MeanDataMeasures derive_mean_data(const MeanDataTotals& totals, double length, uint32_t lanes,
+                                  double speed_limit, double interval_seconds, double min_vehicle_length);
 
 class MeanDataWriter {
  public:

@@ -16,7 +16,6 @@ namespace {
 
 bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
 
-
 // Long shapes would make one-line error messages unreadable; the start of the value is enough to find it.
 std::string excerpt(const std::string& value) {
   return value.size() <= 60 ? value : value.substr(0, 57) + "...";
@@ -173,7 +172,8 @@ class NetParser {
       if (ev != XmlStream::Event::Start) continue;
       if (!root_seen) {
         if (xs_.name() != "net")
-          throw InputError(xs_.loc(), "root element is <" + xs_.name() + ">, expected <net> of a SUMO network");
+          throw InputError(xs_.loc(),
+                           "root element is <" + xs_.name() + ">, expected <net> of a SUMO network");
         root_seen = true;
         continue;
       }
@@ -244,7 +244,8 @@ class NetParser {
     e.lanes.reserve(4);
     for (;;) {
       auto ev = xs_.next();
-      if (ev == XmlStream::Event::Eof) throw InputError(e.loc, "<edge id=\"" + e.id + "\">: unexpected end of file");
+      if (ev == XmlStream::Event::Eof)
+        throw InputError(e.loc, "<edge id=\"" + e.id + "\">: unexpected end of file");
       if (ev == XmlStream::Event::End && xs_.depth() == depth) break;
       if (ev == XmlStream::Event::Start && xs_.depth() == depth + 1 && xs_.name() == "lane")
         e.lanes.push_back(read_lane(e.function));
@@ -325,8 +326,19 @@ class NetParser {
     j.foes[i] = std::move(foes);
   }
 
-  enum ConnectionAttr { kConnFrom, kConnTo, kConnFromLane, kConnToLane, kConnVia, kConnTl, kConnLink, kConnDir, kConnState };
-  AttrCapture<9> connection_attrs_{{"from", "to", "fromLane", "toLane", "via", "tl", "linkIndex", "dir", "state"}};
+  enum ConnectionAttr {
+    kConnFrom,
+    kConnTo,
+    kConnFromLane,
+    kConnToLane,
+    kConnVia,
+    kConnTl,
+    kConnLink,
+    kConnDir,
+    kConnState
+  };
+  AttrCapture<9> connection_attrs_{
+      {"from", "to", "fromLane", "toLane", "via", "tl", "linkIndex", "dir", "state"}};
 
   void read_connection() {
     const auto& a = connection_attrs_;
@@ -340,7 +352,8 @@ class NetParser {
     c.via = a.text(kConnVia);
     c.tl = a.text(kConnTl);
     long long link = integer(xs_, "linkIndex", a.value(kConnLink), -1);
-    if (link < -1 || link > 1'000'000) xs_.fail("attribute 'linkIndex' out of range: '" + a.text(kConnLink) + "'");
+    if (link < -1 || link > 1'000'000)
+      xs_.fail("attribute 'linkIndex' out of range: '" + a.text(kConnLink) + "'");
     c.link_index = static_cast<int>(link);
     c.dir = parse_dir(xs_, a.value(kConnDir));
     c.state = parse_state(xs_, a.value(kConnState));

@@ -16,9 +16,11 @@ std::string_view trim(std::string_view text) {
 
 bool parse_depart_lane(std::string_view text, DepartSpec& out) {
   text = trim(text);
-  static constexpr std::pair<std::string_view, DepartLane> kKeywords[] = {
-      {"first", DepartLane::First}, {"random", DepartLane::Random}, {"free", DepartLane::Free},
-      {"allowed", DepartLane::Allowed}, {"best", DepartLane::Best}};
+  static constexpr std::pair<std::string_view, DepartLane> kKeywords[] = {{"first", DepartLane::First},
+                                                                          {"random", DepartLane::Random},
+                                                                          {"free", DepartLane::Free},
+                                                                          {"allowed", DepartLane::Allowed},
+                                                                          {"best", DepartLane::Best}};
   for (const auto& [word, value] : kKeywords)
     if (text == word) {
       out.lane = value;
@@ -34,8 +36,9 @@ bool parse_depart_lane(std::string_view text, DepartSpec& out) {
 bool parse_depart_pos(std::string_view text, DepartSpec& out) {
   text = trim(text);
   static constexpr std::pair<std::string_view, DepartPos> kKeywords[] = {
-      {"base", DepartPos::Base}, {"random", DepartPos::Random}, {"free", DepartPos::Free},
-      {"random_free", DepartPos::RandomFree}, {"last", DepartPos::Last}, {"stop", DepartPos::Stop}};
+      {"base", DepartPos::Base}, {"random", DepartPos::Random},
+      {"free", DepartPos::Free}, {"random_free", DepartPos::RandomFree},
+      {"last", DepartPos::Last}, {"stop", DepartPos::Stop}};
   for (const auto& [word, value] : kKeywords)
     if (text == word) {
       out.pos = value;
@@ -82,7 +85,6 @@ bool parse_arrival_pos(std::string_view text, DepartSpec& out) {
   out.arrival_value = *pos;
   return true;
 }
-
 
 std::optional<MeanDev> parse_speed_factor(std::string_view text) {
   text = trim(text);

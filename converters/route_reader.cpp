@@ -20,14 +20,34 @@ namespace {
 // Attributes of vehicle, trip and flow elements. They are copied once per element into buffers reused
 // across elements, so a million vehicles cost one attribute pass and no allocations here.
 enum Key : uint8_t {
-  kId, kType, kDepart, kRoute, kDepartLane, kDepartPos, kDepartSpeed, kArrivalPos, kFrom, kTo, kVia,
-  kFromJunction, kToJunction, kFromTaz, kToTaz, kBegin, kEnd, kPeriod, kVehsPerHour, kPerHour, kProbability,
-  kNumber, kKeyCount
+  kId,
+  kType,
+  kDepart,
+  kRoute,
+  kDepartLane,
+  kDepartPos,
+  kDepartSpeed,
+  kArrivalPos,
+  kFrom,
+  kTo,
+  kVia,
+  kFromJunction,
+  kToJunction,
+  kFromTaz,
+  kToTaz,
+  kBegin,
+  kEnd,
+  kPeriod,
+  kVehsPerHour,
+  kPerHour,
+  kProbability,
+  kNumber,
+  kKeyCount
 };
 constexpr std::array<std::string_view, kKeyCount> kKeyNames = {
-    "id",   "type", "depart", "route",        "departLane", "departPos", "departSpeed", "arrivalPos",
-    "from", "to",   "via",    "fromJunction", "toJunction", "fromTaz",   "toTaz",       "begin",
-    "end",  "period", "vehsPerHour", "perHour", "probability", "number"};
+    "id",   "type",   "depart",      "route",        "departLane",  "departPos", "departSpeed", "arrivalPos",
+    "from", "to",     "via",         "fromJunction", "toJunction",  "fromTaz",   "toTaz",       "begin",
+    "end",  "period", "vehsPerHour", "perHour",      "probability", "number"};
 
 struct TravellerAttrs {
   std::array<std::string, kKeyCount> value;
@@ -49,7 +69,9 @@ struct TravellerAttrs {
   std::string id_value(Key k) const { return present[k] ? std::string(trim(value[k])) : std::string(); }
 };
 
-std::string_view element_name(const VehicleSpec& v) { return v.source == DemandSource::Trip ? "trip" : "vehicle"; }
+std::string_view element_name(const VehicleSpec& v) {
+  return v.source == DemandSource::Trip ? "trip" : "vehicle";
+}
 std::string_view element_name(const FlowSpec&) { return "flow"; }
 
 // Raises InputError for an id that appears twice among `items`, where at least one of the two comes from
@@ -126,18 +148,30 @@ class RouteFileReader {
   // At the Start event of a child of the root (or of an <interval>); leaves the stream at its End event.
   void read_element() {
     const std::string& name = xs_.name();
-    if (name == "vehicle") read_vehicle(DemandSource::Vehicle);
-    else if (name == "trip") read_vehicle(DemandSource::Trip);
-    else if (name == "flow") read_flow();
-    else if (name == "route") read_route();
-    else if (name == "vType") read_vtype_element();
-    else if (name == "routeDistribution") read_route_distribution("");
-    else if (name == "vTypeDistribution") read_vtype_distribution();
-    else if (name == "tlLogic") additional_.tl_logics.push_back(read_tl_logic(xs_));
-    else if (name == "edgeData") read_mean_data(false);
-    else if (name == "laneData") read_mean_data(true);
-    else if (name == "interval") read_interval();
-    else skip_counted();
+    if (name == "vehicle")
+      read_vehicle(DemandSource::Vehicle);
+    else if (name == "trip")
+      read_vehicle(DemandSource::Trip);
+    else if (name == "flow")
+      read_flow();
+    else if (name == "route")
+      read_route();
+    else if (name == "vType")
+      read_vtype_element();
+    else if (name == "routeDistribution")
+      read_route_distribution("");
+    else if (name == "vTypeDistribution")
+      read_vtype_distribution();
+    else if (name == "tlLogic")
+      additional_.tl_logics.push_back(read_tl_logic(xs_));
+    else if (name == "edgeData")
+      read_mean_data(false);
+    else if (name == "laneData")
+      read_mean_data(true);
+    else if (name == "interval")
+      read_interval();
+    else
+      skip_counted();
   }
 
   // Counts the current element as unsupported and passes over it and its children.
@@ -181,8 +215,10 @@ class RouteFileReader {
     const std::string* v = attrs_.get(key);
     if (!v) return fallback;
     auto t = parse_sumo_time(*v);
-    if (!t) fail(loc, element, id, "attribute '" + std::string(kKeyNames[key]) + "' is not a time: '" + *v + "'");
-    if (*t < 0) fail(loc, element, id, "attribute '" + std::string(kKeyNames[key]) + "' is negative: '" + *v + "'");
+    if (!t)
+      fail(loc, element, id, "attribute '" + std::string(kKeyNames[key]) + "' is not a time: '" + *v + "'");
+    if (*t < 0)
+      fail(loc, element, id, "attribute '" + std::string(kKeyNames[key]) + "' is negative: '" + *v + "'");
     return *t;
   }
 
@@ -190,7 +226,8 @@ class RouteFileReader {
     const std::string& v = attrs_.value[key];
     auto d = parse_double(v);
     if (!d || *d <= 0)
-      fail(loc, element, id, "attribute '" + std::string(kKeyNames[key]) + "' must be a positive number: '" + v + "'");
+      fail(loc, element, id,
+           "attribute '" + std::string(kKeyNames[key]) + "' must be a positive number: '" + v + "'");
     return *d;
   }
 
@@ -206,9 +243,11 @@ class RouteFileReader {
     if (attrs_.present[kVia]) spec.via = split_ids(attrs_.value[kVia]);
   }
 
-  void read_depart_spec(const SourceLoc& loc, std::string_view element, std::string_view id, DepartSpec& d) const {
+  void read_depart_spec(const SourceLoc& loc, std::string_view element, std::string_view id,
+                        DepartSpec& d) const {
     if (auto* v = attrs_.get(kDepartLane); v && !parse_depart_lane(*v, d))
-      fail(loc, element, id, "unknown departLane '" + *v + "' (first, random, free, allowed, best or a lane index)");
+      fail(loc, element, id,
+           "unknown departLane '" + *v + "' (first, random, free, allowed, best or a lane index)");
     if (auto* v = attrs_.get(kDepartPos); v && !parse_depart_pos(*v, d))
       fail(loc, element, id,
            "unknown departPos '" + *v + "' (base, random, free, random_free, last, stop or a position)");
@@ -231,12 +270,14 @@ class RouteFileReader {
   // Reads the children of a vehicle, trip or flow: a nested <route> or <routeDistribution> gives the path;
   // anything else (stops, params, ...) is counted as unsupported. With `interned` (vehicles and trips, read
   // by the million) a nested route's edges are interned into it instead of filling `edges`.
-  void read_path_children(const SourceLoc& loc, std::string_view element, const std::string& id, std::string& route,
-                          std::vector<std::string>& edges, VehicleSpec* interned = nullptr) {
+  void read_path_children(const SourceLoc& loc, std::string_view element, const std::string& id,
+                          std::string& route, std::vector<std::string>& edges,
+                          VehicleSpec* interned = nullptr) {
     for_each_child(loc, element, id, [&] {
       const bool has_path = !route.empty() || !edges.empty() || (interned && interned->edge_ref_count > 0);
       if (xs_.name() == "route") {
-        if (has_path) fail(xs_.loc(), element, id, "more than one route (attribute 'route' or nested routes)");
+        if (has_path)
+          fail(xs_.loc(), element, id, "more than one route (attribute 'route' or nested routes)");
         bool given = false;
         size_t count = 0;
         xs_.for_each_attr([&](std::string_view key, std::string_view value) {
@@ -249,14 +290,16 @@ class RouteFileReader {
           }
           interned->edge_ref_begin = demand_.edge_refs.size();
           count = edge_ids_.intern_list(value, demand_.edge_refs);
-          if (count > UINT32_MAX) fail(xs_.loc(), element, id, "nested <route> with more than 2^32 - 1 edges");
+          if (count > UINT32_MAX)
+            fail(xs_.loc(), element, id, "nested <route> with more than 2^32 - 1 edges");
           interned->edge_ref_count = static_cast<uint32_t>(count);
         });
         if (!given) fail(xs_.loc(), element, id, "nested <route> without 'edges'");
         if (count == 0) fail(xs_.loc(), element, id, "nested <route> with empty 'edges'");
         skip_children_counted();
       } else if (xs_.name() == "routeDistribution") {
-        if (has_path) fail(xs_.loc(), element, id, "more than one route (attribute 'route' or nested routes)");
+        if (has_path)
+          fail(xs_.loc(), element, id, "more than one route (attribute 'route' or nested routes)");
         route = read_route_distribution("!" + id);
       } else {
         skip_counted();
@@ -303,7 +346,8 @@ class RouteFileReader {
     const bool endpoints = has_endpoints(v.from, v.from_junction, v.to, v.to_junction);
     if (source == DemandSource::Trip && !endpoints)
       fail(loc, element, v.id, "needs 'from' (or 'fromJunction') and 'to' (or 'toJunction')");
-    if (source == DemandSource::Vehicle && v.route.empty() && v.edges.empty() && v.edge_ref_count == 0 && !endpoints)
+    if (source == DemandSource::Vehicle && v.route.empty() && v.edges.empty() && v.edge_ref_count == 0 &&
+        !endpoints)
       fail(loc, element, v.id, "no route: give 'route', a nested <route>, or from/to");
     demand_.vehicles.push_back(std::move(v));
   }
@@ -326,7 +370,8 @@ class RouteFileReader {
     int rates = 0;
     if (attrs_.present[kPeriod]) {
       f.period = time_attr(kPeriod, loc, element, id, -1);
-      if (f.period <= 0) fail(loc, element, id, "attribute 'period' must be positive: '" + attrs_.value[kPeriod] + "'");
+      if (f.period <= 0)
+        fail(loc, element, id, "attribute 'period' must be positive: '" + attrs_.value[kPeriod] + "'");
       ++rates;
     }
     for (Key k : {kVehsPerHour, kPerHour})
@@ -337,17 +382,20 @@ class RouteFileReader {
     if (attrs_.present[kProbability]) {
       auto p = parse_double(attrs_.value[kProbability]);
       if (!p || *p <= 0 || *p > 1)
-        fail(loc, element, id, "attribute 'probability' must lie in (0, 1]: '" + attrs_.value[kProbability] + "'");
+        fail(loc, element, id,
+             "attribute 'probability' must lie in (0, 1]: '" + attrs_.value[kProbability] + "'");
       f.probability = *p;
       ++rates;
     }
     if (attrs_.present[kNumber]) {
       auto n = parse_integer(attrs_.value[kNumber]);
       if (!n || *n < 0)
-        fail(loc, element, id, "attribute 'number' must be a non-negative integer: '" + attrs_.value[kNumber] + "'");
+        fail(loc, element, id,
+             "attribute 'number' must be a non-negative integer: '" + attrs_.value[kNumber] + "'");
       f.number = *n;
     }
-    if (rates > 1) fail(loc, element, id, "give only one of 'period', 'vehsPerHour' (or 'perHour'), 'probability'");
+    if (rates > 1)
+      fail(loc, element, id, "give only one of 'period', 'vehsPerHour' (or 'perHour'), 'probability'");
     if (rates == 0 && f.number < 0)
       fail(loc, element, id, "needs one of 'period', 'vehsPerHour', 'perHour', 'probability' or 'number'");
 
@@ -355,7 +403,8 @@ class RouteFileReader {
     read_depart_spec(loc, element, id, f.depart_spec);
     read_path_children(loc, element, f.id, f.route, f.edges);
     if (f.route.empty() && f.edges.empty() && !has_endpoints(f.from, f.from_junction, f.to, f.to_junction))
-      fail(loc, element, f.id, "no route: give 'route', a nested <route>, from/to or fromJunction/toJunction");
+      fail(loc, element, f.id,
+           "no route: give 'route', a nested <route>, from/to or fromJunction/toJunction");
     demand_.flows.push_back(std::move(f));
   }
 
@@ -375,8 +424,8 @@ class RouteFileReader {
   }
 
   // Members given as `ids="a b"` with optional `probabilities="0.3 0.7"` (default 1 each).
-  static std::vector<WeightedId> listed_members(const XmlStream& xs, const char* ids_key, std::string_view element,
-                                                const std::string& id) {
+  static std::vector<WeightedId> listed_members(const XmlStream& xs, const char* ids_key,
+                                                std::string_view element, const std::string& id) {
     std::vector<WeightedId> members;
     auto ids = xs.attr(ids_key);
     if (!ids) return members;
@@ -389,7 +438,8 @@ class RouteFileReader {
                  std::to_string(members.size()) + " members: '" + *probs + "'");
       for (size_t i = 0; i < values.size(); ++i) {
         auto p = parse_double(values[i]);
-        if (!p || *p < 0) fail(xs.loc(), element, id, "bad probability '" + values[i] + "' in 'probabilities'");
+        if (!p || *p < 0)
+          fail(xs.loc(), element, id, "bad probability '" + values[i] + "' in 'probabilities'");
         members[i].probability = *p;
       }
     }
@@ -400,7 +450,8 @@ class RouteFileReader {
     auto text = xs_.attr("probability");
     if (!text) return 1.0;
     auto p = parse_double(*text);
-    if (!p || *p < 0) fail(xs_.loc(), element, id, "attribute 'probability' must be non-negative: '" + *text + "'");
+    if (!p || *p < 0)
+      fail(xs_.loc(), element, id, "attribute 'probability' must be non-negative: '" + *text + "'");
     return *p;
   }
 
@@ -423,7 +474,9 @@ class RouteFileReader {
       if (!edges) {
         // A member that refers to a route defined elsewhere.
         auto ref = xs_.attr("refId");
-        if (!ref) fail(loc, "route", xs_.get("id", ""), "route in routeDistribution '" + dist.id + "' has neither 'edges' nor 'refId'");
+        if (!ref)
+          fail(loc, "route", xs_.get("id", ""),
+               "route in routeDistribution '" + dist.id + "' has neither 'edges' nor 'refId'");
         dist.members.push_back(WeightedId{std::string(trim(*ref)), probability});
         skip_children_counted();
         return;
@@ -487,7 +540,8 @@ class RouteFileReader {
       auto text = xs_.attr(key);
       if (!text) return fallback;
       auto t = parse_sumo_time(*text);
-      if (!t || *t < 0) fail(m.loc, element, m.id, std::string("attribute '") + key + "' is not a time: '" + *text + "'");
+      if (!t || *t < 0)
+        fail(m.loc, element, m.id, std::string("attribute '") + key + "' is not a time: '" + *text + "'");
       return *t;
     };
     m.period = time(xs_.has("period") ? "period" : "freq", -1);
@@ -501,7 +555,8 @@ class RouteFileReader {
       // excludeEmpty="defaults" writes empty edges with default values: they are not excluded.
       if (std::string_view(key) == "excludeEmpty" && trim(*text) == "defaults") return false;
       auto b = parse_sumo_bool(*text);
-      if (!b) fail(m.loc, element, m.id, std::string("attribute '") + key + "' is not a boolean: '" + *text + "'");
+      if (!b)
+        fail(m.loc, element, m.id, std::string("attribute '") + key + "' is not a boolean: '" + *text + "'");
       return *b;
     };
     m.exclude_empty = flag("excludeEmpty");
@@ -517,7 +572,9 @@ class RouteFileReader {
       auto text = xs_.attr(key);
       if (!text) return std::nullopt;
       auto t = parse_sumo_time(*text);
-      if (!t || *t < 0) fail(loc, "interval", xs_.get("id", ""), std::string("attribute '") + key + "' is not a time: '" + *text + "'");
+      if (!t || *t < 0)
+        fail(loc, "interval", xs_.get("id", ""),
+             std::string("attribute '") + key + "' is not a time: '" + *text + "'");
       return t;
     };
     auto saved_begin = interval_begin_, saved_end = interval_end_;

@@ -45,14 +45,15 @@ constexpr VClassDefaults kVClassDefaults[] = {
 
 enum class Sign { Positive, NonNegative };
 
-double number_value(const SourceLoc& loc, std::string_view element, const std::string& id, std::string_view key,
-                    std::string_view text, Sign sign) {
+double number_value(const SourceLoc& loc, std::string_view element, const std::string& id,
+                    std::string_view key, std::string_view text, Sign sign) {
   auto v = parse_double(text);
   bool ok = v && (sign == Sign::Positive ? *v > 0 : *v >= 0);
   if (!ok)
     fail_at(loc, element, id,
             "attribute '" + std::string(key) + "' must be a " +
-                (sign == Sign::Positive ? "positive" : "non-negative") + " number: '" + std::string(text) + "'");
+                (sign == Sign::Positive ? "positive" : "non-negative") + " number: '" + std::string(text) +
+                "'");
   return *v;
 }
 
@@ -61,13 +62,18 @@ double number_value(const SourceLoc& loc, std::string_view element, const std::s
 bool set_cf_field(const SourceLoc& loc, std::string_view element, VTypeSpec& t, std::string_view key,
                   std::string_view value) {
   auto num = [&](Sign sign) { return number_value(loc, element, t.id, key, value, sign); };
-  if (key == "accel") t.accel = num(Sign::Positive);
-  else if (key == "decel") t.decel = num(Sign::Positive);
-  else if (key == "emergencyDecel") t.emergency_decel = num(Sign::Positive);
-  else if (key == "tau") t.tau = num(Sign::NonNegative);
+  if (key == "accel")
+    t.accel = num(Sign::Positive);
+  else if (key == "decel")
+    t.decel = num(Sign::Positive);
+  else if (key == "emergencyDecel")
+    t.emergency_decel = num(Sign::Positive);
+  else if (key == "tau")
+    t.tau = num(Sign::NonNegative);
   else if (key == "sigma") {
     t.sigma = num(Sign::NonNegative);
-    if (t.sigma > 1) fail_at(loc, element, t.id, "attribute 'sigma' must lie in [0, 1]: '" + std::string(value) + "'");
+    if (t.sigma > 1)
+      fail_at(loc, element, t.id, "attribute 'sigma' must lie in [0, 1]: '" + std::string(value) + "'");
   } else {
     return false;
   }
@@ -126,17 +132,25 @@ VTypeSpec read_vtype(XmlStream& xs, std::map<std::string, int64_t>& skipped, dou
   for (const auto& [k, v] : attrs) {
     if (k == "id" || k == "vClass") continue;
     if (set_cf_field(t.loc, "vType", t, k, v)) continue;
-    if (k == "length") t.length = num(k, v, Sign::Positive);
-    else if (k == "minGap") t.min_gap = num(k, v, Sign::NonNegative);
-    else if (k == "maxSpeed") t.max_speed = num(k, v, Sign::Positive);
-    else if (k == "speedDev") speed_dev = num(k, v, Sign::NonNegative);
-    else if (k == "probability") probability = num(k, v, Sign::NonNegative);
-    else if (k == "carFollowModel") t.car_follow_model = std::string(trim(v));
+    if (k == "length")
+      t.length = num(k, v, Sign::Positive);
+    else if (k == "minGap")
+      t.min_gap = num(k, v, Sign::NonNegative);
+    else if (k == "maxSpeed")
+      t.max_speed = num(k, v, Sign::Positive);
+    else if (k == "speedDev")
+      speed_dev = num(k, v, Sign::NonNegative);
+    else if (k == "probability")
+      probability = num(k, v, Sign::NonNegative);
+    else if (k == "carFollowModel")
+      t.car_follow_model = std::string(trim(v));
     else if (k == "speedFactor") {
       auto sf = parse_speed_factor(v);
       if (!sf || sf->mean <= 0)
-        xs.fail("attribute 'speedFactor' must be a positive number, norm(mean,dev) or normc(mean,dev,min,max): '" +
-                v + "'");
+        xs.fail(
+            "attribute 'speedFactor' must be a positive number, norm(mean,dev) or normc(mean,dev,min,max): "
+            "'" +
+            v + "'");
       t.speed_factor = sf->mean;
       factor_dev = sf->dev;
     } else {
@@ -152,7 +166,8 @@ VTypeSpec read_vtype(XmlStream& xs, std::map<std::string, int64_t>& skipped, dou
   const int depth = xs.depth();
   for (;;) {
     auto ev = xs.next();
-    if (ev == XmlStream::Event::Eof) throw InputError(t.loc, "<vType id=\"" + t.id + "\">: unexpected end of file");
+    if (ev == XmlStream::Event::Eof)
+      throw InputError(t.loc, "<vType id=\"" + t.id + "\">: unexpected end of file");
     if (ev == XmlStream::Event::End && xs.depth() == depth) break;
     if (ev != XmlStream::Event::Start || xs.depth() != depth + 1) continue;
     if (xs.name() == "param") {

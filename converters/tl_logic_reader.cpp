@@ -28,8 +28,8 @@ TlLogicSpec read_tl_logic(XmlStream& xs) {
         xs.fail(std::string("unknown signal state '") + c + "' in phase state '" + ph.state + "'");
     if (links == 0) links = ph.state.size();
     if (ph.state.size() != links)
-      xs.fail("phase state '" + ph.state + "' has " + std::to_string(ph.state.size()) + " links, earlier phases " +
-              std::to_string(links));
+      xs.fail("phase state '" + ph.state + "' has " + std::to_string(ph.state.size()) +
+              " links, earlier phases " + std::to_string(links));
     tl.phases.push_back(std::move(ph));
   }
   if (tl.phases.empty()) throw InputError(tl.loc, "<tlLogic id=\"" + tl.id + "\">: no phases");

@@ -1,7 +1,7 @@
 #include "xml_stream.hpp"
 
-#include <libxml/parser.h>
 #include <libxml/SAX2.h>
+#include <libxml/parser.h>
 #include <libxml/xmlIO.h>
 #include <sys/stat.h>
 
@@ -29,7 +29,7 @@ std::string context_label(const XmlStream& xs) {
 // from chunk to chunk.
 struct XmlStream::Impl {
   struct Attr {
-    const xmlChar* name;  // the parser's dictionary string (valid while the parser lives)
+    const xmlChar* name;             // the parser's dictionary string (valid while the parser lives)
     size_t value_begin, value_size;  // in `values`
   };
   struct Queued {
@@ -50,8 +50,8 @@ struct XmlStream::Impl {
   int depth = 0;
   size_t current_attr_begin = 0, current_attr_end = 0;  // attributes of the last event (none unless Start)
   std::pair<std::string, int> first_error;
-  int entity_line = 0;        // line of the first entity reference, 0 if none
-  size_t entity_at = 0;       // queue position it comes before: events up to it are handed out first
+  int entity_line = 0;   // line of the first entity reference, 0 if none
+  size_t entity_at = 0;  // queue position it comes before: events up to it are handed out first
 
   ~Impl() {
     if (ctxt) {
@@ -86,16 +86,20 @@ struct XmlStream::Impl {
     }
   }
 
-  static void on_start(void* self, const xmlChar* localname, const xmlChar* prefix, const xmlChar*, int nb_namespaces,
-                       const xmlChar** namespaces, int nb_attributes, int nb_defaulted, const xmlChar** attributes) {
+  static void on_start(void* self, const xmlChar* localname, const xmlChar* prefix, const xmlChar*,
+                       int nb_namespaces, const xmlChar** namespaces, int nb_attributes, int nb_defaulted,
+                       const xmlChar** attributes) {
     auto* im = of(self);
     xmlParserCtxtPtr ctxt = im->ctxt;
-    Queued q{Event::Start, qualified(ctxt, prefix, localname), im->depth++, im->parser_line(), im->attrs.size(), 0};
+    Queued q{Event::Start,     qualified(ctxt, prefix, localname),
+             im->depth++,      im->parser_line(),
+             im->attrs.size(), 0};
     // Namespace declarations first, then attributes, each in document order (as xmlTextReader lists them).
     for (int i = 0; i < nb_namespaces; ++i) {
       const xmlChar* ns_prefix = namespaces[2 * i];
       const xmlChar* uri = namespaces[2 * i + 1];
-      const xmlChar* name = ns_prefix ? xmlDictQLookup(ctxt->dict, BAD_CAST "xmlns", ns_prefix) : BAD_CAST "xmlns";
+      const xmlChar* name =
+          ns_prefix ? xmlDictQLookup(ctxt->dict, BAD_CAST "xmlns", ns_prefix) : BAD_CAST "xmlns";
       const size_t begin = im->values.size();
       if (uri) im->values.append(reinterpret_cast<const char*>(uri));
       im->attrs.push_back(Attr{name, begin, im->values.size() - begin});
@@ -149,7 +153,9 @@ struct XmlStream::Impl {
 
   // libxml2's own SAX2 handlers (kept for the DTD) need the parser as their user data, so the stream's
   // state hangs off the parser's _private pointer.
-  static Impl* of(void* parser) { return static_cast<Impl*>(static_cast<xmlParserCtxtPtr>(parser)->_private); }
+  static Impl* of(void* parser) {
+    return static_cast<Impl*>(static_cast<xmlParserCtxtPtr>(parser)->_private);
+  }
 
   static const xmlChar* qualified(xmlParserCtxtPtr ctxt, const xmlChar* prefix, const xmlChar* localname) {
     return prefix ? xmlDictQLookup(ctxt->dict, prefix, localname) : localname;
@@ -159,7 +165,9 @@ struct XmlStream::Impl {
   bool feed() {
     if (input_done) return false;
     chunk.resize(1 << 16);
-    const int got = input->readcallback ? input->readcallback(input->context, chunk.data(), static_cast<int>(chunk.size())) : -1;
+    const int got = input->readcallback
+                        ? input->readcallback(input->context, chunk.data(), static_cast<int>(chunk.size()))
+                        : -1;
     if (got <= 0) input_done = true;  // end of file, or a read error: the parser reports what it has
     xmlParseChunk(ctxt, chunk.data(), got > 0 ? got : 0, input_done ? 1 : 0);
     return true;
@@ -246,7 +254,8 @@ std::optional<std::string> XmlStream::attr(const char* key) const {
   return std::nullopt;
 }
 
-void XmlStream::for_each_attr_impl(void* visit, void (*call)(void*, std::string_view, std::string_view)) const {
+void XmlStream::for_each_attr_impl(void* visit,
+                                   void (*call)(void*, std::string_view, std::string_view)) const {
   const Impl& im = *impl_;
   for (size_t i = im.current_attr_begin; i < im.current_attr_end; ++i)
     call(visit, reinterpret_cast<const char*>(im.attrs[i].name),
@@ -279,7 +288,8 @@ double XmlStream::required_number(const char* key) const {
 
 double XmlStream::non_negative(const char* key, double fallback) const {
   double d = number(key, fallback);
-  if (d < 0 && has(key)) fail(std::string("attribute '") + key + "' must not be negative: '" + *attr(key) + "'");
+  if (d < 0 && has(key))
+    fail(std::string("attribute '") + key + "' must not be negative: '" + *attr(key) + "'");
   return d;
 }
 

@@ -40,8 +40,9 @@ uint32_t blocks_for(uint32_t n) { return (n + kBlock - 1) / kBlock; }
 
 void check(cudaError_t rc, const char* call, const char* file, int line) {
   if (rc == cudaSuccess) return;
-  throw std::runtime_error(std::string("CUDA call ") + call + " failed at " + file + ":" + std::to_string(line) +
-                           ": " + cudaGetErrorName(rc) + " (" + cudaGetErrorString(rc) + ")");
+  throw std::runtime_error(std::string("CUDA call ") + call + " failed at " + file + ":" +
+                           std::to_string(line) + ": " + cudaGetErrorName(rc) + " (" +
+                           cudaGetErrorString(rc) + ")");
 }
 
 #define LPSIM_CUDA_CHECK(call) check((call), #call, __FILE__, __LINE__)
@@ -53,7 +54,8 @@ __global__ void signals_kernel(SignalTable table, int64_t time_ms, char* link_st
   if (s < table.num_signals) update_signal(table, s, time_ms, link_state);
 }
 
-// One thread per active vehicle, running one of the step's passes (the same functions the CPU backend loops over).
+// One thread per active vehicle, running one of the step's passes (the same functions the CPU backend loops
+// over).
 template <void (*VehiclePass)(StepContext&, uint32_t, uint32_t)>
 __global__ void pass_kernel(StepContext ctx, const uint32_t* active, uint32_t n) {
   const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
@@ -93,13 +95,14 @@ __global__ void teleport_kernel(VehicleView veh, const TeleportMove* moves, uint
   if (i < n) apply_teleport_move(veh, moves[i], steps_done);
 }
 
-__global__ void insert_kernel(StepContext ctx, DepartView depart, InsertParams p, uint8_t* map, InsertBatch b) {
+__global__ void insert_kernel(StepContext ctx, DepartView depart, InsertParams p, uint8_t* map,
+                              InsertBatch b) {
   const uint32_t slot = blockIdx.x * blockDim.x + threadIdx.x;
   if (slot < b.num_slots) insert_queue_head(ctx, depart, p, map, b, slot);
 }
 
-__global__ void sample_kernel(VehicleView veh, const uint32_t* active, uint32_t n, uint8_t* status, int32_t* lane,
-                              float* pos, float* speed) {
+__global__ void sample_kernel(VehicleView veh, const uint32_t* active, uint32_t n, uint8_t* status,
+                              int32_t* lane, float* pos, float* speed) {
   const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
   if (i >= n) return;
   const uint32_t v = active[i];
@@ -145,17 +148,20 @@ void copy_to_host(T* dst, const T* src, size_t n) {
 }
 
 // The stepper lists every column of the views by hand: a column added to one of them must be added here.
-static_assert(sizeof(VehicleView) == 22 * sizeof(void*), "VehicleView changed: update for_each_vehicle_column");
+static_assert(sizeof(VehicleView) == 22 * sizeof(void*),
+              "VehicleView changed: update for_each_vehicle_column");
 static_assert(sizeof(PlanView) == 13 * sizeof(void*), "PlanView changed: update reserve_plan_slots");
-static_assert(sizeof(NetView) == 20 * sizeof(void*) + sizeof(void*), "NetView changed: update upload_network");
+static_assert(sizeof(NetView) == 20 * sizeof(void*) + sizeof(void*),
+              "NetView changed: update upload_network");
 static_assert(sizeof(TypeView) == 8 * sizeof(void*) && sizeof(TripView) == 7 * sizeof(void*),
               "TypeView or TripView changed: update upload_demand");
-static_assert(sizeof(StepContext) == sizeof(NetView) + sizeof(TypeView) + sizeof(TripView) + sizeof(VehicleView) +
-                                         sizeof(PlanView) + sizeof(StepParams) + 16 * sizeof(void*),
+static_assert(sizeof(StepContext) == sizeof(NetView) + sizeof(TypeView) + sizeof(TripView) +
+                                         sizeof(VehicleView) + sizeof(PlanView) + sizeof(StepParams) +
+                                         16 * sizeof(void*),
               "StepContext changed: update CudaStepper");
 
-/// Calls f(a.column, b.column, entries per vehicle) for every column of two vehicle views (a may be written: f
-/// gets references).
+/// Calls f(a.column, b.column, entries per vehicle) for every column of two vehicle views (a may be written:
+/// f gets references).
 template <class A, class B, class F>
 void for_each_vehicle_column(A& a, B& b, F&& f) {
   f(a.status, b.status, 1u);
@@ -271,7 +277,8 @@ class PhaseTimer {
   }
   /// Host wall time of one stepper call, from its start (`t0`) to now.
   void add_host(int k, std::chrono::steady_clock::time_point t0) {
-    if (on_) host_ms_[k] += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    if (on_)
+      host_ms_[k] += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   }
 
  private:
@@ -285,15 +292,17 @@ class PhaseTimer {
 
 class CudaStepper final : public GpuStepper {
  public:
-  CudaStepper(const StepContext& host, const SignalTable& signals, const GpuStepSizes& sizes, const DepartView& depart,
-              const uint8_t* other_map, int map_now, const std::vector<uint32_t>& active, bool lane_counters) {
+  CudaStepper(const StepContext& host, const SignalTable& signals, const GpuStepSizes& sizes,
+              const DepartView& depart, const uint8_t* other_map, int map_now,
+              const std::vector<uint32_t>& active, bool lane_counters) {
     num_vehicles_ = sizes.num_vehicles;
     upload_network(host.net, sizes);
     upload_signals(signals);
     upload_demand(host, sizes);
     const uint32_t nv = sizes.num_vehicles, nl = host.net.num_lanes;
-    depart_ = DepartView{upload(depart.lane_kind, nv), upload(depart.lane, nv),       upload(depart.pos_kind, nv),
-                         upload(depart.pos, nv),       upload(depart.speed_kind, nv), upload(depart.speed, nv)};
+    depart_ =
+        DepartView{upload(depart.lane_kind, nv), upload(depart.lane, nv),       upload(depart.pos_kind, nv),
+                   upload(depart.pos, nv),       upload(depart.speed_kind, nv), upload(depart.speed, nv)};
 
     for_each_vehicle_column(dev_.veh, host.veh, [&](auto*& dev, auto* h, uint32_t per) {
       dev = upload(h, static_cast<size_t>(nv) * per);
@@ -310,11 +319,16 @@ class CudaStepper final : public GpuStepper {
     num_lanes_ = nl;
     if (lane_counters) {
       counters_ = allocate<int64_t>(static_cast<size_t>(kNumLaneCounters) * nl);
-      LPSIM_CUDA_CHECK(cudaMemset(counters_, 0, kNumLaneCounters * static_cast<size_t>(nl) * sizeof(int64_t)));
-      int64_t** columns[kNumLaneCounters - 1] = {&dev_.cnt_sampled_steps, &dev_.cnt_travelled_mm,
-                                                 &dev_.cnt_waiting_steps, &dev_.cnt_time_loss_ms,
-                                                 &dev_.cnt_occupied_mm_steps, &dev_.cnt_entered,
-                                                 &dev_.cnt_left,          &dev_.cnt_arrived};
+      LPSIM_CUDA_CHECK(
+          cudaMemset(counters_, 0, kNumLaneCounters * static_cast<size_t>(nl) * sizeof(int64_t)));
+      int64_t** columns[kNumLaneCounters - 1] = {&dev_.cnt_sampled_steps,
+                                                 &dev_.cnt_travelled_mm,
+                                                 &dev_.cnt_waiting_steps,
+                                                 &dev_.cnt_time_loss_ms,
+                                                 &dev_.cnt_occupied_mm_steps,
+                                                 &dev_.cnt_entered,
+                                                 &dev_.cnt_left,
+                                                 &dev_.cnt_arrived};
       for (int k = 0; k < kNumLaneCounters - 1; ++k) *columns[k] = counters_ + static_cast<size_t>(k) * nl;
       cnt_departed_ = counters_ + static_cast<size_t>(kNumLaneCounters - 1) * nl;
     }
@@ -378,7 +392,8 @@ class CudaStepper final : public GpuStepper {
 
     VehicleEnd* ends = ends_.get(n);
     LPSIM_CUDA_CHECK(cudaMemsetAsync(tally_dev_, 0, sizeof(StepTally)));
-    finish_kernel<<<grid, kBlock>>>(ctx.veh, active, n, steps_done, params.teleport_steps, keep_, ends, tally_dev_);
+    finish_kernel<<<grid, kBlock>>>(ctx.veh, active, n, steps_done, params.teleport_steps, keep_, ends,
+                                    tally_dev_);
     LPSIM_CUDA_CHECK_LAUNCH(finish_kernel);
     timer_.mark(6);
     // Waits for the passes: a fault inside them is reported here.
@@ -433,8 +448,8 @@ class CudaStepper final : public GpuStepper {
     std::copy_n(back, slots, batch.inserted);
     std::copy_n(reinterpret_cast<const int32_t*>(back + slots), num_entries, batch.out_lane);
     std::copy_n(reinterpret_cast<const float*>(back + slots + num_entries), num_entries, batch.out_pos);
-    std::copy_n(reinterpret_cast<const float*>(back + slots + 2 * static_cast<size_t>(num_entries)), num_entries,
-                batch.out_speed);
+    std::copy_n(reinterpret_cast<const float*>(back + slots + 2 * static_cast<size_t>(num_entries)),
+                num_entries, batch.out_speed);
     timer_.add_host(2, t0);
   }
 
@@ -451,14 +466,17 @@ class CudaStepper final : public GpuStepper {
     uint32_t* to = active_[1 - cur_active_];
     if (n > 0) {
       size_t bytes = 0;
-      LPSIM_CUDA_CHECK(cub::DeviceSelect::Flagged(nullptr, bytes, from, keep_, kept_, num_selected_.get(1), n));
-      LPSIM_CUDA_CHECK(cub::DeviceSelect::Flagged(temp_.get(bytes), bytes, from, keep_, kept_, num_selected_.get(1), n));
+      LPSIM_CUDA_CHECK(
+          cub::DeviceSelect::Flagged(nullptr, bytes, from, keep_, kept_, num_selected_.get(1), n));
+      LPSIM_CUDA_CHECK(
+          cub::DeviceSelect::Flagged(temp_.get(bytes), bytes, from, keep_, kept_, num_selected_.get(1), n));
     }
     uint32_t* add = added_.get(na);
     copy_to_device(add, added.data(), na);
     size_t bytes = 0;
     LPSIM_CUDA_CHECK(cub::DeviceMerge::MergeKeys(nullptr, bytes, kept_, kept, add, na, to, AscendingIndex{}));
-    LPSIM_CUDA_CHECK(cub::DeviceMerge::MergeKeys(temp_.get(bytes), bytes, kept_, kept, add, na, to, AscendingIndex{}));
+    LPSIM_CUDA_CHECK(
+        cub::DeviceMerge::MergeKeys(temp_.get(bytes), bytes, kept_, kept, add, na, to, AscendingIndex{}));
     cur_active_ = 1 - cur_active_;
     num_active_ = kept + na;
   }
@@ -519,7 +537,8 @@ class CudaStepper final : public GpuStepper {
       base += bytes * c;
     };
     PlanView& p = dev_.plan;
-    carve(p.new_speed, 4), carve(p.new_lane, 4), carve(p.new_pos, 4), carve(p.new_prev, 4), carve(p.new_prev2, 4);
+    carve(p.new_speed, 4), carve(p.new_lane, 4), carve(p.new_pos, 4), carve(p.new_prev, 4),
+        carve(p.new_prev2, 4);
     carve(p.claim_lane0, 4), carve(p.claim_lane1, 4), carve(p.stop_pos, 4), carve(p.stop_lane, 4);
     carve(p.new_rp, 4), carve(p.first_rp, 4);
     base = static_cast<char*>(plan_buffer_.get()) + words;
@@ -581,7 +600,8 @@ class CudaStepper final : public GpuStepper {
     size_t chars = 0;  // the state strings end after the last phase's links
     for (uint32_t s = 0; s < ns; ++s)
       for (uint32_t p = h.phase_begin[s]; p < h.phase_begin[s + 1]; ++p)
-        chars = std::max<size_t>(chars, static_cast<size_t>(h.state_begin[p]) + static_cast<size_t>(h.num_links[s]));
+        chars = std::max<size_t>(chars,
+                                 static_cast<size_t>(h.state_begin[p]) + static_cast<size_t>(h.num_links[s]));
     signals_.phase_begin = upload(h.phase_begin, static_cast<size_t>(ns) + 1);
     signals_.durations_ms = upload(h.durations_ms, phases);
     signals_.state_begin = upload(h.state_begin, phases);
@@ -594,14 +614,19 @@ class CudaStepper final : public GpuStepper {
 
   void upload_demand(const StepContext& h, const GpuStepSizes& sizes) {
     const uint32_t nt = sizes.num_types, nv = sizes.num_vehicles;
-    dev_.types = TypeView{upload(h.types.length, nt), upload(h.types.min_gap, nt),
-                          upload(h.types.accel, nt),  upload(h.types.decel, nt),
-                          upload(h.types.emergency_decel, nt), upload(h.types.max_speed, nt),
-                          upload(h.types.tau, nt),    upload(h.types.delta, nt)};
-    dev_.trips = TripView{upload(h.trips.type, nv),         upload(h.trips.route_begin, nv),
-                          upload(h.trips.route_length, nv), upload(h.trips.route_edges, sizes.num_route_edges),
-                          upload(h.trips.speed_factor, nv), upload(h.trips.arrival_pos_kind, nv),
-                          upload(h.trips.arrival_pos, nv)};
+    dev_.types = TypeView{upload(h.types.length, nt),
+                          upload(h.types.min_gap, nt),
+                          upload(h.types.accel, nt),
+                          upload(h.types.decel, nt),
+                          upload(h.types.emergency_decel, nt),
+                          upload(h.types.max_speed, nt),
+                          upload(h.types.tau, nt),
+                          upload(h.types.delta, nt)};
+    dev_.trips =
+        TripView{upload(h.trips.type, nv),         upload(h.trips.route_begin, nv),
+                 upload(h.trips.route_length, nv), upload(h.trips.route_edges, sizes.num_route_edges),
+                 upload(h.trips.speed_factor, nv), upload(h.trips.arrival_pos_kind, nv),
+                 upload(h.trips.arrival_pos, nv)};
   }
 
   std::vector<DeviceBuffer> buffers_;  // every fixed allocation, freed in the stepper's destructor
@@ -646,8 +671,9 @@ CudaDeviceStatus cuda_device_status() {
     status.description = cudaGetErrorString(rc);
     // What this error means in practice: no libcuda at all is reported the same way as an old one.
     if (rc == cudaErrorInsufficientDriver)
-      status.description += " (no NVIDIA driver, or one older than CUDA " + std::to_string(CUDART_VERSION / 1000) +
-                            "." + std::to_string(CUDART_VERSION % 1000 / 10) + " needs)";
+      status.description += " (no NVIDIA driver, or one older than CUDA " +
+                            std::to_string(CUDART_VERSION / 1000) + "." +
+                            std::to_string(CUDART_VERSION % 1000 / 10) + " needs)";
     cudaGetLastError();  // not sticky; clear it for later calls
     return status;
   }
@@ -662,9 +688,11 @@ CudaDeviceStatus cuda_device_status() {
     cudaGetLastError();
     return status;
   }
-  const std::string name = std::string(prop.name) + " (sm_" + std::to_string(prop.major) + std::to_string(prop.minor) + ")";
+  const std::string name =
+      std::string(prop.name) + " (sm_" + std::to_string(prop.major) + std::to_string(prop.minor) + ")";
   int mode = cudaComputeModeDefault;
-  if (cudaDeviceGetAttribute(&mode, cudaDevAttrComputeMode, 0) == cudaSuccess && mode == cudaComputeModeProhibited) {
+  if (cudaDeviceGetAttribute(&mode, cudaDevAttrComputeMode, 0) == cudaSuccess &&
+      mode == cudaComputeModeProhibited) {
     status.description = name + " is in compute-prohibited mode";
     return status;
   }
@@ -685,7 +713,8 @@ std::unique_ptr<GpuStepper> make_cuda_stepper(const StepContext& host, const Sig
                                               const GpuStepSizes& sizes, const DepartView& depart,
                                               const uint8_t* other_map, int map_now,
                                               const std::vector<uint32_t>& active, bool lane_counters) {
-  return std::make_unique<CudaStepper>(host, signals, sizes, depart, other_map, map_now, active, lane_counters);
+  return std::make_unique<CudaStepper>(host, signals, sizes, depart, other_map, map_now, active,
+                                       lane_counters);
 }
 
 }  // namespace lpsim

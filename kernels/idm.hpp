@@ -76,7 +76,8 @@ struct PowDeltaAny {
 /// 2*sqrt(a*b), the denominator of the IDM's braking term (computed once per call, not per sub-step).
 LPSIM_HD float idm_two_sqrt_ab(const IdmParams& p) { return 2.0f * sqrtf(p.accel * p.decel); }
 
-LPSIM_HD float idm_desired_gap_with(float two_sqrt_ab, float tau, float speed, float leader_speed, float jam_gap) {
+LPSIM_HD float idm_desired_gap_with(float two_sqrt_ab, float tau, float speed, float leader_speed,
+                                    float jam_gap) {
   const float dynamic = speed * tau + speed * (speed - leader_speed) / two_sqrt_ab;
   return jam_gap + lp_fmaxf(0.0f, dynamic);
 }
@@ -134,7 +135,8 @@ LPSIM_HD float idm_free_substep(const IdmParams& p, Pow pow_delta, float v, floa
 LPSIM_HD float idm_free_result(float speed, float v0, float v) { return speed <= v0 ? lp_fminf(v, v0) : v; }
 
 template <class Pow>
-LPSIM_HD float idm_free_speed_with(const IdmParams& p, Pow pow_delta, float speed, float v0, float dt, int substeps) {
+LPSIM_HD float idm_free_speed_with(const IdmParams& p, Pow pow_delta, float speed, float v0, float dt,
+                                   int substeps) {
   if (idm_cruising(speed, v0)) return v0;
   const int n = idm_substep_count(substeps);
   const float h = dt / static_cast<float>(n);
@@ -182,9 +184,10 @@ LPSIM_HD float idm_interaction_speed_with(const IdmParams& p, Pow pow_delta, flo
 LPSIM_HD float idm_interaction_speed(const IdmParams& p, float speed, float v0, float gap, float leader_speed,
                                      float jam_gap, float dt, int substeps, float* free_speed = nullptr) {
   if (p.delta == 4.0f)
-    return idm_interaction_speed_with(p, PowDelta4{}, speed, v0, gap, leader_speed, jam_gap, dt, substeps, free_speed);
-  return idm_interaction_speed_with(p, PowDeltaAny{p.delta}, speed, v0, gap, leader_speed, jam_gap, dt, substeps,
-                                    free_speed);
+    return idm_interaction_speed_with(p, PowDelta4{}, speed, v0, gap, leader_speed, jam_gap, dt, substeps,
+                                      free_speed);
+  return idm_interaction_speed_with(p, PowDeltaAny{p.delta}, speed, v0, gap, leader_speed, jam_gap, dt,
+                                    substeps, free_speed);
 }
 
 /// IDM speed after dt following a leader (IDM only; see follow_speed for the version with the safety cap).
@@ -256,13 +259,15 @@ LPSIM_HD bool can_stop_before(float gap, float speed, float decel, float dt) {
 /// With free_speed set, also stores idm_free_speed's result there (computed alongside, same bits).
 LPSIM_HD float follow_speed(const IdmParams& p, float speed, float v0, float gap, float leader_speed,
                             float leader_decel, float dt, int substeps, float* free_speed = nullptr) {
-  // Standing within the jam distance of a standing leader: every IDM sub-step gives exactly 0 (the interaction
-  // term is at least 1), and the safe speed is never negative. Common in queues, so worth the test.
+  // Standing within the jam distance of a standing leader: every IDM sub-step gives exactly 0 (the
+  // interaction term is at least 1), and the safe speed is never negative. Common in queues, so worth the
+  // test.
   if (speed == 0.0f && leader_speed == 0.0f && gap <= p.min_gap) {
     if (free_speed != nullptr) *free_speed = idm_free_speed(p, speed, v0, dt, substeps);
     return 0.0f;
   }
-  const float v_idm = idm_interaction_speed(p, speed, v0, gap, leader_speed, p.min_gap, dt, substeps, free_speed);
+  const float v_idm =
+      idm_interaction_speed(p, speed, v0, gap, leader_speed, p.min_gap, dt, substeps, free_speed);
   return lp_fminf(v_idm, safe_speed(gap, leader_speed, leader_decel, p.decel, dt));
 }
 

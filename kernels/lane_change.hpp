@@ -18,7 +18,9 @@ struct LaneChangeParams {
   float mandatory_time_per_lane;  // mandatory zone per lane still to cross, as travel time [s]
 };
 
-LPSIM_HD LaneChangeParams lane_change_default_params() { return LaneChangeParams{0.5f, 0.2f, 2.0f, 50.0f, 4.0f}; }
+LPSIM_HD LaneChangeParams lane_change_default_params() {
+  return LaneChangeParams{0.5f, 0.2f, 2.0f, 50.0f, 4.0f};
+}
 
 /// A vehicle next to the changer on the target (or current) lane, as the engine sees it.
 struct LcNeighbor {
@@ -30,7 +32,9 @@ struct LcNeighbor {
   IdmParams idm;
 };
 
-LPSIM_HD LcNeighbor lc_no_neighbor() { return LcNeighbor{false, 0.0f, 0.0f, 0.0f, IdmParams{0, 0, 0, 0, 0, 0}}; }
+LPSIM_HD LcNeighbor lc_no_neighbor() {
+  return LcNeighbor{false, 0.0f, 0.0f, 0.0f, IdmParams{0, 0, 0, 0, 0, 0}};
+}
 
 /// IDM acceleration of a vehicle given its leader (free road when there is none).
 LPSIM_HD float lc_accel_behind(const IdmParams& p, float speed, float v0, const LcNeighbor& leader) {
@@ -39,7 +43,8 @@ LPSIM_HD float lc_accel_behind(const IdmParams& p, float speed, float v0, const 
 }
 
 /// The changer behind the target lane's leader stays safe: it can keep the safe-speed invariant (see
-/// safe_speed) braking no harder than its comfortable decel, even if that leader brakes at its emergency decel.
+/// safe_speed) braking no harder than its comfortable decel, even if that leader brakes at its emergency
+/// decel.
 LPSIM_HD bool lc_lead_gap_safe(const IdmParams& self, float self_speed, const LcNeighbor& lead, float dt) {
   if (!lead.present) return true;
   if (lead.gap <= 0.0f) return false;
@@ -59,10 +64,12 @@ LPSIM_HD bool lc_lag_gap_safe(const IdmParams& self, float self_speed, const LcN
 /// Gap acceptance. urgency in [0, 1] (0 = discretionary, 1 = must change now) scales the braking that the
 /// change may impose through IDM from lc.b_safe up to each vehicle's comfortable decel, so urgent changes
 /// accept smaller gaps; the kinematic checks are never relaxed, so no accepted change is unsafe.
-LPSIM_HD bool lc_gaps_acceptable(const IdmParams& self, float self_speed, float self_v0, const LcNeighbor& lead,
-                                 const LcNeighbor& lag, float urgency, const LaneChangeParams& lc, float dt) {
+LPSIM_HD bool lc_gaps_acceptable(const IdmParams& self, float self_speed, float self_v0,
+                                 const LcNeighbor& lead, const LcNeighbor& lag, float urgency,
+                                 const LaneChangeParams& lc, float dt) {
   const float u = lp_fminf(lp_fmaxf(urgency, 0.0f), 1.0f);
-  if (!lc_lead_gap_safe(self, self_speed, lead, dt) || !lc_lag_gap_safe(self, self_speed, lag, dt)) return false;
+  if (!lc_lead_gap_safe(self, self_speed, lead, dt) || !lc_lag_gap_safe(self, self_speed, lag, dt))
+    return false;
   if (lead.present) {
     const float b_self = lc.b_safe + u * lp_fmaxf(self.decel - lc.b_safe, 0.0f);
     if (idm_accel(self, self_speed, self_v0, lead.gap, lead.speed) < -b_self) return false;
@@ -78,11 +85,13 @@ LPSIM_HD bool lc_gaps_acceptable(const IdmParams& self, float self_speed, float 
 /// do is in mandatory mode: per lane, the larger of a fixed distance and a travel time at current speed.
 LPSIM_HD float mandatory_lc_zone(int lanes_to_cross, float speed, const LaneChangeParams& lc) {
   if (lanes_to_cross <= 0) return 0.0f;
-  return static_cast<float>(lanes_to_cross) * lp_fmaxf(lc.mandatory_dist_per_lane, speed * lc.mandatory_time_per_lane);
+  return static_cast<float>(lanes_to_cross) *
+         lp_fmaxf(lc.mandatory_dist_per_lane, speed * lc.mandatory_time_per_lane);
 }
 
 /// Urgency in [0, 1] of a mandatory change: 0 outside the zone, rising linearly to 1 at the lane's end.
-LPSIM_HD float mandatory_lc_urgency(float dist_to_end, int lanes_to_cross, float speed, const LaneChangeParams& lc) {
+LPSIM_HD float mandatory_lc_urgency(float dist_to_end, int lanes_to_cross, float speed,
+                                    const LaneChangeParams& lc) {
   const float zone = mandatory_lc_zone(lanes_to_cross, speed, lc);
   if (zone <= 0.0f || dist_to_end >= zone) return 0.0f;
   return lp_fminf(lp_fmaxf(1.0f - dist_to_end / zone, 0.0f), 1.0f);
@@ -90,8 +99,9 @@ LPSIM_HD float mandatory_lc_urgency(float dist_to_end, int lanes_to_cross, float
 
 /// MOBIL incentive: own acceleration gain plus politeness times the gains of the new follower (usually a
 /// loss) and of the old follower (usually a gain).
-LPSIM_HD float mobil_incentive(float a_self_now, float a_self_after, float a_new_lag_now, float a_new_lag_after,
-                               float a_old_lag_now, float a_old_lag_after, float politeness) {
+LPSIM_HD float mobil_incentive(float a_self_now, float a_self_after, float a_new_lag_now,
+                               float a_new_lag_after, float a_old_lag_now, float a_old_lag_after,
+                               float politeness) {
   return (a_self_after - a_self_now) +
          politeness * ((a_new_lag_after - a_new_lag_now) + (a_old_lag_after - a_old_lag_now));
 }
@@ -100,9 +110,10 @@ LPSIM_HD float mobil_incentive(float a_self_now, float a_self_after, float a_new
 /// follower old_lag) to a target lane (leader target_lead, follower target_lag). bias is added to the
 /// threshold (positive discourages this direction, e.g. for a keep-right rule). Gaps must be acceptable
 /// with urgency 0.
-LPSIM_HD bool discretionary_change_wanted(const IdmParams& self, float self_speed, float self_v0, float self_length,
-                                          const LcNeighbor& cur_lead, const LcNeighbor& old_lag,
-                                          const LcNeighbor& target_lead, const LcNeighbor& target_lag, float bias,
+LPSIM_HD bool discretionary_change_wanted(const IdmParams& self, float self_speed, float self_v0,
+                                          float self_length, const LcNeighbor& cur_lead,
+                                          const LcNeighbor& old_lag, const LcNeighbor& target_lead,
+                                          const LcNeighbor& target_lag, float bias,
                                           const LaneChangeParams& lc, float dt) {
   if (!lc_gaps_acceptable(self, self_speed, self_v0, target_lead, target_lag, 0.0f, lc, dt)) return false;
   const float a_self_now = lc_accel_behind(self, self_speed, self_v0, cur_lead);
@@ -113,7 +124,8 @@ LPSIM_HD bool discretionary_change_wanted(const IdmParams& self, float self_spee
     LcNeighbor beyond = target_lead;
     beyond.gap = target_lead.gap + self_length + target_lag.gap;
     a_new_lag_now = lc_accel_behind(target_lag.idm, target_lag.speed, target_lag.desired_speed, beyond);
-    a_new_lag_after = idm_accel(target_lag.idm, target_lag.speed, target_lag.desired_speed, target_lag.gap, self_speed);
+    a_new_lag_after =
+        idm_accel(target_lag.idm, target_lag.speed, target_lag.desired_speed, target_lag.gap, self_speed);
   }
   float a_old_lag_now = 0.0f, a_old_lag_after = 0.0f;
   if (old_lag.present) {

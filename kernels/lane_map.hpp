@@ -30,13 +30,15 @@ LPSIM_HD uint32_t cell_of(const NetView& net, int32_t lane, float pos) {
   return c >= n ? n - 1 : c;
 }
 
-LPSIM_HD void fill_cells(uint8_t* map, const NetView& net, int32_t lane, uint32_t first, uint32_t last, uint8_t v) {
+LPSIM_HD void fill_cells(uint8_t* map, const NetView& net, int32_t lane, uint32_t first, uint32_t last,
+                         uint8_t v) {
   const uint32_t base = net.lane_cell_begin[lane];
   for (uint32_t c = first; c <= last; ++c) map[base + c] = v;
 }
 
 /// Writes `value` into every cell of a footprint of a vehicle `length` metres long.
-LPSIM_HD void apply_footprint(uint8_t* map, const NetView& net, const Footprint& fp, float length, uint8_t value) {
+LPSIM_HD void apply_footprint(uint8_t* map, const NetView& net, const Footprint& fp, float length,
+                              uint8_t value) {
   if (fp.lane < 0) return;
   const float rear = fp.pos - length;
   fill_cells(map, net, fp.lane, cell_of(net, fp.lane, rear), cell_of(net, fp.lane, fp.pos), value);
@@ -51,7 +53,8 @@ LPSIM_HD void apply_footprint(uint8_t* map, const NetView& net, const Footprint&
 }
 
 /// First occupied cell in [first, last] of a lane, or -1.
-LPSIM_HD int32_t first_occupied(const uint8_t* map, const NetView& net, int32_t lane, int32_t first, int32_t last) {
+LPSIM_HD int32_t first_occupied(const uint8_t* map, const NetView& net, int32_t lane, int32_t first,
+                                int32_t last) {
   const uint8_t* cells = map + net.lane_cell_begin[lane];
   for (int32_t c = first; c <= last; ++c)
     if (cells[c] != 0) return c;
@@ -59,7 +62,8 @@ LPSIM_HD int32_t first_occupied(const uint8_t* map, const NetView& net, int32_t 
 }
 
 /// Last occupied cell in [first, last] of a lane (scanning down from last), or -1.
-LPSIM_HD int32_t last_occupied(const uint8_t* map, const NetView& net, int32_t lane, int32_t first, int32_t last) {
+LPSIM_HD int32_t last_occupied(const uint8_t* map, const NetView& net, int32_t lane, int32_t first,
+                               int32_t last) {
   const uint8_t* cells = map + net.lane_cell_begin[lane];
   for (int32_t c = last; c >= first; --c)
     if (cells[c] != 0) return c;

@@ -21,12 +21,25 @@ enum class LinkRule : uint8_t {
 /// Rule implied by a SUMO link state character (connection state or current signal character).
 LPSIM_HD LinkRule link_rule(char c) {
   switch (c) {
-    case 'M': case 'G': case 'O': case 'y': case 'Y': return LinkRule::Priority;
-    case 'm': case 'g': case 'o': case 'Z': return LinkRule::Yield;
-    case 's': return LinkRule::StopThenYield;
-    case '=': return LinkRule::RightBeforeLeft;
-    case 'w': return LinkRule::AllwayStop;
-    default: return LinkRule::Closed;
+    case 'M':
+    case 'G':
+    case 'O':
+    case 'y':
+    case 'Y':
+      return LinkRule::Priority;
+    case 'm':
+    case 'g':
+    case 'o':
+    case 'Z':
+      return LinkRule::Yield;
+    case 's':
+      return LinkRule::StopThenYield;
+    case '=':
+      return LinkRule::RightBeforeLeft;
+    case 'w':
+      return LinkRule::AllwayStop;
+    default:
+      return LinkRule::Closed;
   }
 }
 
@@ -61,7 +74,8 @@ LPSIM_HD bool foe_conflicts(const ApproachingFoe& foe, float own_time_to_clear, 
 }
 
 /// Yield rule ('m', 'g', 'o', and 's' after stopping): enter iff no foe conflicts in time.
-LPSIM_HD bool yield_may_enter(float own_time_to_clear, const ApproachingFoe* foes, int32_t num_foes, float window) {
+LPSIM_HD bool yield_may_enter(float own_time_to_clear, const ApproachingFoe* foes, int32_t num_foes,
+                              float window) {
   for (int32_t i = 0; i < num_foes; ++i)
     if (foe_conflicts(foes[i], own_time_to_clear, window)) return false;
   return true;
@@ -71,8 +85,8 @@ LPSIM_HD bool yield_may_enter(float own_time_to_clear, const ApproachingFoe* foe
 /// says whether foes[i] comes from this vehicle's right (the engine derives it from the junction geometry).
 /// A circular wait (every approach has a foe on its right) is not resolved here; the engine falls back
 /// to the all-way-stop order for it.
-LPSIM_HD bool right_before_left_may_enter(float own_time_to_clear, const ApproachingFoe* foes, const bool* from_right,
-                                          int32_t num_foes, float window) {
+LPSIM_HD bool right_before_left_may_enter(float own_time_to_clear, const ApproachingFoe* foes,
+                                          const bool* from_right, int32_t num_foes, float window) {
   for (int32_t i = 0; i < num_foes; ++i)
     if (from_right[i] && foe_conflicts(foes[i], own_time_to_clear, window)) return false;
   return true;
@@ -92,8 +106,9 @@ LPSIM_HD bool allway_precedes(const AllwayWaiter& a, const AllwayWaiter& b) {
 
 /// All-way stop ('w'): a vehicle that has stopped at the line enters iff no conflicting foe is inside the
 /// junction and no conflicting foe waiting at its line arrived before it (ties by lane index).
-LPSIM_HD bool allway_stop_may_enter(bool has_stopped, const AllwayWaiter& self, const AllwayWaiter* waiting_foes,
-                                    int32_t num_waiting, bool conflict_area_occupied) {
+LPSIM_HD bool allway_stop_may_enter(bool has_stopped, const AllwayWaiter& self,
+                                    const AllwayWaiter* waiting_foes, int32_t num_waiting,
+                                    bool conflict_area_occupied) {
   if (!has_stopped || conflict_area_occupied) return false;
   for (int32_t i = 0; i < num_waiting; ++i)
     if (allway_precedes(waiting_foes[i], self)) return false;

@@ -9,20 +9,21 @@ namespace lpsim {
 
 struct SignalTable {
   uint32_t num_signals;
-  const uint32_t* phase_begin;   // [num_signals+1]
-  const int32_t* durations_ms;   // per phase
-  const uint32_t* state_begin;   // per phase: offset of its link characters in states
+  const uint32_t* phase_begin;  // [num_signals+1]
+  const int32_t* durations_ms;  // per phase
+  const uint32_t* state_begin;  // per phase: offset of its link characters in states
   const char* states;
-  const int32_t* num_links;      // per signal
-  const int64_t* cycle_ms;       // per signal
-  const int64_t* offset_ms;      // per signal
-  const uint32_t* link_begin;    // [num_signals+1] offsets into the link-state output
+  const int32_t* num_links;    // per signal
+  const int64_t* cycle_ms;     // per signal
+  const int64_t* offset_ms;    // per signal
+  const uint32_t* link_begin;  // [num_signals+1] offsets into the link-state output
 };
 
 LPSIM_HD void update_signal(const SignalTable& t, uint32_t s, int64_t time_ms, char* link_state) {
   const uint32_t p0 = t.phase_begin[s];
-  const SignalProgramView prog{t.durations_ms + p0, nullptr, static_cast<int32_t>(t.phase_begin[s + 1] - p0),
-                               t.num_links[s], t.cycle_ms[s], t.offset_ms[s]};
+  const SignalProgramView prog{
+      t.durations_ms + p0, nullptr,       static_cast<int32_t>(t.phase_begin[s + 1] - p0),
+      t.num_links[s],      t.cycle_ms[s], t.offset_ms[s]};
   const int32_t phase = signal_phase_at(prog, time_ms);
   const char* src = t.states + t.state_begin[p0 + static_cast<uint32_t>(phase)];
   char* dst = link_state + t.link_begin[s];

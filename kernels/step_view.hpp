@@ -22,13 +22,13 @@ struct NetView {
   const uint32_t* edge_first_lane;
   const uint8_t* edge_num_lanes;
   const uint32_t* conn_to_lane;
-  const int32_t* conn_via_lane;     // -1: direct
+  const int32_t* conn_via_lane;  // -1: direct
   const uint32_t* conn_to_edge;
   const uint32_t* conn_from_lane;
-  const int32_t* conn_signal;       // -1: not signalised
+  const int32_t* conn_signal;  // -1: not signalised
   const int16_t* conn_link_index;
-  const char* conn_state;           // SUMO connection state (M m = s w ...)
-  const uint32_t* conn_foe_begin;   // [num_conns+1] connections this one must yield to (junction response)
+  const char* conn_state;          // SUMO connection state (M m = s w ...)
+  const uint32_t* conn_foe_begin;  // [num_conns+1] connections this one must yield to (junction response)
   const uint32_t* conn_foe;
   const uint32_t* signal_link_begin;  // [num_signals+1] offset of each signal's links in link_state
 };
@@ -87,19 +87,26 @@ struct VehicleView {
   float* time_loss;         // s
   float* route_length;      // m driven
   uint32_t* arrival_step;
-  uint8_t* lane_change_dir; // last lane change: 0 none, 1 left, 2 right (for outputs)
-  uint8_t* held_at_line;    // last plan stopped at the lane end for a red light or a full next lane
-  uint8_t* limit_reason;    // what bounded the last plan's speed (StopReason), for diagnostics and tests
+  uint8_t* lane_change_dir;  // last lane change: 0 none, 1 left, 2 right (for outputs)
+  uint8_t* held_at_line;     // last plan stopped at the lane end for a red light or a full next lane
+  uint8_t* limit_reason;     // what bounded the last plan's speed (StopReason), for diagnostics and tests
   // Cache of best lanes (a pure function of vehicle and route position): kBestLaneEntries per vehicle,
   // vehicle v's at [v * kBestLaneEntries, (v + 1) * kBestLaneEntries).
-  uint32_t* best_rp;        // route position an entry was computed for (0xFFFFFFFF: none yet)
-  uint32_t* best_mask;      // best lanes of that route edge
+  uint32_t* best_rp;    // route position an entry was computed for (0xFFFFFFFF: none yet)
+  uint32_t* best_mask;  // best lanes of that route edge
 };
 
 constexpr uint32_t kBestLaneEntries = 2;  // a power of two
 
 enum StopReason : uint8_t {
-  kFree = 0, kLeader = 1, kWrongLane = 2, kSignal = 3, kHaltRule = 4, kNoRoom = 5, kYield = 6, kMergeGap = 7,
+  kFree = 0,
+  kLeader = 1,
+  kWrongLane = 2,
+  kSignal = 3,
+  kHaltRule = 4,
+  kNoRoom = 5,
+  kYield = 6,
+  kMergeGap = 7,
   kSwap = 8
 };
 
@@ -108,46 +115,48 @@ enum StopReason : uint8_t {
 /// the road, not with the whole demand, and are read in active-list order.
 struct PlanView {
   float* new_speed;
-  int32_t* new_lane;   // lane of the front after the move
+  int32_t* new_lane;  // lane of the front after the move
   float* new_pos;
   int32_t* new_prev;
   int32_t* new_prev2;
   int32_t* claim_lane0;  // lanes entered from their start this step (up to 2), -1 if none
   int32_t* claim_lane1;
-  float* stop_pos;       // fallback if a claim is lost: front position on the pre-claim lane
+  float* stop_pos;  // fallback if a claim is lost: front position on the pre-claim lane
   int32_t* stop_lane;
-  uint8_t* arrives;      // 1: reaches its arrival position this step
-  uint32_t* new_rp;      // route position after the move
-  uint32_t* first_rp;    // route position on claim_lane0 (kept if only the second claim is lost)
-  uint8_t* claim_prio;   // priority of this vehicle's claims (1 entering a lane, 0 changing lanes near a start)
+  uint8_t* arrives;    // 1: reaches its arrival position this step
+  uint32_t* new_rp;    // route position after the move
+  uint32_t* first_rp;  // route position on claim_lane0 (kept if only the second claim is lost)
+  uint8_t*
+      claim_prio;  // priority of this vehicle's claims (1 entering a lane, 0 changing lanes near a start)
 };
 
 /// Claims on lane entries: one 64-bit word per lane; the largest value of the current step wins.
 /// value = step << 40 | (0xFF - priority) << 32 | (0xFFFFFFFF - vehicle): higher priority, then lower index.
 LPSIM_HD uint64_t claim_key(uint32_t step, uint32_t priority, uint32_t vehicle) {
-  return (static_cast<uint64_t>(step & 0xFFFFFFu) << 40) | (static_cast<uint64_t>(0xFFu - (priority & 0xFFu)) << 32) |
+  return (static_cast<uint64_t>(step & 0xFFFFFFu) << 40) |
+         (static_cast<uint64_t>(0xFFu - (priority & 0xFFu)) << 32) |
          static_cast<uint64_t>(0xFFFFFFFFu - vehicle);
 }
 
 /// The first vehicle on a lane as seen by junction right-of-way checks (valid when step matches).
 struct LaneApproach {
   uint32_t step;
-  int32_t conn;        // connection it intends to take at the lane's end, -1 unknown
-  float dist;          // front bumper to the lane end [m]
-  float speed;         // m/s
-  uint32_t waiting;    // consecutive steps stopped (deadlock breaking)
-  uint32_t held;       // 1: standing at the line for a red light or a full next lane (not a foe now)
-  float reach;         // distance within which it announces its arrival (SUMO's request horizon) [m]
+  int32_t conn;      // connection it intends to take at the lane's end, -1 unknown
+  float dist;        // front bumper to the lane end [m]
+  float speed;       // m/s
+  uint32_t waiting;  // consecutive steps stopped (deadlock breaking)
+  uint32_t held;     // 1: standing at the line for a red light or a full next lane (not a foe now)
+  float reach;       // distance within which it announces its arrival (SUMO's request horizon) [m]
 };
 
 /// Everything one step needs besides the arrays above.
 struct StepParams {
-  uint32_t step;        // step counter from 0
-  int64_t time_ms;      // simulation time at the start of the step
-  float dt;             // s
+  uint32_t step;    // step counter from 0
+  int64_t time_ms;  // simulation time at the start of the step
+  float dt;         // s
   uint64_t seed;
-  int32_t substeps;     // IDM integration sub-steps
-  float max_accel;      // largest accel over all types (bounds how far an unseen vehicle can get)
+  int32_t substeps;           // IDM integration sub-steps
+  float max_accel;            // largest accel over all types (bounds how far an unseen vehicle can get)
   float max_emergency_decel;  // largest emergency decel over all types (hardest a leader may brake)
   uint32_t teleport_steps;    // 0: never teleport
 };

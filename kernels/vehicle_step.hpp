@@ -29,12 +29,12 @@ struct StepContext {
   VehicleView veh;
   PlanView plan;
   StepParams params;
-  const uint8_t* map_now;   // lane map at the start of the step (read)
-  uint8_t* map_next;        // lane map being built for the end of the step (written)
-  const char* link_state;   // current signal character per signal link
-  LaneApproach* approach;   // per lane
-  uint64_t* claims;         // per lane
-  uint64_t* merge_requests; // per lane: a blocked mandatory lane changer asks followers there to open a gap
+  const uint8_t* map_now;    // lane map at the start of the step (read)
+  uint8_t* map_next;         // lane map being built for the end of the step (written)
+  const char* link_state;    // current signal character per signal link
+  LaneApproach* approach;    // per lane
+  uint64_t* claims;          // per lane
+  uint64_t* merge_requests;  // per lane: a blocked mandatory lane changer asks followers there to open a gap
   const uint32_t* yielder_begin;  // [num_conns+1] connections that must yield to each connection (CSR)
   const uint32_t* yielder;
   // Per-lane output counters (integers: order independent).
@@ -56,7 +56,7 @@ constexpr float kFoeWindow = 1.0f;        // s of safety margin in right-of-way 
 constexpr float kClampEps = 0.001f;
 
 LPSIM_HD IdmParams idm_of(const StepContext& s, uint32_t type) {
-  return IdmParams{s.types.accel[type], s.types.decel[type], s.types.emergency_decel[type],
+  return IdmParams{s.types.accel[type], s.types.decel[type],   s.types.emergency_decel[type],
                    s.types.tau[type],   s.types.min_gap[type], s.types.delta[type]};
 }
 
@@ -134,7 +134,9 @@ LPSIM_HD uint32_t best_mask_at(const StepContext& s, uint32_t v, uint32_t rp) {
 }
 
 /// Best lanes of the vehicle's current edge.
-LPSIM_HD uint32_t current_best_mask(const StepContext& s, uint32_t v) { return best_mask_at(s, v, s.veh.route_pos[v]); }
+LPSIM_HD uint32_t current_best_mask(const StepContext& s, uint32_t v) {
+  return best_mask_at(s, v, s.veh.route_pos[v]);
+}
 
 // A next edge shorter than this leaves no room to change lanes on it (real nets split junction approaches
 // into edges of a few metres or less).
@@ -143,7 +145,8 @@ constexpr float kMinLaneChangeEdge = 15.0f;
 /// A connection from `lane` to edge `next` onto a lane that continues to edge `after`, or -1.
 LPSIM_HD int32_t conn_through(const NetView& net, int32_t lane, uint32_t next, uint32_t after) {
   for (uint32_t c = net.lane_conn_begin[lane]; c < net.lane_conn_begin[lane + 1]; ++c)
-    if (net.conn_to_edge[c] == next && lane_has_conn_to(net, static_cast<int32_t>(net.conn_to_lane[c]), after))
+    if (net.conn_to_edge[c] == next &&
+        lane_has_conn_to(net, static_cast<int32_t>(net.conn_to_lane[c]), after))
       return static_cast<int32_t>(c);
   return -1;
 }
@@ -297,7 +300,8 @@ LPSIM_HD bool may_enter(const StepContext& s, uint32_t v, uint32_t c, float dist
 constexpr float kJamSpeed = 2.0f;
 
 /// A lane has room at its start for a vehicle of `need` metres (body plus gap): no standing or crawling
-/// vehicle there (a moving one is followed like any leader). Keeps vehicles out of junctions they cannot leave.
+/// vehicle there (a moving one is followed like any leader). Keeps vehicles out of junctions they cannot
+/// leave.
 LPSIM_HD bool room_at_start(const StepContext& s, int32_t lane, float need) {
   const int32_t cells = static_cast<int32_t>(lane_cells(s.net, lane));
   const int32_t last = static_cast<int32_t>(need) < cells ? static_cast<int32_t>(need) : cells - 1;
@@ -316,7 +320,8 @@ LPSIM_HD float approach_speed_limit(float dist, float v_lim, float decel, float 
 
 /// Lane a vehicle must move to (adjacent, towards the nearest lane leading to its next edge), or -1.
 /// As mandatory_target, given the best-lane mask `good` of the lane's edge (computed once by the caller).
-LPSIM_HD int32_t mandatory_target_in(const NetView& net, int32_t lane, uint32_t good, int32_t* lanes_to_cross) {
+LPSIM_HD int32_t mandatory_target_in(const NetView& net, int32_t lane, uint32_t good,
+                                     int32_t* lanes_to_cross) {
   if (lane_bit(net, static_cast<uint32_t>(lane)) & good) return -1;
   const uint32_t e = net.lane_edge[lane];
   const int32_t first_lane = static_cast<int32_t>(net.edge_first_lane[e]);
@@ -331,7 +336,6 @@ LPSIM_HD int32_t mandatory_target_in(const NetView& net, int32_t lane, uint32_t 
   *lanes_to_cross = best_d;
   return best > lane ? net.lane_left[lane] : net.lane_right[lane];
 }
-
 
 LPSIM_HD int32_t mandatory_target(const StepContext& s, uint32_t v, int32_t lane, int32_t* lanes_to_cross) {
   const uint32_t rp = s.veh.route_pos[v];
@@ -348,8 +352,9 @@ LPSIM_HD uint64_t merge_key(uint32_t step, bool from_left, float rear_pos) {
 }
 LPSIM_HD float merge_rear(uint64_t key) { return static_cast<float>(key & 0x7FFFFFFFFFull) / 100.0f; }
 LPSIM_HD bool merge_from_left(uint64_t key) { return ((key >> 39) & 1u) != 0; }
-constexpr float kMergeRequestZone = 30.0f;  // m per lane to cross before the lane end where a blocked changer asks for a gap
-constexpr float kMaxLanesToCross = 8.0f;    // bounds the request zone for the cheap pre-test
+constexpr float kMergeRequestZone =
+    30.0f;  // m per lane to cross before the lane end where a blocked changer asks for a gap
+constexpr float kMaxLanesToCross = 8.0f;  // bounds the request zone for the cheap pre-test
 
 /// Approach pass: the first vehicle on its lane (nothing ahead until the lane end) publishes itself, and
 /// a vehicle stuck on a wrong lane near its end asks the followers on the target lane to open a gap (as
@@ -360,7 +365,8 @@ LPSIM_HD void approach_vehicle(StepContext& s, uint32_t /*slot*/, uint32_t v) {
   const float pos = s.veh.pos[v];
   int32_t to_cross = 0;
   // Cheap tests first: only slow vehicles near their lane's end can be stuck on a wrong lane.
-  const bool may_request = s.veh.speed[v] < 2.0f && s.net.lane_length[lane] - pos < kMergeRequestZone * kMaxLanesToCross;
+  const bool may_request =
+      s.veh.speed[v] < 2.0f && s.net.lane_length[lane] - pos < kMergeRequestZone * kMaxLanesToCross;
   const int32_t target = may_request ? mandatory_target(s, v, lane, &to_cross) : -1;
   if (target >= 0 && s.net.lane_length[lane] - pos < kMergeRequestZone * static_cast<float>(to_cross)) {
     const float rear = pos - s.types.length[s.trips.type[v]];
@@ -391,14 +397,14 @@ LPSIM_HD void approach_vehicle(StepContext& s, uint32_t /*slot*/, uint32_t v) {
 /// speed/leader bounds when the change is safe and wanted.
 struct LaneChangeResult {
   bool change;
-  float speed_cap;    // max next speed behind the target lane's leader
-  float leader_gap;   // distance to the first occupied cell ahead on the target lane (1e30: none)
-  bool near_start;    // the changer's rear is within reach of vehicles entering the target lane this step
+  float speed_cap;   // max next speed behind the target lane's leader
+  float leader_gap;  // distance to the first occupied cell ahead on the target lane (1e30: none)
+  bool near_start;   // the changer's rear is within reach of vehicles entering the target lane this step
 };
 
 LPSIM_HD LaneChangeResult try_lane_change(const StepContext& s, uint32_t v, int32_t lane, int32_t target,
-                                          bool mandatory, float urgency, float cand_here, float own_leader_gap,
-                                          float own_leader_speed, bool own_has_leader) {
+                                          bool mandatory, float urgency, float cand_here,
+                                          float own_leader_gap, float own_leader_speed, bool own_has_leader) {
   LaneChangeResult r{false, 0.0f, 1e30f, false};
   const NetView& net = s.net;
   const uint32_t type = s.trips.type[v];
@@ -414,7 +420,8 @@ LPSIM_HD LaneChangeResult try_lane_change(const StepContext& s, uint32_t v, int3
   const float upstream_reach = (net.lane_speed[target] * 1.5f + s.params.max_accel * dt) * dt + p.min_gap;
   if (rear <= 0.0f) return r;
   r.near_start = rear < upstream_reach;
-  if (pos + cand_here * dt > net.lane_length[target] - kClampEps) return r;  // never cross the end while changing
+  if (pos + cand_here * dt > net.lane_length[target] - kClampEps)
+    return r;  // never cross the end while changing
   const int32_t cells = static_cast<int32_t>(lane_cells(net, target));
   const int32_t rear_cell = static_cast<int32_t>(cell_of(net, target, rear));
   const int32_t front_cell = static_cast<int32_t>(cell_of(net, target, pos));
@@ -424,18 +431,23 @@ LPSIM_HD LaneChangeResult try_lane_change(const StepContext& s, uint32_t v, int3
   LcNeighbor lead = lc_no_neighbor();
   int32_t last = front_cell + 1 + static_cast<int32_t>(look);
   if (last > cells - 1) last = cells - 1;
-  const int32_t lc = front_cell + 1 <= last ? first_occupied(s.map_now, net, target, front_cell + 1, last) : -1;
+  const int32_t lc =
+      front_cell + 1 <= last ? first_occupied(s.map_now, net, target, front_cell + 1, last) : -1;
   if (lc >= 0) {
     lead = LcNeighbor{true, static_cast<float>(lc) - pos,
-                      decode_cell_speed(s.map_now[net.lane_cell_begin[target] + static_cast<uint32_t>(lc)]), v0, p};
+                      decode_cell_speed(s.map_now[net.lane_cell_begin[target] + static_cast<uint32_t>(lc)]),
+                      v0, p};
     lead.idm.emergency_decel = s.params.max_emergency_decel;
   }
   LcNeighbor lag = lc_no_neighbor();
-  int32_t back_first = rear_cell - 1 - static_cast<int32_t>(lookahead_distance(p, net.lane_speed[target], dt));
+  int32_t back_first =
+      rear_cell - 1 - static_cast<int32_t>(lookahead_distance(p, net.lane_speed[target], dt));
   if (back_first < 0) back_first = 0;
-  const int32_t gc = rear_cell - 1 >= back_first ? last_occupied(s.map_now, net, target, back_first, rear_cell - 1) : -1;
+  const int32_t gc =
+      rear_cell - 1 >= back_first ? last_occupied(s.map_now, net, target, back_first, rear_cell - 1) : -1;
   if (gc >= 0) {
-    const float lag_speed = decode_cell_speed(s.map_now[net.lane_cell_begin[target] + static_cast<uint32_t>(gc)]) + 0.25f;
+    const float lag_speed =
+        decode_cell_speed(s.map_now[net.lane_cell_begin[target] + static_cast<uint32_t>(gc)]) + 0.25f;
     lag = LcNeighbor{true, rear - static_cast<float>(gc + 1), lag_speed, v0, p};
     // The lag does not see the changer this step: it must not be able to reach the changer's rear.
     if (lag.gap <= (lag_speed + s.params.max_accel * dt) * dt + 0.5f) return r;
@@ -448,12 +460,13 @@ LPSIM_HD LaneChangeResult try_lane_change(const StepContext& s, uint32_t v, int3
     LcNeighbor cur_lead = lc_no_neighbor();
     if (own_has_leader) cur_lead = LcNeighbor{true, own_leader_gap, own_leader_speed, v0, p};
     const float bias = target == net.lane_left[lane] ? 0.1f : 0.0f;  // mild keep-right preference
-    ok = discretionary_change_wanted(p, speed, v0, length, cur_lead, lc_no_neighbor(), lead, lag, bias, lcp, dt);
+    ok = discretionary_change_wanted(p, speed, v0, length, cur_lead, lc_no_neighbor(), lead, lag, bias, lcp,
+                                     dt);
   }
   if (!ok) return r;
   r.change = true;
-  r.speed_cap = lead.present ? follow_speed(p, speed, v0, lead.gap, lead.speed, s.params.max_emergency_decel, dt,
-                                            s.params.substeps)
+  r.speed_cap = lead.present ? follow_speed(p, speed, v0, lead.gap, lead.speed, s.params.max_emergency_decel,
+                                            dt, s.params.substeps)
                              : 1e30f;
   r.leader_gap = lead.present ? lead.gap : 1e30f;
   return r;
@@ -557,7 +570,7 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t slot, uint32_t v) {
   int32_t path[kMaxPathHops];
   uint32_t path_rp[kMaxPathHops];  // route position once the front is on path[h]
   int32_t hops = 0;
-  float hard_limit = 1e30f;        // the front must stay short of this distance (occupied cell / closed line)
+  float hard_limit = 1e30f;  // the front must stay short of this distance (occupied cell / closed line)
   bool has_leader = false;
   float leader_gap = 0.0f, leader_speed = 0.0f;
   float dist_to_lane_end = net.lane_length[lane] - pos;
@@ -583,8 +596,8 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t slot, uint32_t v) {
     if (hit >= 0) {
       const float gap = cur_start + static_cast<float>(hit);
       const float vl = decode_cell_speed(s.map_now[net.lane_cell_begin[cur] + static_cast<uint32_t>(hit)]);
-      cand = lp_fminf(cand, follow_speed(p, speed, v0, gap, vl, s.params.max_emergency_decel, dt, s.params.substeps,
-                                         &free_speed));
+      cand = lp_fminf(cand, follow_speed(p, speed, v0, gap, vl, s.params.max_emergency_decel, dt,
+                                         s.params.substeps, &free_speed));
       hard_limit = lp_fminf(hard_limit, gap - kClampEps);
       reason = kLeader;
       has_leader = true;
@@ -640,7 +653,8 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t slot, uint32_t v) {
                !may_enter(s, v, static_cast<uint32_t>(entry_conn), end_dist, speed, v0, p, length, waiting)) {
       // At the internal junction: wait for the prioritised foes of the link entered.
       cand = lp_fminf(cand, stop_speed(p, speed, v0, end_dist, dt, s.params.substeps, &free_speed));
-      if (can_stop_before(end_dist, speed, p.emergency_decel, dt)) hard_limit = lp_fminf(hard_limit, end_dist - kClampEps);
+      if (can_stop_before(end_dist, speed, p.emergency_decel, dt))
+        hard_limit = lp_fminf(hard_limit, end_dist - kClampEps);
       reason = kYield;
       break;
     }
@@ -669,7 +683,7 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t slot, uint32_t v) {
     // Stop a minimum gap (plus room for the changer's lag check) short of the changer's rear. A vehicle
     // already closer than that drives on past it; the gap then opens behind it.
     const float lag_reach = (0.25f + s.params.max_accel * dt) * dt + 0.5f;  // the changer's lag check
-    const float gap = rear - pos - lp_fmaxf(p.min_gap, lag_reach) - 1.5f;         // + cell rounding
+    const float gap = rear - pos - lp_fmaxf(p.min_gap, lag_reach) - 1.5f;   // + cell rounding
     if (gap > 0.0f && gap < budget) {
       const float vs = stop_speed(p, speed, v0, gap, dt, s.params.substeps);
       if (vs < cand) cand = vs, reason = kMergeGap;
@@ -699,8 +713,8 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t slot, uint32_t v) {
       const bool discretionary =
           !mandatory && here_good && target_good && lc_attempt_allowed(s.params.seed, v, s.params.step, 0.5f);
       if (mandatory || discretionary) {
-        const LaneChangeResult r =
-            try_lane_change(s, v, lane, target, mandatory, urgency, new_speed, leader_gap, leader_speed, has_leader);
+        const LaneChangeResult r = try_lane_change(s, v, lane, target, mandatory, urgency, new_speed,
+                                                   leader_gap, leader_speed, has_leader);
         if (r.change) {
           new_lane = target;
           change_claim = r.near_start;
@@ -708,7 +722,8 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t slot, uint32_t v) {
           hard_limit = lp_fminf(hard_limit, r.leader_gap - kClampEps);
           if (!lane_has_conn_to(net, target, route_edge(s, v, rp + 1))) {
             const float end_dist = net.lane_length[target] - pos;
-            new_speed = lp_fminf(new_speed, lp_fmaxf(0.0f, stop_speed(p, speed, v0, end_dist, dt, s.params.substeps)));
+            new_speed = lp_fminf(new_speed,
+                                 lp_fmaxf(0.0f, stop_speed(p, speed, v0, end_dist, dt, s.params.substeps)));
             hard_limit = lp_fminf(hard_limit, end_dist - kClampEps);
           }
           hops = 0;  // the change step never crosses the lane end (checked in try_lane_change)
@@ -754,8 +769,10 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t slot, uint32_t v) {
     nprev = nlane;
     nlane = path[h];
     nrp = path_rp[h];
-    if (claims == 0) out.claim_lane0[slot] = nlane, out.first_rp[slot] = nrp;
-    else out.claim_lane1[slot] = nlane;
+    if (claims == 0)
+      out.claim_lane0[slot] = nlane, out.first_rp[slot] = nrp;
+    else
+      out.claim_lane1[slot] = nlane;
     ++claims;
     atomic_max_u64(&s.claims[nlane], claim_key(s.params.step, 1, v));
   }
@@ -831,10 +848,14 @@ LPSIM_HD void commit_vehicle(StepContext& s, uint32_t slot, uint32_t v) {
   }
   // Distance driven this step along the path.
   float driven;
-  if (nlane == lane) driven = npos - pos;
-  else if (nprev == lane) driven = net.lane_length[lane] - pos + npos;
-  else if (nprev2 == lane && nprev >= 0) driven = net.lane_length[lane] - pos + net.lane_length[nprev] + npos;
-  else driven = npos - pos;  // lane change: longitudinal advance only
+  if (nlane == lane)
+    driven = npos - pos;
+  else if (nprev == lane)
+    driven = net.lane_length[lane] - pos + npos;
+  else if (nprev2 == lane && nprev >= 0)
+    driven = net.lane_length[lane] - pos + net.lane_length[nprev] + npos;
+  else
+    driven = npos - pos;  // lane change: longitudinal advance only
   if (driven < 0.0f) driven = 0.0f;
   nspeed = driven / dt;
   if (nspeed > plan.new_speed[slot]) nspeed = plan.new_speed[slot];
@@ -877,9 +898,11 @@ LPSIM_HD void commit_vehicle(StepContext& s, uint32_t slot, uint32_t v) {
     atomic_add_i64(&s.cnt_travelled_mm[nlane], static_cast<int64_t>(driven * 1000.0f + 0.5f));
     if (nspeed < kHaltingSpeed) atomic_add_i64(&s.cnt_waiting_steps[nlane], 1);
     if (v0 > 0.0f)
-      atomic_add_i64(&s.cnt_time_loss_ms[nlane], static_cast<int64_t>(dt * lp_fmaxf(0.0f, (v0 - nspeed) / v0) * 1000.0f + 0.5f));
-    atomic_add_i64(&s.cnt_occupied_mm_steps[nlane],
-                   static_cast<int64_t>(lp_fminf(length, lp_fminf(npos, net.lane_length[nlane])) * 1000.0f + 0.5f));
+      atomic_add_i64(&s.cnt_time_loss_ms[nlane],
+                     static_cast<int64_t>(dt * lp_fmaxf(0.0f, (v0 - nspeed) / v0) * 1000.0f + 0.5f));
+    atomic_add_i64(
+        &s.cnt_occupied_mm_steps[nlane],
+        static_cast<int64_t>(lp_fminf(length, lp_fminf(npos, net.lane_length[nlane])) * 1000.0f + 0.5f));
   }
 
   if (arrives) {
@@ -906,27 +929,37 @@ LPSIM_HD void commit_vehicle(StepContext& s, uint32_t slot, uint32_t v) {
   apply_footprint(s.map_next, net, Footprint{nlane, nprev, nprev2, npos}, length, encode_cell_speed(nspeed));
 }
 
-
 // --- After the passes: which vehicles left the road this step, and which stay in the active list. ---
 
 enum : uint32_t { kEndNone = 0, kEndArrived = 1, kEndTeleport = 2 };
 
 /// A vehicle that arrived in the step just done (steps_done counts it), or started a teleport in it (its
 /// clock ran out: a teleport already handed to the host has its clock reset).
-LPSIM_HD uint32_t step_end_kind(const VehicleView& veh, uint32_t v, uint32_t steps_done, uint32_t teleport_steps) {
+LPSIM_HD uint32_t step_end_kind(const VehicleView& veh, uint32_t v, uint32_t steps_done,
+                                uint32_t teleport_steps) {
   if (veh.status[v] == kArrived && veh.arrival_step[v] == steps_done) return kEndArrived;
-  if (veh.status[v] == kTeleporting && teleport_steps > 0 && veh.stopped_steps[v] >= teleport_steps) return kEndTeleport;
+  if (veh.status[v] == kTeleporting && teleport_steps > 0 && veh.stopped_steps[v] >= teleport_steps)
+    return kEndTeleport;
   return kEndNone;
 }
 
 /// Running vehicles stay in the active list, and those that left the road this step for one more step: the
 /// next step's clear pass removes their footprint.
-LPSIM_HD bool stays_active(const VehicleView& veh, uint32_t v) { return veh.status[v] == kRunning || veh.old_lane[v] >= 0; }
+LPSIM_HD bool stays_active(const VehicleView& veh, uint32_t v) {
+  return veh.status[v] == kRunning || veh.old_lane[v] >= 0;
+}
 
 /// What the host needs of a vehicle that arrived or started a teleport (trip record, route position).
 LPSIM_HD VehicleEnd vehicle_end(const VehicleView& veh, uint32_t v, uint32_t kind) {
-  return VehicleEnd{v,           kind,         veh.lane[v],          veh.pos[v],           veh.speed[v],
-                    veh.route_length[v], veh.time_loss[v], veh.route_pos[v], veh.waiting_steps[v],
+  return VehicleEnd{v,
+                    kind,
+                    veh.lane[v],
+                    veh.pos[v],
+                    veh.speed[v],
+                    veh.route_length[v],
+                    veh.time_loss[v],
+                    veh.route_pos[v],
+                    veh.waiting_steps[v],
                     veh.waiting_count[v]};
 }
 

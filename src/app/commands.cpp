@@ -3,12 +3,11 @@
 #include <cstdio>
 
 #include "app/info_report.hpp"
-#include "app/scenario_args.hpp"
 #include "app/scenario.hpp"
+#include "app/scenario_args.hpp"
 #include "app/snapshot.hpp"
 
 namespace lpsim {
-
 
 int command_info(const std::vector<std::string>& args) {
   Scenario sc = scenario_from_args(args);
@@ -21,8 +20,8 @@ int command_convert(const std::vector<std::string>& args) {
   Scenario sc = scenario_from_args(args, &config);
   if (config.output_file.empty()) throw InputError("convert needs -o <file.lpsim>");
   write_snapshot(sc, config.output_file);
-  std::printf("wrote %s: %u edges, %u lanes, %u vehicles\n", config.output_file.c_str(), sc.network.num_edges(),
-              sc.network.num_lanes(), sc.demand.size());
+  std::printf("wrote %s: %u edges, %u lanes, %u vehicles\n", config.output_file.c_str(),
+              sc.network.num_edges(), sc.network.num_lanes(), sc.demand.size());
   return 0;
 }
 

@@ -10,7 +10,6 @@ namespace lpsim {
 
 namespace {
 
-
 std::string fmt(const char* f, auto... args) {
   char buf[512];
   std::snprintf(buf, sizeof buf, f, args...);
@@ -62,15 +61,17 @@ std::string describe_scenario(const Scenario& sc) {
   }
   out += fmt("edges: %llu normal, %llu internal\n", static_cast<unsigned long long>(normal_edges),
              static_cast<unsigned long long>(internal_edges));
-  out += fmt("lanes: %llu car lanes on normal edges (%.3f lane-km), %llu internal; skipped non-car lanes: %lld\n",
-             static_cast<unsigned long long>(normal_lanes), net.lane_km(),
-             static_cast<unsigned long long>(internal_lanes), static_cast<long long>(net.skipped_non_car_lanes));
+  out += fmt(
+      "lanes: %llu car lanes on normal edges (%.3f lane-km), %llu internal; skipped non-car lanes: %lld\n",
+      static_cast<unsigned long long>(normal_lanes), net.lane_km(),
+      static_cast<unsigned long long>(internal_lanes), static_cast<long long>(net.skipped_non_car_lanes));
   out += fmt("connections: %u (skipped, touching non-car lanes: %lld)\n", net.num_connections(),
              static_cast<long long>(net.skipped_connections));
   uint64_t actuated = 0;
   for (auto a : net.signal_actuated) actuated += a;
   out += fmt("signal programs: %u (%llu static, %llu actuated)\n", net.num_signals(),
-             static_cast<unsigned long long>(net.num_signals() - actuated), static_cast<unsigned long long>(actuated));
+             static_cast<unsigned long long>(net.num_signals() - actuated),
+             static_cast<unsigned long long>(actuated));
   out += fmt("lane map: %llu cells (%.1f MiB)\n", static_cast<unsigned long long>(net.num_cells()),
              static_cast<double>(net.num_cells()) / (1024.0 * 1024.0));
 
@@ -92,12 +93,14 @@ std::string describe_scenario(const Scenario& sc) {
   out += "\n";
   if (d.size() > 0) out += fmt("  departures: %.2f s to %.2f s\n", d.depart.front(), d.depart.back());
   // As SUMO, a run does not insert vehicles that depart before the begin time.
-  const auto before_begin = std::lower_bound(d.depart.begin(), d.depart.end(), sc.config.begin) - d.depart.begin();
+  const auto before_begin =
+      std::lower_bound(d.depart.begin(), d.depart.end(), sc.config.begin) - d.depart.begin();
   if (before_begin > 0)
     out += fmt("  departing before begin (%.2f s), not simulated: %lld\n", sc.config.begin,
                static_cast<long long>(before_begin));
   if (d.routing.requests > 0)
-    out += fmt("routing: %llu trips (%llu distinct requests)\n", static_cast<unsigned long long>(d.routing.vehicles),
+    out += fmt("routing: %llu trips (%llu distinct requests)\n",
+               static_cast<unsigned long long>(d.routing.vehicles),
                static_cast<unsigned long long>(d.routing.requests));
   // Sum over vehicles of their route's free-flow travel time (length / speed of every edge), the measure
   // the router minimises; comparable between LPSim's routes and another router's on the same net.
@@ -110,14 +113,16 @@ std::string describe_scenario(const Scenario& sc) {
   out += fmt("free-flow route cost: %.1f s\n", cost);
   out += fmt("unrouted or skipped vehicles: %zu\n", d.unroutable.size());
   for (size_t i = 0; i < d.unroutable.size() && i < 10; ++i)
-    out += "  " + d.unroutable[i].id + ": " + d.unroutable[i].reason + " (" + d.unroutable[i].loc.str() + ")\n";
+    out +=
+        "  " + d.unroutable[i].id + ": " + d.unroutable[i].reason + " (" + d.unroutable[i].loc.str() + ")\n";
   if (d.unroutable.size() > 10) out += fmt("  ... and %zu more\n", d.unroutable.size() - 10);
   std::string unsupported = unsupported_summary(d);
   out += unsupported.empty() ? "skipped unsupported elements: none\n" : unsupported + "\n";
   out += fmt("edgeData/laneData definitions: %zu\n", sc.mean_data.size());
   out += fmt("load time: %.3f s", sc.load_seconds);
   if (d.routing.seconds > 0)  // timings vary run to run, so they stay on this one line
-    out += fmt(" (routing %.3f s, %.0f trips/s)", d.routing.seconds, static_cast<double>(d.routing.vehicles) / d.routing.seconds);
+    out += fmt(" (routing %.3f s, %.0f trips/s)", d.routing.seconds,
+               static_cast<double>(d.routing.vehicles) / d.routing.seconds);
   out += "\n";
   return out;
 }

@@ -63,11 +63,14 @@ int command_run(const std::vector<std::string>& args) {
   opt.time_to_teleport = config.time_to_teleport;
   const DeviceChoice device = select_device(config.device);
   opt.gpu = device.gpu;
-  if (config.device != ComputeDevice::Cpu) std::fprintf(stderr, "lpsim: device %s\n", device.description.c_str());
+  if (config.device != ComputeDevice::Cpu)
+    std::fprintf(stderr, "lpsim: device %s\n", device.description.c_str());
   const OutputSpec& out = config.outputs;
   std::vector<MeanDataSpec> specs = sc.mean_data;
-  if (!out.edgedata.empty()) specs.push_back(MeanDataSpec{"edgedata", out.edgedata, false, -1, -1, -1, false, false, {}});
-  if (!out.lanedata.empty()) specs.push_back(MeanDataSpec{"lanedata", out.lanedata, true, -1, -1, -1, false, false, {}});
+  if (!out.edgedata.empty())
+    specs.push_back(MeanDataSpec{"edgedata", out.edgedata, false, -1, -1, -1, false, false, {}});
+  if (!out.lanedata.empty())
+    specs.push_back(MeanDataSpec{"lanedata", out.lanedata, true, -1, -1, -1, false, false, {}});
   opt.lane_counters = !specs.empty();
   const auto wall0 = std::chrono::steady_clock::now();
   Simulation sim(sc.network, sc.demand, opt);
@@ -154,25 +157,31 @@ int command_run(const std::vector<std::string>& args) {
 
   const auto& c = sim.counts();
   std::printf("Simulation ended at time: %.2f\n", sim.time());
-  std::printf("Reason: %s\n", sim.finished() ? "All vehicles have left the simulation." : "The final simulation step has been reached.");
+  std::printf("Reason: %s\n", sim.finished() ? "All vehicles have left the simulation."
+                                             : "The final simulation step has been reached.");
   std::printf("Performance:\n Duration: %.3fs (load %.3fs)\n", wall, sc.load_seconds);
   std::printf(" Real time factor: %.6g\n", wall > 0 ? (sim.time() - config.begin) / wall : 0.0);
   std::printf(" UPS: %.6f\n", wall > 0 ? static_cast<double>(c.vehicle_updates) / wall : 0.0);
-  std::printf(" Vehicle updates: %llu (peak running %llu)\n", static_cast<unsigned long long>(c.vehicle_updates),
+  std::printf(" Vehicle updates: %llu (peak running %llu)\n",
+              static_cast<unsigned long long>(c.vehicle_updates),
               static_cast<unsigned long long>(totals.peak_running));
   std::printf(" Threads: %d\n", opt.threads);
   std::printf("Vehicles:\n Inserted: %llu (Loaded: %llu)\n Running: %llu\n Waiting: %llu\n Arrived: %llu\n",
               static_cast<unsigned long long>(c.inserted), static_cast<unsigned long long>(c.loaded),
               static_cast<unsigned long long>(c.running), static_cast<unsigned long long>(c.waiting),
               static_cast<unsigned long long>(c.arrived));
-  if (c.removed) std::printf(" Removed (departure before begin or no car lane): %llu\n", static_cast<unsigned long long>(c.removed));
+  if (c.removed)
+    std::printf(" Removed (departure before begin or no car lane): %llu\n",
+                static_cast<unsigned long long>(c.removed));
   std::printf("Teleports: %llu\n", static_cast<unsigned long long>(c.teleports));
   if (totals.trips > 0) {
     const double n = static_cast<double>(totals.trips);
-    std::printf("Statistics (avg of %llu):\n RouteLength: %.2f\n Duration: %.2f\n WaitingTime: %.2f\n TimeLoss: %.2f\n"
-                " DepartDelay: %.2f\n",
-                static_cast<unsigned long long>(totals.trips), totals.route_length / n, totals.duration / n,
-                totals.waiting / n, totals.time_loss / n, totals.depart_delay / n);
+    std::printf(
+        "Statistics (avg of %llu):\n RouteLength: %.2f\n Duration: %.2f\n WaitingTime: %.2f\n TimeLoss: "
+        "%.2f\n"
+        " DepartDelay: %.2f\n",
+        static_cast<unsigned long long>(totals.trips), totals.route_length / n, totals.duration / n,
+        totals.waiting / n, totals.time_loss / n, totals.depart_delay / n);
   }
   return 0;
 }

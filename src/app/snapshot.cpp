@@ -191,7 +191,8 @@ void write_snapshot(const Scenario& scenario, const std::string& path) {
   if (!out) throw InputError(SourceLoc{path, 0}, "cannot write snapshot");
   uint32_t version = kSnapshotVersion;
   uint64_t size = w.buf.size();
-  uint32_t crc = static_cast<uint32_t>(crc32_z(0, reinterpret_cast<const Bytef*>(w.buf.data()), w.buf.size()));
+  uint32_t crc =
+      static_cast<uint32_t>(crc32_z(0, reinterpret_cast<const Bytef*>(w.buf.data()), w.buf.size()));
   out.write(kMagic, sizeof kMagic);
   out.write(reinterpret_cast<const char*>(&version), sizeof version);
   out.write(reinterpret_cast<const char*>(&size), sizeof size);
@@ -221,13 +222,16 @@ Scenario read_snapshot(const std::string& path) {
   in.read(reinterpret_cast<char*>(&version), sizeof version);
   in.read(reinterpret_cast<char*>(&size), sizeof size);
   in.read(reinterpret_cast<char*>(&crc), sizeof crc);
-  if (std::memcmp(magic, kMagic, sizeof kMagic) != 0) throw InputError(SourceLoc{path, 0}, "not an LPSim snapshot");
+  if (std::memcmp(magic, kMagic, sizeof kMagic) != 0)
+    throw InputError(SourceLoc{path, 0}, "not an LPSim snapshot");
   if (version != kSnapshotVersion)
-    throw InputError(SourceLoc{path, 0}, "snapshot format version " + std::to_string(version) + ", this lpsim reads " +
-                                             std::to_string(kSnapshotVersion) + ": convert again");
+    throw InputError(SourceLoc{path, 0}, "snapshot format version " + std::to_string(version) +
+                                             ", this lpsim reads " + std::to_string(kSnapshotVersion) +
+                                             ": convert again");
   if (size != file_size - header)
     throw InputError(SourceLoc{path, 0}, "snapshot is truncated or has trailing bytes (payload " +
-                                             std::to_string(file_size - header) + " of " + std::to_string(size) + ")");
+                                             std::to_string(file_size - header) + " of " +
+                                             std::to_string(size) + ")");
   std::string buf(size, '\0');
   in.read(buf.data(), static_cast<std::streamsize>(size));
   if (static_cast<uint32_t>(crc32_z(0, reinterpret_cast<const Bytef*>(buf.data()), buf.size())) != crc)

@@ -18,7 +18,7 @@ struct ConfigSpec {
   std::string net_file;
   std::vector<std::string> route_files, additional_files;
   std::string lpsim_nodes_csv, lpsim_edges_csv, lpsim_od_csv;  // original LPSim format
-  double begin = 0, end = -1, step_length = 1.0;  // end -1: until all vehicles arrived
+  double begin = 0, end = -1, step_length = 1.0;               // end -1: until all vehicles arrived
   long long seed = 23423;
   double time_to_teleport = 300;
   bool ignore_route_errors = false;

@@ -75,7 +75,7 @@ struct VehicleSpec {
   // edge_ref_begin (used when `edges` is empty). A million routes then hold no string per edge.
   uint64_t edge_ref_begin = 0;
   uint32_t edge_ref_count = 0;
-  std::string from, to;            // trip endpoints (edge ids)
+  std::string from, to;                    // trip endpoints (edge ids)
   std::string from_junction, to_junction;  // trip endpoints as junctions (fromJunction / OD CSV nodes)
   std::vector<std::string> via;
   DepartSpec depart_spec;
@@ -103,8 +103,8 @@ struct DemandSpec {
   std::vector<RouteDistSpec> route_dists;
   std::vector<VehicleSpec> vehicles;  // vehicles, trips and OD rows in file order
   std::vector<FlowSpec> flows;
-  std::vector<std::string> edge_names;  // each edge id of the interned inline routes, once
-  std::vector<uint32_t> edge_refs;      // interned inline routes: indices into edge_names
+  std::vector<std::string> edge_names;     // each edge id of the interned inline routes, once
+  std::vector<uint32_t> edge_refs;         // interned inline routes: indices into edge_names
   std::map<std::string, int64_t> skipped;  // element name -> count of unsupported elements (persons, ...)
 };
 

@@ -17,9 +17,9 @@ struct Point {
 struct LaneSpec {
   std::string id;
   int index = 0;
-  double speed = 13.89;  // m/s
-  double length = 0;     // m
-  std::string allow, disallow;  // SUMO vClass lists, as written
+  double speed = 13.89;           // m/s
+  double length = 0;              // m
+  std::string allow, disallow;    // SUMO vClass lists, as written
   bool passenger_allowed = true;  // resolved by the reader from allow/disallow
   std::vector<Point> shape;
   SourceLoc loc;
@@ -81,7 +81,7 @@ struct NetSpec {
   std::vector<ConnectionSpec> connections;
   std::vector<TlLogicSpec> tl_logics;
   std::vector<RoundaboutSpec> roundabouts;
-  Point net_offset;                 // <location netOffset>
+  Point net_offset;                   // <location netOffset>
   int64_t skipped_non_car_lanes = 0;  // lanes a passenger car may not use
 };
 

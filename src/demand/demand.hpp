@@ -27,18 +27,18 @@ struct Demand {
   // --- vehicles, sorted by depart ---
   std::vector<std::string> vehicle_id;
   std::vector<uint32_t> vehicle_type;
-  std::vector<double> depart;          // s
-  std::vector<uint32_t> route_begin;   // [route_begin[v], route_begin[v] + route_length[v]) in route_edges
+  std::vector<double> depart;         // s
+  std::vector<uint32_t> route_begin;  // [route_begin[v], route_begin[v] + route_length[v]) in route_edges
   std::vector<uint32_t> route_length;
-  std::vector<float> speed_factor;     // drawn per vehicle from its type (deterministic in seed and id)
+  std::vector<float> speed_factor;  // drawn per vehicle from its type (deterministic in seed and id)
   std::vector<DemandSource> source;
-  std::vector<uint8_t> depart_lane_kind;   // DepartLane
-  std::vector<int8_t> depart_lane;         // for DepartLane::Given
-  std::vector<uint8_t> depart_pos_kind;    // DepartPos
+  std::vector<uint8_t> depart_lane_kind;  // DepartLane
+  std::vector<int8_t> depart_lane;        // for DepartLane::Given
+  std::vector<uint8_t> depart_pos_kind;   // DepartPos
   std::vector<float> depart_pos;
   std::vector<uint8_t> depart_speed_kind;  // DepartSpeed
   std::vector<float> depart_speed;
-  std::vector<uint8_t> arrival_pos_kind;   // ArrivalPos
+  std::vector<uint8_t> arrival_pos_kind;  // ArrivalPos
   std::vector<float> arrival_pos;
 
   std::vector<uint32_t> route_edges;  // edge indices; routes shared by id are stored once
@@ -48,7 +48,7 @@ struct Demand {
     std::string id, reason;
     SourceLoc loc;
   };
-  std::vector<Skipped> unroutable;  // trips without a path (kept only with ignore_route_errors)
+  std::vector<Skipped> unroutable;             // trips without a path (kept only with ignore_route_errors)
   std::map<std::string, int64_t> unsupported;  // from DemandSpec::skipped
 
   /// Trip routing done while building: vehicles routed, distinct requests after deduplication, wall time.

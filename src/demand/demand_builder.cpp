@@ -29,17 +29,25 @@ struct PendingVehicle {
 
 const char* kind_name(DemandSource s) {
   switch (s) {
-    case DemandSource::Trip: return "trip";
-    case DemandSource::OdCsv: return "OD trip";
-    default: return "vehicle";
+    case DemandSource::Trip:
+      return "trip";
+    case DemandSource::OdCsv:
+      return "OD trip";
+    default:
+      return "vehicle";
   }
 }
 
 class Builder {
  public:
   Builder(const DemandSpec& spec, const Network& net, const DemandOptions& options, Demand& demand)
-      : spec_(spec), net_(net), opt_(options), demand_(demand), types_(spec),
-        routes_(spec, net, options.ignore_route_errors, demand.route_edges), trips_(net, routes_) {}
+      : spec_(spec),
+        net_(net),
+        opt_(options),
+        demand_(demand),
+        types_(spec),
+        routes_(spec, net, options.ignore_route_errors, demand.route_edges),
+        trips_(net, routes_) {}
 
   void run() {
     std::vector<std::vector<double>> flow_times(spec_.flows.size());
@@ -75,7 +83,8 @@ class Builder {
     } else if (v.edge_ref_count > 0) {
       slot = routes_.interned_route(v.edge_ref_begin, v.edge_ref_count, "vehicle", v.id, v.loc);
     } else {
-      slot = trips_.add({v.from, v.to, v.from_junction, v.to_junction, v.via}, kind_name(v.source), v.id, v.loc);
+      slot =
+          trips_.add({v.from, v.to, v.from_junction, v.to_junction, v.via}, kind_name(v.source), v.id, v.loc);
     }
     pending_.push_back({v.depart, type, slot, types_.speed_factor(type, opt_.seed, stream), i, false});
     ids_.push_back(v.id);
@@ -88,8 +97,8 @@ class Builder {
     uint32_t shared_slot = 0;
     if (flow.route.empty()) {
       shared_slot = flow.edges.empty()
-                        ? trips_.add({flow.from, flow.to, flow.from_junction, flow.to_junction, flow.via}, "flow",
-                                     flow.id, flow.loc)
+                        ? trips_.add({flow.from, flow.to, flow.from_junction, flow.to_junction, flow.via},
+                                     "flow", flow.id, flow.loc)
                         : routes_.inline_route(flow.edges, "flow '" + flow.id + "'", flow.loc);
     }
     std::string id;
@@ -114,7 +123,8 @@ class Builder {
   void check_unique_ids() const {
     FlatIndex seen(ids_.size());
     for (uint32_t k = 0; k < ids_.size(); ++k)
-      if (seen.find_or_insert(draw_stream(ids_[k]), k, [&](uint32_t other) { return ids_[other] == ids_[k]; }) != k)
+      if (seen.find_or_insert(draw_stream(ids_[k]), k,
+                              [&](uint32_t other) { return ids_[other] == ids_[k]; }) != k)
         throw InputError(loc_of(pending_[k]), "duplicate vehicle id '" + ids_[k] + "'");
   }
 
@@ -127,7 +137,8 @@ class Builder {
   }
 
   static bool is_car_class(const std::string& vclass) {
-    return vclass.empty() || vclass == "passenger" || vclass == "private" || vclass == "taxi" || vclass == "evehicle";
+    return vclass.empty() || vclass == "passenger" || vclass == "private" || vclass == "taxi" ||
+           vclass == "evehicle";
   }
 
   void assemble() {

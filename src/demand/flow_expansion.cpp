@@ -44,7 +44,7 @@ std::vector<double> bernoulli(const FlowSpec& f, Millis begin, Millis end, int64
   if (step <= 0) throw InputError("step length must be positive for probability flow '" + f.id + "'");
   const double per_step = probability * to_seconds(step);
   const int64_t first_step = (begin + step - 1) / step;  // first step at or after begin
-  int64_t last_step;                                      // exclusive
+  int64_t last_step;                                     // exclusive
   if (end != kNoEnd) {
     last_step = (end + step - 1) / step;  // steps strictly before end
   } else {
@@ -60,7 +60,8 @@ std::vector<double> bernoulli(const FlowSpec& f, Millis begin, Millis end, int64
   std::vector<double> times;
   for (int64_t k = first_step; k < last_step; ++k) {
     if (number >= 0 && static_cast<int64_t>(times.size()) >= number) break;
-    if (rng_uniform_double(seed, stream, static_cast<uint64_t>(k)) < per_step) times.push_back(to_seconds(k * step));
+    if (rng_uniform_double(seed, stream, static_cast<uint64_t>(k)) < per_step)
+      times.push_back(to_seconds(k * step));
   }
   return times;
 }
@@ -85,7 +86,8 @@ std::vector<double> flow_departures(const FlowSpec& f, uint64_t seed, double ste
   if (has_vph && !(f.vehs_per_hour > 0))
     throw InputError(f.loc, "invalid vehsPerHour 0 in flow '" + f.id + "'");
   if (has_prob && !(f.probability > 0 && f.probability <= 1))
-    throw InputError(f.loc, "invalid probability " + std::to_string(f.probability) + " in flow '" + f.id + "'");
+    throw InputError(f.loc,
+                     "invalid probability " + std::to_string(f.probability) + " in flow '" + f.id + "'");
 
   const Millis begin = to_millis(f.begin);
   Millis end = kNoEnd;

@@ -9,16 +9,19 @@ namespace lpsim {
 EdgeLookup::EdgeLookup(const Network& net) : net_(net), index_(net.num_edges()) {
   for (uint32_t e = 0; e < net.num_edges(); ++e) {
     const std::string& id = net.edge_id[e];
-    index_.find_or_insert(rng_hash(id.data(), id.size()), e, [&](uint32_t other) { return net.edge_id[other] == id; });
+    index_.find_or_insert(rng_hash(id.data(), id.size()), e,
+                          [&](uint32_t other) { return net.edge_id[other] == id; });
   }
 }
 
 namespace {
 constexpr const char* kNoCarLane = "has no lane a passenger car may use";
 constexpr uint32_t kNotDrivable = 0xFFFFFFFFu;
-}
+}  // namespace
 
-bool EdgeLookup::outside_car_map(const std::string& reason) { return reason.find(kNoCarLane) != std::string::npos; }
+bool EdgeLookup::outside_car_map(const std::string& reason) {
+  return reason.find(kNoCarLane) != std::string::npos;
+}
 
 std::optional<uint32_t> EdgeLookup::drivable(const std::string& id, std::string& reason) const {
   const uint32_t e =
@@ -57,7 +60,8 @@ RouteTable::RouteTable(const DemandSpec& spec, const Network& net, bool ignore_r
   route_slot_.assign(spec.routes.size(), -1);
   for (const auto& d : spec.route_dists) {
     if (route_index_.count(d.id) || dist_index_.count(d.id))
-      throw InputError(d.loc, "routeDistribution id '" + d.id + "' is already used by a route or distribution");
+      throw InputError(d.loc,
+                       "routeDistribution id '" + d.id + "' is already used by a route or distribution");
     if (d.members.empty()) throw InputError(d.loc, "routeDistribution '" + d.id + "' has no members");
     Distribution dist;
     double total = 0;
@@ -66,7 +70,8 @@ RouteTable::RouteTable(const DemandSpec& spec, const Network& net, bool ignore_r
       if (it == route_index_.end())
         throw InputError(d.loc, "unknown route '" + m.id + "' in routeDistribution '" + d.id + "'");
       if (!(m.probability >= 0) || !std::isfinite(m.probability))
-        throw InputError(d.loc, "invalid probability of route '" + m.id + "' in routeDistribution '" + d.id + "'");
+        throw InputError(d.loc,
+                         "invalid probability of route '" + m.id + "' in routeDistribution '" + d.id + "'");
       total += m.probability;
       dist.routes.push_back(it->second);
       dist.cumulative.push_back(total);
@@ -77,8 +82,8 @@ RouteTable::RouteTable(const DemandSpec& spec, const Network& net, bool ignore_r
   }
 }
 
-uint32_t RouteTable::named(const std::string& ref, std::string_view vehicle_id, uint64_t seed, uint64_t stream,
-                           const SourceLoc& loc) {
+uint32_t RouteTable::named(const std::string& ref, std::string_view vehicle_id, uint64_t seed,
+                           uint64_t stream, const SourceLoc& loc) {
   if (auto it = route_index_.find(ref); it != route_index_.end()) return route_slot(it->second, vehicle_id);
   if (auto it = dist_index_.find(ref); it != dist_index_.end()) {
     const Distribution& d = dists_[it->second];
@@ -90,7 +95,8 @@ uint32_t RouteTable::named(const std::string& ref, std::string_view vehicle_id, 
 uint32_t RouteTable::route_slot(uint32_t route, std::string_view vehicle_id) {
   if (route_slot_[route] < 0) {
     const RouteSpec& r = spec_.routes[route];
-    route_slot_[route] = resolve(r.edges, "route '" + r.id + "'", r.loc, " of vehicle '" + std::string(vehicle_id) + "'");
+    route_slot_[route] =
+        resolve(r.edges, "route '" + r.id + "'", r.loc, " of vehicle '" + std::string(vehicle_id) + "'");
   }
   return static_cast<uint32_t>(route_slot_[route]);
 }
@@ -101,8 +107,8 @@ uint32_t RouteTable::inline_route(const std::vector<std::string>& edges, const s
 }
 
 template <class EdgeAt, class IdAt, class What>
-uint32_t RouteTable::append_checked(size_t n, EdgeAt&& edge_at, IdAt&& id_at, What&& what, const SourceLoc& loc,
-                                    const std::string& user) {
+uint32_t RouteTable::append_checked(size_t n, EdgeAt&& edge_at, IdAt&& id_at, What&& what,
+                                    const SourceLoc& loc, const std::string& user) {
   if (n == 0) return add_broken(loc, "no edges in " + what(), false, user);
   const auto begin = route_edges_.size();
   std::string reason;
@@ -114,8 +120,9 @@ uint32_t RouteTable::append_checked(size_t n, EdgeAt&& edge_at, IdAt&& id_at, Wh
     }
     if (i > 0 && !connected(route_edges_.back(), *e)) {
       route_edges_.resize(begin);
-      return add_broken(loc, "no connection from edge '" + id_at(i - 1) + "' to edge '" + id_at(i) + "' in " + what(),
-                        false, user);
+      return add_broken(
+          loc, "no connection from edge '" + id_at(i - 1) + "' to edge '" + id_at(i) + "' in " + what(),
+          false, user);
     }
     route_edges_.push_back(*e);
   }
@@ -123,17 +130,19 @@ uint32_t RouteTable::append_checked(size_t n, EdgeAt&& edge_at, IdAt&& id_at, Wh
   return static_cast<uint32_t>(slots_.size() - 1);
 }
 
-uint32_t RouteTable::interned_route(uint64_t begin, uint32_t count, std::string_view kind, std::string_view id,
-                                    const SourceLoc& loc) {
+uint32_t RouteTable::interned_route(uint64_t begin, uint32_t count, std::string_view kind,
+                                    std::string_view id, const SourceLoc& loc) {
   auto what = [&] { return "the route of " + std::string(kind) + " '" + std::string(id) + "'"; };
   if (begin > spec_.edge_refs.size() || count > spec_.edge_refs.size() - begin)
-    throw InputError(loc, "interned route of " + std::string(kind) + " '" + std::string(id) + "' lies outside the edge list");
+    throw InputError(loc, "interned route of " + std::string(kind) + " '" + std::string(id) +
+                              "' lies outside the edge list");
   const uint32_t* refs = spec_.edge_refs.data() + begin;
   return append_checked(
       count,
       [&](size_t i, std::string& reason) -> std::optional<uint32_t> {
         if (refs[i] >= name_edge_.size())
-          throw InputError(loc, "interned route of " + std::string(kind) + " '" + std::string(id) + "' names no edge");
+          throw InputError(
+              loc, "interned route of " + std::string(kind) + " '" + std::string(id) + "' names no edge");
         const uint32_t e = name_edge_[refs[i]];
         if (e != kNotDrivable) return e;
         return edges_.drivable(spec_.edge_names[refs[i]], reason);
@@ -141,8 +150,8 @@ uint32_t RouteTable::interned_route(uint64_t begin, uint32_t count, std::string_
       [&](size_t i) -> const std::string& { return spec_.edge_names[refs[i]]; }, what, loc, "");
 }
 
-uint32_t RouteTable::resolve(const std::vector<std::string>& edges, const std::string& what, const SourceLoc& loc,
-                             const std::string& user) {
+uint32_t RouteTable::resolve(const std::vector<std::string>& edges, const std::string& what,
+                             const SourceLoc& loc, const std::string& user) {
   return append_checked(
       edges.size(), [&](size_t i, std::string& reason) { return edges_.drivable(edges[i], reason); },
       [&](size_t i) -> const std::string& { return edges[i]; }, [&] { return what; }, loc, user);
@@ -172,7 +181,7 @@ void RouteTable::set_broken(uint32_t slot, const SourceLoc& loc, const std::stri
 }
 
 uint32_t RouteTable::add_broken(const SourceLoc& loc, const std::string& reason, bool outside_car_map,
-                               const std::string& user) {
+                                const std::string& user) {
   if (!ignore_ && !outside_car_map) throw InputError(loc, reason + user);
   problems_.push_back(reason);
   outside_car_map_.push_back(outside_car_map ? 1 : 0);

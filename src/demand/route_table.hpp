@@ -53,7 +53,8 @@ class RouteTable {
 
   /// New slot for an inline list of edge ids, checked like a named route; errors at `loc` name `owner`
   /// (e.g. "vehicle 'v1'" or "flow 'f'").
-  uint32_t inline_route(const std::vector<std::string>& edges, const std::string& owner, const SourceLoc& loc);
+  uint32_t inline_route(const std::vector<std::string>& edges, const std::string& owner,
+                        const SourceLoc& loc);
   /// As inline_route for a route interned by the reader: `count` entries of spec.edge_refs from `begin`.
   /// Each distinct edge id was resolved once when the table was built; errors name `kind` 'id'.
   uint32_t interned_route(uint64_t begin, uint32_t count, std::string_view kind, std::string_view id,

@@ -81,7 +81,8 @@ bool TripBatch::endpoint(const std::string& edge, const std::string& junction, b
   return true;
 }
 
-uint32_t TripBatch::add(const TripEnds& ends, std::string_view kind, std::string_view id, const SourceLoc& loc) {
+uint32_t TripBatch::add(const TripEnds& ends, std::string_view kind, std::string_view id,
+                        const SourceLoc& loc) {
   const std::string who = std::string(kind) + " '" + std::string(id) + "'";
   if ((ends.from.empty() && ends.from_junction.empty()) || (ends.to.empty() && ends.to_junction.empty()))
     return routes_.add_broken(loc, who + " has neither a route nor both trip endpoints");

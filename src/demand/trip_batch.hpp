@@ -44,8 +44,8 @@ class TripBatch {
     SourceLoc loc;
   };
   // Endpoint candidates: one edge, or the junction's leaving / entering edges. False: reason says why.
-  bool endpoint(const std::string& edge, const std::string& junction, bool leaving, std::vector<uint32_t>& out,
-                std::string& reason);
+  bool endpoint(const std::string& edge, const std::string& junction, bool leaving,
+                std::vector<uint32_t>& out, std::string& reason);
   void index_junctions();
 
   const Network& net_;
@@ -55,7 +55,7 @@ class TripBatch {
   // Request key -> index in requests_: (origin, destination) packed for one-edge ends without via, which
   // is exact; a hash of the whole request otherwise, confirmed by comparing the requests.
   FlatIndex index_;
-  std::vector<uint8_t> packed_;  // per request: its key is the packed pair
+  std::vector<uint8_t> packed_;                              // per request: its key is the packed pair
   std::unordered_map<uint32_t, uint32_t> single_edge_slot_;  // from == to without via: that edge
   // Per junction, CSR lists of drivable normal edges leaving and entering it (built on first use).
   std::vector<uint32_t> leaving_begin_, leaving_, entering_begin_, entering_;

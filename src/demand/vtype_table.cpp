@@ -27,14 +27,14 @@ VTypeTable::VTypeTable(const DemandSpec& spec) {
   const size_t n = spec.vtypes.size() + 1;
   types_.id.reserve(n);
   for (const auto& t : spec.vtypes) {
-    if (types_.index.count(t.id))
-      throw InputError(t.loc, "duplicate vType id '" + t.id + "'");
+    if (types_.index.count(t.id)) throw InputError(t.loc, "duplicate vType id '" + t.id + "'");
     add_type(t);
   }
   dists_.reserve(spec.vtype_dists.size());
   for (const auto& d : spec.vtype_dists) {
     if (types_.index.count(d.id) || dist_index_.count(d.id))
-      throw InputError(d.loc, "vTypeDistribution id '" + d.id + "' is already used by a vType or distribution");
+      throw InputError(d.loc,
+                       "vTypeDistribution id '" + d.id + "' is already used by a vType or distribution");
     if (d.members.empty()) throw InputError(d.loc, "vTypeDistribution '" + d.id + "' has no members");
     Distribution dist;
     double total = 0;
@@ -48,7 +48,8 @@ VTypeTable::VTypeTable(const DemandSpec& spec) {
         throw InputError(d.loc, "unknown vType '" + m.id + "' in vTypeDistribution '" + d.id + "'");
       }
       if (!(m.probability >= 0) || !std::isfinite(m.probability))
-        throw InputError(d.loc, "invalid probability of vType '" + m.id + "' in vTypeDistribution '" + d.id + "'");
+        throw InputError(d.loc,
+                         "invalid probability of vType '" + m.id + "' in vTypeDistribution '" + d.id + "'");
       total += m.probability;
       dist.members.push_back(type);
       dist.cumulative.push_back(total);
@@ -99,7 +100,8 @@ uint32_t VTypeTable::resolve(const std::string& type_ref, std::string_view vehic
 }
 
 float VTypeTable::speed_factor(uint32_t type, uint64_t seed, uint64_t stream) const {
-  return static_cast<float>(draw_speed_factor(types_.speed_factor[type], types_.speed_dev[type], seed, stream));
+  return static_cast<float>(
+      draw_speed_factor(types_.speed_factor[type], types_.speed_dev[type], seed, stream));
 }
 
 }  // namespace lpsim

@@ -19,7 +19,8 @@ DeviceChoice select_device(ComputeDevice requested) {
   const CudaDeviceStatus status = gpu_status();
   if (status.usable) return DeviceChoice{true, "gpu (" + status.description + ")"};
   if (requested == ComputeDevice::Gpu)
-    throw InputError(SourceLoc{"command line", 0}, "--device gpu: no usable CUDA device: " + status.description);
+    throw InputError(SourceLoc{"command line", 0},
+                     "--device gpu: no usable CUDA device: " + status.description);
   return DeviceChoice{false, "cpu (no usable CUDA device: " + status.description + ")"};
 }
 

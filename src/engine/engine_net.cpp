@@ -8,7 +8,8 @@ namespace lpsim {
 EngineNet::EngineNet(const Network& net) {
   const uint32_t nl = net.num_lanes();
   if (net.num_cells() >= (uint64_t{1} << 32))
-    throw std::length_error("lane map of " + std::to_string(net.num_cells()) + " cells exceeds 32-bit offsets");
+    throw std::length_error("lane map of " + std::to_string(net.num_cells()) +
+                            " cells exceeds 32-bit offsets");
   lane_cell_begin.assign(net.lane_cell_begin.begin(), net.lane_cell_begin.end());
   lane_internal.resize(nl);
   lane_left.assign(nl, -1);
@@ -47,8 +48,9 @@ EngineNet::EngineNet(const Network& net) {
   for (uint32_t s = 0; s < ns; ++s) {
     const uint32_t p0 = net.signal_phase_begin[s], p1 = net.signal_phase_begin[s + 1];
     if (p1 > p0) {
-      const uint32_t end = p0 + 1 < net.phase_state_begin.size() ? net.phase_state_begin[p0 + 1]
-                                                                 : static_cast<uint32_t>(net.phase_state.size());
+      const uint32_t end = p0 + 1 < net.phase_state_begin.size()
+                               ? net.phase_state_begin[p0 + 1]
+                               : static_cast<uint32_t>(net.phase_state.size());
       num_links[s] = static_cast<int32_t>(end - net.phase_state_begin[p0]);
     }
     for (uint32_t p = p0; p < p1; ++p) cycle_ms[s] += durations_ms[p];
@@ -84,9 +86,11 @@ NetView EngineNet::view(const Network& net) const {
 }
 
 SignalTable EngineNet::signal_table(const Network& net) const {
-  return SignalTable{net.num_signals(),  net.signal_phase_begin.data(), durations_ms.data(),
-                     net.phase_state_begin.data(), net.phase_state.data(), num_links.data(),
-                     cycle_ms.data(),        offset_ms.data(),           link_begin.data()};
+  return SignalTable{net.num_signals(),      net.signal_phase_begin.data(),
+                     durations_ms.data(),    net.phase_state_begin.data(),
+                     net.phase_state.data(), num_links.data(),
+                     cycle_ms.data(),        offset_ms.data(),
+                     link_begin.data()};
 }
 
 }  // namespace lpsim

@@ -19,11 +19,11 @@ struct FcdFrame {
 /// Per-lane counters accumulated over one edgeData/laneData interval. Integer counters so that the sum is
 /// the same whatever order threads add in (bit-identical results on any backend).
 struct LaneCounters {
-  std::vector<int64_t> sampled_steps;     // vehicle-steps spent on the lane
-  std::vector<int64_t> travelled_mm;      // distance driven on the lane, millimetres
-  std::vector<int64_t> waiting_steps;     // vehicle-steps with speed < 0.1 m/s
-  std::vector<int64_t> time_loss_ms;      // sum over vehicle-steps of dt * (1 - v / v_desired), milliseconds
-  std::vector<int64_t> occupied_mm_steps; // sum over vehicle-steps of (vehicle length on the lane) in mm
+  std::vector<int64_t> sampled_steps;      // vehicle-steps spent on the lane
+  std::vector<int64_t> travelled_mm;       // distance driven on the lane, millimetres
+  std::vector<int64_t> waiting_steps;      // vehicle-steps with speed < 0.1 m/s
+  std::vector<int64_t> time_loss_ms;       // sum over vehicle-steps of dt * (1 - v / v_desired), milliseconds
+  std::vector<int64_t> occupied_mm_steps;  // sum over vehicle-steps of (vehicle length on the lane) in mm
   std::vector<int64_t> departed, arrived, entered, left;
 
   void resize(size_t lanes);
@@ -45,7 +45,7 @@ struct TripRecord {
   double route_length = 0;  // m actually driven along the route
   double waiting_time = 0;  // s with speed < 0.1 m/s
   uint32_t waiting_count = 0;
-  double time_loss = 0;     // s
+  double time_loss = 0;  // s
   float speed_factor = 1;
   bool teleported = false;
 };

@@ -22,21 +22,25 @@ T* ptr(std::vector<T>& v) {
 constexpr int64_t kParallelMinVehicles = 2048;
 
 // kernels/insert_vehicle.hpp reads the demand's depart kinds as plain bytes.
-static_assert(kDepartLaneGiven == uint8_t(DepartLane::Given) && kDepartLaneRandom == uint8_t(DepartLane::Random) &&
+static_assert(kDepartLaneGiven == uint8_t(DepartLane::Given) &&
+              kDepartLaneRandom == uint8_t(DepartLane::Random) &&
               kDepartLaneFree == uint8_t(DepartLane::Free) && kDepartLaneBest == uint8_t(DepartLane::Best));
-static_assert(kDepartPosGiven == uint8_t(DepartPos::Given) && kDepartPosRandom == uint8_t(DepartPos::Random) &&
+static_assert(kDepartPosGiven == uint8_t(DepartPos::Given) &&
+              kDepartPosRandom == uint8_t(DepartPos::Random) &&
               kDepartPosRandomFree == uint8_t(DepartPos::RandomFree));
-static_assert(kDepartSpeedGiven == uint8_t(DepartSpeed::Given) && kDepartSpeedZero == uint8_t(DepartSpeed::Zero) &&
-              kDepartSpeedRandom == uint8_t(DepartSpeed::Random) && kDepartSpeedMax == uint8_t(DepartSpeed::Max) &&
+static_assert(kDepartSpeedGiven == uint8_t(DepartSpeed::Given) &&
+              kDepartSpeedZero == uint8_t(DepartSpeed::Zero) &&
+              kDepartSpeedRandom == uint8_t(DepartSpeed::Random) &&
+              kDepartSpeedMax == uint8_t(DepartSpeed::Max) &&
               kDepartSpeedDesired == uint8_t(DepartSpeed::Desired) &&
-              kDepartSpeedLimit == uint8_t(DepartSpeed::SpeedLimit) && kDepartSpeedLast == uint8_t(DepartSpeed::Last) &&
-              kDepartSpeedAvg == uint8_t(DepartSpeed::Avg));
+              kDepartSpeedLimit == uint8_t(DepartSpeed::SpeedLimit) &&
+              kDepartSpeedLast == uint8_t(DepartSpeed::Last) && kDepartSpeedAvg == uint8_t(DepartSpeed::Avg));
 
 // The LaneCounters columns in the order the GPU stepper keeps them.
 std::vector<int64_t>* counter_columns(LaneCounters& c, int k) {
-  std::vector<int64_t>* columns[kNumLaneCounters] = {&c.sampled_steps, &c.travelled_mm, &c.waiting_steps,
+  std::vector<int64_t>* columns[kNumLaneCounters] = {&c.sampled_steps, &c.travelled_mm,      &c.waiting_steps,
                                                      &c.time_loss_ms,  &c.occupied_mm_steps, &c.entered,
-                                                     &c.left,          &c.arrived,       &c.departed};
+                                                     &c.left,          &c.arrived,           &c.departed};
   return columns[k];
 }
 
@@ -102,8 +106,9 @@ Simulation::Simulation(const Network& net, const Demand& demand, const Simulatio
     ++counts_.removed;
     ++next_departure_;
   }
-  teleport_steps_ =
-      opt_.time_to_teleport > 0 ? static_cast<uint32_t>(std::ceil(opt_.time_to_teleport / opt_.step_length)) : 0;
+  teleport_steps_ = opt_.time_to_teleport > 0
+                        ? static_cast<uint32_t>(std::ceil(opt_.time_to_teleport / opt_.step_length))
+                        : 0;
   update_signals();
   enqueue_due(time_ms_);
   insert_waiting(cur_);
@@ -114,15 +119,15 @@ bool Simulation::finished() const {
   return num_active_ == 0 && waiting_ == 0 && next_departure_ >= demand_.size();
 }
 
-
 DepartView Simulation::depart_view() const {
-  return DepartView{demand_.depart_lane_kind.data(), demand_.depart_lane.data(), demand_.depart_pos_kind.data(),
-                    demand_.depart_pos.data(), demand_.depart_speed_kind.data(), demand_.depart_speed.data()};
+  return DepartView{demand_.depart_lane_kind.data(),  demand_.depart_lane.data(),
+                    demand_.depart_pos_kind.data(),   demand_.depart_pos.data(),
+                    demand_.depart_speed_kind.data(), demand_.depart_speed.data()};
 }
 
 TripView Simulation::trip_view() const {
-  return TripView{demand_.vehicle_type.data(), demand_.route_begin.data(), demand_.route_length.data(),
-                  demand_.route_edges.data(), demand_.speed_factor.data(), demand_.arrival_pos_kind.data(),
+  return TripView{demand_.vehicle_type.data(), demand_.route_begin.data(),  demand_.route_length.data(),
+                  demand_.route_edges.data(),  demand_.speed_factor.data(), demand_.arrival_pos_kind.data(),
                   demand_.arrival_pos.data()};
 }
 
@@ -135,7 +140,8 @@ char Simulation::link_state(uint32_t conn) const {
   sync_host();
   const int32_t sig = net_.conn_signal[conn];
   if (sig < 0 || net_.conn_link_index[conn] < 0) return net_.conn_state[conn];
-  return link_state_[engine_net_.link_begin[static_cast<size_t>(sig)] + static_cast<uint32_t>(net_.conn_link_index[conn])];
+  return link_state_[engine_net_.link_begin[static_cast<size_t>(sig)] +
+                     static_cast<uint32_t>(net_.conn_link_index[conn])];
 }
 
 void Simulation::PlanColumns::reserve_slots(size_t n) {
@@ -150,32 +156,33 @@ void Simulation::PlanColumns::reserve_slots(size_t n) {
 }
 
 PlanView Simulation::PlanColumns::view() {
-  return PlanView{ptr(new_speed), ptr(new_lane), ptr(new_pos),  ptr(new_prev),  ptr(new_prev2),
-                  ptr(claim0),    ptr(claim1),   ptr(stop_pos), ptr(stop_lane), ptr(arrives),
+  return PlanView{ptr(new_speed), ptr(new_lane), ptr(new_pos),   ptr(new_prev),  ptr(new_prev2),
+                  ptr(claim0),    ptr(claim1),   ptr(stop_pos),  ptr(stop_lane), ptr(arrives),
                   ptr(new_rp),    ptr(first_rp), ptr(claim_prio)};
 }
 
 VehicleView Simulation::vehicle_view() {
-  return VehicleView{ptr(status_),        ptr(route_pos_),     ptr(speed_),          ptr(lane_),
-                     ptr(prev_),          ptr(prev2_),         ptr(pos_),            ptr(old_lane_),
-                     ptr(old_prev_),      ptr(old_prev2_),     ptr(old_pos_),        ptr(stopped_steps_),
-                     ptr(waiting_steps_), ptr(waiting_count_), ptr(time_loss_),      ptr(route_length_),
+  return VehicleView{ptr(status_),        ptr(route_pos_),       ptr(speed_),        ptr(lane_),
+                     ptr(prev_),          ptr(prev2_),           ptr(pos_),          ptr(old_lane_),
+                     ptr(old_prev_),      ptr(old_prev2_),       ptr(old_pos_),      ptr(stopped_steps_),
+                     ptr(waiting_steps_), ptr(waiting_count_),   ptr(time_loss_),    ptr(route_length_),
                      ptr(arrival_step_),  ptr(lane_change_dir_), ptr(held_at_line_), ptr(limit_reason_),
                      ptr(best_rp_),       ptr(best_mask_)};
 }
 
 StepParams Simulation::step_params() const {
   const float dt = static_cast<float>(dt_ms_) / 1000.0f;
-  return StepParams{step_, time_ms_, dt, opt_.seed, idm_default_substeps(dt), max_accel_, max_emergency_decel_,
-                    teleport_steps_};
+  return StepParams{
+      step_,          time_ms_, dt, opt_.seed, idm_default_substeps(dt), max_accel_, max_emergency_decel_,
+      teleport_steps_};
 }
 
 StepContext Simulation::context(const uint8_t* map_now, uint8_t* map_next) {
   StepContext ctx{};
   ctx.net = engine_net_.view(net_);
   const VehicleTypes& t = demand_.types;
-  ctx.types = TypeView{t.length.data(), t.min_gap.data(), t.accel.data(), t.decel.data(), t.emergency_decel.data(),
-                       t.max_speed.data(), t.tau.data(), t.delta.data()};
+  ctx.types = TypeView{t.length.data(),          t.min_gap.data(),   t.accel.data(), t.decel.data(),
+                       t.emergency_decel.data(), t.max_speed.data(), t.tau.data(),   t.delta.data()};
   ctx.trips = trip_view();
   ctx.veh = vehicle_view();
   ctx.plan = plan_.view();
@@ -204,8 +211,10 @@ StepContext Simulation::context(const uint8_t* map_now, uint8_t* map_next) {
 }
 
 void Simulation::step() {
-  if (opt_.gpu) step_gpu();
-  else step_cpu();
+  if (opt_.gpu)
+    step_gpu();
+  else
+    step_cpu();
 }
 
 void Simulation::step_cpu() {
@@ -216,11 +225,12 @@ void Simulation::step_cpu() {
   const int64_t n = static_cast<int64_t>(active_.size());
   const uint32_t* act = active_.data();
   auto pass = [&](auto vehicle_pass) {
-    pool_.run(n,
-              [&](int64_t b, int64_t e) {
-                for (int64_t i = b; i < e; ++i) vehicle_pass(ctx, static_cast<uint32_t>(i), act[i]);
-              },
-              kParallelMinVehicles);
+    pool_.run(
+        n,
+        [&](int64_t b, int64_t e) {
+          for (int64_t i = b; i < e; ++i) vehicle_pass(ctx, static_cast<uint32_t>(i), act[i]);
+        },
+        kParallelMinVehicles);
   };
   pass(clear_old_footprint);
   pass(approach_vehicle);
@@ -274,7 +284,8 @@ void Simulation::step_gpu() {
   added.clear();
   std::sort(inserted_now_.begin(), inserted_now_.end());
   for (uint32_t v : inserted_now_) {
-    const bool kept = std::any_of(moves_.begin(), moves_.end(), [v](const TeleportMove& m) { return m.vehicle == v; });
+    const bool kept =
+        std::any_of(moves_.begin(), moves_.end(), [v](const TeleportMove& m) { return m.vehicle == v; });
     if (!kept) added.push_back(v);
   }
   gpu_->rebuild_active(added);
@@ -372,7 +383,8 @@ void Simulation::insert_waiting(int map_index) {
   for (uint32_t e : queued_edges_) {
     const auto& q = queue_[e];
     const size_t end = std::min<size_t>(q.size(), queue_head_[e] + kMaxInsertPerEdge);
-    for (size_t i = queue_head_[e]; i < end; ++i) batch_entry_.push_back(q[i] | (teleport_pending_[q[i]] ? kInsertTeleported : 0u));
+    for (size_t i = queue_head_[e]; i < end; ++i)
+      batch_entry_.push_back(q[i] | (teleport_pending_[q[i]] ? kInsertTeleported : 0u));
     batch_edge_.push_back(e);
     batch_begin_.push_back(static_cast<uint32_t>(batch_entry_.size()));
   }
@@ -381,12 +393,21 @@ void Simulation::insert_waiting(int map_index) {
   batch_lane_.resize(entries);
   batch_pos_.resize(entries);
   batch_speed_.resize(entries);
-  const InsertBatch batch{static_cast<uint32_t>(batch_edge_.size()), batch_edge_.data(), batch_begin_.data(),
-                          batch_entry_.data(), batch_inserted_.data(), batch_lane_.data(), batch_pos_.data(),
+  const InsertBatch batch{static_cast<uint32_t>(batch_edge_.size()),
+                          batch_edge_.data(),
+                          batch_begin_.data(),
+                          batch_entry_.data(),
+                          batch_inserted_.data(),
+                          batch_lane_.data(),
+                          batch_pos_.data(),
                           batch_speed_.data()};
   // The config's step length as given (not the millisecond-rounded step): the insertion checks use it.
-  const InsertParams params{static_cast<float>(opt_.step_length), opt_.seed, max_emergency_decel_, min_decel_,
-                            lane_counters_.departed.data(), lane_counters_.entered.data()};
+  const InsertParams params{static_cast<float>(opt_.step_length),
+                            opt_.seed,
+                            max_emergency_decel_,
+                            min_decel_,
+                            lane_counters_.departed.data(),
+                            lane_counters_.entered.data()};
   if (entries > 0) {
     if (gpu_) {
       gpu_->insert(batch, static_cast<uint32_t>(entries), params, map_index);
@@ -394,7 +415,8 @@ void Simulation::insert_waiting(int map_index) {
       uint8_t* map = map_[map_index].data();
       const StepContext ctx = context(map_[cur_].data(), map);
       const DepartView depart = depart_view();
-      for (uint32_t slot = 0; slot < batch.num_slots; ++slot) insert_queue_head(ctx, depart, params, map, batch, slot);
+      for (uint32_t slot = 0; slot < batch.num_slots; ++slot)
+        insert_queue_head(ctx, depart, params, map, batch, slot);
     }
   }
 
@@ -442,7 +464,8 @@ void Simulation::rebuild_active() {
     if (stays_active(veh, v)) next.push_back(v);
   std::sort(inserted_now_.begin(), inserted_now_.end());
   active_.clear();
-  std::set_union(next.begin(), next.end(), inserted_now_.begin(), inserted_now_.end(), std::back_inserter(active_));
+  std::set_union(next.begin(), next.end(), inserted_now_.begin(), inserted_now_.end(),
+                 std::back_inserter(active_));
   inserted_now_.clear();
   num_active_ = static_cast<uint32_t>(active_.size());
   uint64_t running = 0;
@@ -528,7 +551,8 @@ SummaryRow Simulation::summary_row() const {
     if (status_[v] != kRunning) continue;
     ++running;
     speed_sum += speed_[v];
-    const float v0 = desired_speed(net_.lane_speed[lane_[v]], demand_.speed_factor[v], t.max_speed[demand_.vehicle_type[v]]);
+    const float v0 = desired_speed(net_.lane_speed[lane_[v]], demand_.speed_factor[v],
+                                   t.max_speed[demand_.vehicle_type[v]]);
     if (v0 > 0) rel_sum += speed_[v] / v0;
     if (speed_[v] < kHaltingSpeed) ++halting;
   }
@@ -557,8 +581,8 @@ std::string Simulation::check_lane_map() const {
     for (uint64_t c = 0; c < mark.size(); ++c) {
       if (!mark[c]) continue;
       if (owner[c] >= 0)
-        return "vehicles " + demand_.vehicle_id[static_cast<size_t>(owner[c])] + " and " + demand_.vehicle_id[v] +
-               " share cell " + std::to_string(c) + " at t=" + std::to_string(time());
+        return "vehicles " + demand_.vehicle_id[static_cast<size_t>(owner[c])] + " and " +
+               demand_.vehicle_id[v] + " share cell " + std::to_string(c) + " at t=" + std::to_string(time());
       owner[c] = v;
       expect[c] = 1;
     }
@@ -566,7 +590,8 @@ std::string Simulation::check_lane_map() const {
   const std::vector<uint8_t>& map = map_[cur_];
   for (uint64_t c = 0; c < map.size(); ++c)
     if ((map[c] != 0) != (expect[c] != 0))
-      return "lane map cell " + std::to_string(c) + (map[c] ? " marked but no vehicle there" : " unmarked under a vehicle") +
+      return "lane map cell " + std::to_string(c) +
+             (map[c] ? " marked but no vehicle there" : " unmarked under a vehicle") +
              " at t=" + std::to_string(time());
   return "";
 }

@@ -115,7 +115,8 @@ class Simulation {
 
   // Per-vehicle state (see VehicleView).
   std::vector<uint8_t> status_, lane_change_dir_, held_at_line_, limit_reason_;
-  std::vector<uint32_t> best_rp_, best_mask_, route_pos_, stopped_steps_, waiting_steps_, waiting_count_, arrival_step_;
+  std::vector<uint32_t> best_rp_, best_mask_, route_pos_, stopped_steps_, waiting_steps_, waiting_count_,
+      arrival_step_;
   std::vector<float> speed_, pos_, old_pos_, time_loss_, route_length_;
   std::vector<int32_t> lane_, prev_, prev2_, old_lane_, old_prev_, old_prev2_;
   // Plan scratch (see PlanView): one entry per position in the active list, grown with it.
@@ -139,9 +140,9 @@ class Simulation {
   std::vector<uint32_t> queued_edges_;        // edges with a non-empty queue, ascending
   uint64_t waiting_ = 0;
 
-  std::vector<uint32_t> active_;   // vehicles the passes visit, ascending (GPU backend: kept on the device)
+  std::vector<uint32_t> active_;  // vehicles the passes visit, ascending (GPU backend: kept on the device)
   uint32_t num_active_ = 0;
-  uint32_t teleport_steps_ = 0;    // stopped steps before a teleport (0: never)
+  uint32_t teleport_steps_ = 0;  // stopped steps before a teleport (0: never)
   std::vector<uint32_t> inserted_now_, scratch_;
   // This step's queue heads handed to insertion (InsertBatch), and what came back.
   std::vector<uint32_t> batch_edge_, batch_begin_, batch_entry_, batch_inserted_;

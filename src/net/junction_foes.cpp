@@ -24,7 +24,8 @@ int link_index_from_via(const Network& net, uint32_t conn, const std::vector<int
 // Network junction of a junction spec: the same position when the ids agree (the builder adds junctions in
 // spec order), else a lookup by id; -1 when the network has no such junction.
 int64_t junction_of_spec(const Network& net, size_t spec_index, const std::string& id) {
-  if (spec_index < net.junction_id.size() && net.junction_id[spec_index] == id) return static_cast<int64_t>(spec_index);
+  if (spec_index < net.junction_id.size() && net.junction_id[spec_index] == id)
+    return static_cast<int64_t>(spec_index);
   auto it = net.junction_index.find(id);
   return it == net.junction_index.end() ? -1 : static_cast<int64_t>(it->second);
 }
@@ -99,7 +100,8 @@ void build_junction_foes(const NetSpec& spec, Network& net) {
     link_conns.resize(link_begin[links]);
     for (uint32_t i = 0; i < nc; ++i) {
       const int32_t k = link_of[conns[i]];
-      if (k >= 0 && static_cast<size_t>(k) < links) link_conns[link_begin[static_cast<size_t>(k)]++] = conns[i];
+      if (k >= 0 && static_cast<size_t>(k) < links)
+        link_conns[link_begin[static_cast<size_t>(k)]++] = conns[i];
     }
     for (size_t k = links; k > 0; --k) link_begin[k] = link_begin[k - 1];  // undo the fill's advance
     link_begin[0] = 0;
@@ -113,7 +115,8 @@ void build_junction_foes(const NetSpec& spec, Network& net) {
       foe_start[c] = static_cast<uint32_t>(foe_flat.size());
       for (size_t j = 0; j < n && j < links; ++j)
         if (bits[n - 1 - j] == '1')
-          foe_flat.insert(foe_flat.end(), link_conns.begin() + link_begin[j], link_conns.begin() + link_begin[j + 1]);
+          foe_flat.insert(foe_flat.end(), link_conns.begin() + link_begin[j],
+                          link_conns.begin() + link_begin[j + 1]);
       foe_count[c] = static_cast<uint32_t>(foe_flat.size()) - foe_start[c];
     }
   }
@@ -122,7 +125,8 @@ void build_junction_foes(const NetSpec& spec, Network& net) {
   net.conn_foe.clear();
   net.conn_foe.reserve(net.conn_foe_begin[nconn]);
   for (uint32_t c = 0; c < nconn; ++c)
-    net.conn_foe.insert(net.conn_foe.end(), foe_flat.begin() + foe_start[c], foe_flat.begin() + foe_start[c] + foe_count[c]);
+    net.conn_foe.insert(net.conn_foe.end(), foe_flat.begin() + foe_start[c],
+                        foe_flat.begin() + foe_start[c] + foe_count[c]);
 }
 
 }  // namespace lpsim

@@ -17,7 +17,16 @@ namespace lpsim {
 inline constexpr int32_t kNone = -1;
 
 enum class JunctionType : uint8_t {
-  Priority, TrafficLight, RightBeforeLeft, AllwayStop, PriorityStop, Zipper, DeadEnd, Internal, Unregulated, Other
+  Priority,
+  TrafficLight,
+  RightBeforeLeft,
+  AllwayStop,
+  PriorityStop,
+  Zipper,
+  DeadEnd,
+  Internal,
+  Unregulated,
+  Other
 };
 
 struct Network {
@@ -34,23 +43,23 @@ struct Network {
   // --- lanes (car lanes only) ---
   std::vector<std::string> lane_id;
   std::vector<uint32_t> lane_edge;
-  std::vector<uint8_t> lane_index;     // SUMO lane index within its edge
-  std::vector<float> lane_length;      // m
-  std::vector<float> lane_speed;       // m/s
-  std::vector<uint64_t> lane_cell_begin;  // first cell in the lane map; size lanes+1 (last = total cells)
-  std::vector<uint32_t> lane_conn_begin;  // outgoing connections [begin[l], begin[l+1]); size lanes+1
-  std::vector<uint32_t> lane_shape_begin; // points [begin[l], begin[l+1]) in shape_x/shape_y; size lanes+1
-  std::vector<float> shape_x, shape_y;    // lane shapes, net coordinates
+  std::vector<uint8_t> lane_index;         // SUMO lane index within its edge
+  std::vector<float> lane_length;          // m
+  std::vector<float> lane_speed;           // m/s
+  std::vector<uint64_t> lane_cell_begin;   // first cell in the lane map; size lanes+1 (last = total cells)
+  std::vector<uint32_t> lane_conn_begin;   // outgoing connections [begin[l], begin[l+1]); size lanes+1
+  std::vector<uint32_t> lane_shape_begin;  // points [begin[l], begin[l+1]) in shape_x/shape_y; size lanes+1
+  std::vector<float> shape_x, shape_y;     // lane shapes, net coordinates
 
   // --- connections: lane-to-lane links, grouped by from_lane (CSR via lane_conn_begin) ---
   std::vector<uint32_t> conn_from_lane, conn_to_lane;
-  std::vector<int32_t> conn_via_lane;   // internal lane the vehicle crosses, kNone if direct
+  std::vector<int32_t> conn_via_lane;  // internal lane the vehicle crosses, kNone if direct
   std::vector<uint32_t> conn_to_edge;
-  std::vector<int32_t> conn_signal;     // index into signals, kNone if not signal controlled
-  std::vector<int16_t> conn_link_index; // link index within the signal program, -1 if none
-  std::vector<char> conn_state;         // SUMO connection state: M m = s w o O Z ...
-  std::vector<char> conn_dir;           // s l r t L R
-  std::vector<int32_t> conn_junction;   // junction crossed, kNone if unknown
+  std::vector<int32_t> conn_signal;      // index into signals, kNone if not signal controlled
+  std::vector<int16_t> conn_link_index;  // link index within the signal program, -1 if none
+  std::vector<char> conn_state;          // SUMO connection state: M m = s w o O Z ...
+  std::vector<char> conn_dir;            // s l r t L R
+  std::vector<int32_t> conn_junction;    // junction crossed, kNone if unknown
   // Right of way: the connections each connection must yield to (from the junction's <request> rows),
   // CSR [conn_foe_begin[c], conn_foe_begin[c+1]) in conn_foe. Filled by build_junction_foes.
   std::vector<uint32_t> conn_foe_begin, conn_foe;
@@ -62,13 +71,13 @@ struct Network {
 
   // --- signals: one program per traffic light (the one in force: add-files replace the net's) ---
   std::vector<std::string> signal_id, signal_program;
-  std::vector<uint8_t> signal_actuated;     // actuated programs run their static plan (documented)
-  std::vector<float> signal_offset;         // s
-  std::vector<uint32_t> signal_phase_begin; // phases [begin[s], begin[s+1]); size signals+1
-  std::vector<float> phase_duration;        // s
+  std::vector<uint8_t> signal_actuated;             // actuated programs run their static plan (documented)
+  std::vector<float> signal_offset;                 // s
+  std::vector<uint32_t> signal_phase_begin;         // phases [begin[s], begin[s+1]); size signals+1
+  std::vector<float> phase_duration;                // s
   std::vector<float> phase_min_dur, phase_max_dur;  // -1 when not given
-  std::vector<uint32_t> phase_state_begin;  // chars [begin[p], begin[p]+signal_links) in phase_state
-  std::vector<char> phase_state;            // r y g G s u o O per link index
+  std::vector<uint32_t> phase_state_begin;          // chars [begin[p], begin[p]+signal_links) in phase_state
+  std::vector<char> phase_state;                    // r y g G s u o O per link index
 
   // --- roundabouts (kept for priority rules) ---
   std::vector<std::vector<uint32_t>> roundabout_edges;

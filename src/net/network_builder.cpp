@@ -19,7 +19,8 @@ namespace {
 // 100k-edge / 1M-lane nets build in well under a second per pass.
 class Builder {
  public:
-  Builder(const NetSpec& spec, const std::vector<TlLogicSpec>& overrides) : spec_(spec), overrides_(overrides) {}
+  Builder(const NetSpec& spec, const std::vector<TlLogicSpec>& overrides)
+      : spec_(spec), overrides_(overrides) {}
 
   Network build() {
     add_junctions();
@@ -35,24 +36,25 @@ class Builder {
     return std::move(net_);
   }
 
-   // A rail crossing or rail signal junction of that id (its tl attribute needs no program for cars).
+  // A rail crossing or rail signal junction of that id (its tl attribute needs no program for cars).
   bool is_rail_controlled(const std::string& id) const {
     for (const auto& j : spec_.junctions)
       if (j.id == id) return j.type == "rail_crossing" || j.type == "rail_signal";
     return false;
   }
 
-private:
+ private:
   const NetSpec& spec_;
   const std::vector<TlLogicSpec>& overrides_;
   Network net_;
 
-  std::vector<uint32_t> spec_lane_offset_;  // per spec edge: first slot in spec_lane_car_ (and the total last)
-  std::vector<uint8_t> spec_lanes_by_position_;  // per spec edge: 1 when lane k has index k for every k
-  std::vector<int32_t> spec_lane_car_;      // per spec lane: car lane index or kNone
-  std::vector<uint32_t> edge_spec_;         // per network edge: index of its EdgeSpec
-  std::vector<const LaneSpec*> lane_spec_;  // per car lane: its LaneSpec
-  std::vector<int32_t> internal_junction_;  // per network edge: junction an internal edge lies in
+  std::vector<uint32_t>
+      spec_lane_offset_;  // per spec edge: first slot in spec_lane_car_ (and the total last)
+  std::vector<uint8_t> spec_lanes_by_position_;       // per spec edge: 1 when lane k has index k for every k
+  std::vector<int32_t> spec_lane_car_;                // per spec lane: car lane index or kNone
+  std::vector<uint32_t> edge_spec_;                   // per network edge: index of its EdgeSpec
+  std::vector<const LaneSpec*> lane_spec_;            // per car lane: its LaneSpec
+  std::vector<int32_t> internal_junction_;            // per network edge: junction an internal edge lies in
   std::unordered_set<std::string> pedestrian_edges_;  // crossings and walking areas, dropped entirely
   std::unordered_set<std::string> non_car_lanes_;     // lane ids dropped for cars (for via checks)
 
@@ -107,7 +109,8 @@ private:
     }
     if (!int_lane_junction_built_) {  // only nets with unusual internal ids pay for this map
       for (uint32_t j = 0; j < spec_.junctions.size(); ++j)
-        for (const auto& l : spec_.junctions[j].int_lanes) int_lane_junction_.emplace(l, static_cast<int32_t>(j));
+        for (const auto& l : spec_.junctions[j].int_lanes)
+          int_lane_junction_.emplace(l, static_cast<int32_t>(j));
       int_lane_junction_built_ = true;
     }
     for (const auto& l : e.lanes) {
@@ -118,7 +121,7 @@ private:
   }
   std::unordered_map<std::string, int32_t> int_lane_junction_;
   bool int_lane_junction_built_ = false;
-  std::string last_junction_id_;     // id of the last from-junction found by junction_of
+  std::string last_junction_id_;  // id of the last from-junction found by junction_of
   int32_t last_junction_ = kNone;
   std::string last_internal_name_;  // junction id of the previous internal edge resolved by its name
   int32_t last_internal_junction_ = kNone;
@@ -160,7 +163,8 @@ private:
       offset += static_cast<uint32_t>(e.lanes.size());
       spec_lane_offset_[se + 1] = offset;
       bool by_position = true;
-      for (uint32_t k = 0; k < e.lanes.size(); ++k) by_position = by_position && e.lanes[k].index == static_cast<int>(k);
+      for (uint32_t k = 0; k < e.lanes.size(); ++k)
+        by_position = by_position && e.lanes[k].index == static_cast<int>(k);
       spec_lanes_by_position_[se] = by_position ? 1 : 0;
       if (e.function == EdgeFunction::Crossing || e.function == EdgeFunction::WalkingArea) {
         pedestrian_edges_.insert(e.id);
@@ -168,7 +172,8 @@ private:
         continue;
       }
       const auto ei = static_cast<uint32_t>(net_.edge_id.size());
-      if (!net_.edge_index.emplace(e.id, ei).second) throw InputError(e.loc, "duplicate edge id '" + e.id + "'");
+      if (!net_.edge_index.emplace(e.id, ei).second)
+        throw InputError(e.loc, "duplicate edge id '" + e.id + "'");
       const bool internal = e.function == EdgeFunction::Internal;
       net_.edge_id.push_back(e.id);
       net_.edge_is_internal.push_back(internal ? 1 : 0);
@@ -188,14 +193,16 @@ private:
       std::stable_sort(order.begin(), order.end(),
                        [&](uint32_t a, uint32_t b) { return e.lanes[a].index < e.lanes[b].index; });
       if (order.size() > std::numeric_limits<uint8_t>::max())
-        throw InputError(e.loc, "edge '" + e.id + "' has " + std::to_string(order.size()) + " car lanes (max 255)");
+        throw InputError(e.loc,
+                         "edge '" + e.id + "' has " + std::to_string(order.size()) + " car lanes (max 255)");
       net_.edge_first_lane.push_back(static_cast<uint32_t>(net_.lane_id.size()));
       net_.edge_num_lanes.push_back(static_cast<uint8_t>(order.size()));
       float speed = 0;
       for (uint32_t k : order) {
         const LaneSpec& l = e.lanes[k];
         if (l.index < 0 || l.index > std::numeric_limits<uint8_t>::max())
-          throw InputError(l.loc, "lane '" + l.id + "' of edge '" + e.id + "' has index " + std::to_string(l.index));
+          throw InputError(l.loc,
+                           "lane '" + l.id + "' of edge '" + e.id + "' has index " + std::to_string(l.index));
         const auto li = static_cast<uint32_t>(net_.lane_id.size());
         if (!net_.lane_index_by_id.emplace(l.id, li).second)
           throw InputError(l.loc, "duplicate lane id '" + l.id + "' in edge '" + e.id + "'");
@@ -221,7 +228,8 @@ private:
     uint64_t cells = 0;
     for (uint32_t l = 0; l < lanes; ++l) {
       net_.lane_cell_begin[l] = cells;
-      cells += std::max<uint64_t>(1, static_cast<uint64_t>(std::ceil(static_cast<double>(net_.lane_length[l]))));
+      cells +=
+          std::max<uint64_t>(1, static_cast<uint64_t>(std::ceil(static_cast<double>(net_.lane_length[l]))));
     }
     net_.lane_cell_begin[lanes] = cells;
 
@@ -273,10 +281,12 @@ private:
     net_.phase_state_begin.push_back(0);
     for (const auto& id : order) {
       const TlLogicSpec& t = *chosen[id];
-      if (t.phases.empty()) throw InputError(t.loc, "tlLogic '" + t.id + "' program '" + t.program_id + "' has no phases");
+      if (t.phases.empty())
+        throw InputError(t.loc, "tlLogic '" + t.id + "' program '" + t.program_id + "' has no phases");
       const size_t links = t.phases.front().state.size();
       if (links > static_cast<size_t>(std::numeric_limits<int16_t>::max()))
-        throw InputError(t.loc, "tlLogic '" + t.id + "' controls " + std::to_string(links) + " links (max 32767)");
+        throw InputError(t.loc,
+                         "tlLogic '" + t.id + "' controls " + std::to_string(links) + " links (max 32767)");
       net_.signal_index.emplace(t.id, net_.num_signals());
       net_.signal_id.push_back(t.id);
       net_.signal_program.push_back(t.program_id);
@@ -285,9 +295,9 @@ private:
       for (size_t p = 0; p < t.phases.size(); ++p) {
         const PhaseSpec& ph = t.phases[p];
         if (ph.state.size() != links)
-          throw InputError(t.loc, "tlLogic '" + t.id + "' phase " + std::to_string(p) + " has state '" + ph.state +
-                                      "' of " + std::to_string(ph.state.size()) + " links, phase 0 has " +
-                                      std::to_string(links));
+          throw InputError(t.loc, "tlLogic '" + t.id + "' phase " + std::to_string(p) + " has state '" +
+                                      ph.state + "' of " + std::to_string(ph.state.size()) +
+                                      " links, phase 0 has " + std::to_string(links));
         net_.phase_duration.push_back(static_cast<float>(ph.duration));
         net_.phase_min_dur.push_back(static_cast<float>(ph.min_dur));
         net_.phase_max_dur.push_back(static_cast<float>(ph.max_dur));
@@ -339,7 +349,8 @@ private:
     return cached_edge_of(c, c.to, "to", slot);
   }
 
-  uint32_t cached_edge_of(const ConnectionSpec& c, const std::string& id, const char* role, LastLookup& last) const {
+  uint32_t cached_edge_of(const ConnectionSpec& c, const std::string& id, const char* role,
+                          LastLookup& last) const {
     if (last.valid && last.id == id) return last.index;
     last.index = edge_of(c, id, role);
     last.id = id;
@@ -382,8 +393,8 @@ private:
         else if (!non_car_lanes_.empty() && non_car_lanes_.count(c.via))
           via_ok = false;
         else
-          throw InputError(c.loc, "connection from '" + c.from + "' to '" + c.to + "' names unknown via lane '" +
-                                      c.via + "'");
+          throw InputError(c.loc, "connection from '" + c.from + "' to '" + c.to +
+                                      "' names unknown via lane '" + c.via + "'");
       }
       if (fl == kNone || tl == kNone || !via_ok) {
         ++net_.skipped_connections;
@@ -401,8 +412,8 @@ private:
             continue;
           }
           if (it == net_.signal_index.end())
-            throw InputError(c.loc, "connection from '" + c.from + "' to '" + c.to + "' names tlLogic '" + c.tl +
-                                        "' which has no program");
+            throw InputError(c.loc, "connection from '" + c.from + "' to '" + c.to + "' names tlLogic '" +
+                                        c.tl + "' which has no program");
           last_tl_ = {c.tl, it->second, true};
         }
         const uint32_t signal = last_tl_.index;

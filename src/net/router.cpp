@@ -36,8 +36,14 @@ inline bool heap_after(const HeapItem& a, const HeapItem& b) {
 class Search {
  public:
   Search(const Network& net, const std::vector<float>& cost)
-      : net_(net), cost_(cost), dist_(net.num_edges()), pred_(net.num_edges()), seen_(net.num_edges(), 0),
-        settled_(net.num_edges(), 0), target_(net.num_edges(), 0), target_slot_(net.num_edges()) {}
+      : net_(net),
+        cost_(cost),
+        dist_(net.num_edges()),
+        pred_(net.num_edges()),
+        seen_(net.num_edges(), 0),
+        settled_(net.num_edges(), 0),
+        target_(net.num_edges(), 0),
+        target_slot_(net.num_edges()) {}
 
   /// Runs from `seeds` (each starting at its own cost) and calls on_settle(edge) for each settled edge in
   /// order; stops when it returns true or nothing is left.
@@ -90,7 +96,8 @@ class Search {
   /// Path from a seed to the settled edge `e`.
   std::vector<uint32_t> path_to(uint32_t e) const {
     std::vector<uint32_t> path;
-    for (int32_t x = static_cast<int32_t>(e); x != kNone; x = pred_[x]) path.push_back(static_cast<uint32_t>(x));
+    for (int32_t x = static_cast<int32_t>(e); x != kNone; x = pred_[x])
+      path.push_back(static_cast<uint32_t>(x));
     std::reverse(path.begin(), path.end());
     return path;
   }
@@ -112,7 +119,8 @@ class Search {
   void one_to_many(const std::vector<uint32_t>& origins, const std::vector<uint32_t>& group,
                    const std::vector<RouteRequest>& requests, std::vector<std::vector<uint32_t>>& out) {
     next_version();
-    // (destination, position in group) pairs sorted by destination; target_slot_ points at an edge's first pair.
+    // (destination, position in group) pairs sorted by destination; target_slot_ points at an edge's first
+    // pair.
     pairs_.clear();
     for (uint32_t k = 0; k < group.size(); ++k)
       for (uint32_t d : requests[group[k]].destinations) pairs_.push_back({d, k});
@@ -176,7 +184,8 @@ std::vector<uint32_t> route_one(Search& search, const RouteRequest& r) {
 
 Router::Router(const Network& net) : net_(net), edge_cost_(net.num_edges()) {
   for (uint32_t e = 0; e < net.num_edges(); ++e)
-    edge_cost_[e] = net.edge_speed[e] > 0 ? net.edge_length[e] / net.edge_speed[e] : std::numeric_limits<float>::infinity();
+    edge_cost_[e] = net.edge_speed[e] > 0 ? net.edge_length[e] / net.edge_speed[e]
+                                          : std::numeric_limits<float>::infinity();
 }
 
 double Router::cost(const std::vector<uint32_t>& path) const {
@@ -185,14 +194,15 @@ double Router::cost(const std::vector<uint32_t>& path) const {
   return total;
 }
 
-std::vector<std::vector<uint32_t>> Router::route_all(const std::vector<RouteRequest>& requests, int threads) const {
+std::vector<std::vector<uint32_t>> Router::route_all(const std::vector<RouteRequest>& requests,
+                                                     int threads) const {
   const uint32_t edges = net_.num_edges();
   for (size_t i = 0; i < requests.size(); ++i)
     for (const auto* list : {&requests[i].origins, &requests[i].destinations, &requests[i].via})
       for (uint32_t e : *list)
         if (e >= edges)
-          throw std::out_of_range("route request " + std::to_string(i) + " names edge index " + std::to_string(e) +
-                                  " of " + std::to_string(edges));
+          throw std::out_of_range("route request " + std::to_string(i) + " names edge index " +
+                                  std::to_string(e) + " of " + std::to_string(edges));
 
   // Work items: one per distinct origin set (requests without via sharing their origins, e.g. trips between
   // junctions or zones, share one one-to-many search), and one per request with via. A search settles edges

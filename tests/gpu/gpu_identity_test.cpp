@@ -31,7 +31,8 @@ std::string read_file(const fs::path& p) {
 std::string line_at(const std::string& s, size_t i) {
   const size_t b = s.rfind('\n', i == 0 ? 0 : i - 1);
   const size_t e = s.find('\n', i);
-  return s.substr(b == std::string::npos ? 0 : b + 1, e == std::string::npos ? std::string::npos : e - (b + 1));
+  return s.substr(b == std::string::npos ? 0 : b + 1,
+                  e == std::string::npos ? std::string::npos : e - (b + 1));
 }
 
 // Where two texts first differ, with the line around it on each side.
@@ -70,8 +71,8 @@ struct RunResult {
 // Runs `lpsim run <scenario> <args>` in `dir`, capturing stdout and stderr.
 RunResult run_lpsim(const fs::path& dir, const std::string& scenario, const std::string& args) {
   const std::string cfg = std::string(LPSIM_SCENARIOS_DIR) + "/" + scenario + "/" + scenario + ".sumocfg";
-  const std::string cmd = "cd '" + dir.string() + "' && '" + std::string(LPSIM_BINARY) + "' run '" + cfg + "' " +
-                          args + " > stdout.txt 2> stderr.txt";
+  const std::string cmd = "cd '" + dir.string() + "' && '" + std::string(LPSIM_BINARY) + "' run '" + cfg +
+                          "' " + args + " > stdout.txt 2> stderr.txt";
   RunResult r;
   const int status = std::system(cmd.c_str());
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -84,7 +85,8 @@ struct Outputs {
   std::string fcd, tripinfo, edgedata, summary;
 };
 
-Outputs run_on(const fs::path& root, const std::string& scenario, const std::string& args, const std::string& device) {
+Outputs run_on(const fs::path& root, const std::string& scenario, const std::string& args,
+               const std::string& device) {
   const fs::path dir = root / device;
   fs::create_directories(dir);
   const RunResult r = run_lpsim(dir, scenario,
@@ -110,30 +112,36 @@ class GpuIdentityTest : public ::testing::TestWithParam<IdentityCase> {};
 
 TEST_P(GpuIdentityTest, GpuOutputsEqualCpuOutputsByteForByte) {
   const CudaDeviceStatus gpu = gpu_status();
-  if (!gpu.usable) GTEST_SKIP() << "no usable CUDA device (" << gpu.description << "): CPU/GPU identity not checked";
+  if (!gpu.usable)
+    GTEST_SKIP() << "no usable CUDA device (" << gpu.description << "): CPU/GPU identity not checked";
   TempDir tmp;
   ASSERT_FALSE(tmp.path().empty());
   const IdentityCase& c = GetParam();
   const Outputs cpu = run_on(tmp.path(), c.scenario, c.args, "cpu");
   const Outputs dev = run_on(tmp.path(), c.scenario, c.args, "gpu");
   if (c.teleports) {
-    EXPECT_TRUE(std::regex_search(cpu.summary, std::regex(" teleports=\"[1-9]"))) << "no teleport in the CPU run";
+    EXPECT_TRUE(std::regex_search(cpu.summary, std::regex(" teleports=\"[1-9]")))
+        << "no teleport in the CPU run";
   }
   // The CPU run must have produced real content, or two empty files would pass.
   EXPECT_GT(count(cpu.tripinfo, "<tripinfo "), 10u);
   EXPECT_GT(count(cpu.fcd, "<vehicle "), 1000u);
   EXPECT_GT(count(cpu.edgedata, "<edge "), 10u);
   EXPECT_TRUE(cpu.fcd == dev.fcd) << "fcd differs at " << first_difference(cpu.fcd, dev.fcd);
-  EXPECT_TRUE(cpu.tripinfo == dev.tripinfo) << "tripinfo differs at " << first_difference(cpu.tripinfo, dev.tripinfo);
-  EXPECT_TRUE(cpu.edgedata == dev.edgedata) << "edgedata differs at " << first_difference(cpu.edgedata, dev.edgedata);
-  EXPECT_TRUE(cpu.summary == dev.summary) << "summary differs at " << first_difference(cpu.summary, dev.summary);
+  EXPECT_TRUE(cpu.tripinfo == dev.tripinfo)
+      << "tripinfo differs at " << first_difference(cpu.tripinfo, dev.tripinfo);
+  EXPECT_TRUE(cpu.edgedata == dev.edgedata)
+      << "edgedata differs at " << first_difference(cpu.edgedata, dev.edgedata);
+  EXPECT_TRUE(cpu.summary == dev.summary)
+      << "summary differs at " << first_difference(cpu.summary, dev.summary);
 }
 
 // Signals (grid_tls), right of way (random_net), random departures and flows (flows), 0.5 s steps with
 // edgeData intervals, and teleports with re-insertion (a short time-to-teleport on the signalised grid).
 INSTANTIATE_TEST_SUITE_P(
     BundledScenarios, GpuIdentityTest,
-    ::testing::Values(IdentityCase{"grid_tls", "grid_tls", "", false}, IdentityCase{"random_net", "random_net", "", false},
+    ::testing::Values(IdentityCase{"grid_tls", "grid_tls", "", false},
+                      IdentityCase{"random_net", "random_net", "", false},
                       IdentityCase{"flows", "flows", "", false},
                       IdentityCase{"grid_tls_half_step", "grid_tls", "--step-length 0.5", false},
                       IdentityCase{"grid_tls_teleports", "grid_tls", "--time-to-teleport 20", true}),
@@ -183,7 +191,8 @@ TEST(DeviceCliTest, GpuWithoutAUsableDeviceExitsWithStatus2AndOneLine) {
   ASSERT_FALSE(tmp.path().empty());
   const RunResult r = run_lpsim(tmp.path(), "grid_tls", "--device gpu --end 10");
   EXPECT_EQ(r.exit_code, 2) << r.err;
-  EXPECT_EQ(r.err, "lpsim: error: command line: --device gpu: no usable CUDA device: " + gpu.description + "\n");
+  EXPECT_EQ(r.err,
+            "lpsim: error: command line: --device gpu: no usable CUDA device: " + gpu.description + "\n");
   EXPECT_TRUE(r.out.empty()) << r.out;
 }
 

@@ -68,7 +68,8 @@ int64_t ref_int(const std::map<std::string, double>& ref, const std::string& key
 std::vector<std::string> route_of(const Scenario& sc, uint32_t v) {
   std::vector<std::string> edges;
   const Demand& d = sc.demand;
-  for (uint32_t k = 0; k < d.route_length[v]; ++k) edges.push_back(sc.network.edge_id[d.route_edges[d.route_begin[v] + k]]);
+  for (uint32_t k = 0; k < d.route_length[v]; ++k)
+    edges.push_back(sc.network.edge_id[d.route_edges[d.route_begin[v] + k]]);
   return edges;
 }
 
@@ -96,7 +97,8 @@ struct RouteExpectation {
 // A vehicle's inline route: its edges, or the ids of its route as interned by the route reader.
 std::vector<std::string> inline_edges(const DemandSpec& spec, const VehicleSpec& v) {
   std::vector<std::string> edges = v.edges;
-  for (uint32_t k = 0; k < v.edge_ref_count; ++k) edges.push_back(spec.edge_names.at(spec.edge_refs.at(v.edge_ref_begin + k)));
+  for (uint32_t k = 0; k < v.edge_ref_count; ++k)
+    edges.push_back(spec.edge_names.at(spec.edge_refs.at(v.edge_ref_begin + k)));
   return edges;
 }
 
@@ -127,7 +129,8 @@ class RouteExpectations {
   std::map<std::string, RouteExpectation> by_vehicle_, by_flow_;
 
   RouteExpectation expectation(const std::string& route, const std::vector<std::string>& edges,
-                               const std::string& from, const std::string& to, const std::vector<std::string>& via) {
+                               const std::string& from, const std::string& to,
+                               const std::vector<std::string>& via) {
     RouteExpectation e;
     if (!route.empty()) {
       if (auto it = dist_members_.find(route); it != dist_members_.end()) {
@@ -233,13 +236,16 @@ void expect_network_matches_reference(const LoadedSumoScenario& s) {
 
   int64_t normal_to_normal = 0;
   for (uint32_t c = 0; c < net.num_connections(); ++c)
-    if (!net.edge_is_internal[net.lane_edge[net.conn_from_lane[c]]] && !net.edge_is_internal[net.conn_to_edge[c]])
+    if (!net.edge_is_internal[net.lane_edge[net.conn_from_lane[c]]] &&
+        !net.edge_is_internal[net.conn_to_edge[c]])
       ++normal_to_normal;
   EXPECT_EQ(normal_to_normal, ref_int(ref, "passenger_connections"));
 }
 
 void expect_nothing_skipped(const Demand& d) {
-  EXPECT_TRUE(d.unroutable.empty()) << (d.unroutable.empty() ? "" : d.unroutable[0].id + ": " + d.unroutable[0].reason);
+  EXPECT_TRUE(d.unroutable.empty()) << (d.unroutable.empty()
+                                            ? ""
+                                            : d.unroutable[0].id + ": " + d.unroutable[0].reason);
   EXPECT_TRUE(d.unsupported.empty());
 }
 

@@ -52,13 +52,16 @@ class CliBadInputTest : public ::testing::Test {
  protected:
   void SetUp() override {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("lpsim_cli_bad_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
+    dir_ = fs::temp_directory_path() /
+           ("lpsim_cli_bad_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
   void TearDown() override { fs::remove_all(dir_); }
 
-  void write(const std::string& name, const std::string& text) { std::ofstream(dir_ / name, std::ios::binary) << text; }
+  void write(const std::string& name, const std::string& text) {
+    std::ofstream(dir_ / name, std::ios::binary) << text;
+  }
 
   // A route file whose first element sits on line 3 (line 2 is a comment), so a reported line 3 is the
   // element's own line and not the file's first lines by accident.
@@ -88,13 +91,16 @@ class CliBadInputTest : public ::testing::Test {
     cmd += " > stdout.txt 2> stderr.txt";
     const int status = std::system(cmd.c_str());
     CliResult r;
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+    r.exit_code =
+        WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
     r.out = slurp(dir_ / "stdout.txt");
     r.err = slurp(dir_ / "stderr.txt");
     return r;
   }
 
-  CliResult info_with_routes(const std::string& routes) const { return run({"info", "-n", kGridNet, "-r", routes}); }
+  CliResult info_with_routes(const std::string& routes) const {
+    return run({"info", "-n", kGridNet, "-r", routes});
+  }
 
   fs::path dir_;
 };
@@ -107,7 +113,8 @@ void expect_input_error(const CliResult& r, const std::string& where, const std:
   EXPECT_EQ(r.err.back(), '\n');
   const std::string prefix = "lpsim: error: " + where + ": ";
   EXPECT_EQ(lines[0].rfind(prefix, 0), 0u) << "expected prefix '" << prefix << "' in: " << lines[0];
-  for (const auto& n : names) EXPECT_NE(lines[0].find(n), std::string::npos) << "'" << n << "' missing in: " << lines[0];
+  for (const auto& n : names)
+    EXPECT_NE(lines[0].find(n), std::string::npos) << "'" << n << "' missing in: " << lines[0];
 }
 
 // The line number in "lpsim: error: <file>:<line>: ...", or -1.
@@ -145,7 +152,8 @@ TEST_F(CliBadInputTest, MalformedXmlNamesTheLineOfTheError) {
 }
 
 TEST_F(CliBadInputTest, MalformedXmlInRouteFile) {
-  write("broken.rou.xml", "<routes>\n<vehicle id=\"v1\" depart=\"0\">\n<route edges=\"A0A1 A1A2\"/>\n</routes>\n");
+  write("broken.rou.xml",
+        "<routes>\n<vehicle id=\"v1\" depart=\"0\">\n<route edges=\"A0A1 A1A2\"/>\n</routes>\n");
   const auto r = info_with_routes("broken.rou.xml");
   EXPECT_EQ(r.exit_code, 2);
   ASSERT_EQ(lines_of(r.err).size(), 1u) << r.err;
@@ -176,7 +184,8 @@ TEST_F(CliBadInputTest, TruncatedXmlNamesTheEndOfTheFile) {
   ASSERT_EQ(lines_of(r.err).size(), 1u) << r.err;
   const int line = reported_line(r.err, "cut.net.xml");
   EXPECT_TRUE(line == last_line || line == last_line + 1) << r.err;
-  EXPECT_TRUE(r.err.find("end") != std::string::npos || r.err.find("truncated") != std::string::npos) << r.err;
+  EXPECT_TRUE(r.err.find("end") != std::string::npos || r.err.find("truncated") != std::string::npos)
+      << r.err;
   EXPECT_EQ(r.err.find("Extra content"), std::string::npos) << r.err;
 }
 
@@ -207,11 +216,13 @@ TEST_F(CliBadInputTest, UnknownEdgeInRoute) {
 }
 
 TEST_F(CliBadInputTest, UnknownEdgeInNamedRouteNamesRouteAndVehicle) {
-  write_routes("r.rou.xml", "<route id=\"r_bad\" edges=\"A0A1 NO_SUCH_EDGE\"/>\n"
-                            "<vehicle id=\"v_bad\" depart=\"0\" route=\"r_bad\"/>");
+  write_routes("r.rou.xml",
+               "<route id=\"r_bad\" edges=\"A0A1 NO_SUCH_EDGE\"/>\n"
+               "<vehicle id=\"v_bad\" depart=\"0\" route=\"r_bad\"/>");
   const auto r = info_with_routes("r.rou.xml");
   EXPECT_EQ(r.exit_code, 2);
-  for (const char* name : {"'NO_SUCH_EDGE'", "'r_bad'", "'v_bad'"}) EXPECT_NE(r.err.find(name), std::string::npos) << r.err;
+  for (const char* name : {"'NO_SUCH_EDGE'", "'r_bad'", "'v_bad'"})
+    EXPECT_NE(r.err.find(name), std::string::npos) << r.err;
 }
 
 TEST_F(CliBadInputTest, UnknownEdgeInTrip) {
@@ -220,7 +231,8 @@ TEST_F(CliBadInputTest, UnknownEdgeInTrip) {
 }
 
 TEST_F(CliBadInputTest, UnknownVType) {
-  write_routes("r.rou.xml", R"(<vehicle id="v_bad" type="no_such_type" depart="0"><route edges="A0A1 A1A2"/></vehicle>)");
+  write_routes("r.rou.xml",
+               R"(<vehicle id="v_bad" type="no_such_type" depart="0"><route edges="A0A1 A1A2"/></vehicle>)");
   expect_input_error(info_with_routes("r.rou.xml"), "r.rou.xml:3", {"'no_such_type'", "'v_bad'"});
 }
 
@@ -242,8 +254,9 @@ TEST_F(CliBadInputTest, NegativeLaneLength) {
 }
 
 TEST_F(CliBadInputTest, NegativeVTypeLength) {
-  write_routes("r.rou.xml", "<vType id=\"t_bad\" length=\"-5\"/>\n"
-                            "<vehicle id=\"v1\" type=\"t_bad\" depart=\"0\"><route edges=\"A0A1 A1A2\"/></vehicle>");
+  write_routes("r.rou.xml",
+               "<vType id=\"t_bad\" length=\"-5\"/>\n"
+               "<vehicle id=\"v1\" type=\"t_bad\" depart=\"0\"><route edges=\"A0A1 A1A2\"/></vehicle>");
   expect_input_error(info_with_routes("r.rou.xml"), "r.rou.xml:3", {"length", "-5", "t_bad"});
 }
 
@@ -253,8 +266,9 @@ TEST_F(CliBadInputTest, NanLaneSpeed) {
 }
 
 TEST_F(CliBadInputTest, NanVTypeMaxSpeed) {
-  write_routes("r.rou.xml", "<vType id=\"t_bad\" maxSpeed=\"NaN\"/>\n"
-                            "<vehicle id=\"v1\" type=\"t_bad\" depart=\"0\"><route edges=\"A0A1 A1A2\"/></vehicle>");
+  write_routes("r.rou.xml",
+               "<vType id=\"t_bad\" maxSpeed=\"NaN\"/>\n"
+               "<vehicle id=\"v1\" type=\"t_bad\" depart=\"0\"><route edges=\"A0A1 A1A2\"/></vehicle>");
   expect_input_error(info_with_routes("r.rou.xml"), "r.rou.xml:3", {"maxSpeed", "NaN", "t_bad"});
 }
 
@@ -265,8 +279,8 @@ TEST_F(CliBadInputTest, NegativeDepart) {
 
 TEST_F(CliBadInputTest, NegativeDepartInOdCsv) {
   write("od.csv", ",dep_time,origin,destination\n0,0,1,5\n1,-3,5,1\n");
-  const auto r = run({"info", "--lpsim-nodes", kCsvDir + "/nodes.csv", "--lpsim-edges", kCsvDir + "/edges.csv",
-                      "--lpsim-od", "od.csv"});
+  const auto r = run({"info", "--lpsim-nodes", kCsvDir + "/nodes.csv", "--lpsim-edges",
+                      kCsvDir + "/edges.csv", "--lpsim-od", "od.csv"});
   expect_input_error(r, "od.csv:3", {"-3", "dep_time"});
 }
 
@@ -318,9 +332,10 @@ TEST_F(CliBadSnapshotTest, OtherFormatVersion) {
 
 // --ignore-route-errors: the broken vehicle is left out and listed by id; the good one loads.
 TEST_F(CliBadInputTest, IgnoreRouteErrorsSkipsUnknownEdgeAndDisconnectedRoute) {
-  write_routes("r.rou.xml", "<vehicle id=\"v_good\" depart=\"0\"><route edges=\"A0A1 A1A2\"/></vehicle>\n"
-                            "<vehicle id=\"v_unknown_edge\" depart=\"1\"><route edges=\"A0A1 NO_SUCH_EDGE\"/></vehicle>\n"
-                            "<vehicle id=\"v_disconnected\" depart=\"2\"><route edges=\"A0A1 C3C4\"/></vehicle>");
+  write_routes("r.rou.xml",
+               "<vehicle id=\"v_good\" depart=\"0\"><route edges=\"A0A1 A1A2\"/></vehicle>\n"
+               "<vehicle id=\"v_unknown_edge\" depart=\"1\"><route edges=\"A0A1 NO_SUCH_EDGE\"/></vehicle>\n"
+               "<vehicle id=\"v_disconnected\" depart=\"2\"><route edges=\"A0A1 C3C4\"/></vehicle>");
   const auto strict = info_with_routes("r.rou.xml");
   EXPECT_EQ(strict.exit_code, 2);
 
@@ -332,9 +347,11 @@ TEST_F(CliBadInputTest, IgnoreRouteErrorsSkipsUnknownEdgeAndDisconnectedRoute) {
   bool unknown_listed = false, disconnected_listed = false;
   for (const auto& line : lines_of(r.out)) {
     if (line.rfind("  v_unknown_edge: ", 0) == 0)
-      unknown_listed = line.find("NO_SUCH_EDGE") != std::string::npos && line.find("r.rou.xml:4") != std::string::npos;
+      unknown_listed =
+          line.find("NO_SUCH_EDGE") != std::string::npos && line.find("r.rou.xml:4") != std::string::npos;
     if (line.rfind("  v_disconnected: ", 0) == 0)
-      disconnected_listed = line.find("C3C4") != std::string::npos && line.find("r.rou.xml:5") != std::string::npos;
+      disconnected_listed =
+          line.find("C3C4") != std::string::npos && line.find("r.rou.xml:5") != std::string::npos;
   }
   EXPECT_TRUE(unknown_listed) << r.out;
   EXPECT_TRUE(disconnected_listed) << r.out;
@@ -342,24 +359,27 @@ TEST_F(CliBadInputTest, IgnoreRouteErrorsSkipsUnknownEdgeAndDisconnectedRoute) {
 
 // Vehicles sharing a broken named route each get a reason naming themselves.
 TEST_F(CliBadInputTest, IgnoreRouteErrorsReasonNamesEachVehicle) {
-  write_routes("r.rou.xml", "<route id=\"r_bad\" edges=\"A0A1 NO_SUCH_EDGE\"/>\n"
-                            "<vehicle id=\"a\" depart=\"0\" route=\"r_bad\"/>\n"
-                            "<vehicle id=\"b\" depart=\"0\" route=\"r_bad\"/>\n"
-                            "<flow id=\"f\" begin=\"0\" end=\"2\" period=\"1\" route=\"r_bad\"/>");
+  write_routes("r.rou.xml",
+               "<route id=\"r_bad\" edges=\"A0A1 NO_SUCH_EDGE\"/>\n"
+               "<vehicle id=\"a\" depart=\"0\" route=\"r_bad\"/>\n"
+               "<vehicle id=\"b\" depart=\"0\" route=\"r_bad\"/>\n"
+               "<flow id=\"f\" begin=\"0\" end=\"2\" period=\"1\" route=\"r_bad\"/>");
   const auto r = run({"info", "-n", kGridNet, "-r", "r.rou.xml", "--ignore-route-errors"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("unrouted or skipped vehicles: 4\n"), std::string::npos) << r.out;
   for (const std::string id : {"a", "b", "f.0", "f.1"}) {
     bool own_name = false;
     for (const auto& line : lines_of(r.out))
-      if (line.rfind("  " + id + ": ", 0) == 0) own_name = line.find("vehicle '" + id + "'") != std::string::npos;
+      if (line.rfind("  " + id + ": ", 0) == 0)
+        own_name = line.find("vehicle '" + id + "'") != std::string::npos;
     EXPECT_TRUE(own_name) << id << " in:\n" << r.out;
   }
 }
 
 TEST_F(CliBadInputTest, IgnoreRouteErrorsSkipsUnknownEdgeInTrip) {
-  write_routes("r.rou.xml", "<trip id=\"t_good\" depart=\"0\" from=\"A0A1\" to=\"A1A2\"/>\n"
-                            "<trip id=\"t_bad\" depart=\"1\" from=\"NO_SUCH_EDGE\" to=\"A1A2\"/>");
+  write_routes("r.rou.xml",
+               "<trip id=\"t_good\" depart=\"0\" from=\"A0A1\" to=\"A1A2\"/>\n"
+               "<trip id=\"t_bad\" depart=\"1\" from=\"NO_SUCH_EDGE\" to=\"A1A2\"/>");
   const auto r = run({"info", "-n", kGridNet, "-r", "r.rou.xml", "--ignore-route-errors"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("vehicles: 1\n"), std::string::npos) << r.out;

@@ -1,10 +1,10 @@
+#include "converters/cli_options.hpp"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
 #include <string>
-
-#include "converters/cli_options.hpp"
 
 namespace lpsim {
 namespace {
@@ -70,13 +70,41 @@ TEST(SumoBoolTest, AcceptsSumoSpellings) {
 
 TEST(CliOptionsParse, BothValueFormsAndShortNames) {
   std::vector<std::string> rest;
-  ConfigSpec c = parse_cli_options(
-      {"-n", "a.net.xml", "--route-files=r1.xml,r2.xml", "-a", "x.add.xml", "-b", "1:00:00", "--end=7200",
-       "--step-length", "0.5", "--seed", "99", "--fcd-output", "fcd.xml", "--device.fcd.period=2",
-       "--edgedata-output", "ed.xml", "--lanedata-output", "ld.xml", "--tripinfo-output", "ti.xml",
-       "--summary-output", "su.xml", "--threads", "2", "--time-to-teleport", "-1", "-o", "result.txt",
-       "--lpsim-nodes", "nodes.csv", "--lpsim-edges=edges.csv", "--lpsim-od", "od.csv"},
-      &rest);
+  ConfigSpec c = parse_cli_options({"-n",
+                                    "a.net.xml",
+                                    "--route-files=r1.xml,r2.xml",
+                                    "-a",
+                                    "x.add.xml",
+                                    "-b",
+                                    "1:00:00",
+                                    "--end=7200",
+                                    "--step-length",
+                                    "0.5",
+                                    "--seed",
+                                    "99",
+                                    "--fcd-output",
+                                    "fcd.xml",
+                                    "--device.fcd.period=2",
+                                    "--edgedata-output",
+                                    "ed.xml",
+                                    "--lanedata-output",
+                                    "ld.xml",
+                                    "--tripinfo-output",
+                                    "ti.xml",
+                                    "--summary-output",
+                                    "su.xml",
+                                    "--threads",
+                                    "2",
+                                    "--time-to-teleport",
+                                    "-1",
+                                    "-o",
+                                    "result.txt",
+                                    "--lpsim-nodes",
+                                    "nodes.csv",
+                                    "--lpsim-edges=edges.csv",
+                                    "--lpsim-od",
+                                    "od.csv"},
+                                   &rest);
   EXPECT_TRUE(rest.empty());
   EXPECT_EQ(c.net_file, "a.net.xml");
   EXPECT_EQ(c.route_files, (std::vector<std::string>{"r1.xml", "r2.xml"}));
@@ -104,12 +132,13 @@ TEST(CliOptionsParse, BothValueFormsAndShortNames) {
 TEST_F(CliOptionsTest, CommandLineOverridesConfigWhereverItAppears) {
   ConfigSpec c = parse_cli_options({"--end", "100", "-c", cfg_, "--seed=3"});
   EXPECT_EQ(c.config_file, cfg_);
-  EXPECT_DOUBLE_EQ(c.end, 100);   // given before -c, still wins
-  EXPECT_EQ(c.seed, 3);           // given after -c
-  EXPECT_DOUBLE_EQ(c.begin, 10);  // from the cfg
+  EXPECT_DOUBLE_EQ(c.end, 100);                            // given before -c, still wins
+  EXPECT_EQ(c.seed, 3);                                    // given after -c
+  EXPECT_DOUBLE_EQ(c.begin, 10);                           // from the cfg
   EXPECT_EQ(c.net_file, (dir_ / "cfg.net.xml").string());  // cfg paths resolve against its folder
-  ConfigSpec d = parse_cli_options({"-n", "mine.net.xml", "--configuration-file=" + cfg_, "-r", "a.xml b.xml"});
-  EXPECT_EQ(d.net_file, "mine.net.xml");  // command-line paths stay as given
+  ConfigSpec d =
+      parse_cli_options({"-n", "mine.net.xml", "--configuration-file=" + cfg_, "-r", "a.xml b.xml"});
+  EXPECT_EQ(d.net_file, "mine.net.xml");                                   // command-line paths stay as given
   EXPECT_EQ(d.route_files, (std::vector<std::string>{"a.xml", "b.xml"}));  // replaces the cfg's list
   EXPECT_EQ(d.seed, 7);
 }

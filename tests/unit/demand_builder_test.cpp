@@ -1,4 +1,6 @@
 // Demand builder: types, distributions, routes, trips, flows, depart attributes, errors and ordering.
+#include "demand/demand_builder.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -6,7 +8,6 @@
 #include <string>
 #include <vector>
 
-#include "demand/demand_builder.hpp"
 #include "net/network_builder.hpp"
 #include "unit/test_nets.hpp"
 
@@ -77,7 +78,8 @@ std::string error_of(const DemandSpec& spec, const Network& net, DemandOptions o
 
 std::vector<std::string> route_ids(const Demand& d, const Network& net, uint32_t v) {
   std::vector<std::string> ids;
-  for (uint32_t k = 0; k < d.route_length[v]; ++k) ids.push_back(net.edge_id[d.route_edges[d.route_begin[v] + k]]);
+  for (uint32_t k = 0; k < d.route_length[v]; ++k)
+    ids.push_back(net.edge_id[d.route_edges[d.route_begin[v] + k]]);
   return ids;
 }
 
@@ -134,7 +136,8 @@ TEST_F(DemandBuilderTest, TripsAreRoutedConnectedAndDeduplicated) {
   for (uint32_t v = 0; v < 3; ++v) {
     EXPECT_EQ(d.source[v], DemandSource::Trip);
     for (uint32_t k = 1; k < d.route_length[v]; ++k)
-      EXPECT_TRUE(grid.connected(d.route_edges[d.route_begin[v] + k - 1], d.route_edges[d.route_begin[v] + k]));
+      EXPECT_TRUE(
+          grid.connected(d.route_edges[d.route_begin[v] + k - 1], d.route_edges[d.route_begin[v] + k]));
   }
   auto r = route_ids(d, grid, 0);
   EXPECT_EQ(r.front(), from);
@@ -163,8 +166,9 @@ TEST_F(DemandBuilderTest, TripViaEdgesPassesThem) {
   Network net = build_network(test::make_grid_spec(3, 3, uturn));
   Demand d = build_demand(spec, net, {});
   ASSERT_EQ(d.size(), 1u);
-  EXPECT_EQ(route_ids(d, net, 0), (std::vector<std::string>{test::grid_edge(0, 0, 1, 0), test::grid_edge(1, 0, 1, 1),
-                                                             test::grid_edge(1, 1, 1, 0), test::grid_edge(1, 0, 2, 0)}));
+  EXPECT_EQ(route_ids(d, net, 0),
+            (std::vector<std::string>{test::grid_edge(0, 0, 1, 0), test::grid_edge(1, 0, 1, 1),
+                                      test::grid_edge(1, 1, 1, 0), test::grid_edge(1, 0, 2, 0)}));
 }
 
 TEST_F(DemandBuilderTest, JunctionTripsAndOdRowsStartAndEndAtTheirJunctions) {

@@ -60,23 +60,26 @@ class EngineDeterminismTest : public ::testing::Test {
     const fs::path out = dir_ / tag;
     fs::create_directories(out);
     const std::string cfg = std::string(LPSIM_SCENARIOS_DIR) + "/" + scenario + "/" + scenario + ".sumocfg";
-    const std::string cmd = std::string(LPSIM_BINARY) + " run " + cfg + " --threads " + std::to_string(threads) +
-                            " --fcd-output " + (out / "fcd.xml").string() + " --tripinfo-output " +
-                            (out / "tripinfo.xml").string() +
-                            (edgedata ? " --edgedata-output " + (out / "edgedata.xml").string() : std::string()) +
-                            " --summary-output " + (out / "summary.xml").string() + " > " +
-                            (out / "log.txt").string() + " 2>&1";
+    const std::string cmd =
+        std::string(LPSIM_BINARY) + " run " + cfg + " --threads " + std::to_string(threads) +
+        " --fcd-output " + (out / "fcd.xml").string() + " --tripinfo-output " +
+        (out / "tripinfo.xml").string() +
+        (edgedata ? " --edgedata-output " + (out / "edgedata.xml").string() : std::string()) +
+        " --summary-output " + (out / "summary.xml").string() + " > " + (out / "log.txt").string() + " 2>&1";
     const int rc = std::system(cmd.c_str());
     EXPECT_EQ(rc, 0) << cmd << "\n" << read_file(out / "log.txt");
-    return Outputs{read_file(out / "fcd.xml"), read_file(out / "tripinfo.xml"), read_file(out / "edgedata.xml"),
-                   mask_duration(read_file(out / "summary.xml"))};
+    return Outputs{read_file(out / "fcd.xml"), read_file(out / "tripinfo.xml"),
+                   read_file(out / "edgedata.xml"), mask_duration(read_file(out / "summary.xml"))};
   }
 
   static void expect_same(const Outputs& a, const Outputs& b, const std::string& what) {
     EXPECT_TRUE(a.fcd == b.fcd) << what << ": fcd differs at " << first_difference(a.fcd, b.fcd);
-    EXPECT_TRUE(a.tripinfo == b.tripinfo) << what << ": tripinfo differs at " << first_difference(a.tripinfo, b.tripinfo);
-    EXPECT_TRUE(a.edgedata == b.edgedata) << what << ": edgedata differs at " << first_difference(a.edgedata, b.edgedata);
-    EXPECT_TRUE(a.summary == b.summary) << what << ": summary differs at " << first_difference(a.summary, b.summary);
+    EXPECT_TRUE(a.tripinfo == b.tripinfo)
+        << what << ": tripinfo differs at " << first_difference(a.tripinfo, b.tripinfo);
+    EXPECT_TRUE(a.edgedata == b.edgedata)
+        << what << ": edgedata differs at " << first_difference(a.edgedata, b.edgedata);
+    EXPECT_TRUE(a.summary == b.summary)
+        << what << ": summary differs at " << first_difference(a.summary, b.summary);
   }
 
   // The reference run must have produced real content, or identical empty files would pass.
@@ -120,7 +123,8 @@ TEST_F(EngineDeterminismTest, OutputsDoNotDependOnWhetherEdgeDataIsWritten) {
 TEST(EngineDeterminismMaskTest, MasksOnlyTheDuration) {
   EXPECT_EQ(mask_duration("<step time=\"1.00\" halting=\"0\" duration=\"17\"/>"),
             "<step time=\"1.00\" halting=\"0\" duration=\"masked\"/>");
-  EXPECT_NE(mask_duration("<step time=\"1.00\" duration=\"3\"/>"), mask_duration("<step time=\"2.00\" duration=\"3\"/>"));
+  EXPECT_NE(mask_duration("<step time=\"1.00\" duration=\"3\"/>"),
+            mask_duration("<step time=\"2.00\" duration=\"3\"/>"));
 }
 
 }  // namespace

@@ -29,8 +29,8 @@ inline Scenario load_sumo_scenario(const std::string& name, const std::vector<st
 
 inline Scenario load_csv_scenario() {
   const std::string dir = scenarios_dir() + "/lpsim_csv_small/";
-  return load_scenario(parse_cli_options(
-      {"--lpsim-nodes", dir + "nodes.csv", "--lpsim-edges", dir + "edges.csv", "--lpsim-od", dir + "od.csv"}));
+  return load_scenario(parse_cli_options({"--lpsim-nodes", dir + "nodes.csv", "--lpsim-edges",
+                                          dir + "edges.csv", "--lpsim-od", dir + "od.csv"}));
 }
 
 inline SimulationOptions options_of(const ConfigSpec& c, int threads) {
@@ -54,13 +54,13 @@ constexpr float kPosTol = 1e-3f;
 struct RunStats {
   uint64_t steps = 0;
   uint64_t lane_map_checks = 0;
-  uint64_t junction_entries = 0;           // normal lane -> next edge, any connection
-  uint64_t signalised_entries = 0;         // of those, through a connection with a signal
+  uint64_t junction_entries = 0;    // normal lane -> next edge, any connection
+  uint64_t signalised_entries = 0;  // of those, through a connection with a signal
   uint64_t entries_on_yellow = 0;
   uint64_t lane_changes = 0;
-  uint64_t teleport_jumps = 0;             // moves explained by a teleport
+  uint64_t teleport_jumps = 0;  // moves explained by a teleport
   uint64_t trip_records = 0;
-  float max_speed_over_new_lane = 0;       // max of speed / (limit of the lane the vehicle ends on x factor)
+  float max_speed_over_new_lane = 0;  // max of speed / (limit of the lane the vehicle ends on x factor)
 };
 
 /// Checks every invariant between two consecutive states of a Simulation. Call before_step(), then
@@ -69,8 +69,12 @@ class InvariantChecker {
  public:
   /// lane_map_every: run check_lane_map() every that many steps. limit_on_entered_lane: also require the
   /// speed after a step to respect the limit of the lane the vehicle ends it on (see the disabled test).
-  InvariantChecker(const Scenario& sc, Simulation& sim, uint32_t lane_map_every, bool limit_on_entered_lane = false)
-      : net_(sc.network), demand_(sc.demand), sim_(sim), lane_map_every_(lane_map_every),
+  InvariantChecker(const Scenario& sc, Simulation& sim, uint32_t lane_map_every,
+                   bool limit_on_entered_lane = false)
+      : net_(sc.network),
+        demand_(sc.demand),
+        sim_(sim),
+        lane_map_every_(lane_map_every),
         limit_on_entered_lane_(limit_on_entered_lane) {
     const uint32_t nv = demand_.size();
     status_.assign(nv, kPending);
@@ -101,7 +105,8 @@ class InvariantChecker {
     for (uint32_t v : sim_.active()) check_vehicle(v);
     // Vehicles that left active() this step must have arrived (or be queued after a teleport).
     for (uint32_t v : active_before_) {
-      if (status_[v] != kRunning || std::binary_search(sim_.active().begin(), sim_.active().end(), v)) continue;
+      if (status_[v] != kRunning || std::binary_search(sim_.active().begin(), sim_.active().end(), v))
+        continue;
       if (sim_.status(v) == kRunning) fail(v, "running but no longer in active()");
     }
   }
@@ -126,7 +131,9 @@ class InvariantChecker {
   uint64_t failure_count() const { return failure_count_; }
 
  private:
-  void fail(uint32_t v, const std::string& what) { fail_text("vehicle " + demand_.vehicle_id[v] + ": " + what); }
+  void fail(uint32_t v, const std::string& what) {
+    fail_text("vehicle " + demand_.vehicle_id[v] + ": " + what);
+  }
   void fail_text(const std::string& what) {
     ++failure_count_;
     if (failures_.size() < 12) failures_.push_back("t=" + std::to_string(sim_.time()) + " " + what);
@@ -146,28 +153,37 @@ class InvariantChecker {
     for (uint32_t v = 0; v < demand_.size(); ++v) {
       if (to_ms(demand_.depart[v]) > now) ++not_due;
       switch (sim_.status(v)) {
-        case kRunning: ++running; break;
-        case kArrived: ++arrived; break;
-        case kTeleporting: ++teleporting; break;
-        default: ++pending;
+        case kRunning:
+          ++running;
+          break;
+        case kArrived:
+          ++arrived;
+          break;
+        case kTeleporting:
+          ++teleporting;
+          break;
+        default:
+          ++pending;
       }
     }
     auto check = [&](bool ok, const std::string& what) {
       if (!ok) fail_text("counts: " + what);
     };
-    check(c.loaded == demand_.size(), "loaded " + std::to_string(c.loaded) + " != vehicles " + std::to_string(demand_.size()));
+    check(c.loaded == demand_.size(),
+          "loaded " + std::to_string(c.loaded) + " != vehicles " + std::to_string(demand_.size()));
     check(c.loaded == c.removed + not_due + c.waiting + c.running + c.arrived,
           "loaded " + std::to_string(c.loaded) + " != removed " + std::to_string(c.removed) + " + not due " +
               std::to_string(not_due) + " + waiting " + std::to_string(c.waiting) + " + running " +
               std::to_string(c.running) + " + arrived " + std::to_string(c.arrived));
     check(c.inserted == c.running + c.arrived + teleporting,
-          "inserted " + std::to_string(c.inserted) + " != running " + std::to_string(c.running) + " + arrived " +
-              std::to_string(c.arrived) + " + queued after teleport " + std::to_string(teleporting));
+          "inserted " + std::to_string(c.inserted) + " != running " + std::to_string(c.running) +
+              " + arrived " + std::to_string(c.arrived) + " + queued after teleport " +
+              std::to_string(teleporting));
     check(running == c.running, "running " + std::to_string(c.running) + " but " + std::to_string(running) +
                                     " vehicles have status running");
     check(arrived == c.arrived + c.removed, "arrived " + std::to_string(c.arrived) + " + removed " +
-                                                std::to_string(c.removed) + " but " + std::to_string(arrived) +
-                                                " vehicles have status arrived");
+                                                std::to_string(c.removed) + " but " +
+                                                std::to_string(arrived) + " vehicles have status arrived");
     check(pending + teleporting == not_due + c.waiting,
           std::to_string(pending + teleporting) + " vehicles pending or queued but not due " +
               std::to_string(not_due) + " + waiting " + std::to_string(c.waiting));
@@ -189,12 +205,14 @@ class InvariantChecker {
     const uint64_t arrived_now = sim_.counts().arrived - counts_before_.arrived;
     const std::vector<TripRecord> trips = sim_.take_finished_trips();
     if (trips.size() != arrived_now)
-      fail_text(std::to_string(trips.size()) + " trip records for " + std::to_string(arrived_now) + " arrivals");
+      fail_text(std::to_string(trips.size()) + " trip records for " + std::to_string(arrived_now) +
+                " arrivals");
     for (const TripRecord& r : trips) {
       ++stats_.trip_records;
       if (seen_trip_[r.vehicle]++) fail(r.vehicle, "second trip record");
       if (sim_.status(r.vehicle) != kArrived) fail(r.vehicle, "trip record but not arrived");
-      if (std::fabs(r.arrival - sim_.time()) > 1e-9) fail(r.vehicle, "trip record with arrival " + std::to_string(r.arrival));
+      if (std::fabs(r.arrival - sim_.time()) > 1e-9)
+        fail(r.vehicle, "trip record with arrival " + std::to_string(r.arrival));
     }
   }
 
@@ -202,12 +220,16 @@ class InvariantChecker {
     return net_.lane_speed[static_cast<size_t>(lane)] * demand_.speed_factor[v];
   }
 
-  bool internal(int32_t lane) const { return net_.edge_is_internal[net_.lane_edge[static_cast<size_t>(lane)]] != 0; }
+  bool internal(int32_t lane) const {
+    return net_.edge_is_internal[net_.lane_edge[static_cast<size_t>(lane)]] != 0;
+  }
 
   /// The connection leaving `from` whose first lane (its via lane, or its target lane when direct) is `to`.
   int32_t connection_between(int32_t from, int32_t to) const {
-    for (uint32_t c = net_.lane_conn_begin[static_cast<size_t>(from)]; c < net_.lane_conn_begin[static_cast<size_t>(from) + 1]; ++c) {
-      const int32_t first = net_.conn_via_lane[c] >= 0 ? net_.conn_via_lane[c] : static_cast<int32_t>(net_.conn_to_lane[c]);
+    for (uint32_t c = net_.lane_conn_begin[static_cast<size_t>(from)];
+         c < net_.lane_conn_begin[static_cast<size_t>(from) + 1]; ++c) {
+      const int32_t first =
+          net_.conn_via_lane[c] >= 0 ? net_.conn_via_lane[c] : static_cast<int32_t>(net_.conn_to_lane[c]);
       if (first == to) return static_cast<int32_t>(c);
     }
     return -1;
@@ -218,8 +240,10 @@ class InvariantChecker {
   std::vector<int32_t> search_path(int32_t from, int32_t to) const {
     auto next_lanes = [&](int32_t l) {
       std::vector<int32_t> out;
-      for (uint32_t c = net_.lane_conn_begin[static_cast<size_t>(l)]; c < net_.lane_conn_begin[static_cast<size_t>(l) + 1]; ++c)
-        out.push_back(net_.conn_via_lane[c] >= 0 ? net_.conn_via_lane[c] : static_cast<int32_t>(net_.conn_to_lane[c]));
+      for (uint32_t c = net_.lane_conn_begin[static_cast<size_t>(l)];
+           c < net_.lane_conn_begin[static_cast<size_t>(l) + 1]; ++c)
+        out.push_back(net_.conn_via_lane[c] >= 0 ? net_.conn_via_lane[c]
+                                                 : static_cast<int32_t>(net_.conn_to_lane[c]));
       return out;
     };
     for (int32_t a : next_lanes(from)) {
@@ -232,7 +256,8 @@ class InvariantChecker {
 
   void check_vehicle(uint32_t v) {
     const uint8_t st = sim_.status(v);
-    const bool was_running = status_[v] == kRunning && std::binary_search(active_before_.begin(), active_before_.end(), v);
+    const bool was_running =
+        status_[v] == kRunning && std::binary_search(active_before_.begin(), active_before_.end(), v);
     if (st != kRunning && !(st == kArrived && was_running)) return;
     const int32_t lane = sim_.lane(v);
     const float pos = sim_.pos(v), speed = sim_.speed(v);
@@ -243,7 +268,8 @@ class InvariantChecker {
     const float len = net_.lane_length[static_cast<size_t>(lane)];
     if (!(speed >= 0.0f)) fail(v, "negative speed " + std::to_string(speed));
     if (!(pos >= -kPosTol && pos <= len + kPosTol))
-      fail(v, "pos " + std::to_string(pos) + " outside lane " + lane_text(lane) + " of length " + std::to_string(len));
+      fail(v, "pos " + std::to_string(pos) + " outside lane " + lane_text(lane) + " of length " +
+                  std::to_string(len));
     stats_.max_speed_over_new_lane = std::max(stats_.max_speed_over_new_lane, speed / limit_on(v, lane));
 
     if (!was_running) {  // inserted this step (first time or after a teleport)
@@ -267,22 +293,29 @@ class InvariantChecker {
     const int32_t old_lane = lane_[v];
     const float bound = std::max(limit_on(v, old_lane), speed_[v]);
     if (speed > bound * (1 + kSpeedRelTol) + kSpeedAbsTol)
-      fail(v, "speed " + std::to_string(speed) + " on " + lane_text(lane) + " from " + std::to_string(speed_[v]) +
-                  " on " + lane_text(old_lane) + " (limit x factor " + std::to_string(limit_on(v, old_lane)) + ")");
+      fail(v, "speed " + std::to_string(speed) + " on " + lane_text(lane) + " from " +
+                  std::to_string(speed_[v]) + " on " + lane_text(old_lane) + " (limit x factor " +
+                  std::to_string(limit_on(v, old_lane)) + ")");
 
-    if (limit_on_entered_lane_ && lane != old_lane && speed > limit_on(v, lane) * (1 + kSpeedRelTol) + kSpeedAbsTol)
-      fail(v, "entered " + lane_text(lane) + " (limit x factor " + std::to_string(limit_on(v, lane)) + " m/s) at " +
-                  std::to_string(speed) + " m/s from " + lane_text(old_lane) + " at " + std::to_string(pos_[v]) +
-                  " m, " + std::to_string(speed_[v]) + " m/s; now at " + std::to_string(pos) + " m");
+    if (limit_on_entered_lane_ && lane != old_lane &&
+        speed > limit_on(v, lane) * (1 + kSpeedRelTol) + kSpeedAbsTol)
+      fail(v, "entered " + lane_text(lane) + " (limit x factor " + std::to_string(limit_on(v, lane)) +
+                  " m/s) at " + std::to_string(speed) + " m/s from " + lane_text(old_lane) + " at " +
+                  std::to_string(pos_[v]) + " m, " + std::to_string(speed_[v]) + " m/s; now at " +
+                  std::to_string(pos) + " m");
 
     if (lane == old_lane) {
-      if (pos < pos_[v] - kPosTol) fail(v, "moved back on " + lane_text(lane) + " from " + std::to_string(pos_[v]) + " to " + std::to_string(pos));
+      if (pos < pos_[v] - kPosTol)
+        fail(v, "moved back on " + lane_text(lane) + " from " + std::to_string(pos_[v]) + " to " +
+                    std::to_string(pos));
       return;
     }
     if (net_.lane_edge[static_cast<size_t>(lane)] == net_.lane_edge[static_cast<size_t>(old_lane)]) {
       ++stats_.lane_changes;
-      if (internal(lane)) fail(v, "lane change on internal lanes " + lane_text(old_lane) + " -> " + lane_text(lane));
-      if (pos < pos_[v] - kPosTol) fail(v, "moved back changing lanes " + lane_text(old_lane) + " -> " + lane_text(lane));
+      if (internal(lane))
+        fail(v, "lane change on internal lanes " + lane_text(old_lane) + " -> " + lane_text(lane));
+      if (pos < pos_[v] - kPosTol)
+        fail(v, "moved back changing lanes " + lane_text(old_lane) + " -> " + lane_text(lane));
       return;
     }
     check_path(v, old_lane, lane);
@@ -299,7 +332,8 @@ class InvariantChecker {
         ++stats_.teleport_jumps;
         return;
       }
-      fail(v, "moved from " + lane_text(old_lane) + " to " + lane_text(lane) + " along no connection (two hops at most)");
+      fail(v, "moved from " + lane_text(old_lane) + " to " + lane_text(lane) +
+                  " along no connection (two hops at most)");
       return;
     }
     for (size_t k = 0; k + 1 < path.size(); ++k) {
@@ -315,8 +349,9 @@ class InvariantChecker {
       const char state = sim_.link_state(static_cast<uint32_t>(c));
       if (signal_is_yellow(state)) ++stats_.entries_on_yellow;
       if (signal_is_red(state))
-        fail(v, "entered " + lane_text(path[k + 1]) + " from " + lane_text(from) + " at signal state '" + state +
-                    "' (was at " + std::to_string(pos_[v]) + " m, " + std::to_string(speed_[v]) + " m/s)");
+        fail(v, "entered " + lane_text(path[k + 1]) + " from " + lane_text(from) + " at signal state '" +
+                    state + "' (was at " + std::to_string(pos_[v]) + " m, " + std::to_string(speed_[v]) +
+                    " m/s)");
     }
   }
 
@@ -352,13 +387,14 @@ inline RunResult run_checked(const Scenario& sc, const std::string& name, const 
   return RunResult{checker.stats(), sim.counts(), sim.finished(), checker.failure_count()};
 }
 
-inline RunResult run_checked(const Scenario& sc, const std::string& name, int threads, uint32_t lane_map_every,
-                      double max_time = 7200) {
+inline RunResult run_checked(const Scenario& sc, const std::string& name, int threads,
+                             uint32_t lane_map_every, double max_time = 7200) {
   return run_checked(sc, name, options_of(sc.config, threads), lane_map_every, max_time);
 }
 
 inline void expect_all_arrived(const RunResult& r, const std::string& name) {
-  EXPECT_TRUE(r.finished) << name << " not finished: running " << r.counts.running << ", waiting " << r.counts.waiting;
+  EXPECT_TRUE(r.finished) << name << " not finished: running " << r.counts.running << ", waiting "
+                          << r.counts.waiting;
   EXPECT_EQ(r.counts.arrived + r.counts.removed, r.counts.loaded) << name;
   EXPECT_EQ(r.counts.removed, 0u) << name;
   EXPECT_EQ(r.stats.trip_records, r.counts.arrived) << name;

@@ -114,9 +114,10 @@ class EngineOutputsTest : public ::testing::TestWithParam<std::string> {
   static int run_binary(const std::string& scenario, const OutputSet& o, const fs::path& log) {
     const std::string cfg = std::string(LPSIM_SCENARIOS_DIR) + "/" + scenario + "/" + scenario + ".sumocfg";
     const std::string cmd = std::string(LPSIM_BINARY) + " run " + cfg + " --threads 1 --fcd-output " +
-                            o.fcd.string() + " --tripinfo-output " + o.tripinfo.string() + " --edgedata-output " +
-                            o.edgedata.string() + " --lanedata-output " + o.lanedata.string() +
-                            " --summary-output " + o.summary.string() + " > " + log.string() + " 2>&1";
+                            o.fcd.string() + " --tripinfo-output " + o.tripinfo.string() +
+                            " --edgedata-output " + o.edgedata.string() + " --lanedata-output " +
+                            o.lanedata.string() + " --summary-output " + o.summary.string() + " > " +
+                            log.string() + " 2>&1";
     return std::system(cmd.c_str());
   }
 
@@ -148,7 +149,8 @@ class EngineOutputsTest : public ::testing::TestWithParam<std::string> {
       text.replace(at, broken.size(), "type=\"nonNegativeFloatType\"");
     const std::string include = "schemaLocation=\"baseTypes.xsd\"";
     const size_t at = text.find(include);
-    if (at != std::string::npos) text.replace(at, include.size(), "schemaLocation=\"" + std::string(kXsdDir) + "/baseTypes.xsd\"");
+    if (at != std::string::npos)
+      text.replace(at, include.size(), "schemaLocation=\"" + std::string(kXsdDir) + "/baseTypes.xsd\"");
     const fs::path patched = *dir_ / ("patched_" + schema.filename().string());
     std::ofstream(patched) << text;
     return patched;
@@ -171,9 +173,10 @@ TEST_P(EngineOutputsTest, OutputsValidateAgainstSumoSchemas) {
     const fs::path schema = fs::path(kXsdDir) / xsd;
     if (!fs::exists(schema)) GTEST_SKIP() << schema << " not installed";
     const fs::path log = r.dir / ("xmllint_" + file.filename().string() + ".log");
-    const std::string cmd = "xmllint --noout --schema " + usable_schema(schema).string() + " " + file.string() +
-                            " > " + log.string() + " 2>&1";
-    EXPECT_EQ(std::system(cmd.c_str()), 0) << file << " fails " << xsd << ":\n" << read_all(log).substr(0, 2000);
+    const std::string cmd = "xmllint --noout --schema " + usable_schema(schema).string() + " " +
+                            file.string() + " > " + log.string() + " 2>&1";
+    EXPECT_EQ(std::system(cmd.c_str()), 0) << file << " fails " << xsd << ":\n"
+                                           << read_all(log).substr(0, 2000);
   }
 }
 
@@ -271,13 +274,16 @@ std::string counter_mismatches(const fs::path& edgedata, const std::string& coun
   const std::string text = read_all(edgedata);
   EXPECT_EQ(lines_starting(text, "<interval ").size(), 1u) << edgedata;
   std::map<std::string, long long> got;
-  for (const std::string& e : lines_starting(text, "<edge ")) got[attr(e, "id")] = std::stoll(attr(e, counter));
+  for (const std::string& e : lines_starting(text, "<edge "))
+    got[attr(e, "id")] = std::stoll(attr(e, counter));
   std::string out;
   size_t shown = 0, wrong = 0;
   auto check = [&](const std::string& edge) {
-    const long long want = expected.count(edge) ? expected.at(edge) : 0, have = got.count(edge) ? got.at(edge) : 0;
+    const long long want = expected.count(edge) ? expected.at(edge) : 0,
+                    have = got.count(edge) ? got.at(edge) : 0;
     if (want == have) return;
-    if (++wrong, shown++ < 5) out += " " + edge + ": " + std::to_string(have) + " (expected " + std::to_string(want) + ")";
+    if (++wrong, shown++ < 5)
+      out += " " + edge + ": " + std::to_string(have) + " (expected " + std::to_string(want) + ")";
   };
   std::set<std::string> edges;
   for (const auto& [e, n] : got) edges.insert(e);

@@ -35,8 +35,10 @@ TEST(EdgeIdInternerTest, StoresEachIdOnceAndSplitsOnWhitespace) {
 TEST(EdgeIdInternerTest, KeepsIndicesWhileGrowing) {
   std::vector<std::string> names;
   EdgeIdInterner interner(names);
-  for (int i = 0; i < 5000; ++i) EXPECT_EQ(interner.intern("edge" + std::to_string(i)), static_cast<uint32_t>(i));
-  for (int i = 4999; i >= 0; --i) EXPECT_EQ(interner.intern("edge" + std::to_string(i)), static_cast<uint32_t>(i));
+  for (int i = 0; i < 5000; ++i)
+    EXPECT_EQ(interner.intern("edge" + std::to_string(i)), static_cast<uint32_t>(i));
+  for (int i = 4999; i >= 0; --i)
+    EXPECT_EQ(interner.intern("edge" + std::to_string(i)), static_cast<uint32_t>(i));
   EXPECT_EQ(names.size(), 5000u);
   EXPECT_EQ(names[1234], "edge1234");
 }
@@ -98,7 +100,8 @@ TEST_F(InternedRoutesTest, ErrorsAreTheMessagesOfStringRoutes) {
   const std::string gap = error_of(interned);
   EXPECT_EQ(gap, error_of(as_strings));
   EXPECT_NE(gap.find("test.rou.xml:21"), std::string::npos) << gap;
-  EXPECT_NE(gap.find("no connection from edge 'E0' to edge 'E2' in the route of vehicle 'gap'"), std::string::npos)
+  EXPECT_NE(gap.find("no connection from edge 'E0' to edge 'E2' in the route of vehicle 'gap'"),
+            std::string::npos)
       << gap;
 
   as_strings = {};

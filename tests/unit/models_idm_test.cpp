@@ -167,12 +167,14 @@ TEST(ModelsIdm, SafeSpeedBrakingPlanNeverOverlapsTheLeader) {
             float v_lead = fmaxf(0.0f, vl - bl * dt);
             float g = gap + (v_lead - vf) * dt;
             for (int step = 0; step < 200 && (vf > 0.0f || v_lead > 0.0f); ++step) {
-              ASSERT_GE(g, 0.0f) << "gap " << gap << " vl " << vl << " bl " << bl << " bf " << bf << " dt " << dt;
+              ASSERT_GE(g, 0.0f) << "gap " << gap << " vl " << vl << " bl " << bl << " bf " << bf << " dt "
+                                 << dt;
               vf = fmaxf(0.0f, vf - bf * dt);
               v_lead = fmaxf(0.0f, v_lead - bl * dt);
               g += (v_lead - vf) * dt;
             }
-            ASSERT_GE(g, 0.0f) << "gap " << gap << " vl " << vl << " bl " << bl << " bf " << bf << " dt " << dt;
+            ASSERT_GE(g, 0.0f) << "gap " << gap << " vl " << vl << " bl " << bl << " bf " << bf << " dt "
+                               << dt;
           }
   EXPECT_EQ(cases, 432);
 }
@@ -241,7 +243,8 @@ TEST(ModelsIdm, FreeSpeedComputedAlongsideALeaderIsBitIdentical) {
                   bits(follow_speed(p, speed, v0, gap, vl, 9.0f, 1.0f, n)))
             << k;
         ASSERT_EQ(bits(free_follow), bits(free_ref)) << k;
-        ASSERT_EQ(bits(stop_speed(p, speed, v0, gap, 1.0f, n, &free_stop)), bits(stop_speed(p, speed, v0, gap, 1.0f, n)))
+        ASSERT_EQ(bits(stop_speed(p, speed, v0, gap, 1.0f, n, &free_stop)),
+                  bits(stop_speed(p, speed, v0, gap, 1.0f, n)))
             << k;
         ASSERT_EQ(bits(free_stop), bits(free_ref)) << k;
         ++cases;
@@ -281,10 +284,12 @@ TEST(ModelsIdm, PropertySafeFollowerNeverCollides) {
       // Leader: random acceleration in [-emergency, accel]; one step in ten is a full emergency stop.
       const uint64_t k = 100 + step;
       const bool emergency = rng_uniform(seed ^ 0xABCull, pair, k) < 0.1f;
-      const float a_l = emergency ? -leader_emergency : draw(seed ^ 0xDEFull, pair, k, -leader_emergency, leader_accel);
+      const float a_l =
+          emergency ? -leader_emergency : draw(seed ^ 0xDEFull, pair, k, -leader_emergency, leader_accel);
       const float vl_next = fminf(fmaxf(vl + a_l * dt, 0.0f), 35.0f);
-      const float cand = fminf(idm_free_speed(f, vf, v0, dt, 4),
-                               follow_speed(f, vf, v0, gap, vl, leader_emergency, dt, idm_default_substeps(dt)));
+      const float cand =
+          fminf(idm_free_speed(f, vf, v0, dt, 4),
+                follow_speed(f, vf, v0, gap, vl, leader_emergency, dt, idm_default_substeps(dt)));
       const float vf_next = finalize_speed(f, vf, cand, dt);
       gap += (vl_next - vf_next) * dt;
       ASSERT_GE(gap, 0.0f) << "pair " << pair << " step " << step << " dt " << dt;

@@ -17,9 +17,11 @@ TEST(ModelsRightOfWay, LinkRulesFromStateCharacters) {
 
 TEST(ModelsRightOfWay, EarliestArrivalTimeHandComputed) {
   EXPECT_FLOAT_EQ(earliest_arrival_time(100.0f, 10.0f, 0.0f, 10.0f), 10.0f);
-  EXPECT_NEAR(earliest_arrival_time(25.0f, 0.0f, 2.0f, 20.0f), 5.0f, 1e-5f);    // 25 = t^2
-  EXPECT_NEAR(earliest_arrival_time(200.0f, 0.0f, 2.0f, 20.0f), 15.0f, 1e-5f);  // 10 s up to 20 m/s (100 m) + 5 s
-  EXPECT_NEAR(earliest_arrival_time(30.0f, 10.0f, 2.0f, 30.0f), -5.0f + sqrtf(55.0f), 1e-5f);  // 10t + t^2 = 30
+  EXPECT_NEAR(earliest_arrival_time(25.0f, 0.0f, 2.0f, 20.0f), 5.0f, 1e-5f);  // 25 = t^2
+  EXPECT_NEAR(earliest_arrival_time(200.0f, 0.0f, 2.0f, 20.0f), 15.0f,
+              1e-5f);  // 10 s up to 20 m/s (100 m) + 5 s
+  EXPECT_NEAR(earliest_arrival_time(30.0f, 10.0f, 2.0f, 30.0f), -5.0f + sqrtf(55.0f),
+              1e-5f);  // 10t + t^2 = 30
   EXPECT_FLOAT_EQ(earliest_arrival_time(0.0f, 0.0f, 0.0f, 0.0f), 0.0f);
   EXPECT_FLOAT_EQ(earliest_arrival_time(-2.0f, 5.0f, 1.0f, 10.0f), 0.0f);
   EXPECT_EQ(earliest_arrival_time(10.0f, 0.0f, 0.0f, 10.0f), kNeverArrives);
@@ -28,8 +30,8 @@ TEST(ModelsRightOfWay, EarliestArrivalTimeHandComputed) {
 }
 
 TEST(ModelsRightOfWay, YieldTimeWindow) {
-  const ApproachingFoe far{100.0f, 10.0f, 0.0f, 10.0f};   // arrives after 10 s
-  const ApproachingFoe near{30.0f, 10.0f, 0.0f, 10.0f};   // arrives after 3 s
+  const ApproachingFoe far{100.0f, 10.0f, 0.0f, 10.0f};    // arrives after 10 s
+  const ApproachingFoe near{30.0f, 10.0f, 0.0f, 10.0f};    // arrives after 3 s
   const ApproachingFoe standing{5.0f, 0.0f, 2.6f, 14.0f};  // could arrive after sqrt(5/1.3) = 1.96 s
   EXPECT_FALSE(foe_conflicts(far, 3.0f, 2.0f));
   EXPECT_TRUE(foe_conflicts(near, 3.0f, 2.0f));

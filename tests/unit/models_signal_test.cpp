@@ -26,9 +26,9 @@ TEST(ModelsSignal, OffsetDelaysTheProgramAgainstAbsoluteTime) {
   EXPECT_EQ(signal_time_to_switch(kProg, 10000), 42000);
   EXPECT_EQ(signal_phase_at(kProg, 52000), 1);
   EXPECT_EQ(signal_phase_at(kProg, 55000), 2);
-  EXPECT_EQ(signal_phase_at(kProg, 100000), 0);  // one full cycle later
+  EXPECT_EQ(signal_phase_at(kProg, 100000), 0);                  // one full cycle later
   EXPECT_EQ(signal_phase_at(kProg, 10000 + 90000LL * 1000), 0);  // a thousand cycles later, no drift
-  EXPECT_EQ(signal_phase_at(kProg, -5000), 2);   // negative times wrap too: in-cycle 75 s
+  EXPECT_EQ(signal_phase_at(kProg, -5000), 2);                   // negative times wrap too: in-cycle 75 s
 }
 
 TEST(ModelsSignal, StateForALink) {

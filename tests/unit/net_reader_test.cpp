@@ -1,3 +1,5 @@
+#include "converters/net_reader.hpp"
+
 #include <gtest/gtest.h>
 #include <zlib.h>
 
@@ -6,7 +8,6 @@
 #include <regex>
 #include <string>
 
-#include "converters/net_reader.hpp"
 #include "converters/vclass.hpp"
 
 namespace lpsim {
@@ -103,7 +104,8 @@ class NetReaderTest : public ::testing::Test {
   static int line_of(const std::string& text, const std::string& needle) {
     size_t at = text.find(needle);
     EXPECT_NE(at, std::string::npos) << needle;
-    return 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n'));
+    return 1 +
+           static_cast<int>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n'));
   }
 
   // ":LINE:" of the first line holding `needle`, as an error message names it. Built by appending: GCC 12
@@ -304,7 +306,8 @@ TEST_F(NetReaderTest, NanSpeedNamesLineValueAndLane) {
 }
 
 TEST_F(NetReaderTest, NegativeSpeedIsRefused) {
-  std::string msg = error_of(net_with("speed=\"8.33\" length=\"200.00\" shape=\"200.00,8.00", "speed=\"-1\" length=\"200.00\" shape=\"200.00,8.00"));
+  std::string msg = error_of(net_with("speed=\"8.33\" length=\"200.00\" shape=\"200.00,8.00",
+                                      "speed=\"-1\" length=\"200.00\" shape=\"200.00,8.00"));
   EXPECT_NE(msg.find("'-1'"), std::string::npos) << msg;
   EXPECT_NE(msg.find("E2_1"), std::string::npos) << msg;
 }
@@ -319,27 +322,37 @@ TEST_F(NetReaderTest, MissingLaneIndexNamesAttributeAndLane) {
 
 TEST_F(NetReaderTest, MissingRequiredAttributesOfEachElement) {
   EXPECT_NE(error_of(net_with("<edge id=\"E1\" ", "<edge ")).find("'id'"), std::string::npos);
-  EXPECT_NE(error_of(net_with("<edge id=\"E1\" from=\"J1\" ", "<edge id=\"E1\" ")).find("'from'"), std::string::npos);
+  EXPECT_NE(error_of(net_with("<edge id=\"E1\" from=\"J1\" ", "<edge id=\"E1\" ")).find("'from'"),
+            std::string::npos);
   EXPECT_NE(error_of(net_with(" speed=\"2.78\"", "")).find("'speed'"), std::string::npos);
   EXPECT_NE(error_of(net_with("<junction id=\"J2\" ", "<junction ")).find("'id'"), std::string::npos);
-  std::string text = net_with("<connection from=\"E1\" to=\"E2\" fromLane=\"0\" ", "<connection from=\"E1\" to=\"E2\" ");
+  std::string text =
+      net_with("<connection from=\"E1\" to=\"E2\" fromLane=\"0\" ", "<connection from=\"E1\" to=\"E2\" ");
   std::string msg = error_of(text);
   EXPECT_NE(msg.find("'fromLane'"), std::string::npos) << msg;
   EXPECT_NE(msg.find(line_tag(text, "<connection from=\"E1\"")), std::string::npos) << msg;
-  EXPECT_NE(error_of(net_with("to=\"E2\" fromLane=\"0\" toLane=\"1\"", "to=\"E2\" fromLane=\"0\"")).find("'toLane'"),
+  EXPECT_NE(error_of(net_with("to=\"E2\" fromLane=\"0\" toLane=\"1\"", "to=\"E2\" fromLane=\"0\""))
+                .find("'toLane'"),
             std::string::npos);
 }
 
 TEST_F(NetReaderTest, BadValuesNameTheValue) {
-  EXPECT_NE(error_of(net_with("index=\"0\" allow=\"private\"", "index=\"one\" allow=\"private\"")).find("'one'"),
-            std::string::npos);
-  EXPECT_NE(error_of(net_with("index=\"0\" allow=\"private\"", "index=\"-1\" allow=\"private\"")).find("'-1'"),
-            std::string::npos);
-  EXPECT_NE(error_of(net_with("shape=\"102.90,1.60 200.00,1.60\"", "shape=\"102.90;1.60 200.00,1.60\"")).find("102.90;1.60"),
+  EXPECT_NE(
+      error_of(net_with("index=\"0\" allow=\"private\"", "index=\"one\" allow=\"private\"")).find("'one'"),
+      std::string::npos);
+  EXPECT_NE(
+      error_of(net_with("index=\"0\" allow=\"private\"", "index=\"-1\" allow=\"private\"")).find("'-1'"),
+      std::string::npos);
+  EXPECT_NE(error_of(net_with("shape=\"102.90,1.60 200.00,1.60\"", "shape=\"102.90;1.60 200.00,1.60\""))
+                .find("102.90;1.60"),
             std::string::npos);
   EXPECT_NE(error_of(net_with("dir=\"t\"", "dir=\"q\"")).find("'q'"), std::string::npos);
-  EXPECT_NE(error_of(net_with("function=\"crossing\"", "function=\"bridge\"")).find("'bridge'"), std::string::npos);
-  EXPECT_NE(error_of(net_with("<lane id=\"E1_0\" index=\"0\" speed=\"13.89\" length=\"97.10\" shape=\"102.90,1.60 200.00,1.60\"/>", "")).find("E1"),
+  EXPECT_NE(error_of(net_with("function=\"crossing\"", "function=\"bridge\"")).find("'bridge'"),
+            std::string::npos);
+  EXPECT_NE(error_of(net_with("<lane id=\"E1_0\" index=\"0\" speed=\"13.89\" length=\"97.10\" "
+                              "shape=\"102.90,1.60 200.00,1.60\"/>",
+                              ""))
+                .find("E1"),
             std::string::npos);  // edge without lanes
   EXPECT_NE(error_of(net_with("linkIndex=\"0\"", "linkIndex=\"first\"")).find("'first'"), std::string::npos);
   EXPECT_NE(error_of(net_with("state=\"m\"", "state=\"mm\"")).find("'mm'"), std::string::npos);

@@ -1,9 +1,10 @@
+#include "net/network_builder.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <string>
 
-#include "net/network_builder.hpp"
 #include "unit/test_nets.hpp"
 
 namespace lpsim {
@@ -34,7 +35,8 @@ TEST(NetworkBuilder, GridCountsAndLayout) {
   EXPECT_EQ(net.num_signals(), 0u);
   // ceil(100.5) = 101 cells per lane, no padding.
   ASSERT_EQ(net.lane_cell_begin.size(), 49u);
-  for (uint32_t l = 0; l < net.num_lanes(); ++l) EXPECT_EQ(net.lane_cell_begin[l + 1] - net.lane_cell_begin[l], 101u);
+  for (uint32_t l = 0; l < net.num_lanes(); ++l)
+    EXPECT_EQ(net.lane_cell_begin[l + 1] - net.lane_cell_begin[l], 101u);
   EXPECT_EQ(net.num_cells(), 48u * 101u);
   // Lanes of an edge are contiguous and in index order.
   for (uint32_t e = 0; e < net.num_edges(); ++e) {
@@ -50,7 +52,8 @@ TEST(NetworkBuilder, GridCountsAndLayout) {
   EXPECT_EQ(net.lane_shape_begin.back(), 2 * net.num_lanes());
   EXPECT_EQ(net.shape_x.size(), 2 * net.num_lanes());
   EXPECT_DOUBLE_EQ(net.lane_km(), 48 * 100.5 / 1000.0);
-  EXPECT_EQ(net.edge_index.at(grid_edge(1, 1, 2, 1)), net.lane_edge[net.lane_index_by_id.at(grid_edge(1, 1, 2, 1) + "_1")]);
+  EXPECT_EQ(net.edge_index.at(grid_edge(1, 1, 2, 1)),
+            net.lane_edge[net.lane_index_by_id.at(grid_edge(1, 1, 2, 1) + "_1")]);
 }
 
 TEST(NetworkBuilder, ConnectionCsrAndSuccessors) {
@@ -59,7 +62,8 @@ TEST(NetworkBuilder, ConnectionCsrAndSuccessors) {
   ASSERT_EQ(net.lane_conn_begin.size(), net.num_lanes() + 1);
   EXPECT_EQ(net.lane_conn_begin.back(), net.num_connections());
   for (uint32_t l = 0; l < net.num_lanes(); ++l)
-    for (uint32_t c = net.lane_conn_begin[l]; c < net.lane_conn_begin[l + 1]; ++c) EXPECT_EQ(net.conn_from_lane[c], l);
+    for (uint32_t c = net.lane_conn_begin[l]; c < net.lane_conn_begin[l + 1]; ++c)
+      EXPECT_EQ(net.conn_from_lane[c], l);
   // Centre junction J1_1: 4 incoming edges x 3 turns (no U-turns).
   const uint32_t in = net.edge_index.at(grid_edge(0, 1, 1, 1));
   const uint32_t l = net.edge_first_lane[in];
@@ -105,13 +109,15 @@ TEST(NetworkBuilder, InternalLanesAndJunctions) {
   EXPECT_EQ(internal, 8u);
   const uint32_t ie = net.edge_index.at(":J0_0_0");
   EXPECT_EQ(net.edge_from_junction[ie], kNone);
-  EXPECT_EQ(net.lane_cell_begin[net.edge_first_lane[ie] + 1] - net.lane_cell_begin[net.edge_first_lane[ie]], 6u);
+  EXPECT_EQ(net.lane_cell_begin[net.edge_first_lane[ie] + 1] - net.lane_cell_begin[net.edge_first_lane[ie]],
+            6u);
   // Connections via internal lanes, and the internal lanes' own connections at the same junction.
   for (uint32_t c = 0; c < net.num_connections(); ++c) {
     const uint32_t fe = net.lane_edge[net.conn_from_lane[c]];
     if (net.edge_is_internal[fe]) {
       EXPECT_EQ(net.conn_via_lane[c], kNone);
-      EXPECT_EQ(net.conn_junction[c], static_cast<int32_t>(net.junction_index.at(net.edge_id[fe].substr(1, 4))));
+      EXPECT_EQ(net.conn_junction[c],
+                static_cast<int32_t>(net.junction_index.at(net.edge_id[fe].substr(1, 4))));
     } else {
       ASSERT_NE(net.conn_via_lane[c], kNone);
       EXPECT_TRUE(net.edge_is_internal[net.lane_edge[net.conn_via_lane[c]]]);
@@ -125,7 +131,8 @@ TEST(NetworkBuilder, InternalLanesAndJunctions) {
     for (uint32_t i = net.edge_succ_begin[e]; i < net.edge_succ_begin[e + 1]; ++i)
       EXPECT_FALSE(net.edge_is_internal[net.edge_succ[i]]);
   }
-  EXPECT_TRUE(net.connected(net.edge_index.at(grid_edge(0, 0, 1, 0)), net.edge_index.at(grid_edge(1, 0, 1, 1))));
+  EXPECT_TRUE(
+      net.connected(net.edge_index.at(grid_edge(0, 0, 1, 0)), net.edge_index.at(grid_edge(1, 0, 1, 1))));
   EXPECT_EQ(net.junction_type[net.junction_index.at("J1_1")], JunctionType::Priority);
 }
 
@@ -204,7 +211,8 @@ TEST(NetworkBuilder, SignalProgramAndLinks) {
   // 15 links (12 car + 3 bus); every phase state has all of them.
   ASSERT_EQ(net.phase_state_begin.size(), 5u);
   for (uint32_t p = 0; p < 4; ++p) EXPECT_EQ(net.phase_state_begin[p + 1] - net.phase_state_begin[p], 15u);
-  EXPECT_EQ(std::string(net.phase_state.begin(), net.phase_state.begin() + 15), s.tl_logics[0].phases[0].state);
+  EXPECT_EQ(std::string(net.phase_state.begin(), net.phase_state.begin() + 15),
+            s.tl_logics[0].phases[0].state);
   EXPECT_FLOAT_EQ(net.phase_duration[1], 3.f);
   EXPECT_FLOAT_EQ(net.phase_min_dur[0], -1.f);
   EXPECT_EQ(net.junction_type[net.junction_index.at("C")], JunctionType::TrafficLight);
@@ -224,7 +232,7 @@ TEST(NetworkBuilder, SignalProgramAndLinks) {
 TEST(NetworkBuilder, AdditionalProgramReplacesNetProgram) {
   NetSpec s = test::make_signal_spec();
   s.tl_logics.push_back(test::make_cross_program(s, "net-second", 20));  // the net's last one would win...
-  TlLogicSpec add = test::make_cross_program(s, "from-add-file", 45);   // ...but add-files come later
+  TlLogicSpec add = test::make_cross_program(s, "from-add-file", 45);    // ...but add-files come later
   Network net = build_network(s, {add});
   ASSERT_EQ(net.num_signals(), 1u);
   EXPECT_EQ(net.signal_program[0], "from-add-file");
@@ -309,8 +317,8 @@ TEST(NetworkBuilder, RoundaboutsAndLookups) {
   s.net_offset = {10, -20};
   Network net = build_network(s);
   ASSERT_EQ(net.roundabout_edges.size(), 1u);
-  EXPECT_EQ(net.roundabout_edges[0],
-            (std::vector<uint32_t>{net.edge_index.at(grid_edge(0, 0, 1, 0)), net.edge_index.at(grid_edge(1, 0, 1, 1))}));
+  EXPECT_EQ(net.roundabout_edges[0], (std::vector<uint32_t>{net.edge_index.at(grid_edge(0, 0, 1, 0)),
+                                                            net.edge_index.at(grid_edge(1, 0, 1, 1))}));
   EXPECT_FLOAT_EQ(net.net_offset.y, -20.f);
   EXPECT_EQ(net.junction_index.size(), 4u);
   EXPECT_EQ(net.lane_index_by_id.size(), net.num_lanes());

@@ -154,7 +154,8 @@ TEST_F(RouteReaderTest, RoutesAndRouteDistributions) {
 }
 
 TEST_F(RouteReaderTest, VehiclesTripsAndInlineRoutes) {
-  read(routes(R"X(<vehicle id="v1" type="t" depart="1:00:05" route="r1" departLane="2" departPos="12.5" departSpeed="3" arrivalPos="-1"/>
+  read(routes(
+      R"X(<vehicle id="v1" type="t" depart="1:00:05" route="r1" departLane="2" departPos="12.5" departSpeed="3" arrivalPos="-1"/>
   <vehicle id="v2" depart="7.5" departLane="best" departPos="random_free" departSpeed="max" arrivalPos="random">
     <route edges="e1 e2"/>
     <stop lane="e2_0" duration="10"/>
@@ -304,7 +305,9 @@ TEST_F(RouteReaderTest, ReadsGzip) {
   std::string path = (dir_ / "g.rou.xml.gz").string();
   gzFile gz = gzopen(path.c_str(), "wb");
   ASSERT_NE(gz, nullptr);
-  std::string body = "<routes>\n<trip id=\"a\" depart=\"1\" from=\"x\" to=\"y\"/>\n<trip id=\"b\" depart=\"2\" from=\"x\" to=\"y\"/>\n</routes>\n";
+  std::string body =
+      "<routes>\n<trip id=\"a\" depart=\"1\" from=\"x\" to=\"y\"/>\n<trip id=\"b\" depart=\"2\" from=\"x\" "
+      "to=\"y\"/>\n</routes>\n";
   gzwrite(gz, body.data(), static_cast<unsigned>(body.size()));
   gzclose(gz);
   read(path);
@@ -316,7 +319,9 @@ TEST_F(RouteReaderTest, AppendsAcrossFilesAndRejectsRepeatedIds) {
   read(routes(R"X(<vType id="t"/><vehicle id="v" depart="0" route="r"/>)X", "a.rou.xml"));
   read(routes(R"X(<vehicle id="w" depart="0" route="r"/>)X", "b.rou.xml"));
   EXPECT_EQ(demand_.vehicles.size(), 2u);
-  std::string again = routes("<vehicle id=\"x\" depart=\"0\" route=\"r\"/>\n<vehicle id=\"v\" depart=\"1\" route=\"r\"/>", "c.rou.xml");
+  std::string again =
+      routes("<vehicle id=\"x\" depart=\"0\" route=\"r\"/>\n<vehicle id=\"v\" depart=\"1\" route=\"r\"/>",
+             "c.rou.xml");
   try {
     read(again);
     FAIL() << "duplicate vehicle id accepted";
@@ -374,8 +379,9 @@ TEST_F(RouteReaderTest, BadInputNamesFileLineIdAndValue) {
 TEST_F(RouteReaderTest, DuplicateTypeAndRouteIdsAndBadRoot) {
   EXPECT_NE(error_of("<vType id=\"t\"/>\n<vType id=\"t\"/>").find("r.rou.xml:3"), std::string::npos);
   demand_ = DemandSpec{};
-  EXPECT_NE(error_of("<route id=\"r\" edges=\"a\"/>\n<routeDistribution id=\"r\" routes=\"r\"/>").find("duplicate"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of("<route id=\"r\" edges=\"a\"/>\n<routeDistribution id=\"r\" routes=\"r\"/>").find("duplicate"),
+      std::string::npos);
   demand_ = DemandSpec{};
   std::string net = write("n.net.xml", "<net>\n</net>\n");
   try {

@@ -1,3 +1,5 @@
+#include "net/router.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -6,7 +8,6 @@
 #include <string>
 
 #include "net/network_builder.hpp"
-#include "net/router.hpp"
 #include "unit/test_nets.hpp"
 
 namespace lpsim {
@@ -61,9 +62,9 @@ TEST(Router, CorridorAndTrivialPaths) {
   const uint32_t e0 = net.edge_index.at("E0"), e4 = net.edge_index.at("E4"), e2 = net.edge_index.at("E2");
   auto out = router.route_all({{{e0}, {e4}, {}}, {{e2}, {e2}, {}}, {{e4}, {e0}, {}}, {{e0}, {}, {}}}, 1);
   EXPECT_EQ(out[0], ids_to_path(net, {"E0", "E1", "E2", "E3", "E4"}));
-  EXPECT_EQ(out[1], Path{e2});   // origin is the destination: the edge alone
-  EXPECT_TRUE(out[2].empty());   // one-way corridor: unreachable
-  EXPECT_TRUE(out[3].empty());   // no destination
+  EXPECT_EQ(out[1], Path{e2});  // origin is the destination: the edge alone
+  EXPECT_TRUE(out[2].empty());  // one-way corridor: unreachable
+  EXPECT_TRUE(out[3].empty());  // no destination
   EXPECT_NEAR(router.cost(out[0]), 5 * 50 / 13.89, 1e-3);
 }
 
@@ -71,9 +72,11 @@ TEST(Router, ForbiddenTurnForcesDetour) {
   NetSpec s = fast_l_grid();
   test::remove_connection(s, grid_edge(2, 0, 3, 0), grid_edge(3, 0, 3, 1));
   Network net = build_network(s);
-  ASSERT_FALSE(net.connected(net.edge_index.at(grid_edge(2, 0, 3, 0)), net.edge_index.at(grid_edge(3, 0, 3, 1))));
+  ASSERT_FALSE(
+      net.connected(net.edge_index.at(grid_edge(2, 0, 3, 0)), net.edge_index.at(grid_edge(3, 0, 3, 1))));
   Router router(net);
-  const uint32_t from = net.edge_index.at(grid_edge(0, 0, 1, 0)), to = net.edge_index.at(grid_edge(3, 2, 3, 3));
+  const uint32_t from = net.edge_index.at(grid_edge(0, 0, 1, 0)),
+                 to = net.edge_index.at(grid_edge(3, 2, 3, 3));
   Path p = router.route_all({{{from}, {to}, {}}}, 1)[0];
   ASSERT_FALSE(p.empty());
   EXPECT_TRUE(is_connected_path(net, p));
@@ -88,8 +91,10 @@ TEST(Router, ForbiddenTurnForcesDetour) {
 TEST(Router, ViaEdgesInOrder) {
   Network net = build_network(fast_l_grid());
   Router router(net);
-  const uint32_t from = net.edge_index.at(grid_edge(0, 0, 1, 0)), to = net.edge_index.at(grid_edge(3, 2, 3, 3));
-  const uint32_t via1 = net.edge_index.at(grid_edge(1, 1, 1, 2)), via2 = net.edge_index.at(grid_edge(1, 2, 2, 2));
+  const uint32_t from = net.edge_index.at(grid_edge(0, 0, 1, 0)),
+                 to = net.edge_index.at(grid_edge(3, 2, 3, 3));
+  const uint32_t via1 = net.edge_index.at(grid_edge(1, 1, 1, 2)),
+                 via2 = net.edge_index.at(grid_edge(1, 2, 2, 2));
   auto out = router.route_all({{{from}, {to}, {via1, via2}}, {{from}, {via1}, {}}, {{via2}, {to}, {}}}, 1);
   const Path& p = out[0];
   ASSERT_FALSE(p.empty());
@@ -107,7 +112,8 @@ TEST(Router, ViaEdgesInOrder) {
 TEST(Router, MultiOriginMultiDestination) {
   Network net = build_network(fast_l_grid());
   Router router(net);
-  const uint32_t far = net.edge_index.at(grid_edge(0, 3, 0, 2)), near = net.edge_index.at(grid_edge(2, 2, 3, 2));
+  const uint32_t far = net.edge_index.at(grid_edge(0, 3, 0, 2)),
+                 near = net.edge_index.at(grid_edge(2, 2, 3, 2));
   const uint32_t d1 = net.edge_index.at(grid_edge(3, 2, 3, 3)), d2 = net.edge_index.at(grid_edge(0, 1, 0, 0));
   auto out = router.route_all({{{far, near}, {d1}, {}}, {{near}, {d1, d2}, {}}}, 1);
   EXPECT_EQ(out[0], ids_to_path(net, {grid_edge(2, 2, 3, 2), grid_edge(3, 2, 3, 3)}));
@@ -149,7 +155,8 @@ TEST(Router, InternalEdgesNeverInRoutes) {
   o.with_internal = true;
   Network net = build_network(test::make_grid_spec(3, 3, o));
   Router router(net);
-  const uint32_t from = net.edge_index.at(grid_edge(0, 0, 1, 0)), to = net.edge_index.at(grid_edge(2, 1, 2, 2));
+  const uint32_t from = net.edge_index.at(grid_edge(0, 0, 1, 0)),
+                 to = net.edge_index.at(grid_edge(2, 1, 2, 2));
   Path p = router.route_all({{{from}, {to}, {}}, {{net.edge_index.at(":J1_1_0")}, {to}, {}}}, 2)[0];
   ASSERT_EQ(p.size(), 4u);
   for (uint32_t e : p) EXPECT_FALSE(net.edge_is_internal[e]);
@@ -174,7 +181,8 @@ TEST(Router, MatchesBellmanFordOnRandomGraphs) {
     }
     const int ne = nj * 2 + round % 7;
     for (int k = 0; k < ne; ++k) {
-      int a = std::uniform_int_distribution<int>(0, nj - 1)(rng), b = std::uniform_int_distribution<int>(0, nj - 2)(rng);
+      int a = std::uniform_int_distribution<int>(0, nj - 1)(rng),
+          b = std::uniform_int_distribution<int>(0, nj - 2)(rng);
       if (b >= a) ++b;
       EdgeSpec& e = test::add_edge(s, "e" + std::to_string(k), s.junctions[a], s.junctions[b], 1,
                                    std::uniform_real_distribution<double>(3, 30)(rng));

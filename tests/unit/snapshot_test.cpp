@@ -40,7 +40,9 @@ ConfigSpec csv_small_config() {
   return c;
 }
 
-ConfigSpec sumocfg(const std::string& name) { return read_sumocfg(kScenarios + "/" + name + "/" + name + ".sumocfg"); }
+ConfigSpec sumocfg(const std::string& name) {
+  return read_sumocfg(kScenarios + "/" + name + "/" + name + ".sumocfg");
+}
 
 #define EXPECT_COLUMN(a, b, field) EXPECT_TRUE((a).field == (b).field) << #field " differs"
 
@@ -162,7 +164,8 @@ class SnapshotTest : public ::testing::Test {
  protected:
   void SetUp() override {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("lpsim_snapshot_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
+    dir_ = fs::temp_directory_path() /
+           ("lpsim_snapshot_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
@@ -197,7 +200,8 @@ class SnapshotTest : public ::testing::Test {
   // Runs the lpsim binary; returns its stdout, and its exit code in `code`.
   std::string lpsim(const std::string& args, int& code) {
     const std::string out = (dir_ / "stdout.txt").string();
-    const int status = std::system((std::string(LPSIM_BINARY) + " " + args + " > '" + out + "' 2> /dev/null").c_str());
+    const int status =
+        std::system((std::string(LPSIM_BINARY) + " " + args + " > '" + out + "' 2> /dev/null").c_str());
     code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     return slurp(out);
   }
@@ -212,12 +216,13 @@ TEST_F(SnapshotTest, LpsimCsvRoundTripKeepsEveryColumn) { round_trip(csv_small_c
 
 // Skipped vehicles and unsupported-element counts travel too (they are what `lpsim info` reports).
 TEST_F(SnapshotTest, RoundTripKeepsSkippedVehiclesAndUnsupportedElements) {
-  const std::string routes = write("r.rou.xml",
-                                   "<routes>\n"
-                                   "<vehicle id=\"good\" depart=\"0\"><route edges=\"A0A1 A1A2\"/></vehicle>\n"
-                                   "<vehicle id=\"broken\" depart=\"1\"><route edges=\"A0A1 C3C4\"/></vehicle>\n"
-                                   "<person id=\"p\" depart=\"0\"><walk edges=\"A0A1\"/></person>\n"
-                                   "</routes>\n");
+  const std::string routes =
+      write("r.rou.xml",
+            "<routes>\n"
+            "<vehicle id=\"good\" depart=\"0\"><route edges=\"A0A1 A1A2\"/></vehicle>\n"
+            "<vehicle id=\"broken\" depart=\"1\"><route edges=\"A0A1 C3C4\"/></vehicle>\n"
+            "<person id=\"p\" depart=\"0\"><walk edges=\"A0A1\"/></person>\n"
+            "</routes>\n");
   ConfigSpec config;
   config.net_file = kScenarios + "/grid_tls/grid_tls.net.xml";
   config.route_files = {routes};
@@ -290,7 +295,8 @@ TEST_F(SnapshotTest, OtherVersionIsRefused) {
       read_snapshot(path);
       ADD_FAILURE() << "version " << version << " was accepted";
     } catch (const InputError& e) {
-      EXPECT_NE(std::string(e.what()).find("version " + std::to_string(version)), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("version " + std::to_string(version)), std::string::npos)
+          << e.what();
     }
   }
 }

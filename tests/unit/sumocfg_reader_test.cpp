@@ -1,10 +1,11 @@
+#include "converters/sumocfg_reader.hpp"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
 #include <string>
 
-#include "converters/sumocfg_reader.hpp"
 #include "core/error.hpp"
 
 namespace lpsim {
@@ -67,7 +68,8 @@ TEST_F(SumocfgReaderTest, ReadsOptionsAndResolvesPathsAgainstTheCfgFolder) {
   ConfigSpec c = read_sumocfg(path);
   EXPECT_EQ(c.config_file, path);
   EXPECT_EQ(c.net_file, in_dir("sub/net.net.xml.gz"));
-  EXPECT_EQ(c.route_files, (std::vector<std::string>{in_dir("sub/a.rou.xml"), in_dir("sub/b.rou.xml"), in_dir("c.rou.xml")}));
+  EXPECT_EQ(c.route_files, (std::vector<std::string>{in_dir("sub/a.rou.xml"), in_dir("sub/b.rou.xml"),
+                                                     in_dir("c.rou.xml")}));
   EXPECT_EQ(c.additional_files, (std::vector<std::string>{in_dir("sub/x.add.xml"), in_dir("sub/y.add.xml")}));
   EXPECT_DOUBLE_EQ(c.begin, 3600);
   EXPECT_DOUBLE_EQ(c.end, 7230.5);
@@ -86,9 +88,10 @@ TEST_F(SumocfgReaderTest, ReadsOptionsAndResolvesPathsAgainstTheCfgFolder) {
 }
 
 TEST_F(SumocfgReaderTest, DefaultsWhenOptionsAreAbsentAndSumoConfigurationRoot) {
-  std::string path = write("run.sumocfg",
-                           "<sumoConfiguration>\n  <input><net n=\"1\"/><net-file value=\"n.net.xml\"/></input>\n"
-                           "</sumoConfiguration>\n");
+  std::string path =
+      write("run.sumocfg",
+            "<sumoConfiguration>\n  <input><net n=\"1\"/><net-file value=\"n.net.xml\"/></input>\n"
+            "</sumoConfiguration>\n");
   ConfigSpec c = read_sumocfg(path);
   EXPECT_EQ(c.net_file, in_dir("n.net.xml"));
   EXPECT_TRUE(c.route_files.empty());
@@ -110,9 +113,10 @@ TEST_F(SumocfgReaderTest, SynonymsAsSumoAcceptsThem) {
 }
 
 TEST_F(SumocfgReaderTest, BadNumberNamesFileLineOptionAndValue) {
-  std::string path = write("bad.sumocfg",
-                           "<configuration>\n  <time>\n    <begin value=\"0\"/>\n    <end value=\"soon\"/>\n  </time>\n"
-                           "</configuration>\n");
+  std::string path =
+      write("bad.sumocfg",
+            "<configuration>\n  <time>\n    <begin value=\"0\"/>\n    <end value=\"soon\"/>\n  </time>\n"
+            "</configuration>\n");
   try {
     read_sumocfg(path);
     FAIL() << "no error";
@@ -126,7 +130,8 @@ TEST_F(SumocfgReaderTest, BadNumberNamesFileLineOptionAndValue) {
 
 TEST_F(SumocfgReaderTest, BadValuesOfOtherKinds) {
   auto message = [&](const std::string& option, const std::string& value) {
-    std::string path = write("v.sumocfg", "<configuration>\n<" + option + " value=\"" + value + "\"/>\n</configuration>\n");
+    std::string path =
+        write("v.sumocfg", "<configuration>\n<" + option + " value=\"" + value + "\"/>\n</configuration>\n");
     try {
       read_sumocfg(path);
     } catch (const InputError& e) {
@@ -145,7 +150,8 @@ TEST_F(SumocfgReaderTest, BadValuesOfOtherKinds) {
 TEST_F(SumocfgReaderTest, WrongRootMissingAndMalformedFiles) {
   EXPECT_THROW(read_sumocfg(write("net.sumocfg", "<net>\n</net>\n")), InputError);
   EXPECT_THROW(read_sumocfg((dir_ / "missing.sumocfg").string()), InputError);
-  EXPECT_THROW(read_sumocfg(write("cut.sumocfg", "<configuration>\n<input>\n<net-file value=\"a")), InputError);
+  EXPECT_THROW(read_sumocfg(write("cut.sumocfg", "<configuration>\n<input>\n<net-file value=\"a")),
+               InputError);
 }
 
 }  // namespace

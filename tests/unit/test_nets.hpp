@@ -22,9 +22,9 @@
 namespace lpsim::test {
 
 struct GridOptions {
-  double spacing = 100;     // m between neighbouring junctions (= lane length)
-  int lanes = 1;            // car lanes per edge
-  double speed = 13.89;     // m/s
+  double spacing = 100;        // m between neighbouring junctions (= lane length)
+  int lanes = 1;               // car lanes per edge
+  double speed = 13.89;        // m/s
   bool with_internal = false;  // connections go via internal junction lanes, as in a SUMO net
   double internal_length = 5;  // m, length of every internal lane
   bool allow_uturn = false;    // add turnaround connections (dir 't')
@@ -293,7 +293,8 @@ inline NetSpec make_signal_spec(bool bus_lane = false, bool with_internal = fals
 inline void remove_connection(NetSpec& s, const std::string& from_edge, const std::string& to_edge) {
   std::vector<std::string> vias;
   for (const auto& c : s.connections)
-    if (c.from == from_edge && c.to == to_edge && !c.via.empty()) vias.push_back(c.via.substr(0, c.via.rfind('_')));
+    if (c.from == from_edge && c.to == to_edge && !c.via.empty())
+      vias.push_back(c.via.substr(0, c.via.rfind('_')));
   std::erase_if(s.connections, [&](const ConnectionSpec& c) {
     return (c.from == from_edge && c.to == to_edge) ||
            std::find(vias.begin(), vias.end(), c.from) != vias.end();

@@ -373,11 +373,11 @@ TEST(MeanDataValuesTest, EdgeMeasuresFollowTheirDefinitions) {
   EXPECT_DOUBLE_EQ(t.occupied_m_seconds, 200);
   EXPECT_EQ(t.entered, 3);
   const MeanDataMeasures m = derive_mean_data(t, 100, 2, 12.5, 60, 5);
-  EXPECT_DOUBLE_EQ(m.speed, 10);                      // 400 m / 40 s
-  EXPECT_DOUBLE_EQ(m.speed_relative, 0.8);            // 10 / 12.5
+  EXPECT_DOUBLE_EQ(m.speed, 10);            // 400 m / 40 s
+  EXPECT_DOUBLE_EQ(m.speed_relative, 0.8);  // 10 / 12.5
   EXPECT_TRUE(m.has_traveltime);
-  EXPECT_DOUBLE_EQ(m.traveltime, 10);                 // 100 m / 10 m/s
-  EXPECT_DOUBLE_EQ(m.overlap_traveltime, 10.5);       // (100 + 200/40) m / 10 m/s
+  EXPECT_DOUBLE_EQ(m.traveltime, 10);                   // 100 m / 10 m/s
+  EXPECT_DOUBLE_EQ(m.overlap_traveltime, 10.5);         // (100 + 200/40) m / 10 m/s
   EXPECT_DOUBLE_EQ(m.density, 40.0 / 60 * 1000 / 100);  // 6.67 veh/km
   EXPECT_DOUBLE_EQ(m.lane_density, m.density / 2);
   EXPECT_DOUBLE_EQ(m.occupancy, 200.0 / 60 / 100 / 2 * 100);  // 1.67 %
@@ -433,11 +433,12 @@ TEST_F(WritersTest, EdgeDataExcludeEmptyAndWithInternal) {
   EXPECT_EQ(lines[0], "    <interval begin=\"0.00\" end=\"60.00\" id=\"dump\">");
   EXPECT_EQ(lines[1].rfind("        <edge id=\"E1\" ", 0), 0u);
   // :J_0: 2 s, 16 m on an 8 m lane at 10 m/s: speed 8, traveltime 1, overlap (8 + 10/2) / 8
-  EXPECT_EQ(lines[2],
-            "        <edge id=\":J_0\" sampledSeconds=\"2.00\" traveltime=\"1.00\" overlapTraveltime=\"1.62\" "
-            "density=\"4.17\" laneDensity=\"4.17\" occupancy=\"2.08\" waitingTime=\"0.00\" timeLoss=\"0.00\" "
-            "speed=\"8.00\" speedRelative=\"0.80\" departed=\"0\" arrived=\"0\" entered=\"1\" left=\"1\" "
-            "laneChangedFrom=\"0\" laneChangedTo=\"0\"/>");
+  EXPECT_EQ(
+      lines[2],
+      "        <edge id=\":J_0\" sampledSeconds=\"2.00\" traveltime=\"1.00\" overlapTraveltime=\"1.62\" "
+      "density=\"4.17\" laneDensity=\"4.17\" occupancy=\"2.08\" waitingTime=\"0.00\" timeLoss=\"0.00\" "
+      "speed=\"8.00\" speedRelative=\"0.80\" departed=\"0\" arrived=\"0\" entered=\"1\" left=\"1\" "
+      "laneChangedFrom=\"0\" laneChangedTo=\"0\"/>");
   EXPECT_EQ(lines[3], "    </interval>");
   EXPECT_EQ(lines[4], "    <interval begin=\"60.00\" end=\"120.00\" id=\"dump\">");
   expect_schema_valid(file, "meandata_file.xsd");
@@ -455,7 +456,8 @@ TEST_F(WritersTest, LaneDataNestsLanesInEdges) {
   const std::vector<std::string> expected = {
       "    <interval begin=\"0.00\" end=\"60.00\" id=\"dump\">",
       "        <edge id=\"E1\">",
-      "            <lane id=\"E1_0\" sampledSeconds=\"30.00\" traveltime=\"10.00\" overlapTraveltime=\"10.50\" "
+      "            <lane id=\"E1_0\" sampledSeconds=\"30.00\" traveltime=\"10.00\" "
+      "overlapTraveltime=\"10.50\" "
       "density=\"5.00\" laneDensity=\"5.00\" occupancy=\"2.50\" waitingTime=\"2.00\" timeLoss=\"4.50\" "
       "speed=\"10.00\" speedRelative=\"0.80\" departed=\"1\" arrived=\"0\" entered=\"2\" left=\"2\" "
       "laneChangedFrom=\"0\" laneChangedTo=\"0\"/>",
@@ -528,13 +530,16 @@ TEST_F(WritersTest, TripinfoWritesSumoAttributeOrder) {
     writer.write(removed);
   }
   const std::vector<std::string> expected = {
-      "    <tripinfo id=\"v&amp;1\" depart=\"5.00\" departLane=\"E1_0\" departPos=\"5.10\" departSpeed=\"0.00\" "
-      "departDelay=\"3.00\" arrival=\"24.00\" arrivalLane=\"E2_0\" arrivalPos=\"35.00\" arrivalSpeed=\"13.78\" "
+      "    <tripinfo id=\"v&amp;1\" depart=\"5.00\" departLane=\"E1_0\" departPos=\"5.10\" "
+      "departSpeed=\"0.00\" "
+      "departDelay=\"3.00\" arrival=\"24.00\" arrivalLane=\"E2_0\" arrivalPos=\"35.00\" "
+      "arrivalSpeed=\"13.78\" "
       "duration=\"19.00\" routeLength=\"184.30\" waitingTime=\"2.00\" waitingCount=\"1\" stopTime=\"0.00\" "
       "timeLoss=\"4.68\" rerouteNo=\"0\" devices=\"tripinfo_v&amp;1 fcd_v&amp;1\" vType=\"car\" "
       "speedFactor=\"1.01\" vaporized=\"\"/>",
       "    <tripinfo id=\"v0\" depart=\"5.00\" departLane=\"E1_0\" departPos=\"5.10\" departSpeed=\"0.00\" "
-      "departDelay=\"3.00\" arrival=\"24.00\" arrivalLane=\"E2_0\" arrivalPos=\"35.00\" arrivalSpeed=\"13.78\" "
+      "departDelay=\"3.00\" arrival=\"24.00\" arrivalLane=\"E2_0\" arrivalPos=\"35.00\" "
+      "arrivalSpeed=\"13.78\" "
       "duration=\"19.00\" routeLength=\"184.30\" waitingTime=\"2.00\" waitingCount=\"1\" stopTime=\"0.00\" "
       "timeLoss=\"4.68\" rerouteNo=\"0\" devices=\"tripinfo_v0 fcd_v0\" vType=\"car\" "
       "speedFactor=\"1.01\" vaporized=\"teleport\"/>",
@@ -573,10 +578,12 @@ TEST_F(WritersTest, SummaryWritesMinusOneForUndefinedMeans) {
     writer.write(later);
   }
   const std::vector<std::string> expected = {
-      "    <step time=\"0.00\" loaded=\"2\" inserted=\"0\" running=\"0\" waiting=\"2\" ended=\"0\" arrived=\"0\" "
+      "    <step time=\"0.00\" loaded=\"2\" inserted=\"0\" running=\"0\" waiting=\"2\" ended=\"0\" "
+      "arrived=\"0\" "
       "collisions=\"0\" teleports=\"0\" halting=\"0\" stopped=\"0\" meanWaitingTime=\"-1.00\" "
       "meanTravelTime=\"-1.00\" meanSpeed=\"-1.00\" meanSpeedRelative=\"-1.00\" duration=\"0\"/>",
-      "    <step time=\"7.00\" loaded=\"3\" inserted=\"3\" running=\"2\" waiting=\"0\" ended=\"1\" arrived=\"1\" "
+      "    <step time=\"7.00\" loaded=\"3\" inserted=\"3\" running=\"2\" waiting=\"0\" ended=\"1\" "
+      "arrived=\"1\" "
       "collisions=\"0\" teleports=\"0\" halting=\"1\" stopped=\"0\" meanWaitingTime=\"0.67\" "
       "meanTravelTime=\"19.00\" meanSpeed=\"6.83\" meanSpeedRelative=\"0.49\" duration=\"13\"/>",
   };

@@ -1,3 +1,5 @@
+#include "converters/xml_stream.hpp"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -7,7 +9,6 @@
 #include <vector>
 
 #include "converters/output_file.hpp"
-#include "converters/xml_stream.hpp"
 #include "core/error.hpp"
 
 namespace lpsim {
@@ -51,7 +52,8 @@ class XmlStreamTest : public ::testing::Test {
 TEST_F(XmlStreamTest, EventsDepthsAndLinesAcrossChunks) {
   std::string text = "<?xml version=\"1.0\"?>\n<root>\n";
   const int n = 20000;
-  for (int i = 0; i < n; ++i) text += "  <item id=\"i" + std::to_string(i) + "\"><leaf v=\"" + std::to_string(i) + "\"/></item>\n";
+  for (int i = 0; i < n; ++i)
+    text += "  <item id=\"i" + std::to_string(i) + "\"><leaf v=\"" + std::to_string(i) + "\"/></item>\n";
   text += "</root>\n";
   ASSERT_GT(text.size(), 4u * 65536u);
   XmlStream xs(write("many.xml", text));
@@ -116,7 +118,8 @@ TEST_F(XmlStreamTest, NamespaceDeclarationsAndPrefixedAttributes) {
   ASSERT_EQ(xs.next(), XmlStream::Event::Start);
   std::vector<std::pair<std::string, std::string>> seen;
   xs.for_each_attr([&](std::string_view n, std::string_view v) { seen.emplace_back(n, v); });
-  const std::vector<std::pair<std::string, std::string>> expected{{"xmlns:xsi", "urn:x"}, {"xsi:k", "1"}, {"k", "2"}};
+  const std::vector<std::pair<std::string, std::string>> expected{
+      {"xmlns:xsi", "urn:x"}, {"xsi:k", "1"}, {"k", "2"}};
   EXPECT_EQ(seen, expected);
   EXPECT_EQ(xs.get("k", ""), "2");
 }
@@ -124,7 +127,8 @@ TEST_F(XmlStreamTest, NamespaceDeclarationsAndPrefixedAttributes) {
 TEST_F(XmlStreamTest, EntityReferencesAreRefusedInContentAndAttributes) {
   const std::string dtd = "<?xml version=\"1.0\"?>\n<!DOCTYPE r [<!ENTITY e \"expanded\">]>\n";
   std::string in_content = error_reading(write("content.xml", dtd + "<r>\n<a/>\n&e;\n</r>\n"));
-  EXPECT_NE(in_content.find("content.xml:5: entity references are not supported"), std::string::npos) << in_content;
+  EXPECT_NE(in_content.find("content.xml:5: entity references are not supported"), std::string::npos)
+      << in_content;
   std::string in_attr = error_reading(write("attr.xml", dtd + "<r>\n<a id=\"&e;\"/>\n</r>\n"));
   EXPECT_NE(in_attr.find("attr.xml:4: entity references are not supported"), std::string::npos) << in_attr;
   // Elements before the reference are still handed out.
