@@ -532,17 +532,16 @@ class CudaStepper final : public GpuStepper {
     const size_t words = (kWordColumns * 4 * c + 255) / 256 * 256;  // keeps the byte columns aligned
     plan_buffer_ = DeviceBuffer(words + kByteColumns * c);
     char* base = static_cast<char*>(plan_buffer_.get());
-    auto carve = [&](auto*& column, size_t bytes) {
+    auto carve = [&](auto*& column) {
       column = reinterpret_cast<std::remove_reference_t<decltype(column)>>(base);
-      base += bytes * c;
+      base += sizeof(*column) * c;
     };
     PlanView& p = dev_.plan;
-    carve(p.new_speed, 4), carve(p.new_lane, 4), carve(p.new_pos, 4), carve(p.new_prev, 4),
-        carve(p.new_prev2, 4);
-    carve(p.claim_lane0, 4), carve(p.claim_lane1, 4), carve(p.stop_pos, 4), carve(p.stop_lane, 4);
-    carve(p.new_rp, 4), carve(p.first_rp, 4);
-    base = static_cast<char*>(plan_buffer_.get()) + words;
-    carve(p.arrives, 1), carve(p.claim_prio, 1);
+    carve(p.new_speed), carve(p.new_lane), carve(p.new_pos), carve(p.new_prev), carve(p.new_prev2);
+    carve(p.claim_lane0), carve(p.claim_lane1), carve(p.stop_pos), carve(p.stop_lane);
+    carve(p.new_rp), carve(p.first_rp);
+    base = static_cast<char*>(plan_buffer_.get()) + words;  // the byte columns after the aligned words
+    carve(p.arrives), carve(p.claim_prio);
     plan_capacity_ = c;
   }
 

@@ -192,13 +192,14 @@ LPSIM_HD float idm_interaction_speed(const IdmParams& p, float speed, float v0, 
 
 /// IDM speed after dt following a leader (IDM only; see follow_speed for the version with the safety cap).
 LPSIM_HD float idm_follow_speed(const IdmParams& p, float speed, float v0, float gap, float leader_speed,
-                                float dt, int substeps) {
-  return idm_interaction_speed(p, speed, v0, gap, leader_speed, p.min_gap, dt, substeps);
+                                float dt, int substeps, float* free_speed = nullptr) {
+  return idm_interaction_speed(p, speed, v0, gap, leader_speed, p.min_gap, dt, substeps, free_speed);
 }
 
 /// IDM speed after dt approaching a stop point `gap` metres ahead (IDM only; see stop_speed).
-LPSIM_HD float idm_stop_speed(const IdmParams& p, float speed, float v0, float gap, float dt, int substeps) {
-  return idm_interaction_speed(p, speed, v0, gap, 0.0f, 0.0f, dt, substeps);
+LPSIM_HD float idm_stop_speed(const IdmParams& p, float speed, float v0, float gap, float dt, int substeps,
+                              float* free_speed = nullptr) {
+  return idm_interaction_speed(p, speed, v0, gap, 0.0f, 0.0f, dt, substeps, free_speed);
 }
 
 /// Distance covered from now to standstill when braking at `decel` from `speed` under Euler stepping: the
@@ -266,8 +267,7 @@ LPSIM_HD float follow_speed(const IdmParams& p, float speed, float v0, float gap
     if (free_speed != nullptr) *free_speed = idm_free_speed(p, speed, v0, dt, substeps);
     return 0.0f;
   }
-  const float v_idm =
-      idm_interaction_speed(p, speed, v0, gap, leader_speed, p.min_gap, dt, substeps, free_speed);
+  const float v_idm = idm_follow_speed(p, speed, v0, gap, leader_speed, dt, substeps, free_speed);
   return lp_fminf(v_idm, safe_speed(gap, leader_speed, leader_decel, p.decel, dt));
 }
 
@@ -282,7 +282,7 @@ LPSIM_HD float stop_speed(const IdmParams& p, float speed, float v0, float gap, 
     return 0.0f;
   }
   const float v_safe = safe_stop_speed(gap, p.decel, dt);
-  const float v_idm = idm_interaction_speed(p, speed, v0, gap, 0.0f, 0.0f, dt, substeps, free_speed);
+  const float v_idm = idm_stop_speed(p, speed, v0, gap, dt, substeps, free_speed);
   if (speed < kIdmEps && v_idm < kIdmEps) return v_safe;
   return lp_fminf(v_idm, v_safe);
 }

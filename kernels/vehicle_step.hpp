@@ -122,8 +122,9 @@ LPSIM_HD BestLanes best_lanes(const NetView& net, const TripView& trips, uint32_
 }
 
 /// Best lanes of route edge rp of vehicle v, cached in kBestLaneEntries entries per vehicle, direct-mapped by
-/// route position so the edges a step asks for (current, next, the one after) never evict each other. Only
-/// the vehicle's own thread reads or writes its entries; the value does not depend on when it was computed.
+/// route position so the two edges a step mostly asks for (the current one and the next) never evict each
+/// other. Only the vehicle's own thread reads or writes its entries; the value does not depend on when it
+/// was computed.
 LPSIM_HD uint32_t best_mask_at(const StepContext& s, uint32_t v, uint32_t rp) {
   const uint32_t entry = v * kBestLaneEntries + (rp & (kBestLaneEntries - 1u));
   if (s.veh.best_rp[entry] != rp) {
@@ -744,7 +745,6 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t slot, uint32_t v) {
   }
   out.stop_lane[slot] = new_lane;
   out.stop_pos[slot] = npos;
-  out.claim_prio[slot] = 1;
   int32_t claims = 0;
   if (change_claim) {  // lowest priority; losing it means staying in the old lane at the same position
     out.claim_prio[slot] = 0;
