@@ -12,3 +12,9 @@
 // finite, and this form compiles to a single maxss/minss, with no branches.
 LPSIM_HD float lp_fmaxf(float a, float b) { return b > a ? b : a; }
 LPSIM_HD float lp_fminf(float a, float b) { return b < a ? b : a; }
+
+// floor of a non-negative value: truncation below 2^23, and every float from 2^23 up is an integer already.
+// Without SSE4.1, GCC calls libm's floorf for each use; this is a compare and two conversions.
+LPSIM_HD float lp_floor_nonneg(float x) {
+  return x < 8388608.0f ? static_cast<float>(static_cast<int>(x)) : x;
+}

@@ -76,27 +76,17 @@ struct PowDeltaAny {
 /// 2*sqrt(a*b), the denominator of the IDM's braking term (computed once per call, not per sub-step).
 LPSIM_HD float idm_two_sqrt_ab(const IdmParams& p) { return 2.0f * sqrtf(p.accel * p.decel); }
 
-LPSIM_HD float idm_desired_gap_with(float two_sqrt_ab, float tau, float speed, float leader_speed,
-                                    float jam_gap) {
-  const float dynamic = speed * tau + speed * (speed - leader_speed) / two_sqrt_ab;
-  return jam_gap + lp_fmaxf(0.0f, dynamic);
-}
-
 /// IDM desired gap s* = s0 + max(0, v*T + v*(v - v_leader) / (2*sqrt(a*b))).
 LPSIM_HD float idm_desired_gap(const IdmParams& p, float speed, float leader_speed, float jam_gap) {
-  return idm_desired_gap_with(idm_two_sqrt_ab(p), p.tau, speed, leader_speed, jam_gap);
-}
-
-template <class Pow>
-LPSIM_HD float idm_free_accel_with(const IdmParams& p, Pow pow_delta, float speed, float v0) {
-  const float ratio = speed / lp_fmaxf(v0, kIdmEps);
-  return lp_fmaxf(p.accel * (1.0f - pow_delta(ratio)), -p.decel);
+  const float dynamic = speed * p.tau + speed * (speed - leader_speed) / idm_two_sqrt_ab(p);
+  return jam_gap + lp_fmaxf(0.0f, dynamic);
 }
 
 /// Free-road acceleration a*(1 - (v/v0)^delta). Above the desired speed the result is bounded by -decel:
 /// the raw IDM term explodes (v = 2*v0 gives -15a) where a real driver just brakes comfortably.
 LPSIM_HD float idm_free_accel(const IdmParams& p, float speed, float v0) {
-  return idm_free_accel_with(p, PowDeltaAny{p.delta}, speed, v0);
+  const float ratio = speed / lp_fmaxf(v0, kIdmEps);
+  return lp_fmaxf(p.accel * (1.0f - idm_pow_delta(ratio, p.delta)), -p.decel);
 }
 
 /// IDM acceleration towards a leader `gap` metres ahead (bumper to bumper) driving at leader_speed.
@@ -124,10 +114,41 @@ LPSIM_HD int idm_substep_count(int substeps) { return substeps < 1 ? 1 : substep
 // Cruising at the desired speed: every free-road sub-step adds exactly zero (v/v0 is exactly 1).
 LPSIM_HD bool idm_cruising(float speed, float v0) { return speed == v0 && v0 >= kIdmEps; }
 
-// One free-road Euler sub-step of h seconds.
+/// Constants of one call's sub-step loop. The loops are chains of dependent operations, so their latency is
+/// the step's cost: the divisions by v0 and by 2*sqrt(ab) are hoisted out as reciprocals (a multiply has a
+/// third of a divide's latency on a CPU and is one instruction where a correctly rounded divide is a
+/// sequence on a GPU), and accel, decel and the sub-step length are folded into per-sub-step speed changes.
+/// Both backends evaluate the same expressions in the same order, so their results stay bit-identical.
+struct IdmSubsteps {
+  int n;                  // sub-steps
+  float h;                // sub-step length [s]
+  float inv_v0;           // 1 / max(v0, kIdmEps)
+  float inv_two_sqrt_ab;  // 1 / (2*sqrt(a*b))
+  float accel_h;          // a*h: speed gained in a sub-step at full acceleration
+  float decel_h;          // b*h: speed lost in a sub-step of comfortable braking
+};
+
+LPSIM_HD IdmSubsteps idm_substeps(const IdmParams& p, float v0, float dt, int substeps) {
+  const int n = idm_substep_count(substeps);
+  const float h = dt / static_cast<float>(n);
+  return IdmSubsteps{n, h, 1.0f / lp_fmaxf(v0, kIdmEps), 1.0f / idm_two_sqrt_ab(p), p.accel * h, p.decel * h};
+}
+
+// One free-road Euler sub-step: v + a*h*(1 - (v/v0)^delta), the change bounded by comfortable braking.
 template <class Pow>
-LPSIM_HD float idm_free_substep(const IdmParams& p, Pow pow_delta, float v, float v0, float h) {
-  return lp_fmaxf(0.0f, v + idm_free_accel_with(p, pow_delta, v, v0) * h);
+LPSIM_HD float idm_free_substep(const IdmSubsteps& c, Pow pow_delta, float v) {
+  return lp_fmaxf(0.0f, v + lp_fmaxf(c.accel_h * (1.0f - pow_delta(v * c.inv_v0)), -c.decel_h));
+}
+
+// One Euler sub-step towards a leader (or stop point) `s` metres ahead at leader_speed: the IDM's
+// a*h*(1 - (v/v0)^delta - (s*/s)^2) with s* = jam_gap + max(0, v*T + v*(v - v_leader)/(2*sqrt(ab))).
+template <class Pow>
+LPSIM_HD float idm_interaction_substep(const IdmSubsteps& c, Pow pow_delta, float tau, float v, float s,
+                                       float leader_speed, float jam_gap) {
+  const float dynamic = v * tau + v * (v - leader_speed) * c.inv_two_sqrt_ab;
+  const float s_star = jam_gap + lp_fmaxf(0.0f, dynamic);
+  const float q = s_star * (1.0f / lp_fmaxf(s, kIdmEps));
+  return lp_fmaxf(0.0f, v + c.accel_h * ((1.0f - pow_delta(v * c.inv_v0)) - q * q));
 }
 
 // Euler sub-steps can overshoot the desired speed by a little; like SUMO's cap at the lane's maximum speed,
@@ -138,10 +159,9 @@ template <class Pow>
 LPSIM_HD float idm_free_speed_with(const IdmParams& p, Pow pow_delta, float speed, float v0, float dt,
                                    int substeps) {
   if (idm_cruising(speed, v0)) return v0;
-  const int n = idm_substep_count(substeps);
-  const float h = dt / static_cast<float>(n);
+  const IdmSubsteps c = idm_substeps(p, v0, dt, substeps);
   float v = speed;
-  for (int i = 0; i < n; ++i) v = idm_free_substep(p, pow_delta, v, v0, h);
+  for (int i = 0; i < c.n; ++i) v = idm_free_substep(c, pow_delta, v);
   return idm_free_result(speed, v0, v);
 }
 
@@ -154,28 +174,21 @@ LPSIM_HD float idm_free_speed(const IdmParams& p, float speed, float v0, float d
 // Shared sub-step loop for a leader or stop point: the gap shrinks by the closing distance of each sub-step
 // (never grows, as in SUMO, which assumes the leader keeps its speed). jam_gap selects leader vs stop.
 // With free_speed set, the free-road speed (idm_free_speed) is integrated in the same loop: the two chains
-// are independent and latency-bound (divisions), so interleaving them lets the CPU overlap them. Each chain
+// are independent and latency-bound, so interleaving them lets the processor overlap them. Each chain
 // performs exactly the operations of its separate computation, so results are bit-identical either way.
 template <class Pow>
 LPSIM_HD float idm_interaction_speed_with(const IdmParams& p, Pow pow_delta, float speed, float v0, float gap,
                                           float leader_speed, float jam_gap, float dt, int substeps,
                                           float* free_speed) {
-  const int n = idm_substep_count(substeps);
-  const float h = dt / static_cast<float>(n);
-  const float two_sqrt_ab = idm_two_sqrt_ab(p);
+  const IdmSubsteps c = idm_substeps(p, v0, dt, substeps);
   const bool free_loop = free_speed != nullptr && !idm_cruising(speed, v0);
   float v = speed;
   float vf = speed;
   float s = gap;
-  for (int i = 0; i < n; ++i) {
-    if (free_loop) vf = idm_free_substep(p, pow_delta, vf, v0, h);
-    const float ratio = v / lp_fmaxf(v0, kIdmEps);
-    const float s_star = idm_desired_gap_with(two_sqrt_ab, p.tau, v, leader_speed, jam_gap);
-    const float s_safe = lp_fmaxf(s, kIdmEps);
-    const float interaction = (s_star / s_safe) * (s_star / s_safe);
-    const float acc = p.accel * (1.0f - pow_delta(ratio) - interaction);
-    v = lp_fmaxf(0.0f, v + acc * h);
-    s -= lp_fmaxf(0.0f, (v - leader_speed) * h);
+  for (int i = 0; i < c.n; ++i) {
+    if (free_loop) vf = idm_free_substep(c, pow_delta, vf);
+    v = idm_interaction_substep(c, pow_delta, p.tau, v, s, leader_speed, jam_gap);
+    s -= lp_fmaxf(0.0f, (v - leader_speed) * c.h);
   }
   if (free_speed != nullptr) *free_speed = free_loop ? idm_free_result(speed, v0, vf) : v0;
   return v;
@@ -207,7 +220,7 @@ LPSIM_HD float idm_stop_speed(const IdmParams& p, float speed, float v0, float g
 LPSIM_HD float stopping_distance(float speed, float decel, float dt) {
   const float step_loss = lp_fmaxf(decel, kIdmEps) * dt;  // speed lost per step
   if (speed <= step_loss) return 0.0f;
-  const float n = floorf(speed / step_loss);  // steps that still move
+  const float n = lp_floor_nonneg(speed / step_loss);  // steps that still move (speed > step_loss > 0)
   return dt * (n * speed - step_loss * n * (n + 1.0f) * 0.5f);
 }
 
@@ -225,7 +238,7 @@ LPSIM_HD float max_speed_within(float budget, float own_decel, float dt) {
   if (budget <= 0.0f || dt <= 0.0f) return 0.0f;
   const float b = lp_fmaxf(own_decel, kIdmEps) * dt;
   const float sum = budget / dt;  // budget expressed as a sum of step speeds
-  float n = floorf((sqrtf(1.0f + 8.0f * sum / b) - 1.0f) * 0.5f);
+  float n = lp_floor_nonneg((sqrtf(1.0f + 8.0f * sum / b) - 1.0f) * 0.5f);  // sqrt(1 + ...) >= 1
   if (n < 0.0f) n = 0.0f;
   // sqrtf rounding may leave n one off the exact integer; settle it against the defining inequality.
   if (b * (n + 1.0f) * (n + 2.0f) * 0.5f <= sum) n += 1.0f;

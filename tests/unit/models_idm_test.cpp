@@ -1,6 +1,7 @@
 // IDM, safe speed and stopping: hand-computed values and properties over RNG-drawn situations.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -193,24 +194,48 @@ TEST(ModelsIdm, FollowAndStopSpeedCombineIdmWithSafety) {
   EXPECT_LE(creep * 1.0f, 5.0f);
 }
 
-// The IDM integrated one sub-step at a time through the generic helpers (idm_free_accel, idm_desired_gap,
-// idm_pow_delta): what the fast paths (exponent picked once per call, free-road chain interleaved with the
-// leader's) must reproduce bit for bit.
+// The IDM integrated one sub-step at a time, written out longhand with idm_pow_delta and the reciprocals of
+// v0 and 2*sqrt(ab) taken once: what the fast paths (exponent picked once per call, free-road chain
+// interleaved with the leader's) must reproduce bit for bit.
 float reference_free_speed(const IdmParams& p, float speed, float v0, float dt, int n) {
   if (speed == v0 && v0 >= kIdmEps) return v0;
+  const float h = dt / static_cast<float>(n);
+  const float inv_v0 = 1.0f / lp_fmaxf(v0, kIdmEps);
   float v = speed;
-  for (int i = 0; i < n; ++i) v = lp_fmaxf(0.0f, v + idm_free_accel(p, v, v0) * (dt / static_cast<float>(n)));
+  for (int i = 0; i < n; ++i)
+    v = lp_fmaxf(0.0f, v + lp_fmaxf(p.accel * h * (1.0f - idm_pow_delta(v * inv_v0, p.delta)), -p.decel * h));
   return speed <= v0 ? lp_fminf(v, v0) : v;
 }
 
 float reference_interaction_speed(const IdmParams& p, float speed, float v0, float gap, float vl, float jam,
                                   float dt, int n) {
   const float h = dt / static_cast<float>(n);
+  const float inv_v0 = 1.0f / lp_fmaxf(v0, kIdmEps);
+  const float inv_c = 1.0f / (2.0f * sqrtf(p.accel * p.decel));
   float v = speed, s = gap;
   for (int i = 0; i < n; ++i) {
-    const float q = idm_desired_gap(p, v, vl, jam) / lp_fmaxf(s, kIdmEps);
-    v = lp_fmaxf(0.0f, v + p.accel * (1.0f - idm_pow_delta(v / lp_fmaxf(v0, kIdmEps), p.delta) - q * q) * h);
+    const float s_star = jam + lp_fmaxf(0.0f, v * p.tau + v * (v - vl) * inv_c);
+    const float q = s_star * (1.0f / lp_fmaxf(s, kIdmEps));
+    v = lp_fmaxf(0.0f, v + p.accel * h * ((1.0f - idm_pow_delta(v * inv_v0, p.delta)) - q * q));
     s -= lp_fmaxf(0.0f, (v - vl) * h);
+  }
+  return v;
+}
+
+// The same integration with the textbook divisions (SUMO's form): the reciprocals may only move the last
+// bits.
+double division_form_interaction_speed(const IdmParams& p, double speed, double v0, double gap, double vl,
+                                       double jam, double dt, int n) {
+  const double h = dt / n;
+  double v = speed, s = gap;
+  for (int i = 0; i < n; ++i) {
+    const double s_star =
+        jam + std::max(0.0, v * p.tau + v * (v - vl) / (2.0 * std::sqrt(p.accel * p.decel)));
+    const double q = s_star / std::max(s, static_cast<double>(kIdmEps));
+    v = std::max(
+        0.0,
+        v + p.accel * (1.0 - std::pow(v / std::max(v0, static_cast<double>(kIdmEps)), p.delta) - q * q) * h);
+    s -= std::max(0.0, (v - vl) * h);
   }
   return v;
 }
@@ -250,6 +275,30 @@ TEST(ModelsIdm, FreeSpeedComputedAlongsideALeaderIsBitIdentical) {
         ++cases;
       }
   EXPECT_EQ(cases, 3600);
+}
+
+// The reciprocal form is the IDM: against a double-precision integration with divisions, a sub-step loop
+// differs by float rounding only.
+TEST(ModelsIdm, ReciprocalFormMatchesTheDivisionFormToRounding) {
+  int cases = 0;
+  for (int n : {1, 2, 4})
+    for (uint64_t k = 0; k < 500; ++k) {
+      const float v0 = draw(12, 1, k, 1.0f, 40.0f);
+      const float speed = draw(12, 2, k, 0.0f, 45.0f);
+      const float gap = draw(12, 3, k, 0.5f, 120.0f);
+      const float vl = k % 5 == 0 ? 0.0f : draw(12, 4, k, 0.0f, 40.0f);
+      const double ref = division_form_interaction_speed(kP, speed, v0, gap, vl, kP.min_gap, 1.0, n);
+      // Close gaps make the interaction term huge (~(s*/s)^2): compare relative to that scale.
+      const double scale = std::max(1.0, std::fabs(ref));
+      const float got = idm_follow_speed(kP, speed, v0, gap, vl, 1.0f, n);
+      if (ref <= 0.0) {
+        EXPECT_LE(got, 1e-3f) << k;
+      } else {
+        EXPECT_NEAR(got, ref, 1e-4 * scale) << k << " n " << n;
+      }
+      ++cases;
+    }
+  EXPECT_EQ(cases, 1500);
 }
 
 TEST(ModelsIdm, FinalizeSpeedClampsToPhysicalLimits) {
