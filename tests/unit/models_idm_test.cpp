@@ -222,8 +222,8 @@ float reference_interaction_speed(const IdmParams& p, float speed, float v0, flo
   return v;
 }
 
-// The same integration with the textbook divisions (SUMO's form): the reciprocals may only move the last
-// bits.
+// The same integration with the textbook divisions, in double precision: the reciprocals may only move the
+// last bits.
 double division_form_interaction_speed(const IdmParams& p, double speed, double v0, double gap, double vl,
                                        double jam, double dt, int n) {
   const double h = dt / n;
@@ -288,7 +288,7 @@ TEST(ModelsIdm, ReciprocalFormMatchesTheDivisionFormToRounding) {
       const float gap = draw(12, 3, k, 0.5f, 120.0f);
       const float vl = k % 5 == 0 ? 0.0f : draw(12, 4, k, 0.0f, 40.0f);
       const double ref = division_form_interaction_speed(kP, speed, v0, gap, vl, kP.min_gap, 1.0, n);
-      // Close gaps make the interaction term huge (~(s*/s)^2): compare relative to that scale.
+      // Relative to the speed reached (at least 1 m/s): rounding error scales with the values computed.
       const double scale = std::max(1.0, std::fabs(ref));
       const float got = idm_follow_speed(kP, speed, v0, gap, vl, 1.0f, n);
       if (ref <= 0.0) {
