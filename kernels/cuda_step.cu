@@ -4,11 +4,12 @@
 // --fmad=false (and the CPU with -ffp-contract=off), so both compute bit-identical floats; the only
 // read-modify-writes are integer atomics, whose result does not depend on thread order.
 //
-// The device holds the run state for the whole run: vehicle columns, plan scratch, both lane maps (a step
-// clears only the cells its vehicles left), signal states, the active list (ascending vehicle indices, kept
-// so by a stable compaction and a merge) and the edgeData counters. What crosses the bus per step:
+// The device holds the run state for the whole run: the trips, the slot columns of the vehicles on the road
+// (grown when the host hands out a slot beyond them), plan scratch, both lane maps (a step clears only the
+// cells its vehicles left), signal states, the active list (ascending slots, kept so by a stable compaction
+// and a merge) and the edgeData counters. What crosses the bus per step:
 //   device -> host: a tally (vehicles kept, running, ended) and the step's arrivals and teleports;
-//   host -> device: the teleport decisions, the queue heads to insert, the vehicles inserted;
+//   host -> device: the teleport decisions, the queue heads to insert, the vehicles inserted and their slots;
 //   device -> host: how many of each queue head were inserted, and where.
 // Outputs fetch more only when they sample: FCD and summary the active vehicles' positions, edgeData the
 // counters at the end of an interval.
@@ -76,11 +77,11 @@ __global__ void finish_kernel(VehicleView veh, const uint32_t* active, uint32_t 
   const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
   bool kept = false, running = false;
   if (i < n) {
-    const uint32_t v = active[i];
-    const uint32_t kind = step_end_kind(veh, v, steps_done, teleport_steps);
-    if (kind != kEndNone) ends[atomicAdd(&tally->ends, 1u)] = vehicle_end(veh, v, kind);
-    kept = stays_active(veh, v);
-    running = kept && veh.status[v] == kRunning;
+    const uint32_t k = active[i];
+    const uint32_t kind = step_end_kind(veh, k, steps_done, teleport_steps);
+    if (kind != kEndNone) ends[atomicAdd(&tally->ends, 1u)] = vehicle_end(veh, k, kind);
+    kept = stays_active(veh, k);
+    running = kept && veh.status[k] == kRunning;
     keep[i] = kept ? 1 : 0;
   }
   const int k = __syncthreads_count(kept), r = __syncthreads_count(running);
@@ -101,15 +102,21 @@ __global__ void insert_kernel(StepContext ctx, DepartView depart, InsertParams p
   if (slot < b.num_slots) insert_queue_head(ctx, depart, p, map, b, slot);
 }
 
-__global__ void sample_kernel(VehicleView veh, const uint32_t* active, uint32_t n, uint8_t* status,
-                              int32_t* lane, float* pos, float* speed) {
+__global__ void activate_kernel(VehicleView veh, const SlotInit* inits, uint32_t n) {
+  const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i < n) activate_slot(veh, inits[i]);
+}
+
+__global__ void sample_kernel(VehicleView veh, const uint32_t* active, uint32_t n, uint32_t* vehicle,
+                              uint8_t* status, int32_t* lane, float* pos, float* speed) {
   const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
   if (i >= n) return;
-  const uint32_t v = active[i];
-  status[i] = veh.status[v];
-  lane[i] = veh.lane[v];
-  pos[i] = veh.pos[v];
-  speed[i] = veh.speed[v];
+  const uint32_t k = active[i];
+  vehicle[i] = veh.vehicle[k];
+  status[i] = veh.status[k];
+  lane[i] = veh.lane[k];
+  pos[i] = veh.pos[k];
+  speed[i] = veh.speed[k];
 }
 
 struct AscendingIndex {
@@ -148,7 +155,7 @@ void copy_to_host(T* dst, const T* src, size_t n) {
 }
 
 // The stepper lists every column of the views by hand: a column added to one of them must be added here.
-static_assert(sizeof(VehicleView) == 22 * sizeof(void*),
+static_assert(sizeof(VehicleView) == 23 * sizeof(void*),
               "VehicleView changed: update for_each_vehicle_column");
 static_assert(sizeof(PlanView) == 13 * sizeof(void*), "PlanView changed: update reserve_plan_slots");
 static_assert(sizeof(NetView) == 20 * sizeof(void*) + sizeof(void*),
@@ -160,11 +167,12 @@ static_assert(sizeof(StepContext) == sizeof(NetView) + sizeof(TypeView) + sizeof
                                          16 * sizeof(void*),
               "StepContext changed: update CudaStepper");
 
-/// Calls f(a.column, b.column, entries per vehicle) for every column of two vehicle views (a may be written:
+/// Calls f(a.column, b.column, entries per slot) for every column of two vehicle views (a may be written:
 /// f gets references).
 template <class A, class B, class F>
 void for_each_vehicle_column(A& a, B& b, F&& f) {
   f(a.status, b.status, 1u);
+  f(a.vehicle, b.vehicle, 1u);
   f(a.route_pos, b.route_pos, 1u);
   f(a.speed, b.speed, 1u);
   f(a.lane, b.lane, 1u);
@@ -250,11 +258,17 @@ class PhaseTimer {
     static const char* call[4] = {"step()", "apply_teleports()", "insert()", "rebuild_active()"};
     for (int k = 0; k < 4; ++k) std::fprintf(stderr, " | %s %.1f", call[k], host_ms_[k]);
     std::fprintf(stderr, "\n");
-    std::fprintf(stderr,
-                 "GPU state: %.1f MiB in fixed allocations; %llu B per loaded vehicle (%llu vehicles), "
-                 "route edges %.1f MiB\n",
-                 static_cast<double>(bytes_total_) / 1048576.0, static_cast<unsigned long long>(per_vehicle_),
-                 static_cast<unsigned long long>(vehicles_), static_cast<double>(route_bytes_) / 1048576.0);
+    const double v = static_cast<double>(std::max<uint64_t>(vehicles_, 1));
+    const double state = static_cast<double>(per_vehicle_) * v + static_cast<double>(slot_bytes_) +
+                         static_cast<double>(plan_bytes_);
+    std::fprintf(
+        stderr,
+        "GPU state: %.1f MiB in fixed allocations; %.1f B per loaded vehicle (%llu vehicles: %llu B of "
+        "trip data each, slots %.1f MiB for %llu slots, plan scratch %.1f MiB), route edges %.1f MiB\n",
+        static_cast<double>(bytes_total_) / 1048576.0, state / v, static_cast<unsigned long long>(vehicles_),
+        static_cast<unsigned long long>(per_vehicle_), static_cast<double>(slot_bytes_) / 1048576.0,
+        static_cast<unsigned long long>(slots_), static_cast<double>(plan_bytes_) / 1048576.0,
+        static_cast<double>(route_bytes_) / 1048576.0);
     for (auto& e : events_) cudaEventDestroy(e);
   }
   void mark(int k) {
@@ -275,6 +289,12 @@ class PhaseTimer {
     vehicles_ = vehicles;
     route_bytes_ = route_bytes;
   }
+  /// The per-slot columns and the plan scratch as they stand (their largest size is the one at the end).
+  void set_slot_bytes(uint64_t slots, uint64_t slot_bytes, uint64_t plan_bytes) {
+    slots_ = slots;
+    slot_bytes_ = slot_bytes;
+    plan_bytes_ = plan_bytes;
+  }
   /// Host wall time of one stepper call, from its start (`t0`) to now.
   void add_host(int k, std::chrono::steady_clock::time_point t0) {
     if (on_)
@@ -284,6 +304,7 @@ class PhaseTimer {
  private:
   bool on_;
   uint64_t bytes_total_ = 0, per_vehicle_ = 0, vehicles_ = 0, route_bytes_ = 0;
+  uint64_t slots_ = 0, slot_bytes_ = 0, plan_bytes_ = 0;
   cudaEvent_t events_[kEvents] = {};
   double device_ms_[kEvents - 1] = {};
   double host_ms_[4] = {};
@@ -304,9 +325,9 @@ class CudaStepper final : public GpuStepper {
         DepartView{upload(depart.lane_kind, nv), upload(depart.lane, nv),       upload(depart.pos_kind, nv),
                    upload(depart.pos, nv),       upload(depart.speed_kind, nv), upload(depart.speed, nv)};
 
-    for_each_vehicle_column(dev_.veh, host.veh, [&](auto*& dev, auto* h, uint32_t per) {
-      dev = upload(h, static_cast<size_t>(nv) * per);
-      if (per > 1) bytes_per_vehicle_ += sizeof(*h) * per;  // allocate() counts only arrays of exactly nv
+    grow_slots(std::max<size_t>(sizes.num_slots, 1024));
+    for_each_vehicle_column(dev_.veh, host.veh, [&](auto* dev, auto* h, uint32_t per) {
+      copy_to_device(dev, h, static_cast<size_t>(sizes.num_slots) * per);
     });
     dev_.approach = upload(host.approach, nl);
     dev_.claims = upload(host.claims, nl);
@@ -337,11 +358,8 @@ class CudaStepper final : public GpuStepper {
     map_[map_now] = upload(host.map_now, cells_);
     map_[1 - map_now] = upload(other_map, cells_);
 
-    for (auto& a : active_) a = allocate<uint32_t>(nv);
     copy_to_device(active_[0], active.data(), active.size());
     num_active_ = static_cast<uint32_t>(active.size());
-    kept_ = allocate<uint32_t>(nv);
-    keep_ = allocate<uint8_t>(nv);
     tally_dev_ = allocate<StepTally>(1);
     LPSIM_CUDA_CHECK(cudaMallocHost(&tally_host_, sizeof(StepTally)));
     timer_.set_state_bytes(bytes_total_, bytes_per_vehicle_, nv, sizes.num_route_edges * sizeof(uint32_t));
@@ -421,12 +439,13 @@ class CudaStepper final : public GpuStepper {
     const uint32_t slots = batch.num_slots;
     if (slots == 0) return;
     // One upload of the slots' edges, bounds and entries; one download of what was inserted and where.
-    const size_t in_words = 2 * static_cast<size_t>(slots) + 1 + num_entries;
+    const size_t in_words = 2 * static_cast<size_t>(slots) + 1 + 2 * static_cast<size_t>(num_entries);
     uint32_t* in = batch_in_.get(in_words);
     uint32_t* staged = staging_in_.get(in_words);
     std::copy_n(batch.edge, slots, staged);
     std::copy_n(batch.begin, slots + 1, staged + slots);
     std::copy_n(batch.entry, num_entries, staged + 2 * slots + 1);
+    std::copy_n(batch.route_pos, num_entries, staged + 2 * slots + 1 + num_entries);
     copy_to_device(in, staged, in_words);
     const size_t out_words = static_cast<size_t>(slots) + 3 * static_cast<size_t>(num_entries);
     uint32_t* out = batch_out_.get(out_words);
@@ -434,6 +453,7 @@ class CudaStepper final : public GpuStepper {
                     in,
                     in + slots,
                     in + 2 * slots + 1,
+                    in + 2 * slots + 1 + num_entries,
                     out,
                     reinterpret_cast<int32_t*>(out + slots),
                     reinterpret_cast<float*>(out + slots + num_entries),
@@ -453,8 +473,16 @@ class CudaStepper final : public GpuStepper {
     timer_.add_host(2, t0);
   }
 
-  void rebuild_active(const std::vector<uint32_t>& added) override {
+  void rebuild_active(const std::vector<SlotInit>& inits, const std::vector<uint32_t>& added) override {
     const auto t0 = std::chrono::steady_clock::now();
+    if (!added.empty()) grow_slots(static_cast<size_t>(added.back()) + 1);
+    const uint32_t ni = static_cast<uint32_t>(inits.size());
+    if (ni > 0) {
+      SlotInit* dev = inits_.get(ni);
+      copy_to_device(dev, inits.data(), ni);
+      activate_kernel<<<blocks_for(ni), kBlock>>>(dev_.veh, dev, ni);
+      LPSIM_CUDA_CHECK_LAUNCH(activate_kernel);
+    }
     rebuild(added);
     timer_.add_host(3, t0);
   }
@@ -481,22 +509,25 @@ class CudaStepper final : public GpuStepper {
     num_active_ = kept + na;
   }
 
-  void sample(std::vector<uint32_t>& active, std::vector<uint8_t>& status, std::vector<int32_t>& lane,
-              std::vector<float>& pos, std::vector<float>& speed) override {
+  void sample(std::vector<uint32_t>& active, std::vector<uint32_t>& vehicle, std::vector<uint8_t>& status,
+              std::vector<int32_t>& lane, std::vector<float>& pos, std::vector<float>& speed) override {
     const uint32_t n = num_active_;
     active.resize(n);
+    vehicle.resize(n);
     status.resize(n);
     lane.resize(n);
     pos.resize(n);
     speed.resize(n);
     if (n == 0) return;
+    uint32_t* vh = sample_vehicle_.get(n);
     uint8_t* st = sample_status_.get(n);
     int32_t* ln = sample_lane_.get(n);
     float* ps = sample_pos_.get(n);
     float* sp = sample_speed_.get(n);
-    sample_kernel<<<blocks_for(n), kBlock>>>(dev_.veh, active_[cur_active_], n, st, ln, ps, sp);
+    sample_kernel<<<blocks_for(n), kBlock>>>(dev_.veh, active_[cur_active_], n, vh, st, ln, ps, sp);
     LPSIM_CUDA_CHECK_LAUNCH(sample_kernel);
     copy_to_host(active.data(), active_[cur_active_], n);
+    copy_to_host(vehicle.data(), vh, n);
     copy_to_host(status.data(), st, n);
     copy_to_host(lane.data(), ln, n);
     copy_to_host(pos.data(), ps, n);
@@ -513,9 +544,9 @@ class CudaStepper final : public GpuStepper {
       for (size_t l = 0; l < nl; ++l) columns[k][l] += all[static_cast<size_t>(k) * nl + l];
   }
 
-  void download_state(const StepContext& host, int map, char* link_state) override {
+  void download_state(const StepContext& host, uint32_t num_slots, int map, char* link_state) override {
     for_each_vehicle_column(dev_.veh, host.veh, [&](auto* dev, auto* h, uint32_t per) {
-      copy_to_host(h, dev, static_cast<size_t>(num_vehicles_) * per);
+      copy_to_host(h, dev, static_cast<size_t>(num_slots) * per);
     });
     copy_to_host(host.map_next, map_[map], cells_);
     copy_to_host(link_state, link_state_, num_links_);
@@ -543,6 +574,37 @@ class CudaStepper final : public GpuStepper {
     base = static_cast<char*>(plan_buffer_.get()) + words;  // the byte columns after the aligned words
     carve(p.arrives), carve(p.claim_prio);
     plan_capacity_ = c;
+    timer_.set_slot_bytes(slot_capacity_, slot_bytes_, words + kByteColumns * c);
+  }
+
+  /// Makes room for `need` slots: the slot columns, both active lists and the keep flags grow by half again
+  /// or to `need`, keeping their contents (a rare copy: the slots in use stay dense).
+  void grow_slots(size_t need) {
+    if (need <= slot_capacity_) return;
+    const size_t old = slot_capacity_, c = std::max(need, old + old / 2);
+    size_t col = 0, bytes = 0;
+    auto regrow = [&](auto*& column, uint32_t per) {
+      using T = std::remove_reference_t<decltype(*column)>;
+      DeviceBuffer fresh(c * per * sizeof(T));
+      if (old > 0)
+        LPSIM_CUDA_CHECK(cudaMemcpy(fresh.get(), column, old * per * sizeof(T), cudaMemcpyDeviceToDevice));
+      column = static_cast<T*>(fresh.get());
+      if (col == slot_buffers_.size()) slot_buffers_.emplace_back();
+      slot_buffers_[col++] = std::move(fresh);
+      bytes += c * per * sizeof(T);
+    };
+    for_each_vehicle_column(dev_.veh, dev_.veh, [&](auto*& dev, auto*, uint32_t per) { regrow(dev, per); });
+    regrow(active_[0], 1u);
+    regrow(active_[1], 1u);
+    regrow(kept_, 1u);
+    regrow(keep_, 1u);
+    slot_capacity_ = c;
+    slot_bytes_ = bytes;
+    timer_.set_slot_bytes(slot_capacity_, slot_bytes_, plan_buffer_bytes());
+  }
+
+  size_t plan_buffer_bytes() const {
+    return plan_capacity_ == 0 ? 0 : (11 * 4 * plan_capacity_ + 255) / 256 * 256 + 2 * plan_capacity_;
   }
 
   template <class T>
@@ -637,6 +699,9 @@ class CudaStepper final : public GpuStepper {
   uint64_t bytes_total_ = 0, bytes_per_vehicle_ = 0;  // fixed allocations (scratch arrays not included)
   DeviceBuffer plan_buffer_;
   size_t plan_capacity_ = 0;
+  // The slot columns (dev_.veh), the active lists and the keep flags, each its own buffer, regrown together.
+  std::vector<DeviceBuffer> slot_buffers_;
+  size_t slot_capacity_ = 0, slot_bytes_ = 0;
   int64_t* counters_ = nullptr;  // kNumLaneCounters columns; null without lane counters
   int64_t* cnt_departed_ = nullptr;
   uint64_t cells_ = 0;
@@ -645,7 +710,7 @@ class CudaStepper final : public GpuStepper {
   uint32_t* active_[2] = {nullptr, nullptr};
   int cur_active_ = 0;
   uint32_t num_active_ = 0, kept_count_ = 0;
-  uint32_t* kept_ = nullptr;  // the kept vehicles, compacted
+  uint32_t* kept_ = nullptr;  // the kept slots, compacted
   uint8_t* keep_ = nullptr;   // per active index: stays active
   StepTally* tally_dev_ = nullptr;
   StepTally* tally_host_ = nullptr;  // pinned
@@ -653,6 +718,8 @@ class CudaStepper final : public GpuStepper {
   ScratchArray<TeleportMove> moves_;
   ScratchArray<uint32_t> batch_in_, batch_out_, added_, num_selected_;
   ScratchArray<unsigned char> temp_;
+  ScratchArray<SlotInit> inits_;
+  ScratchArray<uint32_t> sample_vehicle_;
   ScratchArray<uint8_t> sample_status_;
   ScratchArray<int32_t> sample_lane_;
   ScratchArray<float> sample_pos_, sample_speed_;

@@ -28,6 +28,7 @@ struct CudaDeviceStatus {
 /// Array sizes the step's views do not carry themselves (they are raw pointers).
 struct GpuStepSizes {
   uint32_t num_vehicles = 0;
+  uint32_t num_slots = 0;  // length of the host's slot columns when the stepper is made
   uint32_t num_edges = 0;
   uint32_t num_connections = 0;
   uint32_t num_types = 0;
@@ -57,27 +58,29 @@ class GpuStepper {
   /// Inserts from the batch's queue heads into lane map `map` (the host's InsertBatch arrays: inputs are
   /// read, outputs written back). `p`'s counter pointers are ignored: the device's own are used.
   virtual void insert(const InsertBatch& batch, uint32_t num_entries, const InsertParams& p, int map) = 0;
-  /// The next active list: the vehicles kept (their order unchanged) merged with `added` (ascending, none
-  /// of them kept). Both ascending, so the list stays ascending.
-  virtual void rebuild_active(const std::vector<uint32_t>& added) = 0;
-  /// The active list and each active vehicle's status, lane, position and speed (outputs).
-  virtual void sample(std::vector<uint32_t>& active, std::vector<uint8_t>& status, std::vector<int32_t>& lane,
-                      std::vector<float>& pos, std::vector<float>& speed) = 0;
+  /// Starts the vehicles of `inits` in their slots, then makes the next active list: the slots kept (their
+  /// order unchanged) merged with `added` (the inits' slots, ascending, none of them kept). Both ascending,
+  /// so the list stays ascending.
+  virtual void rebuild_active(const std::vector<SlotInit>& inits, const std::vector<uint32_t>& added) = 0;
+  /// The active list (slots) and each active slot's vehicle, status, lane, position and speed (outputs).
+  virtual void sample(std::vector<uint32_t>& active, std::vector<uint32_t>& vehicle,
+                      std::vector<uint8_t>& status, std::vector<int32_t>& lane, std::vector<float>& pos,
+                      std::vector<float>& speed) = 0;
   /// Adds the device's counters to `columns` (kNumLaneCounters host columns of num_lanes each) and zeroes
   /// them.
   virtual void drain_counters(int64_t* const* columns) = 0;
-  /// Copies every vehicle column into the host arrays of `host`, lane map `map` into host.map_next, and the
-  /// signal states into `link_state`.
-  virtual void download_state(const StepContext& host, int map, char* link_state) = 0;
+  /// Copies the first `num_slots` entries of every slot column into the host arrays of `host`, lane map `map`
+  /// into host.map_next, and the signal states into `link_state`.
+  virtual void download_state(const StepContext& host, uint32_t num_slots, int map, char* link_state) = 0;
 };
 
 #if defined(LPSIM_HAVE_CUDA)
 /// Checks device 0: present, driver recent enough, and able to run this build's kernels.
 CudaDeviceStatus cuda_device_status();
 /// A stepper on device 0 holding the network, types and trips of `host`, its state after the host's first
-/// insertion (both lane maps, vehicle columns) and the active list. With `lane_counters` the passes count
-/// into the device's own counters (drain_counters), without it they skip the counting. Throws
-/// std::runtime_error naming the failed CUDA call and its file:line.
+/// insertion (both lane maps, sizes.num_slots entries of the slot columns) and the active list (slots). With
+/// `lane_counters` the passes count into the device's own counters (drain_counters), without it they skip the
+/// counting. Throws std::runtime_error naming the failed CUDA call and its file:line.
 std::unique_ptr<GpuStepper> make_cuda_stepper(const StepContext& host, const SignalTable& signals,
                                               const GpuStepSizes& sizes, const DepartView& depart,
                                               const uint8_t* other_map, int map_now,

@@ -40,11 +40,12 @@ struct DepartView {
 /// One step's queue heads, one slot per edge with waiting vehicles.
 struct InsertBatch {
   uint32_t num_slots;
-  const uint32_t* edge;   // [num_slots]
-  const uint32_t* begin;  // [num_slots+1] into entry
-  const uint32_t* entry;  // vehicle index, | kInsertTeleported
-  uint32_t* inserted;     // out [num_slots]: entries inserted from the slot's head
-  int32_t* out_lane;      // out [entries]: where an inserted vehicle was placed
+  const uint32_t* edge;       // [num_slots]
+  const uint32_t* begin;      // [num_slots+1] into entry
+  const uint32_t* entry;      // vehicle index, | kInsertTeleported
+  const uint32_t* route_pos;  // [entries] route position it enters at (0 for a departure)
+  uint32_t* inserted;         // out [num_slots]: entries inserted from the slot's head
+  int32_t* out_lane;          // out [entries]: where an inserted vehicle was placed
   float* out_pos;
   float* out_speed;
 };
@@ -58,15 +59,15 @@ struct InsertParams {
   int64_t* cnt_entered;
 };
 
-/// Tries to put vehicle v (entry flags included) on the road at the start of its current route edge, writing
-/// its footprint into `map`. Returns false, changing nothing, when no candidate lane has room.
+/// Tries to put vehicle v (entry flags included) on the road at the start of route edge `rp`, writing its
+/// footprint into `map` and where it was placed into the out_ values (the host then gives it a slot).
+/// Returns false, changing nothing, when no candidate lane has room.
 LPSIM_HD bool try_insert_vehicle(const StepContext& s, const DepartView& d, const InsertParams& p,
-                                 uint8_t* map, uint32_t entry, int32_t* out_lane, float* out_pos,
+                                 uint8_t* map, uint32_t entry, uint32_t rp, int32_t* out_lane, float* out_pos,
                                  float* out_speed) {
   const uint32_t v = entry & ~kInsertTeleported;
   const bool teleported = (entry & kInsertTeleported) != 0;
   const NetView& net = s.net;
-  const uint32_t rp = s.veh.route_pos[v];
   const uint32_t e = route_edge(s, v, rp);
   const uint32_t first = net.edge_first_lane[e], nlanes = net.edge_num_lanes[e];
   const uint32_t type = s.trips.type[v];
@@ -160,14 +161,6 @@ LPSIM_HD bool try_insert_vehicle(const StepContext& s, const DepartView& d, cons
           continue;
       }
     }
-    const VehicleView& veh = s.veh;  // const view, writable columns
-    veh.status[v] = kRunning;
-    veh.lane[v] = li;
-    veh.pos[v] = pos;
-    veh.speed[v] = speed;
-    veh.prev[v] = -1;
-    veh.prev2[v] = -1;
-    veh.stopped_steps[v] = 0;
     apply_footprint(map, net, Footprint{li, -1, -1, pos}, length, encode_cell_speed(speed));
     int64_t* counter = teleported ? p.cnt_entered : p.cnt_departed;
     if (counter != nullptr) atomic_add_i64(&counter[l], 1);
@@ -184,7 +177,9 @@ LPSIM_HD void insert_queue_head(const StepContext& s, const DepartView& d, const
                                 uint8_t* map, const InsertBatch& b, uint32_t slot) {
   uint32_t n = 0;
   for (uint32_t i = b.begin[slot]; i < b.begin[slot + 1]; ++i, ++n)
-    if (!try_insert_vehicle(s, d, p, map, b.entry[i], &b.out_lane[i], &b.out_pos[i], &b.out_speed[i])) break;
+    if (!try_insert_vehicle(s, d, p, map, b.entry[i], b.route_pos[i], &b.out_lane[i], &b.out_pos[i],
+                            &b.out_speed[i]))
+      break;
   b.inserted[slot] = n;
 }
 

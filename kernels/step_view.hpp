@@ -67,10 +67,14 @@ struct Footprint {
   float pos;
 };
 
-/// Mutable per-vehicle state. A vehicle's thread is the only one that reads or writes its own entries;
-/// other vehicles see it only through the lane map, so these need no double buffer.
+/// Mutable state of the vehicles on the road, indexed by slot: a vehicle takes a free slot when it is
+/// inserted and gives it back one step after it leaves the road (the step that clears its last footprint),
+/// so these columns scale with the vehicles running, not with the whole demand. A vehicle's thread is the
+/// only one that reads or writes its slot; other vehicles see it only through the lane map, so these need no
+/// double buffer.
 struct VehicleView {
   uint8_t* status;
+  uint32_t* vehicle;    // the vehicle in the slot (index into TripView, RNG key, claim tie-break)
   uint32_t* route_pos;  // index in the route of the current (or, on an internal lane, last) normal edge
   float* speed;
   int32_t* lane;
@@ -90,8 +94,8 @@ struct VehicleView {
   uint8_t* lane_change_dir;  // last lane change: 0 none, 1 left, 2 right (for outputs)
   uint8_t* held_at_line;     // last plan stopped at the lane end for a red light or a full next lane
   uint8_t* limit_reason;     // what bounded the last plan's speed (StopReason), for diagnostics and tests
-  // Cache of best lanes (a pure function of vehicle and route position): kBestLaneEntries per vehicle,
-  // vehicle v's at [v * kBestLaneEntries, (v + 1) * kBestLaneEntries).
+  // Cache of best lanes (a pure function of vehicle and route position): kBestLaneEntries per slot,
+  // slot k's at [k * kBestLaneEntries, (k + 1) * kBestLaneEntries).
   uint32_t* best_rp;    // route position an entry was computed for (0xFFFFFFFF: none yet)
   uint32_t* best_mask;  // best lanes of that route edge
 };
@@ -164,6 +168,7 @@ struct StepParams {
 /// A vehicle that arrived or started a teleport in a step, as the host sees it (trip record, teleport).
 struct VehicleEnd {
   uint32_t vehicle;
+  uint32_t slot;
   uint32_t kind;  // kEndArrived or kEndTeleport (kernels/vehicle_step.hpp)
   int32_t lane;
   float pos;
@@ -178,7 +183,23 @@ struct VehicleEnd {
 /// What becomes of a teleporting vehicle (decided on the host, which owns the insertion queues).
 struct TeleportMove {
   uint32_t vehicle;
+  uint32_t slot;
   uint32_t ends_trip;  // 1: past the end of its route, its trip ends; 0: re-enters at the next route edge
+};
+
+/// A vehicle entering the road in a free slot (after insertion), with the trip counters it carries over
+/// from before a teleport (zero for a departure).
+struct SlotInit {
+  uint32_t slot;
+  uint32_t vehicle;
+  uint32_t route_pos;
+  int32_t lane;
+  float pos;
+  float speed;
+  float route_length;
+  float time_loss;
+  uint32_t waiting_steps;
+  uint32_t waiting_count;
 };
 
 }  // namespace lpsim

@@ -48,6 +48,13 @@ struct StepContext {
   int64_t* cnt_arrived;
 };
 
+/// A vehicle on the road as the passes see it: `slot` indexes its running state (VehicleView), `id` its trip
+/// (TripView), its random draws and its claims' tie-break.
+struct VehicleRef {
+  uint32_t slot;
+  uint32_t id;
+};
+
 constexpr float kHaltingSpeed = 0.1f;  // SUMO's threshold for "waiting"
 constexpr int kMaxPathHops = 8;        // lanes looked ahead beyond the current one
 constexpr float kMaxLookahead = 1000.0f;
@@ -121,22 +128,22 @@ LPSIM_HD BestLanes best_lanes(const NetView& net, const TripView& trips, uint32_
   return b;
 }
 
-/// Best lanes of route edge rp of vehicle v, cached in kBestLaneEntries entries per vehicle, direct-mapped by
+/// Best lanes of route edge rp of vehicle r, cached in kBestLaneEntries entries per slot, direct-mapped by
 /// route position so the two edges a step mostly asks for (the current one and the next) never evict each
 /// other. Only the vehicle's own thread reads or writes its entries; the value does not depend on when it
 /// was computed.
-LPSIM_HD uint32_t best_mask_at(const StepContext& s, uint32_t v, uint32_t rp) {
-  const uint32_t entry = v * kBestLaneEntries + (rp & (kBestLaneEntries - 1u));
+LPSIM_HD uint32_t best_mask_at(const StepContext& s, VehicleRef r, uint32_t rp) {
+  const uint32_t entry = r.slot * kBestLaneEntries + (rp & (kBestLaneEntries - 1u));
   if (s.veh.best_rp[entry] != rp) {
-    s.veh.best_mask[entry] = best_lanes(s.net, s.trips, v, rp).mask[0];
+    s.veh.best_mask[entry] = best_lanes(s.net, s.trips, r.id, rp).mask[0];
     s.veh.best_rp[entry] = rp;
   }
   return s.veh.best_mask[entry];
 }
 
 /// Best lanes of the vehicle's current edge.
-LPSIM_HD uint32_t current_best_mask(const StepContext& s, uint32_t v) {
-  return best_mask_at(s, v, s.veh.route_pos[v]);
+LPSIM_HD uint32_t current_best_mask(const StepContext& s, VehicleRef r) {
+  return best_mask_at(s, r, s.veh.route_pos[r.slot]);
 }
 
 // A next edge shorter than this leaves no room to change lanes on it (real nets split junction approaches
@@ -156,7 +163,8 @@ LPSIM_HD int32_t conn_through(const NetView& net, int32_t lane, uint32_t next, u
 /// a target lane among the next edge's best lanes. -1: this lane does not lead there, or only onto lanes of
 /// a short next edge that have no connection to the edge after it (a trap: the vehicle waits here, where it
 /// can still change lanes, as SUMO's vehicles stop where their lane's continuation ends).
-LPSIM_HD int32_t choose_connection(const StepContext& s, uint32_t v, int32_t lane, uint32_t rp) {
+LPSIM_HD int32_t choose_connection(const StepContext& s, VehicleRef r, int32_t lane, uint32_t rp) {
+  const uint32_t v = r.id;
   const NetView& net = s.net;
   const uint32_t len = s.trips.route_length[v];
   int32_t first = -1;
@@ -170,7 +178,7 @@ LPSIM_HD int32_t choose_connection(const StepContext& s, uint32_t v, int32_t lan
   }
   if (rp + 1 >= len) return -1;
   const uint32_t next = route_edge(s, v, rp + 1);
-  const uint32_t best = best_mask_at(s, v, rp + 1);
+  const uint32_t best = best_mask_at(s, r, rp + 1);
   for (uint32_t c = net.lane_conn_begin[lane]; c < net.lane_conn_begin[lane + 1]; ++c) {
     if (net.conn_to_edge[c] != next) continue;
     if (first < 0) first = static_cast<int32_t>(c);
@@ -267,14 +275,13 @@ LPSIM_HD bool yielder_inside(const StepContext& s, uint32_t c, float own_arrival
 /// vehicles that announced their arrival, the foe then brakes for this vehicle (yielder_inside). Circular
 /// waits (right_before_left with all approaches busy) are broken by letting the lowest lane index go once
 /// everyone involved stands.
-LPSIM_HD bool may_enter(const StepContext& s, uint32_t v, uint32_t c, float dist, float speed, float v0,
+LPSIM_HD bool may_enter(const StepContext& s, uint32_t c, float dist, float speed, float v0,
                         const IdmParams& p, float length, bool self_waiting) {
   const NetView& net = s.net;
   const int32_t via = net.conn_via_lane[c];
   const float cross = (via >= 0 ? net.lane_length[via] : 0.0f) + length;
   const float own_clear = earliest_arrival_time(dist + cross, speed, p.accel, lp_fmaxf(v0, 1.0f));
   const uint32_t own_lane = net.conn_from_lane[c];
-  (void)v;
   for (uint32_t k = net.conn_foe_begin[c]; k < net.conn_foe_begin[c + 1]; ++k) {
     const uint32_t f = net.conn_foe[k];
     const char fs = link_state_of(s, f);
@@ -338,10 +345,10 @@ LPSIM_HD int32_t mandatory_target_in(const NetView& net, int32_t lane, uint32_t 
   return best > lane ? net.lane_left[lane] : net.lane_right[lane];
 }
 
-LPSIM_HD int32_t mandatory_target(const StepContext& s, uint32_t v, int32_t lane, int32_t* lanes_to_cross) {
-  const uint32_t rp = s.veh.route_pos[v];
-  if (s.net.lane_internal[lane] || rp + 1 >= s.trips.route_length[v]) return -1;
-  return mandatory_target_in(s.net, lane, current_best_mask(s, v), lanes_to_cross);
+LPSIM_HD int32_t mandatory_target(const StepContext& s, VehicleRef r, int32_t lane, int32_t* lanes_to_cross) {
+  const uint32_t rp = s.veh.route_pos[r.slot];
+  if (s.net.lane_internal[lane] || rp + 1 >= s.trips.route_length[r.id]) return -1;
+  return mandatory_target_in(s.net, lane, current_best_mask(s, r), lanes_to_cross);
 }
 
 // A merge request: step, the side the changer comes from (1: from the left of the target lane), its rear
@@ -360,15 +367,17 @@ constexpr float kMaxLanesToCross = 8.0f;  // bounds the request zone for the che
 /// Approach pass: the first vehicle on its lane (nothing ahead until the lane end) publishes itself, and
 /// a vehicle stuck on a wrong lane near its end asks the followers on the target lane to open a gap (as
 /// SUMO's cooperative lane changing does), so queues cannot lock it out forever.
-LPSIM_HD void approach_vehicle(StepContext& s, uint32_t /*slot*/, uint32_t v) {
-  if (s.veh.status[v] != kRunning) return;
-  const int32_t lane = s.veh.lane[v];
-  const float pos = s.veh.pos[v];
+LPSIM_HD void approach_vehicle(StepContext& s, uint32_t /*i*/, uint32_t slot) {
+  const VehicleRef r{slot, s.veh.vehicle[slot]};
+  const uint32_t v = r.id;
+  if (s.veh.status[slot] != kRunning) return;
+  const int32_t lane = s.veh.lane[slot];
+  const float pos = s.veh.pos[slot];
   int32_t to_cross = 0;
   // Cheap tests first: only slow vehicles near their lane's end can be stuck on a wrong lane.
   const bool may_request =
-      s.veh.speed[v] < 2.0f && s.net.lane_length[lane] - pos < kMergeRequestZone * kMaxLanesToCross;
-  const int32_t target = may_request ? mandatory_target(s, v, lane, &to_cross) : -1;
+      s.veh.speed[slot] < 2.0f && s.net.lane_length[lane] - pos < kMergeRequestZone * kMaxLanesToCross;
+  const int32_t target = may_request ? mandatory_target(s, r, lane, &to_cross) : -1;
   if (target >= 0 && s.net.lane_length[lane] - pos < kMergeRequestZone * static_cast<float>(to_cross)) {
     const float rear = pos - s.types.length[s.trips.type[v]];
     // target is this lane's right neighbour when this lane is on its left.
@@ -378,18 +387,18 @@ LPSIM_HD void approach_vehicle(StepContext& s, uint32_t /*slot*/, uint32_t v) {
   // A vehicle farther from the lane end than its reach is ignored by foes (may_enter): it need not publish,
   // which also spares scanning the rest of long lanes for every vehicle.
   const float dist = s.net.lane_length[lane] - pos;
-  const float reach = lookahead_distance(idm_of(s, s.trips.type[v]), s.veh.speed[v], s.params.dt);
+  const float reach = lookahead_distance(idm_of(s, s.trips.type[v]), s.veh.speed[slot], s.params.dt);
   if (dist > reach) return;
   const int32_t cells = static_cast<int32_t>(lane_cells(s.net, lane));
   const int32_t from = static_cast<int32_t>(cell_of(s.net, lane, pos)) + 1;
   if (from < cells && first_occupied(s.map_now, s.net, lane, from, cells - 1) >= 0) return;
   LaneApproach a;
   a.step = s.params.step;
-  a.conn = choose_connection(s, v, lane, s.veh.route_pos[v]);
+  a.conn = choose_connection(s, r, lane, s.veh.route_pos[slot]);
   a.dist = dist;
-  a.speed = s.veh.speed[v];
-  a.waiting = s.veh.stopped_steps[v];
-  a.held = s.veh.held_at_line[v] != 0 && a.speed < kHaltingSpeed ? 1u : 0u;
+  a.speed = s.veh.speed[slot];
+  a.waiting = s.veh.stopped_steps[slot];
+  a.held = s.veh.held_at_line[slot] != 0 && a.speed < kHaltingSpeed ? 1u : 0u;
   a.reach = reach;
   s.approach[lane] = a;
 }
@@ -403,16 +412,17 @@ struct LaneChangeResult {
   bool near_start;   // the changer's rear is within reach of vehicles entering the target lane this step
 };
 
-LPSIM_HD LaneChangeResult try_lane_change(const StepContext& s, uint32_t v, int32_t lane, int32_t target,
+LPSIM_HD LaneChangeResult try_lane_change(const StepContext& s, VehicleRef me, int32_t lane, int32_t target,
                                           bool mandatory, float urgency, float cand_here,
                                           float own_leader_gap, float own_leader_speed, bool own_has_leader) {
   LaneChangeResult r{false, 0.0f, 1e30f, false};
   const NetView& net = s.net;
+  const uint32_t v = me.id;
   const uint32_t type = s.trips.type[v];
   const IdmParams p = idm_of(s, type);
   const float length = s.types.length[type];
-  const float pos = s.veh.pos[v];
-  const float speed = s.veh.speed[v];
+  const float pos = s.veh.pos[me.slot];
+  const float speed = s.veh.speed[me.slot];
   const float dt = s.params.dt;
   const float rear = pos - length;
   // Vehicles about to enter the target lane from upstream are not visible here: keep clear of its start.
@@ -476,13 +486,13 @@ LPSIM_HD LaneChangeResult try_lane_change(const StepContext& s, uint32_t v, int3
 /// Two vehicles standing side by side at their lanes' ends, each needing the other's lane, swap lanes
 /// (as SUMO lets them): both see the same two merge requests and the same cells, so both decide alike.
 /// Returns true when this vehicle swaps into `target`.
-LPSIM_HD bool swap_with_neighbour(const StepContext& s, uint32_t v, int32_t lane, int32_t target) {
+LPSIM_HD bool swap_with_neighbour(const StepContext& s, VehicleRef r, int32_t lane, int32_t target) {
   const NetView& net = s.net;
   const uint32_t step = s.params.step & 0xFFFFFFu;
   const uint64_t mine = s.merge_requests[target], theirs = s.merge_requests[lane];
   if ((mine >> 40) != step || (theirs >> 40) != step) return false;
-  const float length = s.types.length[s.trips.type[v]];
-  const float pos = s.veh.pos[v];
+  const float length = s.types.length[s.trips.type[r.id]];
+  const float pos = s.veh.pos[r.slot];
   const float my_rear = pos - length;
   const bool target_is_right = target == net.lane_right[lane];
   if (mine != merge_key(s.params.step, target_is_right, my_rear)) return false;  // another request won
@@ -514,13 +524,15 @@ LPSIM_HD bool swap_with_neighbour(const StepContext& s, uint32_t v, int32_t lane
 
 /// Plan pass for one running vehicle, `slot` its position in this step's active list (where its plan goes).
 /// Every plan entry the commit pass reads is written here in every step.
-LPSIM_HD void plan_vehicle(StepContext& s, uint32_t slot, uint32_t v) {
+LPSIM_HD void plan_vehicle(StepContext& s, uint32_t i, uint32_t slot) {
+  const VehicleRef r{slot, s.veh.vehicle[slot]};
+  const uint32_t v = r.id;
   PlanView& out = s.plan;
-  out.claim_lane0[slot] = -1;
-  out.claim_lane1[slot] = -1;
-  out.arrives[slot] = 0;
-  out.claim_prio[slot] = 1;
-  if (s.veh.status[v] != kRunning) return;
+  out.claim_lane0[i] = -1;
+  out.claim_lane1[i] = -1;
+  out.arrives[i] = 0;
+  out.claim_prio[i] = 1;
+  if (s.veh.status[slot] != kRunning) return;
   const NetView& net = s.net;
   const uint32_t type = s.trips.type[v];
   const IdmParams p = idm_of(s, type);
@@ -528,32 +540,32 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t slot, uint32_t v) {
   const float sf = s.trips.speed_factor[v];
   const float vmax = s.types.max_speed[type];
   const float dt = s.params.dt;
-  const int32_t lane = s.veh.lane[v];
-  const float pos = s.veh.pos[v];
-  const float speed = s.veh.speed[v];
-  const uint32_t rp = s.veh.route_pos[v];
+  const int32_t lane = s.veh.lane[slot];
+  const float pos = s.veh.pos[slot];
+  const float speed = s.veh.speed[slot];
+  const uint32_t rp = s.veh.route_pos[slot];
   const uint32_t rlen = s.trips.route_length[v];
   const float v0 = desired_speed(net.lane_speed[lane], sf, vmax);
-  const bool waiting = s.veh.stopped_steps[v] > 0;
+  const bool waiting = s.veh.stopped_steps[slot] > 0;
 
   // Stuck side by side at the lane end with a vehicle that needs this lane: swap, standing still.
   // The same test both vehicles of a swap apply to each other (from the lane map): standing in the last cell.
   if (decode_cell_speed(encode_cell_speed(speed)) == 0.0f &&
       cell_of(net, lane, pos) == lane_cells(net, lane) - 1) {
     int32_t to_cross = 0;
-    const int32_t target = mandatory_target(s, v, lane, &to_cross);
-    if (target >= 0 && swap_with_neighbour(s, v, lane, target)) {
-      s.veh.held_at_line[v] = 0;
-      s.veh.limit_reason[v] = kSwap;
-      out.new_speed[slot] = 0.0f;
-      out.new_lane[slot] = target;
-      out.new_pos[slot] = pos;
-      out.new_prev[slot] = -1;
-      out.new_prev2[slot] = -1;
-      out.stop_lane[slot] = target;
-      out.stop_pos[slot] = pos;
-      out.new_rp[slot] = rp;
-      out.first_rp[slot] = rp;
+    const int32_t target = mandatory_target(s, r, lane, &to_cross);
+    if (target >= 0 && swap_with_neighbour(s, r, lane, target)) {
+      s.veh.held_at_line[slot] = 0;
+      s.veh.limit_reason[slot] = kSwap;
+      out.new_speed[i] = 0.0f;
+      out.new_lane[i] = target;
+      out.new_pos[i] = pos;
+      out.new_prev[i] = -1;
+      out.new_prev2[i] = -1;
+      out.stop_lane[i] = target;
+      out.stop_pos[i] = pos;
+      out.new_rp[i] = rp;
+      out.first_rp[i] = rp;
       return;
     }
   }
@@ -583,8 +595,8 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t slot, uint32_t v) {
   bool stop_at_own_line = false;  // the plan stops at the end of the lane the vehicle is on
   // Connection by which the path entered the junction-internal lane `cur` from a normal lane (-1: none).
   int32_t entry_conn = -1;
-  if (net.lane_internal[lane] && s.veh.prev[v] >= 0 && !net.lane_internal[s.veh.prev[v]]) {
-    const int32_t pl = s.veh.prev[v];
+  if (net.lane_internal[lane] && s.veh.prev[slot] >= 0 && !net.lane_internal[s.veh.prev[slot]]) {
+    const int32_t pl = s.veh.prev[slot];
     for (uint32_t c = net.lane_conn_begin[pl]; c < net.lane_conn_begin[pl + 1]; ++c)
       if (net.conn_via_lane[c] == lane) entry_conn = static_cast<int32_t>(c);
   }
@@ -610,7 +622,7 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t slot, uint32_t v) {
     if (end_dist > budget || hops == kMaxPathHops) break;
     const bool normal = !net.lane_internal[cur];
     if (normal && cur_rp + 1 >= rlen) break;  // the route ends on this lane: arrival, no boundary to pass
-    const int32_t c = choose_connection(s, v, cur, cur_rp);
+    const int32_t c = choose_connection(s, r, cur, cur_rp);
     if (c < 0) {  // wrong lane for the route (or a dead end): the lane end is a wall until a lane change
       cand = lp_fminf(cand, stop_speed(p, speed, v0, end_dist, dt, s.params.substeps, &free_speed));
       hard_limit = lp_fminf(hard_limit, end_dist - kClampEps);
@@ -633,7 +645,7 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t slot, uint32_t v) {
         }
         // Links with an internal junction yield at it, inside the junction (SUMO's waiting position).
         if (!stop && !has_internal_junction(net, static_cast<uint32_t>(c)) &&
-            !may_enter(s, v, static_cast<uint32_t>(c), end_dist, speed, v0, p, length, waiting))
+            !may_enter(s, static_cast<uint32_t>(c), end_dist, speed, v0, p, length, waiting))
           stop = true, reason = kYield;
         if (!stop && can_stop_before(end_dist, speed, p.decel, dt) &&
             yielder_inside(s, static_cast<uint32_t>(c), speed > kHaltingSpeed ? end_dist / speed : 0.0f))
@@ -651,7 +663,7 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t slot, uint32_t v) {
       }
     } else if (entry_conn >= 0 && end_dist <= decision_dist && net.conn_via_lane[entry_conn] == cur &&
                has_internal_junction(net, static_cast<uint32_t>(entry_conn)) &&
-               !may_enter(s, v, static_cast<uint32_t>(entry_conn), end_dist, speed, v0, p, length, waiting)) {
+               !may_enter(s, static_cast<uint32_t>(entry_conn), end_dist, speed, v0, p, length, waiting)) {
       // At the internal junction: wait for the prioritised foes of the link entered.
       cand = lp_fminf(cand, stop_speed(p, speed, v0, end_dist, dt, s.params.substeps, &free_speed));
       if (can_stop_before(end_dist, speed, p.emergency_decel, dt))
@@ -676,7 +688,7 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t slot, uint32_t v) {
 
   // A vehicle that stops at its own lane's end (red, full next lane, yielding, wrong lane) will not enter the
   // junction now: foes need not yield to it (SUMO's approaching vehicles that will not pass).
-  s.veh.held_at_line[v] = stop_at_own_line ? 1 : 0;
+  s.veh.held_at_line[slot] = stop_at_own_line ? 1 : 0;
   // Open a gap for a blocked lane changer waiting beside this lane ahead of us.
   const uint64_t mr = s.merge_requests[lane];
   if (!net.lane_internal[lane] && (mr >> 40) == (s.params.step & 0xFFFFFFu)) {
@@ -690,7 +702,7 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t slot, uint32_t v) {
       if (vs < cand) cand = vs, reason = kMergeGap;
     }
   }
-  s.veh.limit_reason[v] = reason;
+  s.veh.limit_reason[slot] = reason;
   float new_speed = finalize_speed(p, speed, cand, dt);
   int32_t new_lane = lane;
   bool change_claim = false;
@@ -701,7 +713,7 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t slot, uint32_t v) {
     const bool left_step = (s.params.step & 1u) == 0;
     const int32_t target = left_step ? net.lane_left[lane] : net.lane_right[lane];
     if (target >= 0) {
-      const uint32_t good = current_best_mask(s, v);
+      const uint32_t good = current_best_mask(s, r);
       const bool here_good = (lane_bit(net, static_cast<uint32_t>(lane)) & good) != 0;
       const bool target_good = (lane_bit(net, static_cast<uint32_t>(target)) & good) != 0;
       bool mandatory = false;
@@ -714,13 +726,13 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t slot, uint32_t v) {
       const bool discretionary =
           !mandatory && here_good && target_good && lc_attempt_allowed(s.params.seed, v, s.params.step, 0.5f);
       if (mandatory || discretionary) {
-        const LaneChangeResult r = try_lane_change(s, v, lane, target, mandatory, urgency, new_speed,
-                                                   leader_gap, leader_speed, has_leader);
-        if (r.change) {
+        const LaneChangeResult lc = try_lane_change(s, r, lane, target, mandatory, urgency, new_speed,
+                                                    leader_gap, leader_speed, has_leader);
+        if (lc.change) {
           new_lane = target;
-          change_claim = r.near_start;
-          new_speed = finalize_speed(p, speed, lp_fminf(cand, r.speed_cap), dt);
-          hard_limit = lp_fminf(hard_limit, r.leader_gap - kClampEps);
+          change_claim = lc.near_start;
+          new_speed = finalize_speed(p, speed, lp_fminf(cand, lc.speed_cap), dt);
+          hard_limit = lp_fminf(hard_limit, lc.leader_gap - kClampEps);
           if (!lane_has_conn_to(net, target, route_edge(s, v, rp + 1))) {
             const float end_dist = net.lane_length[target] - pos;
             new_speed = lp_fminf(new_speed,
@@ -738,31 +750,31 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t slot, uint32_t v) {
   if (advance > hard_limit) advance = lp_fmaxf(0.0f, hard_limit);
   new_speed = advance / dt;
   float npos = pos + advance;
-  int32_t nlane = new_lane, nprev = s.veh.prev[v], nprev2 = s.veh.prev2[v];
+  int32_t nlane = new_lane, nprev = s.veh.prev[slot], nprev2 = s.veh.prev2[slot];
   if (new_lane != lane) {
     nprev = -1;  // a lane change moves the whole body across
     nprev2 = -1;
   }
-  out.stop_lane[slot] = new_lane;
-  out.stop_pos[slot] = npos;
+  out.stop_lane[i] = new_lane;
+  out.stop_pos[i] = npos;
   int32_t claims = 0;
   if (change_claim) {  // lowest priority; losing it means staying in the old lane at the same position
-    out.claim_prio[slot] = 0;
-    out.claim_lane0[slot] = new_lane;
-    out.stop_lane[slot] = lane;
-    out.stop_pos[slot] = npos + kClampEps;
+    out.claim_prio[i] = 0;
+    out.claim_lane0[i] = new_lane;
+    out.stop_lane[i] = lane;
+    out.stop_pos[i] = npos + kClampEps;
     atomic_max_u64(&s.claims[new_lane], claim_key(s.params.step, 0, v));
   }
   uint32_t nrp = rp;
-  out.first_rp[slot] = rp;
+  out.first_rp[i] = rp;
   for (int32_t h = 0; h < hops && npos > net.lane_length[nlane]; ++h) {
     if (claims == 2) {  // at most two lane entries per step: stop at the end of the second lane
       npos = net.lane_length[nlane];
       break;
     }
     if (claims == 0) {
-      out.stop_lane[slot] = nlane;
-      out.stop_pos[slot] = net.lane_length[nlane];
+      out.stop_lane[i] = nlane;
+      out.stop_pos[i] = net.lane_length[nlane];
     }
     npos -= net.lane_length[nlane];
     nprev2 = nprev;
@@ -770,16 +782,16 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t slot, uint32_t v) {
     nlane = path[h];
     nrp = path_rp[h];
     if (claims == 0)
-      out.claim_lane0[slot] = nlane, out.first_rp[slot] = nrp;
+      out.claim_lane0[i] = nlane, out.first_rp[i] = nrp;
     else
-      out.claim_lane1[slot] = nlane;
+      out.claim_lane1[i] = nlane;
     ++claims;
     atomic_max_u64(&s.claims[nlane], claim_key(s.params.step, 1, v));
   }
   if (npos > net.lane_length[nlane]) npos = net.lane_length[nlane];
   new_speed = lp_fminf(new_speed, advance / dt);
   // Arrival: on the route's last edge, at its arrival position (default: the lane's end).
-  out.new_rp[slot] = nrp;
+  out.new_rp[i] = nrp;
   if (!net.lane_internal[nlane] && nrp + 1 >= rlen) {
     float arrival = net.lane_length[nlane];
     if (s.trips.arrival_pos_kind[v] == 0) {  // ArrivalPos::Given; negative counts from the end
@@ -787,59 +799,61 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t slot, uint32_t v) {
       arrival = a < 0.0f ? net.lane_length[nlane] + a : a;
       if (arrival > net.lane_length[nlane]) arrival = net.lane_length[nlane];
     }
-    if (npos >= arrival - kClampEps) out.arrives[slot] = 1;
+    if (npos >= arrival - kClampEps) out.arrives[i] = 1;
   }
-  out.new_speed[slot] = new_speed;
-  out.new_lane[slot] = nlane;
-  out.new_pos[slot] = npos;
-  out.new_prev[slot] = nprev;
-  out.new_prev2[slot] = nprev2;
+  out.new_speed[i] = new_speed;
+  out.new_lane[i] = nlane;
+  out.new_pos[i] = npos;
+  out.new_prev[i] = nprev;
+  out.new_prev2[i] = nprev2;
 }
 
 /// Clears the footprint a vehicle had one step ago from the buffer that is about to be written.
-LPSIM_HD void clear_old_footprint(StepContext& s, uint32_t /*slot*/, uint32_t v) {
-  const Footprint fp{s.veh.old_lane[v], s.veh.old_prev[v], s.veh.old_prev2[v], s.veh.old_pos[v]};
+LPSIM_HD void clear_old_footprint(StepContext& s, uint32_t /*i*/, uint32_t slot) {
+  const uint32_t v = s.veh.vehicle[slot];
+  const Footprint fp{s.veh.old_lane[slot], s.veh.old_prev[slot], s.veh.old_prev2[slot], s.veh.old_pos[slot]};
   apply_footprint(s.map_next, s.net, fp, s.types.length[s.trips.type[v]], 0);
 }
 
 /// Commit pass for one vehicle (its plan at `slot`): settle claims, write the new footprint, update counters.
-LPSIM_HD void commit_vehicle(StepContext& s, uint32_t slot, uint32_t v) {
+LPSIM_HD void commit_vehicle(StepContext& s, uint32_t i, uint32_t slot) {
+  const uint32_t v = s.veh.vehicle[slot];
   VehicleView& veh = s.veh;
   // The footprint at the start of this step becomes "one step ago" (cleared two buffers later).
-  veh.old_lane[v] = veh.status[v] == kRunning ? veh.lane[v] : -1;
-  veh.old_prev[v] = veh.prev[v];
-  veh.old_prev2[v] = veh.prev2[v];
-  veh.old_pos[v] = veh.pos[v];
-  if (veh.status[v] != kRunning) return;
+  veh.old_lane[slot] = veh.status[slot] == kRunning ? veh.lane[slot] : -1;
+  veh.old_prev[slot] = veh.prev[slot];
+  veh.old_prev2[slot] = veh.prev2[slot];
+  veh.old_pos[slot] = veh.pos[slot];
+  if (veh.status[slot] != kRunning) return;
   const NetView& net = s.net;
   PlanView& plan = s.plan;
   const uint32_t type = s.trips.type[v];
   const float length = s.types.length[type];
   const float dt = s.params.dt;
-  const int32_t lane = veh.lane[v];
-  const float pos = veh.pos[v];
+  const int32_t lane = veh.lane[slot];
+  const float pos = veh.pos[slot];
 
-  int32_t nlane = plan.new_lane[slot], nprev = plan.new_prev[slot], nprev2 = plan.new_prev2[slot];
-  float npos = plan.new_pos[slot], nspeed = plan.new_speed[slot];
-  bool arrives = plan.arrives[slot] != 0;
-  const uint64_t key = claim_key(s.params.step, plan.claim_prio[slot], v);
-  const int32_t c0 = plan.claim_lane0[slot], c1 = plan.claim_lane1[slot];
+  int32_t nlane = plan.new_lane[i], nprev = plan.new_prev[i], nprev2 = plan.new_prev2[i];
+  float npos = plan.new_pos[i], nspeed = plan.new_speed[i];
+  bool arrives = plan.arrives[i] != 0;
+  const uint64_t key = claim_key(s.params.step, plan.claim_prio[i], v);
+  const int32_t c0 = plan.claim_lane0[i], c1 = plan.claim_lane1[i];
   const bool lost0 = c0 >= 0 && s.claims[c0] != key;
   const bool lost1 = c1 >= 0 && s.claims[c1] != key;
   if (lost0 || lost1) {
     arrives = false;
     if (lost0) {  // stay on the lane before the first claimed one, at its end
-      nlane = plan.stop_lane[slot];
-      npos = plan.stop_pos[slot] - kClampEps;
+      nlane = plan.stop_lane[i];
+      npos = plan.stop_pos[i] - kClampEps;
       if (nlane == lane) {
-        nprev = veh.prev[v];
-        nprev2 = veh.prev2[v];
+        nprev = veh.prev[slot];
+        nprev2 = veh.prev2[slot];
       } else {
         nprev = lane;
-        nprev2 = veh.prev[v];
+        nprev2 = veh.prev[slot];
       }
     } else {  // keep the first lane entered, stop at its end
-      nprev2 = veh.prev[v];
+      nprev2 = veh.prev[slot];
       nprev = lane;
       nlane = c0;
       npos = net.lane_length[c0] - kClampEps;
@@ -858,26 +872,26 @@ LPSIM_HD void commit_vehicle(StepContext& s, uint32_t slot, uint32_t v) {
     driven = npos - pos;  // lane change: longitudinal advance only
   if (driven < 0.0f) driven = 0.0f;
   nspeed = driven / dt;
-  if (nspeed > plan.new_speed[slot]) nspeed = plan.new_speed[slot];
+  if (nspeed > plan.new_speed[i]) nspeed = plan.new_speed[i];
 
   // Route position follows the front over every normal edge it entered (as planned, or up to the fallback).
-  const uint32_t rp = lost0 ? veh.route_pos[v] : (lost1 ? plan.first_rp[slot] : plan.new_rp[slot]);
-  veh.route_pos[v] = rp;
+  const uint32_t rp = lost0 ? veh.route_pos[slot] : (lost1 ? plan.first_rp[i] : plan.new_rp[i]);
+  veh.route_pos[slot] = rp;
 
   // Per-vehicle counters (tripinfo).
   const float v0 = desired_speed(net.lane_speed[nlane], s.trips.speed_factor[v], s.types.max_speed[type]);
-  veh.route_length[v] += driven;
-  if (v0 > 0.0f) veh.time_loss[v] += dt * lp_fmaxf(0.0f, (v0 - nspeed) / v0);
+  veh.route_length[slot] += driven;
+  if (v0 > 0.0f) veh.time_loss[slot] += dt * lp_fmaxf(0.0f, (v0 - nspeed) / v0);
   if (nspeed < kHaltingSpeed) {
-    if (veh.stopped_steps[v] == 0) veh.waiting_count[v] += 1;
-    veh.stopped_steps[v] += 1;
-    veh.waiting_steps[v] += 1;
+    if (veh.stopped_steps[slot] == 0) veh.waiting_count[slot] += 1;
+    veh.stopped_steps[slot] += 1;
+    veh.waiting_steps[slot] += 1;
   } else {
-    veh.stopped_steps[v] = 0;
+    veh.stopped_steps[slot] = 0;
   }
-  veh.lane_change_dir[v] = nlane != lane && net.lane_edge[nlane] == net.lane_edge[lane]
-                               ? (nlane == net.lane_left[lane] ? 1 : 2)
-                               : 0;
+  veh.lane_change_dir[slot] = nlane != lane && net.lane_edge[nlane] == net.lane_edge[lane]
+                                  ? (nlane == net.lane_left[lane] ? 1 : 2)
+                                  : 0;
 
   // Per-lane counters (edgeData/laneData), attributed to the lane of the front bumper. The front passed
   // lane -> c0 -> c1 (the claims kept); each change of edge leaves a normal lane / enters a normal lane.
@@ -907,25 +921,25 @@ LPSIM_HD void commit_vehicle(StepContext& s, uint32_t slot, uint32_t v) {
 
   if (arrives) {
     if (lane_counters) atomic_add_i64(&s.cnt_arrived[nlane], 1);
-    veh.status[v] = kArrived;
-    veh.arrival_step[v] = s.params.step + 1;
-    veh.lane[v] = nlane;
-    veh.pos[v] = npos;
-    veh.speed[v] = nspeed;
+    veh.status[slot] = kArrived;
+    veh.arrival_step[slot] = s.params.step + 1;
+    veh.lane[slot] = nlane;
+    veh.pos[slot] = npos;
+    veh.speed[slot] = nspeed;
     return;  // no footprint: it left the network
   }
-  if (s.params.teleport_steps > 0 && veh.stopped_steps[v] >= s.params.teleport_steps) {
-    veh.status[v] = kTeleporting;  // the host moves it on along its route
-    veh.lane[v] = nlane;
-    veh.pos[v] = npos;
-    veh.speed[v] = 0.0f;
+  if (s.params.teleport_steps > 0 && veh.stopped_steps[slot] >= s.params.teleport_steps) {
+    veh.status[slot] = kTeleporting;  // the host moves it on along its route
+    veh.lane[slot] = nlane;
+    veh.pos[slot] = npos;
+    veh.speed[slot] = 0.0f;
     return;
   }
-  veh.lane[v] = nlane;
-  veh.pos[v] = npos;
-  veh.prev[v] = nprev;
-  veh.prev2[v] = nprev2;
-  veh.speed[v] = nspeed;
+  veh.lane[slot] = nlane;
+  veh.pos[slot] = npos;
+  veh.prev[slot] = nprev;
+  veh.prev2[slot] = nprev2;
+  veh.speed[slot] = nspeed;
   apply_footprint(s.map_next, net, Footprint{nlane, nprev, nprev2, npos}, length, encode_cell_speed(nspeed));
 }
 
@@ -933,45 +947,77 @@ LPSIM_HD void commit_vehicle(StepContext& s, uint32_t slot, uint32_t v) {
 
 enum : uint32_t { kEndNone = 0, kEndArrived = 1, kEndTeleport = 2 };
 
-/// A vehicle that arrived in the step just done (steps_done counts it), or started a teleport in it (its
-/// clock ran out: a teleport already handed to the host has its clock reset).
-LPSIM_HD uint32_t step_end_kind(const VehicleView& veh, uint32_t v, uint32_t steps_done,
+/// The vehicle in `slot` arrived in the step just done (steps_done counts it), or started a teleport in it
+/// (its clock ran out: a teleport already handed to the host has its clock reset).
+LPSIM_HD uint32_t step_end_kind(const VehicleView& veh, uint32_t slot, uint32_t steps_done,
                                 uint32_t teleport_steps) {
-  if (veh.status[v] == kArrived && veh.arrival_step[v] == steps_done) return kEndArrived;
-  if (veh.status[v] == kTeleporting && teleport_steps > 0 && veh.stopped_steps[v] >= teleport_steps)
+  if (veh.status[slot] == kArrived && veh.arrival_step[slot] == steps_done) return kEndArrived;
+  if (veh.status[slot] == kTeleporting && teleport_steps > 0 && veh.stopped_steps[slot] >= teleport_steps)
     return kEndTeleport;
   return kEndNone;
 }
 
 /// Running vehicles stay in the active list, and those that left the road this step for one more step: the
-/// next step's clear pass removes their footprint.
-LPSIM_HD bool stays_active(const VehicleView& veh, uint32_t v) {
-  return veh.status[v] == kRunning || veh.old_lane[v] >= 0;
+/// next step's clear pass removes their footprint. A slot not kept is free again after this step, which is
+/// exactly one step after its vehicle's end (the host relies on this to recycle slots).
+LPSIM_HD bool stays_active(const VehicleView& veh, uint32_t slot) {
+  return veh.status[slot] == kRunning || veh.old_lane[slot] >= 0;
 }
 
 /// What the host needs of a vehicle that arrived or started a teleport (trip record, route position).
-LPSIM_HD VehicleEnd vehicle_end(const VehicleView& veh, uint32_t v, uint32_t kind) {
-  return VehicleEnd{v,
+LPSIM_HD VehicleEnd vehicle_end(const VehicleView& veh, uint32_t slot, uint32_t kind) {
+  return VehicleEnd{veh.vehicle[slot],
+                    slot,
                     kind,
-                    veh.lane[v],
-                    veh.pos[v],
-                    veh.speed[v],
-                    veh.route_length[v],
-                    veh.time_loss[v],
-                    veh.route_pos[v],
-                    veh.waiting_steps[v],
-                    veh.waiting_count[v]};
+                    veh.lane[slot],
+                    veh.pos[slot],
+                    veh.speed[slot],
+                    veh.route_length[slot],
+                    veh.time_loss[slot],
+                    veh.route_pos[slot],
+                    veh.waiting_steps[slot],
+                    veh.waiting_count[slot]};
 }
 
 /// The host's decision for a teleporting vehicle: its trip ends (past the end of its route), or it waits to
-/// re-enter at the next edge of its route.
+/// re-enter at the next edge of its route (the host queues it; the slot only waits to be cleared).
 LPSIM_HD void apply_teleport_move(const VehicleView& veh, const TeleportMove& m, uint32_t steps_done) {
   if (m.ends_trip) {
-    veh.status[m.vehicle] = kArrived;
-    veh.arrival_step[m.vehicle] = steps_done;
+    veh.status[m.slot] = kArrived;
+    veh.arrival_step[m.slot] = steps_done;
   } else {
-    veh.route_pos[m.vehicle] += 1;
-    veh.stopped_steps[m.vehicle] = 0;
+    veh.stopped_steps[m.slot] = 0;
+  }
+}
+
+/// A vehicle takes a free slot after its insertion: its state starts from where it was placed, with no
+/// earlier footprint, and the trip counters it carries over.
+LPSIM_HD void activate_slot(const VehicleView& veh, const SlotInit& in) {
+  const uint32_t k = in.slot;
+  veh.status[k] = kRunning;
+  veh.vehicle[k] = in.vehicle;
+  veh.route_pos[k] = in.route_pos;
+  veh.speed[k] = in.speed;
+  veh.lane[k] = in.lane;
+  veh.prev[k] = -1;
+  veh.prev2[k] = -1;
+  veh.pos[k] = in.pos;
+  veh.old_lane[k] = -1;
+  veh.old_prev[k] = -1;
+  veh.old_prev2[k] = -1;
+  veh.old_pos[k] = 0.0f;
+  veh.stopped_steps[k] = 0;
+  veh.waiting_steps[k] = in.waiting_steps;
+  veh.waiting_count[k] = in.waiting_count;
+  veh.time_loss[k] = in.time_loss;
+  veh.route_length[k] = in.route_length;
+  veh.arrival_step[k] = 0;
+  veh.lane_change_dir[k] = 0;
+  veh.held_at_line[k] = 0;
+  veh.limit_reason[k] = 0;
+  for (uint32_t e = 0; e < kBestLaneEntries; ++e) {
+    veh.best_rp[k * kBestLaneEntries + e] = 0xFFFFFFFFu;
+    veh.best_mask[k * kBestLaneEntries + e] = 0;
   }
 }
 

@@ -63,28 +63,9 @@ Simulation::Simulation(const Network& net, const Demand& demand, const Simulatio
   merge_requests_.assign(nl, 0);
   lane_counters_.resize(nl);
 
-  status_.assign(nv, kPending);
-  lane_change_dir_.assign(nv, 0);
-  held_at_line_.assign(nv, 0);
-  limit_reason_.assign(nv, 0);
-  best_rp_.assign(nv * kBestLaneEntries, 0xFFFFFFFFu);
-  best_mask_.assign(nv * kBestLaneEntries, 0);
-  route_pos_.assign(nv, 0);
-  stopped_steps_.assign(nv, 0);
-  waiting_steps_.assign(nv, 0);
-  waiting_count_.assign(nv, 0);
-  arrival_step_.assign(nv, 0);
-  speed_.assign(nv, 0);
-  pos_.assign(nv, 0);
-  old_pos_.assign(nv, 0);
-  time_loss_.assign(nv, 0);
-  route_length_.assign(nv, 0);
-  lane_.assign(nv, -1);
-  prev_.assign(nv, -1);
-  prev2_.assign(nv, -1);
-  old_lane_.assign(nv, -1);
-  old_prev_.assign(nv, -1);
-  old_prev2_.assign(nv, -1);
+  slot_of_.assign(nv, -1);
+  trip_status_.assign(nv, kPending);
+  resume_rp_.assign(nv, 0);
   teleport_pending_.assign(nv, 0);
   depart_time_.assign(nv, 0);
   depart_pos_.assign(nv, 0);
@@ -102,7 +83,7 @@ Simulation::Simulation(const Network& net, const Demand& demand, const Simulatio
 
   // Vehicles that depart before the begin time are not simulated (as SUMO, which skips them).
   while (next_departure_ < nv && std::llround(demand.depart[next_departure_] * 1000.0) < time_ms_) {
-    status_[next_departure_] = kArrived;
+    trip_status_[next_departure_] = kArrived;
     ++counts_.removed;
     ++next_departure_;
   }
@@ -162,12 +143,12 @@ PlanView Simulation::PlanColumns::view() {
 }
 
 VehicleView Simulation::vehicle_view() {
-  return VehicleView{ptr(status_),        ptr(route_pos_),       ptr(speed_),        ptr(lane_),
-                     ptr(prev_),          ptr(prev2_),           ptr(pos_),          ptr(old_lane_),
-                     ptr(old_prev_),      ptr(old_prev2_),       ptr(old_pos_),      ptr(stopped_steps_),
-                     ptr(waiting_steps_), ptr(waiting_count_),   ptr(time_loss_),    ptr(route_length_),
-                     ptr(arrival_step_),  ptr(lane_change_dir_), ptr(held_at_line_), ptr(limit_reason_),
-                     ptr(best_rp_),       ptr(best_mask_)};
+  return VehicleView{ptr(status_),        ptr(vehicle_),       ptr(route_pos_),       ptr(speed_),
+                     ptr(lane_),          ptr(prev_),          ptr(prev2_),           ptr(pos_),
+                     ptr(old_lane_),      ptr(old_prev_),      ptr(old_prev2_),       ptr(old_pos_),
+                     ptr(stopped_steps_), ptr(waiting_steps_), ptr(waiting_count_),   ptr(time_loss_),
+                     ptr(route_length_),  ptr(arrival_step_),  ptr(lane_change_dir_), ptr(held_at_line_),
+                     ptr(limit_reason_),  ptr(best_rp_),       ptr(best_mask_)};
 }
 
 StepParams Simulation::step_params() const {
@@ -241,9 +222,9 @@ void Simulation::step_cpu() {
   time_ms_ += dt_ms_;
   ++step_;
   ends_.clear();
-  for (uint32_t v : active_) {
-    const uint32_t kind = step_end_kind(ctx.veh, v, step_, teleport_steps_);
-    if (kind != kEndNone) ends_.push_back(vehicle_end(ctx.veh, v, kind));
+  for (uint32_t k : active_) {
+    const uint32_t kind = step_end_kind(ctx.veh, k, step_, teleport_steps_);
+    if (kind != kEndNone) ends_.push_back(vehicle_end(ctx.veh, k, kind));
   }
   handle_vehicle_ends(ends_);
   for (const TeleportMove& m : moves_) apply_teleport_move(ctx.veh, m, step_);
@@ -257,42 +238,40 @@ void Simulation::step_gpu() {
   if (!gpu_) {
     // The device takes over the state as the host left it (signals of the current time, first insertions).
     const StepContext ctx = context(map_[cur_].data(), map_[1 - cur_].data());
-    gpu_ = make_gpu_stepper(ctx, engine_net_.signal_table(net_),
-                            GpuStepSizes{demand_.size(), net_.num_edges(), net_.num_connections(),
-                                         demand_.types.size(), demand_.route_edges.size()},
-                            depart_view(), map_[1 - cur_].data(), cur_, active_, opt_.lane_counters);
+    gpu_ =
+        make_gpu_stepper(ctx, engine_net_.signal_table(net_),
+                         GpuStepSizes{demand_.size(), slots_.size(), net_.num_edges(), net_.num_connections(),
+                                      demand_.types.size(), demand_.route_edges.size()},
+                         depart_view(), map_[1 - cur_].data(), cur_, active_, opt_.lane_counters);
   }
   GpuStepOutcome out;
   out.ends.swap(ends_);
   gpu_->step(step_params(), cur_, step_ + 1, out);
   counts_.vehicle_updates += num_active_;
+  // Exactly the slots whose vehicle left the road in the previous step drop out (stays_active).
+  if (out.kept + retiring_.size() != num_active_)
+    throw std::logic_error("GPU step kept " + std::to_string(out.kept) + " of " +
+                           std::to_string(num_active_) + " active slots, " +
+                           std::to_string(retiring_.size()) + " were to leave");
 
   time_ms_ += dt_ms_;
   ++step_;
-  // The host handles arrivals and teleports in vehicle order, as the CPU backend does.
-  std::sort(out.ends.begin(), out.ends.end(),
-            [](const VehicleEnd& a, const VehicleEnd& b) { return a.vehicle < b.vehicle; });
   handle_vehicle_ends(out.ends);
   if (!moves_.empty()) gpu_->apply_teleports(moves_, step_);
   enqueue_due(time_ms_);
   insert_waiting(1 - cur_);
   cur_ = 1 - cur_;
 
-  // Inserted vehicles join the active list; one that teleported in this step and came straight back is
-  // in it already (kept for its old footprint).
   std::vector<uint32_t>& added = scratch_;
   added.clear();
-  std::sort(inserted_now_.begin(), inserted_now_.end());
-  for (uint32_t v : inserted_now_) {
-    const bool kept =
-        std::any_of(moves_.begin(), moves_.end(), [v](const TeleportMove& m) { return m.vehicle == v; });
-    if (!kept) added.push_back(v);
-  }
-  gpu_->rebuild_active(added);
+  for (const SlotInit& in : inits_) added.push_back(in.slot);
+  std::sort(added.begin(), added.end());
+  gpu_->rebuild_active(inits_, added);
   num_active_ = out.kept + static_cast<uint32_t>(added.size());
-  counts_.running = out.running + static_cast<uint64_t>(inserted_now_.size());
+  counts_.running = out.running + static_cast<uint64_t>(inits_.size());
   counts_.waiting = waiting_;
-  inserted_now_.clear();
+  inits_.clear();
+  release_retired_slots();
   ends_.swap(out.ends);
 }
 
@@ -320,24 +299,33 @@ void Simulation::record_trip(const VehicleEnd& e, bool teleported) {
   finished_.push_back(r);
 }
 
-// Arrivals (ascending by vehicle) become trip records; teleporting vehicles re-enter at the next edge of
-// their route (moves_ says which, for the backend to apply).
-void Simulation::handle_vehicle_ends(const std::vector<VehicleEnd>& ends) {
+// Arrivals become trip records; teleporting vehicles re-enter at the next edge of their route (moves_ says
+// which, for the backend to apply). Handled in vehicle order (the passes find them in slot order); their
+// slots are free once the next step has cleared their footprint.
+void Simulation::handle_vehicle_ends(std::vector<VehicleEnd>& ends) {
+  std::sort(ends.begin(), ends.end(),
+            [](const VehicleEnd& a, const VehicleEnd& b) { return a.vehicle < b.vehicle; });
   moves_.clear();
   for (const VehicleEnd& e : ends) {
+    const uint32_t v = e.vehicle;
+    retiring_next_.push_back(e.slot);
     if (e.kind == kEndArrived) {
+      trip_status_[v] = kArrived;
       record_trip(e, false);
       continue;
     }
     ++counts_.teleports;
-    const uint32_t v = e.vehicle;
     if (e.route_pos + 1 >= demand_.route_length[v]) {
       // Teleported past the end of its route: the trip ends here.
-      moves_.push_back(TeleportMove{v, 1});
+      moves_.push_back(TeleportMove{v, e.slot, 1});
+      trip_status_[v] = kArrived;
       record_trip(e, true);
       continue;
     }
-    moves_.push_back(TeleportMove{v, 0});
+    moves_.push_back(TeleportMove{v, e.slot, 0});
+    trip_status_[v] = kTeleporting;
+    resume_rp_[v] = e.route_pos + 1;
+    carried_[v] = Carried{e.route_length, e.time_loss, e.waiting_steps, e.waiting_count};
     teleport_pending_[v] = 1;
     const uint32_t edge = demand_.route_edges[demand_.route_begin[v] + e.route_pos + 1];
     auto& q = queue_[edge];
@@ -354,13 +342,13 @@ void Simulation::enqueue_due(int64_t until_ms) {
   while (next_departure_ < nv && std::llround(demand_.depart[next_departure_] * 1000.0) <= until_ms) {
     const uint32_t v = next_departure_++;
     if (demand_.route_length[v] == 0) {
-      status_[v] = kArrived;
+      trip_status_[v] = kArrived;
       ++counts_.removed;
       continue;
     }
     const uint32_t e = demand_.route_edges[demand_.route_begin[v]];
     if (net_.edge_num_lanes[e] == 0) {
-      status_[v] = kArrived;
+      trip_status_[v] = kArrived;
       ++counts_.removed;
       continue;
     }
@@ -380,11 +368,15 @@ void Simulation::insert_waiting(int map_index) {
   batch_edge_.clear();
   batch_begin_.assign(1, 0);
   batch_entry_.clear();
+  batch_rp_.clear();
   for (uint32_t e : queued_edges_) {
     const auto& q = queue_[e];
     const size_t end = std::min<size_t>(q.size(), queue_head_[e] + kMaxInsertPerEdge);
-    for (size_t i = queue_head_[e]; i < end; ++i)
-      batch_entry_.push_back(q[i] | (teleport_pending_[q[i]] ? kInsertTeleported : 0u));
+    for (size_t i = queue_head_[e]; i < end; ++i) {
+      const bool teleported = teleport_pending_[q[i]] != 0;
+      batch_entry_.push_back(q[i] | (teleported ? kInsertTeleported : 0u));
+      batch_rp_.push_back(teleported ? resume_rp_[q[i]] : 0u);
+    }
     batch_edge_.push_back(e);
     batch_begin_.push_back(static_cast<uint32_t>(batch_entry_.size()));
   }
@@ -397,6 +389,7 @@ void Simulation::insert_waiting(int map_index) {
                           batch_edge_.data(),
                           batch_begin_.data(),
                           batch_entry_.data(),
+                          batch_rp_.data(),
                           batch_inserted_.data(),
                           batch_lane_.data(),
                           batch_pos_.data(),
@@ -420,16 +413,26 @@ void Simulation::insert_waiting(int map_index) {
     }
   }
 
-  // Advance the queues past the inserted heads and record the departures, in the order of the batch.
-  inserted_now_.clear();
+  // Advance the queues past the inserted heads, give each inserted vehicle a slot and record the
+  // departures, in the order of the batch.
+  inits_.clear();
   std::vector<uint32_t>& still = scratch_;
   still.clear();
   for (uint32_t slot = 0; slot < batch.num_slots; ++slot) {
     const uint32_t e = batch_edge_[slot];
     for (uint32_t i = batch_begin_[slot]; i < batch_begin_[slot] + batch_inserted_[slot]; ++i) {
       const uint32_t v = batch_entry_[i] & ~kInsertTeleported;
+      SlotInit init{0, v, batch_rp_[i], batch_lane_[i], batch_pos_[i], batch_speed_[i], 0.0f, 0.0f, 0, 0};
       if (batch_entry_[i] & kInsertTeleported) {
         teleport_pending_[v] = 0;
+        const auto c = carried_.find(v);
+        if (c != carried_.end()) {
+          init.route_length = c->second.route_length;
+          init.time_loss = c->second.time_loss;
+          init.waiting_steps = c->second.waiting_steps;
+          init.waiting_count = c->second.waiting_count;
+          carried_.erase(c);
+        }
       } else {
         ++counts_.inserted;
         depart_delay_sum_ += time() - demand_.depart[v];
@@ -438,7 +441,7 @@ void Simulation::insert_waiting(int map_index) {
         depart_pos_[v] = batch_pos_[i];
         depart_speed_[v] = batch_speed_[i];
       }
-      inserted_now_.push_back(v);
+      take_slot(init);
       ++queue_head_[e];
       --waiting_;
     }
@@ -453,23 +456,62 @@ void Simulation::insert_waiting(int map_index) {
   queued_edges_.swap(still);
 }
 
+void Simulation::take_slot(SlotInit& init) {
+  init.slot = slots_.take();
+  const size_t n = slots_.size();
+  if (status_.size() < n) {
+    // Grows by half again; an entry's contents are set when its slot is taken (activate_slot).
+    const size_t c = std::max(n, status_.size() + status_.size() / 2);
+    for (auto* col : {&status_, &lane_change_dir_, &held_at_line_, &limit_reason_}) col->resize(c);
+    for (auto* col :
+         {&vehicle_, &route_pos_, &stopped_steps_, &waiting_steps_, &waiting_count_, &arrival_step_})
+      col->resize(c);
+    for (auto* col : {&best_rp_, &best_mask_}) col->resize(c * kBestLaneEntries);
+    for (auto* col : {&speed_, &pos_, &old_pos_, &time_loss_, &route_length_}) col->resize(c);
+    for (auto* col : {&lane_, &prev_, &prev2_, &old_lane_, &old_prev_, &old_prev2_}) col->resize(c);
+  }
+  slot_of_[init.vehicle] = static_cast<int32_t>(init.slot);
+  inits_.push_back(init);
+  // On the CPU the slot starts now; the GPU backend starts this step's inits on the device.
+  if (!gpu_) activate_slot(vehicle_view(), init);
+}
+
+// The slots that left the active list in this step (their vehicles left the road in the previous one) are
+// free; this step's ends leave in the next.
+void Simulation::release_retired_slots() {
+  for (uint32_t k : retiring_) {
+    slots_.release(k);
+    const uint32_t v = vehicle_[k];
+    if (slot_of_[v] == static_cast<int32_t>(k)) slot_of_[v] = -1;  // not if it re-entered in another slot
+  }
+  retiring_.swap(retiring_next_);
+  retiring_next_.clear();
+}
+
 void Simulation::rebuild_active() {
   // Keep running vehicles and those that left the road this step (their old footprint is cleared by
-  // the next step's clear pass); add the newly inserted ones; ascending order keeps passes deterministic.
+  // the next step's clear pass); add the newly inserted ones; ascending slots.
   // Member scratch buffers: fresh large vectors every step would cost page faults.
   std::vector<uint32_t>& next = scratch_;
   next.clear();
   const VehicleView veh = vehicle_view();
-  for (uint32_t v : active_)
-    if (stays_active(veh, v)) next.push_back(v);
-  std::sort(inserted_now_.begin(), inserted_now_.end());
+  for (uint32_t k : active_)
+    if (stays_active(veh, k)) next.push_back(k);
+  if (next.size() + retiring_.size() != active_.size())
+    throw std::logic_error("step kept " + std::to_string(next.size()) + " of " +
+                           std::to_string(active_.size()) + " active slots, " +
+                           std::to_string(retiring_.size()) + " were to leave");
+  std::vector<uint32_t> added;
+  added.reserve(inits_.size());
+  for (const SlotInit& in : inits_) added.push_back(in.slot);
+  std::sort(added.begin(), added.end());
   active_.clear();
-  std::set_union(next.begin(), next.end(), inserted_now_.begin(), inserted_now_.end(),
-                 std::back_inserter(active_));
-  inserted_now_.clear();
+  std::merge(next.begin(), next.end(), added.begin(), added.end(), std::back_inserter(active_));
+  inits_.clear();
+  release_retired_slots();
   num_active_ = static_cast<uint32_t>(active_.size());
   uint64_t running = 0;
-  for (uint32_t v : active_) running += status_[v] == kRunning;
+  for (uint32_t k : active_) running += status_[k] == kRunning;
   counts_.running = running;
   counts_.waiting = waiting_;
 }
@@ -479,16 +521,18 @@ void Simulation::rebuild_active() {
 void Simulation::sync_sample() const {
   if (!gpu_ || sampled_step_ == step_) return;
   auto* self = const_cast<Simulation*>(this);
+  std::vector<uint32_t> vehicle;
   std::vector<uint8_t> status;
   std::vector<int32_t> lane;
   std::vector<float> pos, speed;
-  self->gpu_->sample(self->active_, status, lane, pos, speed);
+  self->gpu_->sample(self->active_, vehicle, status, lane, pos, speed);
   for (size_t i = 0; i < active_.size(); ++i) {
-    const uint32_t v = active_[i];
-    self->status_[v] = status[i];
-    self->lane_[v] = lane[i];
-    self->pos_[v] = pos[i];
-    self->speed_[v] = speed[i];
+    const uint32_t k = active_[i];
+    self->vehicle_[k] = vehicle[i];
+    self->status_[k] = status[i];
+    self->lane_[k] = lane[i];
+    self->pos_[k] = pos[i];
+    self->speed_[k] = speed[i];
   }
   sampled_step_ = step_;
 }
@@ -497,7 +541,8 @@ void Simulation::sync_host() const {
   if (!gpu_ || synced_step_ == step_) return;
   sync_sample();  // the active list
   auto* self = const_cast<Simulation*>(this);
-  self->gpu_->download_state(self->context(nullptr, self->map_[cur_].data()), cur_, self->link_state_.data());
+  self->gpu_->download_state(self->context(nullptr, self->map_[cur_].data()), slots_.size(), cur_,
+                             self->link_state_.data());
   synced_step_ = step_;
 }
 
@@ -511,20 +556,66 @@ const LaneCounters& Simulation::lane_counters() const {
   return lane_counters_;
 }
 
-void Simulation::sample_fcd(FcdFrame& frame) const {
+// (vehicle, slot) of the running vehicles, ascending by vehicle: outputs list and sum them in vehicle order,
+// whatever slots they hold.
+std::vector<std::pair<uint32_t, uint32_t>> Simulation::running_by_vehicle() const {
   sync_sample();
+  std::vector<std::pair<uint32_t, uint32_t>> out;
+  out.reserve(active_.size());
+  for (uint32_t k : active_)
+    if (status_[k] == kRunning) out.emplace_back(vehicle_[k], k);
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+void Simulation::sample_fcd(FcdFrame& frame) const {
   frame.time = time();
   frame.vehicle.clear();
   frame.lane.clear();
   frame.pos.clear();
   frame.speed.clear();
-  for (uint32_t v : active_) {
-    if (status_[v] != kRunning) continue;
+  for (const auto& [v, k] : running_by_vehicle()) {
     frame.vehicle.push_back(v);
-    frame.lane.push_back(static_cast<uint32_t>(lane_[v]));
-    frame.pos.push_back(pos_[v]);
-    frame.speed.push_back(speed_[v]);
+    frame.lane.push_back(static_cast<uint32_t>(lane_[k]));
+    frame.pos.push_back(pos_[k]);
+    frame.speed.push_back(speed_[k]);
   }
+}
+
+uint8_t Simulation::status(uint32_t v) const {
+  const int32_t k = slot_of(v);
+  return k >= 0 ? status_[static_cast<size_t>(k)] : trip_status_[v];
+}
+
+int32_t Simulation::lane(uint32_t v) const {
+  const int32_t k = slot_of(v);
+  return k >= 0 ? lane_[static_cast<size_t>(k)] : -1;
+}
+
+float Simulation::pos(uint32_t v) const {
+  const int32_t k = slot_of(v);
+  return k >= 0 ? pos_[static_cast<size_t>(k)] : 0.0f;
+}
+
+float Simulation::speed(uint32_t v) const {
+  const int32_t k = slot_of(v);
+  return k >= 0 ? speed_[static_cast<size_t>(k)] : 0.0f;
+}
+
+uint8_t Simulation::limit_reason(uint32_t v) const {
+  const int32_t k = slot_of(v);
+  return k >= 0 ? limit_reason_[static_cast<size_t>(k)] : 0;
+}
+
+const std::vector<uint32_t>& Simulation::active() const {
+  sync_host();
+  active_vehicles_.clear();
+  for (uint32_t k : active_) active_vehicles_.push_back(vehicle_[k]);
+  std::sort(active_vehicles_.begin(), active_vehicles_.end());
+  // A vehicle that teleported and re-entered at once holds its old slot for one more step.
+  active_vehicles_.erase(std::unique(active_vehicles_.begin(), active_vehicles_.end()),
+                         active_vehicles_.end());
+  return active_vehicles_;
 }
 
 std::vector<TripRecord> Simulation::take_finished_trips() {
@@ -543,18 +634,16 @@ SummaryRow Simulation::summary_row() const {
   r.arrived = counts_.arrived;
   r.ended = counts_.arrived;
   r.teleports = counts_.teleports;
-  sync_sample();
   double speed_sum = 0, rel_sum = 0;
   uint64_t running = 0, halting = 0;
   const VehicleTypes& t = demand_.types;
-  for (uint32_t v : active_) {
-    if (status_[v] != kRunning) continue;
+  for (const auto& [v, k] : running_by_vehicle()) {
     ++running;
-    speed_sum += speed_[v];
-    const float v0 = desired_speed(net_.lane_speed[lane_[v]], demand_.speed_factor[v],
+    speed_sum += speed_[k];
+    const float v0 = desired_speed(net_.lane_speed[lane_[k]], demand_.speed_factor[v],
                                    t.max_speed[demand_.vehicle_type[v]]);
-    if (v0 > 0) rel_sum += speed_[v] / v0;
-    if (speed_[v] < kHaltingSpeed) ++halting;
+    if (v0 > 0) rel_sum += speed_[k] / v0;
+    if (speed_[k] < kHaltingSpeed) ++halting;
   }
   r.halting = halting;
   if (running > 0) {
@@ -573,9 +662,8 @@ std::string Simulation::check_lane_map() const {
   std::vector<int64_t> owner(net_.num_cells(), -1);
   const NetView nv = engine_net_.view(net_);
   std::vector<uint8_t> expect(net_.num_cells(), 0);
-  for (uint32_t v : active_) {
-    if (status_[v] != kRunning) continue;
-    const Footprint fp{lane_[v], prev_[v], prev2_[v], pos_[v]};
+  for (const auto& [v, k] : running_by_vehicle()) {
+    const Footprint fp{lane_[k], prev_[k], prev2_[k], pos_[k]};
     std::vector<uint8_t> mark(net_.num_cells(), 0);
     apply_footprint(mark.data(), nv, fp, demand_.types.length[demand_.vehicle_type[v]], 1);
     for (uint64_t c = 0; c < mark.size(); ++c) {

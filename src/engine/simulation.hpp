@@ -6,12 +6,15 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "demand/demand.hpp"
 #include "engine/engine_net.hpp"
 #include "engine/parallel_for.hpp"
 #include "engine/samples.hpp"
+#include "engine/slot_pool.hpp"
 #include "kernels/gpu_stepper.hpp"
 #include "kernels/insert_vehicle.hpp"
 #include "kernels/step_view.hpp"
@@ -62,17 +65,20 @@ class Simulation {
   /// cell two vehicles share or a mismatch with the engine's map ("" when consistent).
   std::string check_lane_map() const;
   /// Test support: read access to vehicle state (on the GPU backend, each step's state is fetched from the
-  /// device at the first such call).
-  uint8_t status(uint32_t v) const { return sync_host(), status_[v]; }
-  int32_t lane(uint32_t v) const { return sync_host(), lane_[v]; }
-  float pos(uint32_t v) const { return sync_host(), pos_[v]; }
-  float speed(uint32_t v) const { return sync_host(), speed_[v]; }
-  uint32_t route_pos(uint32_t v) const { return sync_host(), route_pos_[v]; }
+  /// device at the first such call). A vehicle off the road reports lane -1, position and speed 0.
+  uint8_t status(uint32_t v) const;
+  int32_t lane(uint32_t v) const;
+  float pos(uint32_t v) const;
+  float speed(uint32_t v) const;
   /// What bounded the vehicle's speed in its last plan (StopReason in kernels/step_view.hpp).
-  uint8_t limit_reason(uint32_t v) const { return sync_host(), limit_reason_[v]; }
+  uint8_t limit_reason(uint32_t v) const;
   /// Current character of a connection's signal link (or its state when unsignalised).
   char link_state(uint32_t conn) const;
-  const std::vector<uint32_t>& active() const { return sync_host(), active_; }
+  /// Slots handed out so far: the length of the per-slot state columns (the most vehicles on the road at
+  /// once, counting those that left it in the last two steps).
+  uint32_t slots_used() const { return slots_.size(); }
+  /// The vehicles the passes visit (on the road, or left it this step), ascending.
+  const std::vector<uint32_t>& active() const;
   /// Test support: the vehicles that teleported in the last step (and whether that ended their trip).
   const std::vector<TeleportMove>& teleports_of_last_step() const { return moves_; }
 
@@ -87,9 +93,13 @@ class Simulation {
   DepartView depart_view() const;
   void enqueue_due(int64_t until_ms);
   void insert_waiting(int map_index);
-  void handle_vehicle_ends(const std::vector<VehicleEnd>& ends);
+  void handle_vehicle_ends(std::vector<VehicleEnd>& ends);
   void record_trip(const VehicleEnd& e, bool teleported);
   void rebuild_active();
+  void take_slot(SlotInit& init);
+  void release_retired_slots();
+  int32_t slot_of(uint32_t v) const { return sync_host(), slot_of_[v]; }
+  std::vector<std::pair<uint32_t, uint32_t>> running_by_vehicle() const;
   void sync_sample() const;
   void sync_host() const;
 
@@ -113,12 +123,29 @@ class Simulation {
   std::vector<uint64_t> claims_, merge_requests_;
   LaneCounters lane_counters_;
 
-  // Per-vehicle state (see VehicleView).
+  // State of the vehicles on the road, by slot (see VehicleView): as long as the slots ever used.
+  SlotPool slots_;
   std::vector<uint8_t> status_, lane_change_dir_, held_at_line_, limit_reason_;
-  std::vector<uint32_t> best_rp_, best_mask_, route_pos_, stopped_steps_, waiting_steps_, waiting_count_,
-      arrival_step_;
+  std::vector<uint32_t> vehicle_, best_rp_, best_mask_, route_pos_, stopped_steps_, waiting_steps_,
+      waiting_count_, arrival_step_;
   std::vector<float> speed_, pos_, old_pos_, time_loss_, route_length_;
   std::vector<int32_t> lane_, prev_, prev2_, old_lane_, old_prev_, old_prev2_;
+  // Slots whose vehicle left the road in the previous step (free after this step's passes), and in this one.
+  std::vector<uint32_t> retiring_, retiring_next_;
+  // This step's insertions, each with the slot it took (the GPU backend initialises them on the device).
+  std::vector<SlotInit> inits_;
+
+  // Per vehicle (host only): its slot while on the road (-1 otherwise), its status off the road (pending,
+  // arrived or removed, teleporting = queued to re-enter), where a teleported vehicle re-enters, and the
+  // trip counters it carries over the teleport.
+  std::vector<int32_t> slot_of_;
+  std::vector<uint8_t> trip_status_;
+  std::vector<uint32_t> resume_rp_;
+  struct Carried {
+    float route_length, time_loss;
+    uint32_t waiting_steps, waiting_count;
+  };
+  std::unordered_map<uint32_t, Carried> carried_;
   // Plan scratch (see PlanView): one entry per position in the active list, grown with it.
   struct PlanColumns {
     std::vector<float> new_speed, new_pos, stop_pos;
@@ -140,12 +167,13 @@ class Simulation {
   std::vector<uint32_t> queued_edges_;        // edges with a non-empty queue, ascending
   uint64_t waiting_ = 0;
 
-  std::vector<uint32_t> active_;  // vehicles the passes visit, ascending (GPU backend: kept on the device)
+  std::vector<uint32_t> active_;  // slots the passes visit, ascending (GPU backend: kept on the device)
+  mutable std::vector<uint32_t> active_vehicles_;  // active(): their vehicles
   uint32_t num_active_ = 0;
   uint32_t teleport_steps_ = 0;  // stopped steps before a teleport (0: never)
-  std::vector<uint32_t> inserted_now_, scratch_;
+  std::vector<uint32_t> scratch_;
   // This step's queue heads handed to insertion (InsertBatch), and what came back.
-  std::vector<uint32_t> batch_edge_, batch_begin_, batch_entry_, batch_inserted_;
+  std::vector<uint32_t> batch_edge_, batch_begin_, batch_entry_, batch_rp_, batch_inserted_;
   std::vector<int32_t> batch_lane_;
   std::vector<float> batch_pos_, batch_speed_;
   std::vector<VehicleEnd> ends_;
