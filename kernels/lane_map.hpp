@@ -14,7 +14,7 @@ namespace lpsim {
 
 #ifndef __CUDA_ARCH__
 static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__,
-              "the host lane-map scans read cells as little-endian words");
+              "the lane-map scans read cells as little-endian words (as CUDA devices are)");
 #endif
 
 LPSIM_HD uint8_t encode_cell_speed(float v) {
@@ -63,9 +63,18 @@ LPSIM_HD int32_t first_occupied(const uint8_t* map, const NetView& net, int32_t 
                                 int32_t last) {
   const uint8_t* cells = map + net.lane_cell_begin[lane];
   int32_t c = first;
-#ifndef __CUDA_ARCH__
-  // On the host, eight cells per test: look-ahead scans mostly cross empty cells. Little-endian, so the
-  // lowest set byte of a word is the first cell in lane order.
+  // Eight cells per test: look-ahead scans mostly cross empty cells. Little-endian (host and device), so
+  // the lowest set byte of a word is the first cell in lane order.
+#ifdef __CUDA_ARCH__
+  // The device loads only aligned words (an unaligned one would be split into byte loads): single cells up
+  // to the first word boundary, then whole words.
+  for (; c <= last && (reinterpret_cast<uintptr_t>(cells + c) & 7u) != 0; ++c)
+    if (cells[c] != 0) return c;
+  for (; c + 7 <= last; c += 8) {
+    const uint64_t word = *reinterpret_cast<const uint64_t*>(cells + c);
+    if (word != 0) return c + ((__ffsll(static_cast<long long>(word)) - 1) >> 3);
+  }
+#else
   for (; c + 7 <= last; c += 8) {
     uint64_t word;
     memcpy(&word, cells + c, sizeof word);
@@ -82,8 +91,16 @@ LPSIM_HD int32_t last_occupied(const uint8_t* map, const NetView& net, int32_t l
                                int32_t last) {
   const uint8_t* cells = map + net.lane_cell_begin[lane];
   int32_t c = last;
-#ifndef __CUDA_ARCH__
-  for (; c - 7 >= first; c -= 8) {  // the word of cells [c-7, c]; its highest set byte is the last cell
+  // The word of cells [c-7, c]: its highest set byte is the last occupied cell.
+#ifdef __CUDA_ARCH__
+  for (; c >= first && (reinterpret_cast<uintptr_t>(cells + c + 1) & 7u) != 0; --c)
+    if (cells[c] != 0) return c;
+  for (; c - 7 >= first; c -= 8) {
+    const uint64_t word = *reinterpret_cast<const uint64_t*>(cells + c - 7);
+    if (word != 0) return c - 7 + ((63 - __clzll(static_cast<long long>(word))) >> 3);
+  }
+#else
+  for (; c - 7 >= first; c -= 8) {
     uint64_t word;
     memcpy(&word, cells + c - 7, sizeof word);
     if (word != 0) return c - 7 + static_cast<int32_t>((63 - __builtin_clzll(word)) >> 3);
