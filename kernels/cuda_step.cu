@@ -58,7 +58,8 @@ __global__ void signals_kernel(SignalTable table, int64_t time_ms, char* link_st
 // One thread per active vehicle, running one of the step's passes (the same functions the CPU backend loops
 // over).
 template <void (*VehiclePass)(StepContext&, uint32_t, uint32_t)>
-__global__ void pass_kernel(StepContext ctx, const uint32_t* active, uint32_t n) {
+__global__ void __launch_bounds__(kBlock, 8)
+    pass_kernel(StepContext ctx, const uint32_t* active, uint32_t n) {
   const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
   if (i < n) VehiclePass(ctx, i, active[i]);
 }
