@@ -178,6 +178,7 @@ struct VehicleEnd {
   uint32_t route_pos;
   uint32_t waiting_steps;
   uint32_t waiting_count;
+  uint32_t limit_reason;  // StopReason of its last plan (why a teleporting vehicle was stuck)
 };
 
 /// What becomes of a teleporting vehicle (decided on the host, which owns the insertion queues).

@@ -976,7 +976,8 @@ LPSIM_HD VehicleEnd vehicle_end(const VehicleView& veh, uint32_t slot, uint32_t 
                     veh.time_loss[slot],
                     veh.route_pos[slot],
                     veh.waiting_steps[slot],
-                    veh.waiting_count[slot]};
+                    veh.waiting_count[slot],
+                    veh.limit_reason[slot]};
 }
 
 /// The host's decision for a teleporting vehicle: its trip ends (past the end of its route), or it waits to

@@ -35,6 +35,18 @@ struct RunTotals {
   uint64_t peak_running = 0;
 };
 
+// SUMO's warning for each vehicle that starts a teleport; the time is the end of the step in which its
+// clock ran out.
+void warn_teleports(const Simulation& sim, const Network& net, const Demand& demand) {
+  for (const TeleportEvent& t : sim.teleport_events()) {
+    const char* cause = t.cause == TeleportCause::Yield       ? "yield"
+                        : t.cause == TeleportCause::WrongLane ? "wrong lane"
+                                                              : "jam";
+    std::fprintf(stderr, "Warning: Teleporting vehicle '%s'; waited too long (%s), lane='%s', time=%.2f.\n",
+                 demand.vehicle_id[t.vehicle].c_str(), cause, net.lane_id[t.lane].c_str(), sim.time());
+  }
+}
+
 void print_progress(const Simulation& sim, double wall, double end) {
   const auto& c = sim.counts();
   const double ups = wall > 0 ? static_cast<double>(c.vehicle_updates) / wall : 0;
@@ -132,6 +144,7 @@ int command_run(const std::vector<std::string>& args) {
   // As SUMO: with an end time the last step simulated starts at end - step (outputs run to end - step).
   while (!(end >= 0 ? sim.time() + config.step_length > end - 1e-9 : sim.finished())) {
     sim.step();
+    if (!config.no_warnings) warn_teleports(sim, sc.network, sc.demand);
     totals.peak_running = std::max<uint64_t>(totals.peak_running, sim.counts().running);
     emit();
     for (auto& m : mean)

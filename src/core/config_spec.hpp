@@ -21,6 +21,7 @@ struct ConfigSpec {
   double begin = 0, end = -1, step_length = 1.0;               // end -1: until all vehicles arrived
   long long seed = 23423;
   double time_to_teleport = 300;
+  bool no_warnings = false;  // SUMO's --no-warnings: no teleport warnings on stderr
   bool ignore_route_errors = false;
   int threads = 0;  // 0: all hardware threads
   // CPU until the GPU backend has been checked byte-identical on a GPU (tests/gpu); `--device auto` opts in.

@@ -36,6 +36,17 @@ struct MeanDataInterval {
   const LaneCounters* counters = nullptr;
 };
 
+/// Why a vehicle teleported, as SUMO words it: stopped too long in a jam, waiting to yield at a junction, or
+/// on a lane that does not lead on along its route.
+enum class TeleportCause : uint8_t { Jam, Yield, WrongLane };
+
+/// A vehicle that started a teleport in the last step, on `lane`.
+struct TeleportEvent {
+  uint32_t vehicle = 0;
+  uint32_t lane = 0;
+  TeleportCause cause = TeleportCause::Jam;
+};
+
 /// One finished trip (tripinfo). Times in seconds.
 struct TripRecord {
   uint32_t vehicle = 0;

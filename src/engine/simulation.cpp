@@ -306,6 +306,7 @@ void Simulation::handle_vehicle_ends(std::vector<VehicleEnd>& ends) {
   std::sort(ends.begin(), ends.end(),
             [](const VehicleEnd& a, const VehicleEnd& b) { return a.vehicle < b.vehicle; });
   moves_.clear();
+  teleport_events_.clear();
   for (const VehicleEnd& e : ends) {
     const uint32_t v = e.vehicle;
     retiring_next_.push_back(e.slot);
@@ -315,6 +316,10 @@ void Simulation::handle_vehicle_ends(std::vector<VehicleEnd>& ends) {
       continue;
     }
     ++counts_.teleports;
+    teleport_events_.push_back(TeleportEvent{v, static_cast<uint32_t>(e.lane),
+                                             e.limit_reason == kYield       ? TeleportCause::Yield
+                                             : e.limit_reason == kWrongLane ? TeleportCause::WrongLane
+                                                                            : TeleportCause::Jam});
     if (e.route_pos + 1 >= demand_.route_length[v]) {
       // Teleported past the end of its route: the trip ends here.
       moves_.push_back(TeleportMove{v, e.slot, 1});

@@ -81,6 +81,8 @@ class Simulation {
   const std::vector<uint32_t>& active() const;
   /// Test support: the vehicles that teleported in the last step (and whether that ended their trip).
   const std::vector<TeleportMove>& teleports_of_last_step() const { return moves_; }
+  /// The teleports that started in the last step, in vehicle order (the runner warns of each, as SUMO).
+  const std::vector<TeleportEvent>& teleport_events() const { return teleport_events_; }
 
  private:
   VehicleView vehicle_view();
@@ -178,6 +180,7 @@ class Simulation {
   std::vector<float> batch_pos_, batch_speed_;
   std::vector<VehicleEnd> ends_;
   std::vector<TeleportMove> moves_;
+  std::vector<TeleportEvent> teleport_events_;
   std::vector<TripRecord> finished_;
   double depart_delay_sum_ = 0, travel_time_sum_ = 0;
 
