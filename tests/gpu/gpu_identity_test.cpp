@@ -2,7 +2,6 @@
 // bundled scenarios (skipped, saying why, where no usable CUDA device exists), and device selection
 // behaves as documented on any machine (auto falls back to the CPU, gpu without a device is bad input).
 #include <gtest/gtest.h>
-#include <stdlib.h>
 #include <sys/wait.h>
 
 #include <cstdlib>
@@ -15,6 +14,7 @@
 
 #include "core/error.hpp"
 #include "engine/device_select.hpp"
+#include "temp_dir.hpp"
 
 namespace lpsim {
 namespace {
@@ -47,21 +47,6 @@ size_t count(const std::string& s, const std::string& needle) {
   for (size_t at = s.find(needle); at != std::string::npos; at = s.find(needle, at + 1)) ++n;
   return n;
 }
-
-class TempDir {
- public:
-  TempDir() {
-    std::string pattern = (fs::temp_directory_path() / "lpsim_gpu_XXXXXX").string();
-    if (mkdtemp(pattern.data()) != nullptr) path_ = pattern;
-  }
-  ~TempDir() {
-    if (!path_.empty()) fs::remove_all(path_);
-  }
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
 
 struct RunResult {
   int exit_code = -1;
@@ -114,8 +99,7 @@ TEST_P(GpuIdentityTest, GpuOutputsEqualCpuOutputsByteForByte) {
   const CudaDeviceStatus gpu = gpu_status();
   if (!gpu.usable)
     GTEST_SKIP() << "no usable CUDA device (" << gpu.description << "): CPU/GPU identity not checked";
-  TempDir tmp;
-  ASSERT_FALSE(tmp.path().empty());
+  const test::TempDir tmp("lpsim_gpu");
   const IdentityCase& c = GetParam();
   const Outputs cpu = run_on(tmp.path(), c.scenario, c.args, "cpu");
   const Outputs dev = run_on(tmp.path(), c.scenario, c.args, "gpu");
@@ -187,8 +171,7 @@ TEST(DeviceSelectTest, BuildWithoutCudaSaysSo) {
 TEST(DeviceCliTest, GpuWithoutAUsableDeviceExitsWithStatus2AndOneLine) {
   const CudaDeviceStatus gpu = gpu_status();
   if (gpu.usable) GTEST_SKIP() << "a CUDA device is usable (" << gpu.description << ")";
-  TempDir tmp;
-  ASSERT_FALSE(tmp.path().empty());
+  const test::TempDir tmp("lpsim_gpu");
   const RunResult r = run_lpsim(tmp.path(), "grid_tls", "--device gpu --end 10");
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_EQ(r.err,
@@ -197,16 +180,14 @@ TEST(DeviceCliTest, GpuWithoutAUsableDeviceExitsWithStatus2AndOneLine) {
 }
 
 TEST(DeviceCliTest, UnknownDeviceIsBadInput) {
-  TempDir tmp;
-  ASSERT_FALSE(tmp.path().empty());
+  const test::TempDir tmp("lpsim_gpu");
   const RunResult r = run_lpsim(tmp.path(), "grid_tls", "--device tpu --end 10");
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_EQ(r.err, "lpsim: error: command line: --device: expected auto, cpu or gpu, got 'tpu'\n");
 }
 
 TEST(DeviceCliTest, AutoPrintsTheChosenDeviceOnOneStderrLine) {
-  TempDir tmp;
-  ASSERT_FALSE(tmp.path().empty());
+  const test::TempDir tmp("lpsim_gpu");
   const RunResult r = run_lpsim(tmp.path(), "grid_tls", "--device auto --end 60");
   EXPECT_EQ(r.exit_code, 0) << r.err;
   const DeviceChoice expected = select_device(ComputeDevice::Auto);
@@ -215,8 +196,7 @@ TEST(DeviceCliTest, AutoPrintsTheChosenDeviceOnOneStderrLine) {
 }
 
 TEST(DeviceCliTest, CpuPrintsNothingAboutTheDevice) {
-  TempDir tmp;
-  ASSERT_FALSE(tmp.path().empty());
+  const test::TempDir tmp("lpsim_gpu");
   const RunResult r = run_lpsim(tmp.path(), "grid_tls", "--device cpu --end 60");
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(r.err.empty()) << r.err;

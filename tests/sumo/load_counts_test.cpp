@@ -20,7 +20,6 @@
 //    flows draw with LPSim's own generator, not SUMO's): there each deterministic flow must match SUMO's
 //    per-flow count exactly and the random one must be within 4 standard deviations of its mean.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -37,6 +36,7 @@
 #include "converters/route_reader.hpp"
 #include "converters/sumocfg_reader.hpp"
 #include "net/junction_type.hpp"
+#include "temp_dir.hpp"
 
 namespace lpsim {
 namespace {
@@ -329,16 +329,16 @@ TEST(SumoLoadCounts, LpsimCsvBothHeadersSameNetwork) {
   }
 
   // Every column, via the snapshot payload (which lists each persisted column once): identical bytes.
-  const fs::path tmp = fs::temp_directory_path() / ("lpsim_csv_headers_" + std::to_string(::getpid()));
-  fs::create_directories(tmp);
-  write_snapshot(a, (tmp / "a.lpsim").string());
-  write_snapshot(b, (tmp / "b.lpsim").string());
-  auto bytes = [](const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    return std::string(std::istreambuf_iterator<char>(in), {});
-  };
-  EXPECT_EQ(bytes(tmp / "a.lpsim"), bytes(tmp / "b.lpsim"));
-  fs::remove_all(tmp);
+  {
+    const test::TempDir tmp("lpsim_csv_headers");
+    write_snapshot(a, (tmp.path() / "a.lpsim").string());
+    write_snapshot(b, (tmp.path() / "b.lpsim").string());
+    auto bytes = [](const fs::path& p) {
+      std::ifstream in(p, std::ios::binary);
+      return std::string(std::istreambuf_iterator<char>(in), {});
+    };
+    EXPECT_EQ(bytes(tmp.path() / "a.lpsim"), bytes(tmp.path() / "b.lpsim"));
+  }
 
   // OD rows: 8 trips, each routed from its origin node to its destination node (origin_osmid and
   // destination_osmid columns, which the reader does not use: it takes the dense indices).

@@ -4,13 +4,14 @@
 // binary runs with that dir as working directory, so messages name files exactly as given.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
+
+#include "temp_dir.hpp"
 
 namespace lpsim {
 namespace {
@@ -50,18 +51,7 @@ std::vector<std::string> lines_of(const std::string& text) {
 
 class CliBadInputTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() /
-           ("lpsim_cli_bad_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  void write(const std::string& name, const std::string& text) {
-    std::ofstream(dir_ / name, std::ios::binary) << text;
-  }
+  void write(const std::string& name, const std::string& text) const { tmp_.write(name, text); }
 
   // A route file whose first element sits on line 3 (line 2 is a comment), so a reported line 3 is the
   // element's own line and not the file's first lines by accident.
@@ -81,7 +71,7 @@ class CliBadInputTest : public ::testing::Test {
   CliResult run(const std::vector<std::string>& args) const {
     // Appended piecewise: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string temporaries.
     std::string cmd = "cd ";
-    cmd += shell_quote(dir_.string());
+    cmd += shell_quote(tmp_.path().string());
     cmd += " && ";
     cmd += shell_quote(LPSIM_BINARY);
     for (const auto& a : args) {
@@ -93,8 +83,8 @@ class CliBadInputTest : public ::testing::Test {
     CliResult r;
     r.exit_code =
         WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
-    r.out = slurp(dir_ / "stdout.txt");
-    r.err = slurp(dir_ / "stderr.txt");
+    r.out = slurp(tmp_.path() / "stdout.txt");
+    r.err = slurp(tmp_.path() / "stderr.txt");
     return r;
   }
 
@@ -102,7 +92,7 @@ class CliBadInputTest : public ::testing::Test {
     return run({"info", "-n", kGridNet, "-r", routes});
   }
 
-  fs::path dir_;
+  test::TempDir tmp_{"lpsim_cli_bad"};
 };
 
 // Exit status 2; stderr exactly one line "lpsim: error: <where>: ..." containing every one of `names`.
@@ -136,7 +126,7 @@ void write_net_with_garbage_line(const fs::path& path) {
 }
 
 TEST_F(CliBadInputTest, MalformedXml) {
-  write_net_with_garbage_line(dir_ / "garbage.net.xml");
+  write_net_with_garbage_line(tmp_.path() / "garbage.net.xml");
   const auto r = run({"info", "-n", "garbage.net.xml"});
   EXPECT_EQ(r.exit_code, 2);
   ASSERT_EQ(lines_of(r.err).size(), 1u) << r.err;
@@ -146,7 +136,7 @@ TEST_F(CliBadInputTest, MalformedXml) {
 
 // The line of a malformed-XML error is where the parser found the error (as xmllint reports it).
 TEST_F(CliBadInputTest, MalformedXmlNamesTheLineOfTheError) {
-  write_net_with_garbage_line(dir_ / "garbage.net.xml");
+  write_net_with_garbage_line(tmp_.path() / "garbage.net.xml");
   const auto r = run({"info", "-n", "garbage.net.xml"});
   expect_input_error(r, "garbage.net.xml:" + std::to_string(kGarbageLineNumber), {"malformed XML"});
 }
@@ -295,11 +285,10 @@ TEST_F(CliBadInputTest, CsvMissingColumn) {
 class CliBadSnapshotTest : public CliBadInputTest {
  protected:
   void SetUp() override {
-    CliBadInputTest::SetUp();
     write_routes("r.rou.xml", R"(<vehicle id="v1" depart="0"><route edges="A0A1 A1A2"/></vehicle>)");
     const auto r = run({"convert", "-n", kGridNet, "-r", "r.rou.xml", "-o", "good.lpsim"});
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    snapshot_ = slurp(dir_ / "good.lpsim");
+    snapshot_ = slurp(tmp_.path() / "good.lpsim");
     ASSERT_GT(snapshot_.size(), 1000u);
   }
   std::string snapshot_;

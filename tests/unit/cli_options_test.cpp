@@ -2,14 +2,12 @@
 
 #include <gtest/gtest.h>
 
-#include <filesystem>
-#include <fstream>
 #include <string>
+
+#include "temp_dir.hpp"
 
 namespace lpsim {
 namespace {
-
-namespace fs = std::filesystem;
 
 using Args = std::vector<std::string>;
 
@@ -25,20 +23,12 @@ std::string error_of(const Args& args) {
 
 class CliOptionsTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("lpsim_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-    cfg_ = (dir_ / "run.sumocfg").string();
-    std::ofstream(cfg_) << "<configuration>\n<input>\n<net-file value=\"cfg.net.xml\"/>\n"
-                           "<route-files value=\"cfg.rou.xml\"/>\n</input>\n<time>\n<begin value=\"10\"/>\n"
-                           "<end value=\"500\"/>\n</time>\n<seed value=\"7\"/>\n</configuration>\n";
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  fs::path dir_;
-  std::string cfg_;
+  test::TempDir tmp_{"lpsim_cli"};
+  std::string cfg_ =
+      tmp_.write("run.sumocfg",
+                 "<configuration>\n<input>\n<net-file value=\"cfg.net.xml\"/>\n"
+                 "<route-files value=\"cfg.rou.xml\"/>\n</input>\n<time>\n<begin value=\"10\"/>\n"
+                 "<end value=\"500\"/>\n</time>\n<seed value=\"7\"/>\n</configuration>\n");
 };
 
 TEST(SumoTimeTest, SecondsAndClockFormats) {
@@ -132,10 +122,10 @@ TEST(CliOptionsParse, BothValueFormsAndShortNames) {
 TEST_F(CliOptionsTest, CommandLineOverridesConfigWhereverItAppears) {
   ConfigSpec c = parse_cli_options({"--end", "100", "-c", cfg_, "--seed=3"});
   EXPECT_EQ(c.config_file, cfg_);
-  EXPECT_DOUBLE_EQ(c.end, 100);                            // given before -c, still wins
-  EXPECT_EQ(c.seed, 3);                                    // given after -c
-  EXPECT_DOUBLE_EQ(c.begin, 10);                           // from the cfg
-  EXPECT_EQ(c.net_file, (dir_ / "cfg.net.xml").string());  // cfg paths resolve against its folder
+  EXPECT_DOUBLE_EQ(c.end, 100);                                   // given before -c, still wins
+  EXPECT_EQ(c.seed, 3);                                           // given after -c
+  EXPECT_DOUBLE_EQ(c.begin, 10);                                  // from the cfg
+  EXPECT_EQ(c.net_file, (tmp_.path() / "cfg.net.xml").string());  // cfg paths resolve against its folder
   ConfigSpec d =
       parse_cli_options({"-n", "mine.net.xml", "--configuration-file=" + cfg_, "-r", "a.xml b.xml"});
   EXPECT_EQ(d.net_file, "mine.net.xml");                                   // command-line paths stay as given

@@ -2,7 +2,6 @@
 // byte-identical FCD, tripinfo, edgeData and summary files (the summary's per-step wall time `duration`
 // masked, the only value allowed to differ).
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -11,6 +10,8 @@
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include "temp_dir.hpp"
 
 namespace lpsim {
 namespace {
@@ -43,13 +44,6 @@ std::string first_difference(const std::string& a, const std::string& b) {
 
 class EngineDeterminismTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    std::string pattern = (fs::temp_directory_path() / "lpsim_determinism_XXXXXX").string();
-    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
-    dir_ = pattern;
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
   struct Outputs {
     std::string fcd, tripinfo, edgedata, summary;
   };
@@ -57,7 +51,7 @@ class EngineDeterminismTest : public ::testing::Test {
   // Runs the binary on a bundled scenario with all four outputs in a run-specific folder.
   // Without edgeData the engine skips its per-lane counters (SimulationOptions::lane_counters).
   Outputs run(const std::string& scenario, int threads, const std::string& tag, bool edgedata = true) {
-    const fs::path out = dir_ / tag;
+    const fs::path out = tmp_.path() / tag;
     fs::create_directories(out);
     const std::string cfg = std::string(LPSIM_SCENARIOS_DIR) + "/" + scenario + "/" + scenario + ".sumocfg";
     const std::string cmd =
@@ -104,7 +98,7 @@ class EngineDeterminismTest : public ::testing::Test {
     expect_same(four, run(scenario, 4, "t4_again"), scenario + " threads 4, repeated");
   }
 
-  fs::path dir_;
+  test::TempDir tmp_{"lpsim_determinism"};
 };
 
 TEST_F(EngineDeterminismTest, GridTlsSameOutputsForAnyThreadCount) { check_scenario("grid_tls", 1000); }

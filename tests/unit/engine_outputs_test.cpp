@@ -2,7 +2,6 @@
 // installed), gzip outputs equal to the plain ones, and consistent with each other and with the run's
 // printed summary (one tripinfo per arrival, edgeData totals, summary counts).
 #include <gtest/gtest.h>
-#include <unistd.h>
 #include <zlib.h>
 
 #include <cmath>
@@ -18,6 +17,7 @@
 
 #include "app/scenario.hpp"
 #include "converters/cli_options.hpp"
+#include "temp_dir.hpp"
 
 namespace lpsim {
 namespace {
@@ -94,15 +94,13 @@ struct ScenarioRun {
 class EngineOutputsTest : public ::testing::TestWithParam<std::string> {
  protected:
   static void SetUpTestSuite() {
-    std::string pattern = (fs::temp_directory_path() / "lpsim_outputs_XXXXXX").string();
-    if (mkdtemp(pattern.data()) != nullptr) dir_ = new fs::path(pattern);
+    tmp_ = new test::TempDir("lpsim_outputs");
     runs_ = new std::map<std::string, ScenarioRun>();
   }
   static void TearDownTestSuite() {
-    if (dir_) fs::remove_all(*dir_);
-    delete dir_;
+    delete tmp_;
     delete runs_;
-    dir_ = nullptr;
+    tmp_ = nullptr;
     runs_ = nullptr;
   }
 
@@ -125,7 +123,7 @@ class EngineOutputsTest : public ::testing::TestWithParam<std::string> {
   const ScenarioRun& run() {
     ScenarioRun& r = (*runs_)[GetParam()];
     if (!r.dir.empty()) return r;
-    r.dir = *dir_ / GetParam();
+    r.dir = tmp_->path() / GetParam();
     fs::create_directories(r.dir / "plain");
     fs::create_directories(r.dir / "gz");
     r.plain = outputs_in(r.dir / "plain", "");
@@ -151,12 +149,10 @@ class EngineOutputsTest : public ::testing::TestWithParam<std::string> {
     const size_t at = text.find(include);
     if (at != std::string::npos)
       text.replace(at, include.size(), "schemaLocation=\"" + std::string(kXsdDir) + "/baseTypes.xsd\"");
-    const fs::path patched = *dir_ / ("patched_" + schema.filename().string());
-    std::ofstream(patched) << text;
-    return patched;
+    return tmp_->write("patched_" + schema.filename().string(), text);
   }
 
-  static inline fs::path* dir_ = nullptr;
+  static inline test::TempDir* tmp_ = nullptr;
   static inline std::map<std::string, ScenarioRun>* runs_ = nullptr;
 };
 

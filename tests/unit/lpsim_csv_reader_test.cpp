@@ -3,36 +3,21 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <functional>
 #include <numbers>
 #include <string>
 
 #include "converters/csv_table.hpp"
+#include "temp_dir.hpp"
 
 namespace lpsim {
 namespace {
 
-namespace fs = std::filesystem;
-
 class LpsimCsvReaderTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("lpsim_csv_" + std::string(info->name()) + "_" +
-                                        std::to_string(reinterpret_cast<uintptr_t>(this)));
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
+  std::string write(const std::string& name, const std::string& text) const { return tmp_.write(name, text); }
 
-  std::string write(const std::string& name, const std::string& text) {
-    const fs::path p = dir_ / name;
-    std::ofstream(p, std::ios::binary) << text;
-    return p.string();
-  }
-
-  fs::path dir_;
+  test::TempDir tmp_{"lpsim_csv"};
 };
 
 // A cross: C (id 2) in the middle, W (1), E (3), N (4), S (5) about 0.001 degrees away. The east-west road
@@ -285,9 +270,11 @@ TEST_F(LpsimCsvReaderTest, RejectsBadNetworkInput) {
     return error_of([&] { read_lpsim_csv_net(nodes, path); });
   };
   const std::string head = "uniqueid,u,v,length,lanes,speed_mph\n";
-  const std::string edges_path = (dir_ / "edges.csv").string();
+  const std::string edges_path = (tmp_.path() / "edges.csv").string();
 
-  EXPECT_NE(error_of([&] { read_lpsim_csv_net((dir_ / "missing.csv").string(), nodes); }).find("missing.csv"),
+  EXPECT_NE(error_of([&] {
+              read_lpsim_csv_net((tmp_.path() / "missing.csv").string(), nodes);
+            }).find("missing.csv"),
             std::string::npos);
   EXPECT_NE(net_error("uniqueid,u,v,lanes\ne,1,2,1\n").find("missing CSV column 'length'"),
             std::string::npos);

@@ -3,17 +3,14 @@
 #include <gtest/gtest.h>
 #include <zlib.h>
 
-#include <filesystem>
-#include <fstream>
 #include <regex>
 #include <string>
 
 #include "converters/vclass.hpp"
+#include "temp_dir.hpp"
 
 namespace lpsim {
 namespace {
-
-namespace fs = std::filesystem;
 
 // A three-junction net in SUMO 1.15 layout: a signalised junction J1 with an internal lane, a crossing and
 // a walking area; E0 has a sidewalk, a bus lane and a car lane (with z in its shape); E2 repeats index="0"
@@ -69,22 +66,10 @@ const char* kNet = R"(<?xml version="1.0" encoding="UTF-8"?>
 
 class NetReaderTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("lpsim_net_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
+  std::string write(const std::string& name, const std::string& text) const { return tmp_.write(name, text); }
 
-  std::string write(const std::string& name, const std::string& text) {
-    std::string path = (dir_ / name).string();
-    std::ofstream(path, std::ios::binary) << text;
-    return path;
-  }
-
-  std::string write_gz(const std::string& name, const std::string& text) {
-    std::string path = (dir_ / name).string();
+  std::string write_gz(const std::string& name, const std::string& text) const {
+    std::string path = (tmp_.path() / name).string();
     gzFile f = gzopen(path.c_str(), "wb");
     EXPECT_NE(f, nullptr);
     EXPECT_EQ(gzwrite(f, text.data(), static_cast<unsigned>(text.size())), static_cast<int>(text.size()));
@@ -130,7 +115,7 @@ class NetReaderTest : public ::testing::Test {
     return "";
   }
 
-  fs::path dir_;
+  test::TempDir tmp_{"lpsim_net"};
 };
 
 const EdgeSpec& edge(const NetSpec& net, const std::string& id) {
@@ -267,7 +252,7 @@ TEST_F(NetReaderTest, GzippedNetReadsTheSame) {
 }
 
 TEST_F(NetReaderTest, MissingFileIsAnInputError) {
-  std::string path = (dir_ / "nowhere.net.xml").string();
+  std::string path = (tmp_.path() / "nowhere.net.xml").string();
   try {
     read_sumo_net(path);
     FAIL() << "no error";

@@ -1,31 +1,16 @@
 #include "converters/route_reader.hpp"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 #include <zlib.h>
 
-#include <filesystem>
-#include <fstream>
+#include "temp_dir.hpp"
 
 namespace lpsim {
 namespace {
 
-namespace fs = std::filesystem;
-
 class RouteReaderTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("lpsim_routes_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  std::string write(const std::string& name, const std::string& body) {
-    std::string path = (dir_ / name).string();
-    std::ofstream(path) << body;
-    return path;
-  }
+  std::string write(const std::string& name, const std::string& body) const { return tmp_.write(name, body); }
   std::string routes(const std::string& inner, const std::string& name = "r.rou.xml") {
     return write(name, "<routes>\n" + inner + "\n</routes>\n");
   }
@@ -43,7 +28,7 @@ class RouteReaderTest : public ::testing::Test {
     return "";
   }
 
-  fs::path dir_;
+  test::TempDir tmp_{"lpsim_routes"};
   DemandSpec demand_;
   AdditionalSpec additional_;
 };
@@ -286,7 +271,7 @@ TEST_F(RouteReaderTest, AddFileSignalsAndMeanData) {
   const auto& ed = additional_.mean_data[0];
   EXPECT_EQ(ed.id, "ed");
   EXPECT_FALSE(ed.lane_level);
-  EXPECT_EQ(ed.file, (dir_ / "out/edges.xml").string());
+  EXPECT_EQ(ed.file, (tmp_.path() / "out/edges.xml").string());
   EXPECT_DOUBLE_EQ(ed.period, 300);
   EXPECT_DOUBLE_EQ(ed.end, 3600);
   EXPECT_TRUE(ed.exclude_empty);
@@ -302,7 +287,7 @@ TEST_F(RouteReaderTest, AddFileSignalsAndMeanData) {
 }
 
 TEST_F(RouteReaderTest, ReadsGzip) {
-  std::string path = (dir_ / "g.rou.xml.gz").string();
+  std::string path = (tmp_.path() / "g.rou.xml.gz").string();
   gzFile gz = gzopen(path.c_str(), "wb");
   ASSERT_NE(gz, nullptr);
   std::string body =

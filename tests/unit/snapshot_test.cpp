@@ -5,7 +5,6 @@
 
 #include <gtest/gtest.h>
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include <cstdlib>
 #include <cstring>
@@ -14,6 +13,7 @@
 #include <string>
 
 #include "converters/sumocfg_reader.hpp"
+#include "temp_dir.hpp"
 
 namespace lpsim {
 namespace {
@@ -162,20 +162,11 @@ void expect_same_mean_data(const std::vector<MeanDataSpec>& a, const std::vector
 
 class SnapshotTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() /
-           ("lpsim_snapshot_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
   void round_trip(const ConfigSpec& config) {
     const Scenario loaded = load_scenario(config);
     ASSERT_GT(loaded.network.num_lanes(), 0u);
     ASSERT_GT(loaded.demand.size(), 0u);
-    const std::string path = (dir_ / "s.lpsim").string();
+    const std::string path = (tmp_.path() / "s.lpsim").string();
     write_snapshot(loaded, path);
     EXPECT_TRUE(is_snapshot(path));
     const Scenario back = read_snapshot(path);
@@ -186,27 +177,25 @@ class SnapshotTest : public ::testing::Test {
 
   // A valid snapshot of grid_tls, as bytes.
   std::string grid_snapshot() {
-    const std::string path = (dir_ / "grid.lpsim").string();
+    const std::string path = (tmp_.path() / "grid.lpsim").string();
     write_snapshot(load_scenario(sumocfg("grid_tls")), path);
     return slurp(path);
   }
 
-  std::string write(const std::string& name, const std::string& bytes) {
-    const fs::path p = dir_ / name;
-    std::ofstream(p, std::ios::binary) << bytes;
-    return p.string();
+  std::string write(const std::string& name, const std::string& bytes) const {
+    return tmp_.write(name, bytes);
   }
 
   // Runs the lpsim binary; returns its stdout, and its exit code in `code`.
   std::string lpsim(const std::string& args, int& code) {
-    const std::string out = (dir_ / "stdout.txt").string();
+    const std::string out = (tmp_.path() / "stdout.txt").string();
     const int status =
         std::system((std::string(LPSIM_BINARY) + " " + args + " > '" + out + "' 2> /dev/null").c_str());
     code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     return slurp(out);
   }
 
-  fs::path dir_;
+  test::TempDir tmp_{"lpsim_snapshot"};
 };
 
 TEST_F(SnapshotTest, GridTlsRoundTripKeepsEveryColumn) { round_trip(sumocfg("grid_tls")); }
@@ -230,7 +219,7 @@ TEST_F(SnapshotTest, RoundTripKeepsSkippedVehiclesAndUnsupportedElements) {
   const Scenario loaded = load_scenario(config);
   ASSERT_EQ(loaded.demand.unroutable.size(), 1u);
   ASSERT_FALSE(loaded.demand.unsupported.empty());
-  const std::string path = (dir_ / "s.lpsim").string();
+  const std::string path = (tmp_.path() / "s.lpsim").string();
   write_snapshot(loaded, path);
   const Scenario back = read_snapshot(path);
   expect_same_demand(loaded.demand, back.demand);
@@ -241,7 +230,7 @@ TEST_F(SnapshotTest, RoundTripKeepsSkippedVehiclesAndUnsupportedElements) {
 TEST_F(SnapshotTest, InfoOfSnapshotEqualsInfoOfXml) {
   for (const std::string name : {"grid_tls", "random_net", "flows"}) {
     const std::string cfg = kScenarios + "/" + name + "/" + name + ".sumocfg";
-    const std::string snap = (dir_ / (name + ".lpsim")).string();
+    const std::string snap = (tmp_.path() / (name + ".lpsim")).string();
     int code = -1;
     lpsim("convert -c '" + cfg + "' -o '" + snap + "'", code);
     ASSERT_EQ(code, 0) << name;
@@ -314,7 +303,7 @@ TEST_F(SnapshotTest, NotASnapshot) {
   const std::string xml = kScenarios + "/grid_tls/grid_tls.net.xml";
   EXPECT_FALSE(is_snapshot(xml));
   EXPECT_THROW(read_snapshot(xml), InputError);
-  EXPECT_THROW(read_snapshot((dir_ / "missing.lpsim").string()), InputError);
+  EXPECT_THROW(read_snapshot((tmp_.path() / "missing.lpsim").string()), InputError);
 }
 
 }  // namespace

@@ -3,35 +3,23 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
 #include <string>
 
 #include "core/error.hpp"
+#include "temp_dir.hpp"
 
 namespace lpsim {
 namespace {
 
-namespace fs = std::filesystem;
-
 class SumocfgReaderTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("lpsim_cfg_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_ / "sub");
-  }
-  void TearDown() override { fs::remove_all(dir_); }
+  void SetUp() override { std::filesystem::create_directories(tmp_.path() / "sub"); }
 
-  std::string write(const std::string& name, const std::string& text) {
-    std::string path = (dir_ / name).string();
-    std::ofstream(path) << text;
-    return path;
-  }
+  std::string write(const std::string& name, const std::string& text) const { return tmp_.write(name, text); }
 
-  std::string in_dir(const std::string& rel) const { return (dir_ / rel).lexically_normal().string(); }
+  std::string in_dir(const std::string& rel) const { return (tmp_.path() / rel).lexically_normal().string(); }
 
-  fs::path dir_;
+  test::TempDir tmp_{"lpsim_cfg"};
 };
 
 TEST_F(SumocfgReaderTest, ReadsOptionsAndResolvesPathsAgainstTheCfgFolder) {
@@ -149,7 +137,7 @@ TEST_F(SumocfgReaderTest, BadValuesOfOtherKinds) {
 
 TEST_F(SumocfgReaderTest, WrongRootMissingAndMalformedFiles) {
   EXPECT_THROW(read_sumocfg(write("net.sumocfg", "<net>\n</net>\n")), InputError);
-  EXPECT_THROW(read_sumocfg((dir_ / "missing.sumocfg").string()), InputError);
+  EXPECT_THROW(read_sumocfg((tmp_.path() / "missing.sumocfg").string()), InputError);
   EXPECT_THROW(read_sumocfg(write("cut.sumocfg", "<configuration>\n<input>\n<net-file value=\"a")),
                InputError);
 }

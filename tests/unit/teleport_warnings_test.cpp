@@ -1,7 +1,6 @@
 // `lpsim run` warns of every teleport on stderr in SUMO's words, and --no-warnings (-W) silences them.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -9,6 +8,8 @@
 #include <regex>
 #include <sstream>
 #include <string>
+
+#include "temp_dir.hpp"
 
 namespace lpsim {
 namespace {
@@ -28,10 +29,9 @@ std::string slurp(const fs::path& p) {
 }
 
 CliRun run_grid_with_teleports(const std::string& extra) {
-  std::string pattern = (fs::temp_directory_path() / "lpsim_teleport_warnings_XXXXXX").string();
+  const test::TempDir tmp("lpsim_teleport_warnings");
   CliRun r;
-  if (mkdtemp(pattern.data()) == nullptr) return r;
-  const fs::path dir(pattern);
+  const fs::path& dir = tmp.path();
   std::string cmd = std::string("'") + LPSIM_BINARY + "' run -c '" + LPSIM_SCENARIOS_DIR +
                     "/grid_tls/grid_tls.sumocfg' --time-to-teleport 20 --end 600 " + extra + " > '" +
                     (dir / "out").string() + "' 2> '" + (dir / "err").string() + "'";
@@ -39,7 +39,6 @@ CliRun run_grid_with_teleports(const std::string& extra) {
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   r.out = slurp(dir / "out");
   r.err = slurp(dir / "err");
-  fs::remove_all(dir);
   return r;
 }
 

@@ -1,7 +1,6 @@
 // Output writers: exact values and formatting against a hand-built network, schema validity against
 // SUMO's XSDs (when xmllint and the XSDs are installed), gzip output equal to plain output.
 #include <gtest/gtest.h>
-#include <unistd.h>
 #include <zlib.h>
 
 #include <cmath>
@@ -20,6 +19,7 @@
 #include "converters/summary_writer.hpp"
 #include "converters/tripinfo_writer.hpp"
 #include "core/error.hpp"
+#include "temp_dir.hpp"
 
 namespace lpsim {
 namespace {
@@ -63,14 +63,7 @@ Demand tiny_demand() {
 
 class WritersTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    std::string pattern = (fs::temp_directory_path() / "lpsim_writers_XXXXXX").string();
-    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
-    dir_ = pattern;
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  std::string path(const std::string& name) const { return (tmp_.path() / name).string(); }
 
   // Reads a plain or gzip file (gzread passes plain files through unchanged).
   static std::string read_all(const std::string& file) {
@@ -133,12 +126,10 @@ class WritersTest : public ::testing::Test {
     const size_t at = text.find(include);
     if (at != std::string::npos)
       text.replace(at, include.size(), "schemaLocation=\"" + std::string(kXsdDir) + "/baseTypes.xsd\"");
-    const std::string patched = path("patched_" + fs::path(schema).filename().string());
-    std::ofstream(patched) << text;
-    return patched;
+    return tmp_.write("patched_" + fs::path(schema).filename().string(), text);
   }
 
-  fs::path dir_;
+  test::TempDir tmp_{"lpsim_writers"};
   Network net_ = tiny_network();
   Demand demand_ = tiny_demand();
 };

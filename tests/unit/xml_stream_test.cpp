@@ -2,35 +2,20 @@
 
 #include <gtest/gtest.h>
 
-#include <filesystem>
-#include <fstream>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "converters/output_file.hpp"
 #include "core/error.hpp"
+#include "temp_dir.hpp"
 
 namespace lpsim {
 namespace {
 
-namespace fs = std::filesystem;
-
 class XmlStreamTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("lpsim_xml_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  std::string write(const std::string& name, const std::string& text) {
-    std::string path = (dir_ / name).string();
-    std::ofstream(path, std::ios::binary) << text;
-    return path;
-  }
+  std::string write(const std::string& name, const std::string& text) const { return tmp_.write(name, text); }
 
   // Message of the InputError raised while reading the whole file (empty if none).
   static std::string error_reading(const std::string& path) {
@@ -44,7 +29,7 @@ class XmlStreamTest : public ::testing::Test {
     return "";
   }
 
-  fs::path dir_;
+  test::TempDir tmp_{"lpsim_xml"};
 };
 
 // A file of several parser chunks (64 KiB each): every element arrives in order with its depth, and an empty
@@ -154,7 +139,7 @@ TEST_F(XmlStreamTest, GzipFilesReadLikePlainOnes) {
   std::string text = "<root>\n";
   for (int i = 0; i < 3000; ++i) text += "  <a id=\"" + std::to_string(i) + "\"/>\n";
   text += "</root>\n";
-  const std::string gz = (dir_ / "f.xml.gz").string();
+  const std::string gz = (tmp_.path() / "f.xml.gz").string();
   {
     OutputFile out(gz);
     out.text(text);
