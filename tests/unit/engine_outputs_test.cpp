@@ -17,6 +17,7 @@
 
 #include "app/scenario.hpp"
 #include "converters/cli_options.hpp"
+#include "sumo_schema.hpp"
 #include "temp_dir.hpp"
 
 namespace lpsim {
@@ -24,7 +25,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const char* const kXsdDir = "/usr/share/sumo/data/xsd";
+const char* const kXsdDir = test::kSumoXsdDir;
 
 // Reads a plain or gzip file (gzread passes plain files through unchanged).
 std::string read_all(const fs::path& file) {
@@ -137,21 +138,6 @@ class EngineOutputsTest : public ::testing::TestWithParam<std::string> {
     return r;
   }
 
-  // SUMO 1.15's summary_file.xsd types 'time' as "nonNegativeFloat", which baseTypes.xsd does not define,
-  // so the schema does not compile: validate against a copy naming the defined "nonNegativeFloatType".
-  static fs::path usable_schema(const fs::path& schema) {
-    std::string text = read_all(schema);
-    const std::string broken = "type=\"nonNegativeFloat\"";
-    if (text.find(broken) == std::string::npos) return schema;
-    for (size_t at; (at = text.find(broken)) != std::string::npos;)
-      text.replace(at, broken.size(), "type=\"nonNegativeFloatType\"");
-    const std::string include = "schemaLocation=\"baseTypes.xsd\"";
-    const size_t at = text.find(include);
-    if (at != std::string::npos)
-      text.replace(at, include.size(), "schemaLocation=\"" + std::string(kXsdDir) + "/baseTypes.xsd\"");
-    return tmp_->write("patched_" + schema.filename().string(), text);
-  }
-
   static inline test::TempDir* tmp_ = nullptr;
   static inline std::map<std::string, ScenarioRun>* runs_ = nullptr;
 };
@@ -169,8 +155,8 @@ TEST_P(EngineOutputsTest, OutputsValidateAgainstSumoSchemas) {
     const fs::path schema = fs::path(kXsdDir) / xsd;
     if (!fs::exists(schema)) GTEST_SKIP() << schema << " not installed";
     const fs::path log = r.dir / ("xmllint_" + file.filename().string() + ".log");
-    const std::string cmd = "xmllint --noout --schema " + usable_schema(schema).string() + " " +
-                            file.string() + " > " + log.string() + " 2>&1";
+    const std::string cmd = "xmllint --noout --schema " + test::usable_sumo_schema(schema.string(), *tmp_) +
+                            " " + file.string() + " > " + log.string() + " 2>&1";
     EXPECT_EQ(std::system(cmd.c_str()), 0) << file << " fails " << xsd << ":\n"
                                            << read_all(log).substr(0, 2000);
   }

@@ -19,6 +19,7 @@
 #include "converters/summary_writer.hpp"
 #include "converters/tripinfo_writer.hpp"
 #include "core/error.hpp"
+#include "sumo_schema.hpp"
 #include "temp_dir.hpp"
 
 namespace lpsim {
@@ -26,7 +27,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const char* const kXsdDir = "/usr/share/sumo/data/xsd";
+const char* const kXsdDir = test::kSumoXsdDir;
 
 // Edges: E1 (2 lanes: E1_0 runs west, E1_1 runs south), :J_0 (internal), E2 (one L-shaped lane whose
 // shape is twice as long as the lane), W (no car lanes).
@@ -109,24 +110,9 @@ class WritersTest : public ::testing::Test {
     if (std::system("xmllint --version > /dev/null 2>&1") != 0) GTEST_SKIP() << "xmllint not installed";
     if (!fs::exists(schema)) GTEST_SKIP() << schema << " not installed";
     const std::string log = path("xmllint.log");
-    const std::string cmd =
-        "xmllint --noout --schema " + usable_schema(schema) + " " + file + " > " + log + " 2>&1";
+    const std::string cmd = "xmllint --noout --schema " + test::usable_sumo_schema(schema, tmp_) + " " +
+                            file + " > " + log + " 2>&1";
     EXPECT_EQ(std::system(cmd.c_str()), 0) << file << " fails " << xsd << ":\n" << read_all(log);
-  }
-
-  // SUMO 1.15's summary_file.xsd types 'time' as "nonNegativeFloat", which baseTypes.xsd does not define,
-  // so the schema does not compile. Validate against a copy naming the defined "nonNegativeFloatType".
-  std::string usable_schema(const std::string& schema) const {
-    std::string text = read_all(schema);
-    const std::string broken = "type=\"nonNegativeFloat\"";
-    if (text.find(broken) == std::string::npos) return schema;
-    for (size_t at; (at = text.find(broken)) != std::string::npos;)
-      text.replace(at, broken.size(), "type=\"nonNegativeFloatType\"");
-    const std::string include = "schemaLocation=\"baseTypes.xsd\"";
-    const size_t at = text.find(include);
-    if (at != std::string::npos)
-      text.replace(at, include.size(), "schemaLocation=\"" + std::string(kXsdDir) + "/baseTypes.xsd\"");
-    return tmp_.write("patched_" + fs::path(schema).filename().string(), text);
   }
 
   test::TempDir tmp_{"lpsim_writers"};
