@@ -512,6 +512,17 @@ void Simulation::rebuild_active() {
   std::sort(added.begin(), added.end());
   active_.clear();
   std::merge(next.begin(), next.end(), added.begin(), added.end(), std::back_inserter(active_));
+  // The same in vehicle order: the kept ones keep theirs, the added ones are merged in.
+  std::vector<uint64_t>& kept = by_vehicle_scratch_;
+  kept.clear();
+  for (const uint64_t key : by_vehicle_)
+    if (stays_active(veh, static_cast<uint32_t>(key))) kept.push_back(key);
+  std::vector<uint64_t> joined;
+  joined.reserve(inits_.size());
+  for (const SlotInit& in : inits_) joined.push_back(uint64_t{in.vehicle} << 32 | in.slot);
+  std::sort(joined.begin(), joined.end());
+  by_vehicle_.clear();
+  std::merge(kept.begin(), kept.end(), joined.begin(), joined.end(), std::back_inserter(by_vehicle_));
   inits_.clear();
   release_retired_slots();
   num_active_ = static_cast<uint32_t>(active_.size());
@@ -539,6 +550,9 @@ void Simulation::sync_sample() const {
     self->pos_[k] = pos[i];
     self->speed_[k] = speed[i];
   }
+  by_vehicle_.clear();
+  for (const uint32_t k : active_) by_vehicle_.push_back(uint64_t{vehicle_[k]} << 32 | k);
+  std::sort(by_vehicle_.begin(), by_vehicle_.end());
   sampled_step_ = step_;
 }
 
@@ -561,16 +575,9 @@ const LaneCounters& Simulation::lane_counters() const {
   return lane_counters_;
 }
 
-// (vehicle, slot) of the running vehicles, ascending by vehicle: outputs list and sum them in vehicle order,
-// whatever slots they hold.
-std::vector<std::pair<uint32_t, uint32_t>> Simulation::running_by_vehicle() const {
+const std::vector<uint64_t>& Simulation::active_by_vehicle() const {
   sync_sample();
-  std::vector<std::pair<uint32_t, uint32_t>> out;
-  out.reserve(active_.size());
-  for (uint32_t k : active_)
-    if (status_[k] == kRunning) out.emplace_back(vehicle_[k], k);
-  std::sort(out.begin(), out.end());
-  return out;
+  return by_vehicle_;
 }
 
 void Simulation::sample_fcd(FcdFrame& frame) const {
@@ -579,7 +586,9 @@ void Simulation::sample_fcd(FcdFrame& frame) const {
   frame.lane.clear();
   frame.pos.clear();
   frame.speed.clear();
-  for (const auto& [v, k] : running_by_vehicle()) {
+  for (const uint64_t key : active_by_vehicle()) {
+    const uint32_t v = static_cast<uint32_t>(key >> 32), k = static_cast<uint32_t>(key);
+    if (status_[k] != kRunning) continue;
     frame.vehicle.push_back(v);
     frame.lane.push_back(static_cast<uint32_t>(lane_[k]));
     frame.pos.push_back(pos_[k]);
@@ -615,8 +624,7 @@ uint8_t Simulation::limit_reason(uint32_t v) const {
 const std::vector<uint32_t>& Simulation::active() const {
   sync_host();
   active_vehicles_.clear();
-  for (uint32_t k : active_) active_vehicles_.push_back(vehicle_[k]);
-  std::sort(active_vehicles_.begin(), active_vehicles_.end());
+  for (const uint64_t key : active_by_vehicle()) active_vehicles_.push_back(static_cast<uint32_t>(key >> 32));
   // A vehicle that teleported and re-entered at once holds its old slot for one more step.
   active_vehicles_.erase(std::unique(active_vehicles_.begin(), active_vehicles_.end()),
                          active_vehicles_.end());
@@ -642,7 +650,9 @@ SummaryRow Simulation::summary_row() const {
   double speed_sum = 0, rel_sum = 0;
   uint64_t running = 0, halting = 0;
   const VehicleTypes& t = demand_.types;
-  for (const auto& [v, k] : running_by_vehicle()) {
+  for (const uint64_t key : active_by_vehicle()) {
+    const uint32_t v = static_cast<uint32_t>(key >> 32), k = static_cast<uint32_t>(key);
+    if (status_[k] != kRunning) continue;
     ++running;
     speed_sum += speed_[k];
     const float v0 = desired_speed(net_.lane_speed[lane_[k]], demand_.speed_factor[v],
@@ -667,7 +677,9 @@ std::string Simulation::check_lane_map() const {
   std::vector<int64_t> owner(net_.num_cells(), -1);
   const NetView nv = engine_net_.view(net_);
   std::vector<uint8_t> expect(net_.num_cells(), 0);
-  for (const auto& [v, k] : running_by_vehicle()) {
+  for (const uint64_t key : active_by_vehicle()) {
+    const uint32_t v = static_cast<uint32_t>(key >> 32), k = static_cast<uint32_t>(key);
+    if (status_[k] != kRunning) continue;
     const Footprint fp{lane_[k], prev_[k], prev2_[k], pos_[k]};
     std::vector<uint8_t> mark(net_.num_cells(), 0);
     apply_footprint(mark.data(), nv, fp, demand_.types.length[demand_.vehicle_type[v]], 1);

@@ -101,7 +101,7 @@ class Simulation {
   void take_slot(SlotInit& init);
   void release_retired_slots();
   int32_t slot_of(uint32_t v) const { return sync_host(), slot_of_[v]; }
-  std::vector<std::pair<uint32_t, uint32_t>> running_by_vehicle() const;
+  const std::vector<uint64_t>& active_by_vehicle() const;
   void sync_sample() const;
   void sync_host() const;
 
@@ -171,6 +171,10 @@ class Simulation {
 
   std::vector<uint32_t> active_;  // slots the passes visit, ascending (GPU backend: kept on the device)
   mutable std::vector<uint32_t> active_vehicles_;  // active(): their vehicles
+  // The active list as vehicle << 32 | slot, ascending: outputs list and sum vehicles in vehicle order,
+  // whatever slots they hold. Kept in step by rebuild_active on the CPU; rebuilt when sampled on the GPU.
+  mutable std::vector<uint64_t> by_vehicle_;
+  std::vector<uint64_t> by_vehicle_scratch_;
   uint32_t num_active_ = 0;
   uint32_t teleport_steps_ = 0;  // stopped steps before a teleport (0: never)
   std::vector<uint32_t> scratch_;
