@@ -550,9 +550,6 @@ void Simulation::sync_sample() const {
     self->pos_[k] = pos[i];
     self->speed_[k] = speed[i];
   }
-  by_vehicle_.clear();
-  for (const uint32_t k : active_) by_vehicle_.push_back(uint64_t{vehicle_[k]} << 32 | k);
-  std::sort(by_vehicle_.begin(), by_vehicle_.end());
   sampled_step_ = step_;
 }
 
@@ -577,6 +574,14 @@ const LaneCounters& Simulation::lane_counters() const {
 
 const std::vector<uint64_t>& Simulation::active_by_vehicle() const {
   sync_sample();
+  // The GPU backend keeps no such list per step (it would cost a pass over the host's copy every step):
+  // sorted here, once per step that asks.
+  if (gpu_ && by_vehicle_step_ != step_) {
+    by_vehicle_.clear();
+    for (const uint32_t k : active_) by_vehicle_.push_back(uint64_t{vehicle_[k]} << 32 | k);
+    std::sort(by_vehicle_.begin(), by_vehicle_.end());
+    by_vehicle_step_ = step_;
+  }
   return by_vehicle_;
 }
 
@@ -650,9 +655,11 @@ SummaryRow Simulation::summary_row() const {
   double speed_sum = 0, rel_sum = 0;
   uint64_t running = 0, halting = 0;
   const VehicleTypes& t = demand_.types;
-  for (const uint64_t key : active_by_vehicle()) {
-    const uint32_t v = static_cast<uint32_t>(key >> 32), k = static_cast<uint32_t>(key);
+  // Summed in slot order, which both backends share: no vehicle-order sort for a row that lists no vehicle.
+  sync_sample();
+  for (const uint32_t k : active_) {
     if (status_[k] != kRunning) continue;
+    const uint32_t v = vehicle_[k];
     ++running;
     speed_sum += speed_[k];
     const float v0 = desired_speed(net_.lane_speed[lane_[k]], demand_.speed_factor[v],

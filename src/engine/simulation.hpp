@@ -175,6 +175,7 @@ class Simulation {
   // whatever slots they hold. Kept in step by rebuild_active on the CPU; rebuilt when sampled on the GPU.
   mutable std::vector<uint64_t> by_vehicle_;
   std::vector<uint64_t> by_vehicle_scratch_;
+  mutable uint32_t by_vehicle_step_ = 0xFFFFFFFFu;  // GPU backend: the step by_vehicle_ was sorted for
   uint32_t num_active_ = 0;
   uint32_t teleport_steps_ = 0;  // stopped steps before a teleport (0: never)
   std::vector<uint32_t> scratch_;
