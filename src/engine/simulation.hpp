@@ -1,8 +1,8 @@
 #pragma once
-// The Simulation owns the run state of one scenario: the double-buffered lane map, per-vehicle state, the
-// insertion queues and output counters. Each step() runs the kernels/ passes through a backend (the CPU
-// backend is a ParallelFor loop over the same functions the CUDA kernels wrap). It never formats text: the
-// runner in src/app samples it and hands the samples to the writers in converters/.
+// The Simulation owns the run state of one scenario: the double-buffered lane map, the state of the vehicles
+// on the road (by slot), the insertion queues and output counters. Each step() runs the kernels/ passes
+// through a backend (the CPU backend is a ParallelFor loop over the same functions the CUDA kernels wrap). It
+// never formats text: the runner in src/app samples it and hands the samples to the writers in converters/.
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -171,8 +171,8 @@ class Simulation {
 
   std::vector<uint32_t> active_;  // slots the passes visit, ascending (GPU backend: kept on the device)
   mutable std::vector<uint32_t> active_vehicles_;  // active(): their vehicles
-  // The active list as vehicle << 32 | slot, ascending: outputs list and sum vehicles in vehicle order,
-  // whatever slots they hold. Kept in step by rebuild_active on the CPU; rebuilt when sampled on the GPU.
+  // The active list as vehicle << 32 | slot, ascending: outputs list vehicles in vehicle order, whatever
+  // slots they hold. Kept in step by rebuild_active on the CPU; sorted when an output asks on the GPU.
   mutable std::vector<uint64_t> by_vehicle_;
   std::vector<uint64_t> by_vehicle_scratch_;
   mutable uint32_t by_vehicle_step_ = 0xFFFFFFFFu;  // GPU backend: the step by_vehicle_ was sorted for
