@@ -562,7 +562,8 @@ class CudaStepper final : public GpuStepper {
     const size_t c = std::max<size_t>(n, plan_capacity_ + plan_capacity_ / 2);
     constexpr size_t kWordColumns = 11, kByteColumns = 2;
     const size_t words = (kWordColumns * 4 * c + 255) / 256 * 256;  // keeps the byte columns aligned
-    plan_buffer_ = DeviceBuffer(words + kByteColumns * c);
+    plan_bytes_ = words + kByteColumns * c;
+    plan_buffer_ = DeviceBuffer(plan_bytes_);
     char* base = static_cast<char*>(plan_buffer_.get());
     auto carve = [&](auto*& column) {
       column = reinterpret_cast<std::remove_reference_t<decltype(column)>>(base);
@@ -575,7 +576,7 @@ class CudaStepper final : public GpuStepper {
     base = static_cast<char*>(plan_buffer_.get()) + words;  // the byte columns after the aligned words
     carve(p.arrives), carve(p.claim_prio);
     plan_capacity_ = c;
-    timer_.set_slot_bytes(slot_capacity_, slot_bytes_, words + kByteColumns * c);
+    timer_.set_slot_bytes(slot_capacity_, slot_bytes_, plan_bytes_);
   }
 
   /// Makes room for `need` slots: the slot columns, both active lists and the keep flags grow by half again
@@ -601,11 +602,7 @@ class CudaStepper final : public GpuStepper {
     regrow(keep_, 1u);
     slot_capacity_ = c;
     slot_bytes_ = bytes;
-    timer_.set_slot_bytes(slot_capacity_, slot_bytes_, plan_buffer_bytes());
-  }
-
-  size_t plan_buffer_bytes() const {
-    return plan_capacity_ == 0 ? 0 : (11 * 4 * plan_capacity_ + 255) / 256 * 256 + 2 * plan_capacity_;
+    timer_.set_slot_bytes(slot_capacity_, slot_bytes_, plan_bytes_);
   }
 
   template <class T>
@@ -699,7 +696,7 @@ class CudaStepper final : public GpuStepper {
   uint32_t num_links_ = 0, num_vehicles_ = 0, num_lanes_ = 0;
   uint64_t bytes_total_ = 0, bytes_per_vehicle_ = 0;  // fixed allocations (scratch arrays not included)
   DeviceBuffer plan_buffer_;
-  size_t plan_capacity_ = 0;
+  size_t plan_capacity_ = 0, plan_bytes_ = 0;
   // The slot columns (dev_.veh), the active lists and the keep flags, each its own buffer, regrown together.
   std::vector<DeviceBuffer> slot_buffers_;
   size_t slot_capacity_ = 0, slot_bytes_ = 0;

@@ -248,11 +248,7 @@ void Simulation::step_gpu() {
   out.ends.swap(ends_);
   gpu_->step(step_params(), cur_, step_ + 1, out);
   counts_.vehicle_updates += num_active_;
-  // Exactly the slots whose vehicle left the road in the previous step drop out (stays_active).
-  if (out.kept + retiring_.size() != num_active_)
-    throw std::logic_error("GPU step kept " + std::to_string(out.kept) + " of " +
-                           std::to_string(num_active_) + " active slots, " +
-                           std::to_string(retiring_.size()) + " were to leave");
+  check_kept(out.kept);
 
   time_ms_ += dt_ms_;
   ++step_;
@@ -262,10 +258,7 @@ void Simulation::step_gpu() {
   insert_waiting(1 - cur_);
   cur_ = 1 - cur_;
 
-  std::vector<uint32_t>& added = scratch_;
-  added.clear();
-  for (const SlotInit& in : inits_) added.push_back(in.slot);
-  std::sort(added.begin(), added.end());
+  const std::vector<uint32_t>& added = added_slots();
   gpu_->rebuild_active(inits_, added);
   num_active_ = out.kept + static_cast<uint32_t>(added.size());
   counts_.running = out.running + static_cast<uint64_t>(inits_.size());
@@ -481,6 +474,22 @@ void Simulation::take_slot(SlotInit& init) {
   if (!gpu_) activate_slot(vehicle_view(), init);
 }
 
+// Exactly the slots whose vehicles left the road in the previous step drop out of the active list
+// (stays_active): anything else would free a slot still in use, or never free one.
+void Simulation::check_kept(size_t kept) const {
+  if (kept + retiring_.size() != num_active_)
+    throw std::logic_error("step kept " + std::to_string(kept) + " of " + std::to_string(num_active_) +
+                           " active slots, " + std::to_string(retiring_.size()) + " were to leave");
+}
+
+// The slots this step's insertions took, ascending (they join the active list).
+const std::vector<uint32_t>& Simulation::added_slots() {
+  added_.clear();
+  for (const SlotInit& in : inits_) added_.push_back(in.slot);
+  std::sort(added_.begin(), added_.end());
+  return added_;
+}
+
 // The slots that left the active list in this step (their vehicles left the road in the previous one) are
 // free; this step's ends leave in the next.
 void Simulation::release_retired_slots() {
@@ -502,27 +511,10 @@ void Simulation::rebuild_active() {
   const VehicleView veh = vehicle_view();
   for (uint32_t k : active_)
     if (stays_active(veh, k)) next.push_back(k);
-  if (next.size() + retiring_.size() != active_.size())
-    throw std::logic_error("step kept " + std::to_string(next.size()) + " of " +
-                           std::to_string(active_.size()) + " active slots, " +
-                           std::to_string(retiring_.size()) + " were to leave");
-  std::vector<uint32_t> added;
-  added.reserve(inits_.size());
-  for (const SlotInit& in : inits_) added.push_back(in.slot);
-  std::sort(added.begin(), added.end());
+  check_kept(next.size());
+  const std::vector<uint32_t>& added = added_slots();
   active_.clear();
   std::merge(next.begin(), next.end(), added.begin(), added.end(), std::back_inserter(active_));
-  // The same in vehicle order: the kept ones keep theirs, the added ones are merged in.
-  std::vector<uint64_t>& kept = by_vehicle_scratch_;
-  kept.clear();
-  for (const uint64_t key : by_vehicle_)
-    if (stays_active(veh, static_cast<uint32_t>(key))) kept.push_back(key);
-  std::vector<uint64_t> joined;
-  joined.reserve(inits_.size());
-  for (const SlotInit& in : inits_) joined.push_back(uint64_t{in.vehicle} << 32 | in.slot);
-  std::sort(joined.begin(), joined.end());
-  by_vehicle_.clear();
-  std::merge(kept.begin(), kept.end(), joined.begin(), joined.end(), std::back_inserter(by_vehicle_));
   inits_.clear();
   release_retired_slots();
   num_active_ = static_cast<uint32_t>(active_.size());
@@ -574,9 +566,8 @@ const LaneCounters& Simulation::lane_counters() const {
 
 const std::vector<uint64_t>& Simulation::active_by_vehicle() const {
   sync_sample();
-  // The GPU backend keeps no such list per step (it would cost a pass over the host's copy every step):
-  // sorted here, once per step that asks.
-  if (gpu_ && by_vehicle_step_ != step_) {
+  // Sorted when an output lists vehicles, once per step that asks: the passes and the summary need no order.
+  if (by_vehicle_step_ != step_) {
     by_vehicle_.clear();
     for (const uint32_t k : active_) by_vehicle_.push_back(uint64_t{vehicle_[k]} << 32 | k);
     std::sort(by_vehicle_.begin(), by_vehicle_.end());

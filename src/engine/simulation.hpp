@@ -100,6 +100,8 @@ class Simulation {
   void rebuild_active();
   void take_slot(SlotInit& init);
   void release_retired_slots();
+  void check_kept(size_t kept) const;
+  const std::vector<uint32_t>& added_slots();
   int32_t slot_of(uint32_t v) const { return sync_host(), slot_of_[v]; }
   const std::vector<uint64_t>& active_by_vehicle() const;
   void sync_sample() const;
@@ -136,6 +138,7 @@ class Simulation {
   std::vector<uint32_t> retiring_, retiring_next_;
   // This step's insertions, each with the slot it took (the GPU backend initialises them on the device).
   std::vector<SlotInit> inits_;
+  std::vector<uint32_t> added_;  // added_slots()
 
   // Per vehicle (host only): its slot while on the road (-1 otherwise), its status off the road (pending,
   // arrived or removed, teleporting = queued to re-enter), where a teleported vehicle re-enters, and the
@@ -171,11 +174,10 @@ class Simulation {
 
   std::vector<uint32_t> active_;  // slots the passes visit, ascending (GPU backend: kept on the device)
   mutable std::vector<uint32_t> active_vehicles_;  // active(): their vehicles
-  // The active list as vehicle << 32 | slot, ascending: outputs list vehicles in vehicle order, whatever
-  // slots they hold. Kept in step by rebuild_active on the CPU; sorted when an output asks on the GPU.
+  // The active list as vehicle << 32 | slot, ascending (active_by_vehicle()): outputs list vehicles in
+  // vehicle order, whatever slots they hold.
   mutable std::vector<uint64_t> by_vehicle_;
-  std::vector<uint64_t> by_vehicle_scratch_;
-  mutable uint32_t by_vehicle_step_ = 0xFFFFFFFFu;  // GPU backend: the step by_vehicle_ was sorted for
+  mutable uint32_t by_vehicle_step_ = 0xFFFFFFFFu;  // the step by_vehicle_ was sorted for
   uint32_t num_active_ = 0;
   uint32_t teleport_steps_ = 0;  // stopped steps before a teleport (0: never)
   std::vector<uint32_t> scratch_;
