@@ -2,11 +2,8 @@
 // bundled scenarios (skipped, saying why, where no usable CUDA device exists), and device selection
 // behaves as documented on any machine (auto falls back to the CPU, gpu without a device is bad input).
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -14,19 +11,13 @@
 
 #include "core/error.hpp"
 #include "engine/device_select.hpp"
+#include "lpsim_cli.hpp"
 #include "temp_dir.hpp"
 
 namespace lpsim {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string read_file(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 std::string line_at(const std::string& s, size_t i) {
   const size_t b = s.rfind('\n', i == 0 ? 0 : i - 1);
@@ -48,22 +39,14 @@ size_t count(const std::string& s, const std::string& needle) {
   return n;
 }
 
-struct RunResult {
-  int exit_code = -1;
-  std::string out, err;
-};
-
-// Runs `lpsim run <scenario> <args>` in `dir`, capturing stdout and stderr.
-RunResult run_lpsim(const fs::path& dir, const std::string& scenario, const std::string& args) {
-  const std::string cfg = std::string(LPSIM_SCENARIOS_DIR) + "/" + scenario + "/" + scenario + ".sumocfg";
-  const std::string cmd = "cd '" + dir.string() + "' && '" + std::string(LPSIM_BINARY) + "' run '" + cfg +
-                          "' " + args + " > stdout.txt 2> stderr.txt";
-  RunResult r;
-  const int status = std::system(cmd.c_str());
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = read_file(dir / "stdout.txt");
-  r.err = read_file(dir / "stderr.txt");
-  return r;
+// Runs `lpsim run <scenario> <args>` in `dir` (args: options separated by blanks), capturing stdout and
+// stderr.
+test::CliResult run_scenario(const fs::path& dir, const std::string& scenario, const std::string& args) {
+  std::vector<std::string> words{
+      "run", std::string(LPSIM_SCENARIOS_DIR) + "/" + scenario + "/" + scenario + ".sumocfg"};
+  std::istringstream in(args);
+  for (std::string w; in >> w;) words.push_back(w);
+  return test::run_lpsim(dir, words);
 }
 
 struct Outputs {
@@ -74,15 +57,16 @@ Outputs run_on(const fs::path& root, const std::string& scenario, const std::str
                const std::string& device) {
   const fs::path dir = root / device;
   fs::create_directories(dir);
-  const RunResult r = run_lpsim(dir, scenario,
-                                "--device " + device + " " + args +
-                                    " --fcd-output fcd.xml --tripinfo-output tripinfo.xml"
-                                    " --edgedata-output edgedata.xml --summary-output summary.xml");
+  const test::CliResult r = run_scenario(dir, scenario,
+                                         "--device " + device + " " + args +
+                                             " --fcd-output fcd.xml --tripinfo-output tripinfo.xml"
+                                             " --edgedata-output edgedata.xml --summary-output summary.xml");
   EXPECT_EQ(r.exit_code, 0) << "--device " << device << ":\n" << r.out << r.err;
   // The summary's duration attribute is wall time: the only value allowed to differ.
   static const std::regex duration(" duration=\"[^\"]*\"");
-  return Outputs{read_file(dir / "fcd.xml"), read_file(dir / "tripinfo.xml"), read_file(dir / "edgedata.xml"),
-                 std::regex_replace(read_file(dir / "summary.xml"), duration, " duration=\"masked\"")};
+  return Outputs{test::read_file(dir / "fcd.xml"), test::read_file(dir / "tripinfo.xml"),
+                 test::read_file(dir / "edgedata.xml"),
+                 std::regex_replace(test::read_file(dir / "summary.xml"), duration, " duration=\"masked\"")};
 }
 
 struct IdentityCase {
@@ -172,7 +156,7 @@ TEST(DeviceCliTest, GpuWithoutAUsableDeviceExitsWithStatus2AndOneLine) {
   const CudaDeviceStatus gpu = gpu_status();
   if (gpu.usable) GTEST_SKIP() << "a CUDA device is usable (" << gpu.description << ")";
   const test::TempDir tmp("lpsim_gpu");
-  const RunResult r = run_lpsim(tmp.path(), "grid_tls", "--device gpu --end 10");
+  const test::CliResult r = run_scenario(tmp.path(), "grid_tls", "--device gpu --end 10");
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_EQ(r.err,
             "lpsim: error: command line: --device gpu: no usable CUDA device: " + gpu.description + "\n");
@@ -181,14 +165,14 @@ TEST(DeviceCliTest, GpuWithoutAUsableDeviceExitsWithStatus2AndOneLine) {
 
 TEST(DeviceCliTest, UnknownDeviceIsBadInput) {
   const test::TempDir tmp("lpsim_gpu");
-  const RunResult r = run_lpsim(tmp.path(), "grid_tls", "--device tpu --end 10");
+  const test::CliResult r = run_scenario(tmp.path(), "grid_tls", "--device tpu --end 10");
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_EQ(r.err, "lpsim: error: command line: --device: expected auto, cpu or gpu, got 'tpu'\n");
 }
 
 TEST(DeviceCliTest, AutoPrintsTheChosenDeviceOnOneStderrLine) {
   const test::TempDir tmp("lpsim_gpu");
-  const RunResult r = run_lpsim(tmp.path(), "grid_tls", "--device auto --end 60");
+  const test::CliResult r = run_scenario(tmp.path(), "grid_tls", "--device auto --end 60");
   EXPECT_EQ(r.exit_code, 0) << r.err;
   const DeviceChoice expected = select_device(ComputeDevice::Auto);
   EXPECT_EQ(r.err, "lpsim: device " + expected.description + "\n");
@@ -197,7 +181,7 @@ TEST(DeviceCliTest, AutoPrintsTheChosenDeviceOnOneStderrLine) {
 
 TEST(DeviceCliTest, CpuPrintsNothingAboutTheDevice) {
   const test::TempDir tmp("lpsim_gpu");
-  const RunResult r = run_lpsim(tmp.path(), "grid_tls", "--device cpu --end 60");
+  const test::CliResult r = run_scenario(tmp.path(), "grid_tls", "--device cpu --end 60");
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(r.err.empty()) << r.err;
 }

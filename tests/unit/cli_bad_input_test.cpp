@@ -3,14 +3,13 @@
 // written to a fresh temp dir at test time (a valid network where one is needed: scenarios/grid_tls) and the
 // binary runs with that dir as working directory, so messages name files exactly as given.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
 
+#include "lpsim_cli.hpp"
 #include "temp_dir.hpp"
 
 namespace lpsim {
@@ -21,21 +20,8 @@ namespace fs = std::filesystem;
 const std::string kGridNet = std::string(LPSIM_SCENARIOS_DIR) + "/grid_tls/grid_tls.net.xml";
 const std::string kCsvDir = std::string(LPSIM_SCENARIOS_DIR) + "/lpsim_csv_small";
 
-struct CliResult {
-  int exit_code = -1;
-  std::string out, err;
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
-
-std::string shell_quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
+using test::CliResult;
+using test::read_file;
 
 std::vector<std::string> lines_of(const std::string& text) {
   std::vector<std::string> lines;
@@ -61,32 +47,14 @@ class CliBadInputTest : public ::testing::Test {
 
   // The grid_tls network with the first occurrence of `from` replaced by `to`.
   void write_grid_net_with(const std::string& name, const std::string& from, const std::string& to) {
-    std::string net = slurp(kGridNet);
+    std::string net = read_file(kGridNet);
     const auto at = net.find(from);
     ASSERT_NE(at, std::string::npos) << from;
     net.replace(at, from.size(), to);
     write(name, net);
   }
 
-  CliResult run(const std::vector<std::string>& args) const {
-    // Appended piecewise: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string temporaries.
-    std::string cmd = "cd ";
-    cmd += shell_quote(tmp_.path().string());
-    cmd += " && ";
-    cmd += shell_quote(LPSIM_BINARY);
-    for (const auto& a : args) {
-      cmd += ' ';
-      cmd += shell_quote(a);
-    }
-    cmd += " > stdout.txt 2> stderr.txt";
-    const int status = std::system(cmd.c_str());
-    CliResult r;
-    r.exit_code =
-        WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
-    r.out = slurp(tmp_.path() / "stdout.txt");
-    r.err = slurp(tmp_.path() / "stderr.txt");
-    return r;
-  }
+  CliResult run(const std::vector<std::string>& args) const { return test::run_lpsim(tmp_.path(), args); }
 
   CliResult info_with_routes(const std::string& routes) const {
     return run({"info", "-n", kGridNet, "-r", routes});
@@ -119,7 +87,7 @@ const char* kGarbageLine = "    <junk a=\"1\" b=2 />";
 constexpr int kGarbageLineNumber = 1227;
 
 void write_net_with_garbage_line(const fs::path& path) {
-  const auto lines = lines_of(slurp(kGridNet));
+  const auto lines = lines_of(read_file(kGridNet));
   std::ofstream out(path, std::ios::binary);
   for (size_t i = 0; i < lines.size(); ++i)
     out << (static_cast<int>(i) + 1 == kGarbageLineNumber ? std::string(kGarbageLine) : lines[i]) << "\n";
@@ -153,7 +121,7 @@ TEST_F(CliBadInputTest, MalformedXmlInRouteFile) {
 }
 
 TEST_F(CliBadInputTest, TruncatedXml) {
-  const std::string net = slurp(kGridNet);
+  const std::string net = read_file(kGridNet);
   write("half.net.xml", net.substr(0, net.size() / 2));
   const auto r = run({"info", "-n", "half.net.xml"});
   EXPECT_EQ(r.exit_code, 2);
@@ -164,7 +132,7 @@ TEST_F(CliBadInputTest, TruncatedXml) {
 
 // A file cut after a complete line is reported at its end, as truncated.
 TEST_F(CliBadInputTest, TruncatedXmlNamesTheEndOfTheFile) {
-  const auto lines = lines_of(slurp(kGridNet));
+  const auto lines = lines_of(read_file(kGridNet));
   std::string cut;
   for (size_t i = 0; i < lines.size() / 2; ++i) cut += lines[i] + "\n";
   write("cut.net.xml", cut);
@@ -288,7 +256,7 @@ class CliBadSnapshotTest : public CliBadInputTest {
     write_routes("r.rou.xml", R"(<vehicle id="v1" depart="0"><route edges="A0A1 A1A2"/></vehicle>)");
     const auto r = run({"convert", "-n", kGridNet, "-r", "r.rou.xml", "-o", "good.lpsim"});
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    snapshot_ = slurp(tmp_.path() / "good.lpsim");
+    snapshot_ = read_file(tmp_.path() / "good.lpsim");
     ASSERT_GT(snapshot_.size(), 1000u);
   }
   std::string snapshot_;
