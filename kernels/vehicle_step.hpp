@@ -522,7 +522,7 @@ LPSIM_HD bool swap_with_neighbour(const StepContext& s, VehicleRef r, int32_t la
   return my_rear > 0.0f && their_rear > 0.0f;
 }
 
-/// Plan pass for one running vehicle, `slot` its position in this step's active list (where its plan goes).
+/// Plan pass for the vehicle in `slot`, `i` its position in this step's active list (where its plan goes).
 /// Every plan entry the commit pass reads is written here in every step.
 LPSIM_HD void plan_vehicle(StepContext& s, uint32_t i, uint32_t slot) {
   const VehicleRef r{slot, s.veh.vehicle[slot]};
@@ -815,7 +815,8 @@ LPSIM_HD void clear_old_footprint(StepContext& s, uint32_t /*i*/, uint32_t slot)
   apply_footprint(s.map_next, s.net, fp, s.types.length[s.trips.type[v]], 0);
 }
 
-/// Commit pass for one vehicle (its plan at `slot`): settle claims, write the new footprint, update counters.
+/// Commit pass for the vehicle in `slot` (its plan at `i`): settle claims, write the new footprint, update
+/// counters.
 LPSIM_HD void commit_vehicle(StepContext& s, uint32_t i, uint32_t slot) {
   const uint32_t v = s.veh.vehicle[slot];
   VehicleView& veh = s.veh;
@@ -880,8 +881,10 @@ LPSIM_HD void commit_vehicle(StepContext& s, uint32_t i, uint32_t slot) {
 
   // Per-vehicle counters (tripinfo).
   const float v0 = desired_speed(net.lane_speed[nlane], s.trips.speed_factor[v], s.types.max_speed[type]);
+  // Time lost this step against the desired speed [s]; no loss where the desired speed is 0.
+  const float lost = v0 > 0.0f ? dt * lp_fmaxf(0.0f, (v0 - nspeed) / v0) : 0.0f;
   veh.route_length[slot] += driven;
-  if (v0 > 0.0f) veh.time_loss[slot] += dt * lp_fmaxf(0.0f, (v0 - nspeed) / v0);
+  if (v0 > 0.0f) veh.time_loss[slot] += lost;
   if (nspeed < kHaltingSpeed) {
     if (veh.stopped_steps[slot] == 0) veh.waiting_count[slot] += 1;
     veh.stopped_steps[slot] += 1;
@@ -911,9 +914,7 @@ LPSIM_HD void commit_vehicle(StepContext& s, uint32_t i, uint32_t slot) {
     atomic_add_i64(&s.cnt_sampled_steps[nlane], 1);
     atomic_add_i64(&s.cnt_travelled_mm[nlane], static_cast<int64_t>(driven * 1000.0f + 0.5f));
     if (nspeed < kHaltingSpeed) atomic_add_i64(&s.cnt_waiting_steps[nlane], 1);
-    if (v0 > 0.0f)
-      atomic_add_i64(&s.cnt_time_loss_ms[nlane],
-                     static_cast<int64_t>(dt * lp_fmaxf(0.0f, (v0 - nspeed) / v0) * 1000.0f + 0.5f));
+    if (v0 > 0.0f) atomic_add_i64(&s.cnt_time_loss_ms[nlane], static_cast<int64_t>(lost * 1000.0f + 0.5f));
     atomic_add_i64(
         &s.cnt_occupied_mm_steps[nlane],
         static_cast<int64_t>(lp_fminf(length, lp_fminf(npos, net.lane_length[nlane])) * 1000.0f + 0.5f));
