@@ -384,7 +384,8 @@ class CudaStepper final : public GpuStepper {
     ctx.map_now = map_[map_now];
     ctx.map_next = map_[1 - map_now];
     if (signals_.num_signals > 0) {
-      signals_kernel<<<blocks_for(signals_.num_signals), kBlock>>>(signals_, params.time_ms, link_state_);
+      signals_kernel<<<blocks_for(signals_.num_signals), kBlock>>>(signals_, params.signal_time_ms,
+                                                                   link_state_);
       LPSIM_CUDA_CHECK_LAUNCH(signals_kernel);
     }
     timer_.mark(1);

@@ -155,9 +155,11 @@ struct LaneApproach {
 
 /// Everything one step needs besides the arrays above.
 struct StepParams {
-  uint32_t step;    // step counter from 0
-  int64_t time_ms;  // simulation time at the start of the step
-  float dt;         // s
+  uint32_t step;  // step counter from 0
+  // Time whose signal states the step obeys: its end. SUMO switches lights at the start of the step that
+  // produces time t's state, so a light turning green at t already lets vehicles move in that step.
+  int64_t signal_time_ms;
+  float dt;  // s
   uint64_t seed;
   int32_t substeps;           // IDM integration sub-steps
   float max_accel;            // largest accel over all types (bounds how far an unseen vehicle can get)

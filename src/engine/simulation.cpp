@@ -90,7 +90,7 @@ Simulation::Simulation(const Network& net, const Demand& demand, const Simulatio
   teleport_steps_ = opt_.time_to_teleport > 0
                         ? static_cast<uint32_t>(std::ceil(opt_.time_to_teleport / opt_.step_length))
                         : 0;
-  update_signals();
+  update_signals(time_ms_);
   enqueue_due(time_ms_);
   insert_waiting(cur_);
   rebuild_active();
@@ -112,9 +112,9 @@ TripView Simulation::trip_view() const {
                   demand_.arrival_pos.data()};
 }
 
-void Simulation::update_signals() {
+void Simulation::update_signals(int64_t time_ms) {
   const SignalTable table = engine_net_.signal_table(net_);
-  for (uint32_t s = 0; s < table.num_signals; ++s) update_signal(table, s, time_ms_, link_state_.data());
+  for (uint32_t s = 0; s < table.num_signals; ++s) update_signal(table, s, time_ms, link_state_.data());
 }
 
 char Simulation::link_state(uint32_t conn) const {
@@ -153,9 +153,14 @@ VehicleView Simulation::vehicle_view() {
 
 StepParams Simulation::step_params() const {
   const float dt = static_cast<float>(dt_ms_) / 1000.0f;
-  return StepParams{
-      step_,          time_ms_, dt, opt_.seed, idm_default_substeps(dt), max_accel_, max_emergency_decel_,
-      teleport_steps_};
+  return StepParams{step_,
+                    time_ms_ + dt_ms_,
+                    dt,
+                    opt_.seed,
+                    idm_default_substeps(dt),
+                    max_accel_,
+                    max_emergency_decel_,
+                    teleport_steps_};
 }
 
 StepContext Simulation::context(const uint8_t* map_now, uint8_t* map_next) {
@@ -199,7 +204,7 @@ void Simulation::step() {
 }
 
 void Simulation::step_cpu() {
-  update_signals();
+  update_signals(step_params().signal_time_ms);
   plan_.reserve_slots(active_.size());
   StepContext ctx = context(map_[cur_].data(), map_[1 - cur_].data());
   // Each pass is one parallel loop over the active vehicles, finished before the next starts.

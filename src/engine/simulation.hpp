@@ -90,7 +90,7 @@ class Simulation {
   StepContext context(const uint8_t* map_now, uint8_t* map_next);
   void step_cpu();
   void step_gpu();
-  void update_signals();
+  void update_signals(int64_t time_ms);
   TripView trip_view() const;
   DepartView depart_view() const;
   void enqueue_due(int64_t until_ms);

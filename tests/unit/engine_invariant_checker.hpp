@@ -343,9 +343,9 @@ class InvariantChecker {
       ++stats_.junction_entries;
       if (net_.conn_signal[static_cast<size_t>(c)] < 0) continue;
       ++stats_.signalised_entries;
-      // update_signals() runs at the start of step() for the step's start time and the passes read that
-      // state; link_state() after the step returns exactly it (before the step it still shows the state
-      // of the previous step's start).
+      // step() sets the signals for the step's end time (as SUMO) before the passes read them;
+      // link_state() after the step returns exactly that state (before the step it still shows the
+      // previous step's).
       const char state = sim_.link_state(static_cast<uint32_t>(c));
       if (signal_is_yellow(state)) ++stats_.entries_on_yellow;
       if (signal_is_red(state))
