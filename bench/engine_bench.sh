@@ -62,6 +62,11 @@ for sc in $scenarios; do
   out="$work/$sc"
   mkdir -p "$out"
   declare -A cpu=() rss=() ups=()
+  # A tripinfo output the cfg names (Bologna's does) would land in the scenario's own folder: send it to the
+  # work folder instead, for all three simulators, so they write the same files there. (SUMO still writes
+  # the detector files Bologna's add-file names into that folder: they are part of the scenario's work.)
+  extra=()
+  if grep -q "tripinfo-output" "$cfg"; then extra=(--tripinfo-output "$out/tripinfo.xml"); fi
   for sim in sumo meso lpsim; do
     cpus=(); rsss=()
     for ((r = 1; r <= runs; r++)); do
@@ -71,6 +76,9 @@ for sc in $scenarios; do
         meso) cmd=(sumo -c "$cfg" --mesosim --end "$end" --no-step-log --summary-output "$summary") ;;
         lpsim) cmd=("$lpsim" run -c "$cfg" --threads 2 --end "$end" --summary-output "$summary") ;;
       esac
+      cmd+=("${extra[@]}")
+      # SUMO's log file too (LPSim writes none).
+      if [[ "$sim" != lpsim ]] && grep -q "<log " "$cfg"; then cmd+=(--log "$out/$sim.sumo_log.txt"); fi
       log "$sc $sim run $r/$runs: ${cmd[*]}"
       read -r wall c m < <(measure "$out/$sim.log" "${cmd[@]}") || { log "$sim failed, see $out/$sim.log"; }
       cpus+=("$c"); rsss+=("$m")
