@@ -115,8 +115,8 @@ enum StopReason : uint8_t {
 };
 
 /// What a vehicle decided this step, between the plan and the commit passes. Indexed by the vehicle's
-/// position in the step's active list (its slot), not by vehicle: these columns scale with the vehicles on
-/// the road, not with the whole demand, and are read in active-list order.
+/// position in the step's active list (not by its slot or by vehicle): these columns scale with the vehicles
+/// on the road, not with the whole demand, and are read in active-list order.
 struct PlanView {
   float* new_speed;
   int32_t* new_lane;  // lane of the front after the move
@@ -130,8 +130,8 @@ struct PlanView {
   uint8_t* arrives;    // 1: reaches its arrival position this step
   uint32_t* new_rp;    // route position after the move
   uint32_t* first_rp;  // route position on claim_lane0 (kept if only the second claim is lost)
-  uint8_t*
-      claim_prio;  // priority of this vehicle's claims (1 entering a lane, 0 changing lanes near a start)
+  // Priority of this vehicle's claims (1 entering a lane, 0 changing lanes near a start).
+  uint8_t* claim_prio;
 };
 
 /// Claims on lane entries: one 64-bit word per lane; the largest value of the current step wins.

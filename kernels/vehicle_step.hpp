@@ -360,8 +360,8 @@ LPSIM_HD uint64_t merge_key(uint32_t step, bool from_left, float rear_pos) {
 }
 LPSIM_HD float merge_rear(uint64_t key) { return static_cast<float>(key & 0x7FFFFFFFFFull) / 100.0f; }
 LPSIM_HD bool merge_from_left(uint64_t key) { return ((key >> 39) & 1u) != 0; }
-constexpr float kMergeRequestZone =
-    30.0f;  // m per lane to cross before the lane end where a blocked changer asks for a gap
+// m per lane to cross before the lane end where a blocked changer asks for a gap
+constexpr float kMergeRequestZone = 30.0f;
 constexpr float kMaxLanesToCross = 8.0f;  // bounds the request zone for the cheap pre-test
 
 /// Approach pass: the first vehicle on its lane (nothing ahead until the lane end) publishes itself, and
@@ -884,7 +884,7 @@ LPSIM_HD void commit_vehicle(StepContext& s, uint32_t i, uint32_t slot) {
   // Time lost this step against the desired speed [s]; no loss where the desired speed is 0.
   const float lost = v0 > 0.0f ? dt * lp_fmaxf(0.0f, (v0 - nspeed) / v0) : 0.0f;
   veh.route_length[slot] += driven;
-  if (v0 > 0.0f) veh.time_loss[slot] += lost;
+  veh.time_loss[slot] += lost;
   if (nspeed < kHaltingSpeed) {
     if (veh.stopped_steps[slot] == 0) veh.waiting_count[slot] += 1;
     veh.stopped_steps[slot] += 1;

@@ -204,9 +204,9 @@ void Simulation::step() {
 }
 
 void Simulation::step_cpu() {
-  update_signals(step_params().signal_time_ms);
   plan_.reserve_slots(active_.size());
   StepContext ctx = context(map_[cur_].data(), map_[1 - cur_].data());
+  update_signals(ctx.params.signal_time_ms);
   // Each pass is one parallel loop over the active vehicles, finished before the next starts.
   const int64_t n = static_cast<int64_t>(active_.size());
   const uint32_t* act = active_.data();
