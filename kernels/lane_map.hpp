@@ -36,10 +36,37 @@ LPSIM_HD uint32_t cell_of(const NetView& net, int32_t lane, float pos) {
   return c >= n ? n - 1 : c;
 }
 
+#ifndef __CUDA_ARCH__
+// Stores `n` (>= 1) copies of v from p with at most two (overlapping) word stores per size class instead of
+// a store per cell: footprints are a few cells long, and a byte loop's exit is hard to predict. Only the
+// cells of [p, p + n) are written, so vehicles filling neighbouring cells on other threads are unaffected.
+inline void fill_bytes(uint8_t* p, uint32_t n, uint8_t v) {
+  const uint64_t w = 0x0101010101010101ull * v;
+  if (n >= 8) {
+    for (; n > 16; n -= 8, p += 8) memcpy(p, &w, 8);
+    memcpy(p, &w, 8);
+    memcpy(p + n - 8, &w, 8);
+  } else if (n >= 4) {
+    memcpy(p, &w, 4);
+    memcpy(p + n - 4, &w, 4);
+  } else if (n >= 2) {
+    memcpy(p, &w, 2);
+    memcpy(p + n - 2, &w, 2);
+  } else {
+    *p = v;
+  }
+}
+#endif
+
 LPSIM_HD void fill_cells(uint8_t* map, const NetView& net, int32_t lane, uint32_t first, uint32_t last,
                          uint8_t v) {
   const uint32_t base = net.lane_cell_begin[lane];
+  if (last < first) return;
+#ifdef __CUDA_ARCH__
   for (uint32_t c = first; c <= last; ++c) map[base + c] = v;
+#else
+  fill_bytes(map + base + first, last - first + 1, v);
+#endif
 }
 
 /// Writes `value` into every cell of a footprint of a vehicle `length` metres long.
@@ -79,6 +106,14 @@ LPSIM_HD int32_t first_occupied(const uint8_t* map, const NetView& net, int32_t 
     uint64_t word;
     memcpy(&word, cells + c, sizeof word);
     if (word != 0) return c + static_cast<int32_t>(__builtin_ctzll(word) >> 3);
+  }
+  // Fewer than 8 cells left: the word ending at `last` (inside the lane when it starts at cell 0 or later)
+  // with the cells before c shifted out.
+  if (c <= last && last >= 7) {
+    uint64_t word;
+    memcpy(&word, cells + last - 7, sizeof word);
+    word >>= 8 * (c - (last - 7));
+    return word != 0 ? c + static_cast<int32_t>(__builtin_ctzll(word) >> 3) : -1;
   }
 #endif
   for (; c <= last; ++c)

@@ -374,9 +374,10 @@ LPSIM_HD void approach_vehicle(StepContext& s, uint32_t /*i*/, uint32_t slot) {
   const int32_t lane = s.veh.lane[slot];
   const float pos = s.veh.pos[slot];
   int32_t to_cross = 0;
-  // Cheap tests first: only slow vehicles near their lane's end can be stuck on a wrong lane.
+  // Cheap tests first (both, as one branch): only slow vehicles near their lane's end can be stuck on a wrong
+  // lane.
   const bool may_request =
-      s.veh.speed[slot] < 2.0f && s.net.lane_length[lane] - pos < kMergeRequestZone * kMaxLanesToCross;
+      (s.veh.speed[slot] < 2.0f) & (s.net.lane_length[lane] - pos < kMergeRequestZone * kMaxLanesToCross);
   const int32_t target = may_request ? mandatory_target(s, r, lane, &to_cross) : -1;
   if (target >= 0 && s.net.lane_length[lane] - pos < kMergeRequestZone * static_cast<float>(to_cross)) {
     const float rear = pos - s.types.length[s.trips.type[v]];
@@ -885,13 +886,11 @@ LPSIM_HD void commit_vehicle(StepContext& s, uint32_t i, uint32_t slot) {
   const float lost = v0 > 0.0f ? dt * lp_fmaxf(0.0f, (v0 - nspeed) / v0) : 0.0f;
   veh.route_length[slot] += driven;
   veh.time_loss[slot] += lost;
-  if (nspeed < kHaltingSpeed) {
-    if (veh.stopped_steps[slot] == 0) veh.waiting_count[slot] += 1;
-    veh.stopped_steps[slot] += 1;
-    veh.waiting_steps[slot] += 1;
-  } else {
-    veh.stopped_steps[slot] = 0;
-  }
+  // Counted without branches: whether a vehicle halts in a step is hard to predict.
+  const uint32_t halting = nspeed < kHaltingSpeed ? 1u : 0u;
+  veh.waiting_count[slot] += halting & (veh.stopped_steps[slot] == 0 ? 1u : 0u);
+  veh.stopped_steps[slot] = halting * (veh.stopped_steps[slot] + 1u);
+  veh.waiting_steps[slot] += halting;
   veh.lane_change_dir[slot] = nlane != lane && net.lane_edge[nlane] == net.lane_edge[lane]
                                   ? (nlane == net.lane_left[lane] ? 1 : 2)
                                   : 0;

@@ -218,10 +218,11 @@ void Simulation::step_cpu() {
         },
         kParallelMinVehicles);
   };
-  pass(clear_old_footprint);
-  pass(approach_vehicle);
-  pass(plan_vehicle);
-  pass(commit_vehicle);
+  // Lambdas rather than function pointers, so that each pass's body is inlined into its loop.
+  pass([](StepContext& c, uint32_t i, uint32_t k) { clear_old_footprint(c, i, k); });
+  pass([](StepContext& c, uint32_t i, uint32_t k) { approach_vehicle(c, i, k); });
+  pass([](StepContext& c, uint32_t i, uint32_t k) { plan_vehicle(c, i, k); });
+  pass([](StepContext& c, uint32_t i, uint32_t k) { commit_vehicle(c, i, k); });
   counts_.vehicle_updates += static_cast<uint64_t>(n);
 
   time_ms_ += dt_ms_;

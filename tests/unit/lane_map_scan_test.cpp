@@ -1,5 +1,6 @@
 // The lane-map scans (word-wise on the host) find exactly what a cell-by-cell scan finds, for every range
-// of sparse and dense lanes, including ranges shorter than a word and ends that are not word-aligned.
+// of sparse and dense lanes, including ranges shorter than a word and ends that are not word-aligned; and
+// footprint fills (word stores on the host) write exactly the cells of their range.
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -53,6 +54,29 @@ TEST(LaneMapScan, WordScansEqualCellByCellScans) {
   }
   EXPECT_GT(checked, 100000);
   EXPECT_GT(found, checked / 2);  // most ranges hold a vehicle: both outcomes are exercised
+}
+
+TEST(LaneMapScan, FillWritesExactlyItsRange) {
+  const std::vector<uint32_t> begin = {0, 5, 45, 90};
+  NetView net{};
+  net.num_lanes = 3;
+  net.lane_cell_begin = begin.data();
+  int filled = 0;
+  for (int32_t lane = 0; lane < 3; ++lane) {
+    const int32_t cells = static_cast<int32_t>(begin[lane + 1] - begin[lane]);
+    for (int32_t first = 0; first < cells; ++first)
+      for (int32_t last = first; last < cells; ++last) {
+        std::vector<uint8_t> map(begin.back(), 7);
+        fill_cells(map.data(), net, lane, static_cast<uint32_t>(first), static_cast<uint32_t>(last), 200);
+        for (uint32_t i = 0; i < map.size(); ++i) {
+          const int32_t c = static_cast<int32_t>(i) - static_cast<int32_t>(begin[lane]);
+          const bool inside = c >= first && c <= last;
+          ASSERT_EQ(map[i], inside ? 200 : 7) << lane << " " << first << ".." << last << " cell " << i;
+          filled += inside;
+        }
+      }
+  }
+  EXPECT_GT(filled, 10000);
 }
 
 }  // namespace
