@@ -7,7 +7,9 @@
 # Vehicle-updates are counted the same way for every simulator: the sum over steps of running vehicles,
 # from each run's summary output. Prints a markdown table (also bench/work/engine/results.md).
 #
-# Usage: bench/engine_bench.sh [--end T] [--vehicles N] [--runs N] [--scenarios "grid40 bologna"] [--lpsim PATH]
+# Usage: bench/engine_bench.sh [--end T] [--vehicles N] [--runs N] [--lpsim-repeats N]
+#                              [--scenarios "grid40 bologna"] [--lpsim PATH]
+# --runs N: rounds (sumo, meso, lpsim in turn); --lpsim-repeats N: LPSim runs per round, mean CPU time taken.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source bench/lib.sh
@@ -15,6 +17,7 @@ source bench/lib.sh
 end=1200
 vehicles=100000
 runs=1
+lpsim_repeats=5
 scenarios="grid40 bologna"
 lpsim=build/lpsim
 while [[ $# -gt 0 ]]; do
@@ -22,9 +25,10 @@ while [[ $# -gt 0 ]]; do
     --end) end="$2"; shift 2 ;;
     --vehicles) vehicles="$2"; shift 2 ;;
     --runs) runs="$2"; shift 2 ;;
+    --lpsim-repeats) lpsim_repeats="$2"; shift 2 ;;
     --scenarios) scenarios="$2"; shift 2 ;;
     --lpsim) lpsim="$2"; shift 2 ;;
-    -h|--help) sed -n '2,11p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,13p' "$0"; exit 0 ;;
     *) echo "unknown option $1" >&2; exit 2 ;;
   esac
 done
@@ -56,20 +60,24 @@ cfg_of() {
 }
 
 rows=()
+notes=()
 for sc in $scenarios; do
   cfg=$(cfg_of "$sc")
   [[ -f "$cfg" ]] || { log "skipping $sc: $cfg missing"; continue; }
   out="$work/$sc"
   mkdir -p "$out"
-  declare -A cpu=() rss=() ups=()
+  declare -A cpus=() rsss=() cpu=() rss=() ups=() n=()
   # A tripinfo output the cfg names (Bologna's does) would land in the scenario's own folder: send it to the
   # work folder instead, for all three simulators, so they write the same files there. (SUMO still writes
   # the detector files Bologna's add-file names into that folder: they are part of the scenario's work.)
   extra=()
   if grep -q "tripinfo-output" "$cfg"; then extra=(--tripinfo-output "$out/tripinfo.xml"); fi
-  for sim in sumo meso lpsim; do
-    cpus=(); rsss=()
-    for ((r = 1; r <= runs; r++)); do
+  # Rounds of sumo, meso, lpsim in turn, so that the three see the same machine load (these machines are
+  # shared; a run of SUMO and one of LPSim minutes apart can see different loads). Within a round LPSim,
+  # much the shortest run, is repeated and its mean CPU time taken, so that it is timed over a window
+  # closer to SUMO's and above the 10 ms resolution of the timer.
+  for ((r = 1; r <= runs; r++)); do
+    for sim in sumo meso lpsim; do
       summary="$out/$sim.summary.xml"
       case "$sim" in
         sumo) cmd=(sumo -c "$cfg" --default.carfollowmodel IDM --end "$end" --no-step-log --summary-output "$summary") ;;
@@ -79,27 +87,49 @@ for sc in $scenarios; do
       cmd+=("${extra[@]}")
       # SUMO's log file too (LPSim writes none).
       if [[ "$sim" != lpsim ]] && grep -q "<log " "$cfg"; then cmd+=(--log "$out/$sim.sumo_log.txt"); fi
-      log "$sc $sim run $r/$runs: ${cmd[*]}"
-      read -r wall c m < <(measure "$out/$sim.log" "${cmd[@]}") || { log "$sim failed, see $out/$sim.log"; }
-      cpus+=("$c"); rsss+=("$m")
+      reps=1
+      [[ "$sim" == lpsim ]] && reps=$lpsim_repeats
+      total=0
+      for ((k = 1; k <= reps; k++)); do
+        log "$sc round $r/$runs $sim run $k/$reps: ${cmd[*]}"
+        read -r wall c m < <(measure "$out/$sim.log" "${cmd[@]}") || { log "$sim failed, see $out/$sim.log"; }
+        total=$(awk -v t="$total" -v c="$c" 'BEGIN { print t + c }')
+      done
+      cpus[$sim]+="$(awk -v t="$total" -v k="$reps" 'BEGIN { printf "%.3f", t / k }') "
+      rsss[$sim]+="$m "
     done
-    cpu[$sim]=$(median "${cpus[@]}")
-    rss[$sim]=$(median "${rsss[@]}")
-    n=$(updates_of "$out/$sim.summary.xml" 2>/dev/null || echo nan)
-    ups[$sim]=$(awk -v n="$n" -v c="${cpu[$sim]}" 'BEGIN { if (c > 0) printf "%.0f", n / c; else print "nan" }')
-    rows+=("| $sc | $sim | $n | ${cpu[$sim]} | ${ups[$sim]} | ${rss[$sim]} |")
+  done
+  for sim in sumo meso lpsim; do
+    # shellcheck disable=SC2086
+    cpu[$sim]=$(median ${cpus[$sim]})
+    # shellcheck disable=SC2086
+    rss[$sim]=$(median ${rsss[$sim]})
+    n[$sim]=$(updates_of "$out/$sim.summary.xml" 2>/dev/null || echo nan)
+    ups[$sim]=$(awk -v n="${n[$sim]}" -v c="${cpu[$sim]}" 'BEGIN { if (c > 0) printf "%.0f", n / c; else print "nan" }')
+    rows+=("| $sc | $sim | ${n[$sim]} | ${cpus[$sim]% } | ${ups[$sim]} | ${rss[$sim]} |")
+  done
+  # Ratio of each round (same updates every round: the runs are deterministic), and their median.
+  per_round=()
+  read -r -a cs <<<"${cpus[sumo]}"
+  read -r -a cl <<<"${cpus[lpsim]}"
+  for ((r = 0; r < runs; r++)); do
+    per_round+=("$(awk -v ns="${n[sumo]}" -v nl="${n[lpsim]}" -v s="${cs[$r]}" -v l="${cl[$r]}" \
+      'BEGIN { if (s > 0 && l > 0) printf "%.2f", (nl / l) / (ns / s); else print "nan" }')")
   done
   rows+=("| $sc | **lpsim / sumo** | | | **$(ratio "${ups[lpsim]}" "${ups[sumo]}")×** | $(ratio "${rss[lpsim]}" "${rss[sumo]}")× |")
   rows+=("| $sc | **lpsim / meso** | | | **$(ratio "${ups[lpsim]}" "${ups[meso]}")×** | $(ratio "${rss[lpsim]}" "${rss[meso]}")× |")
-  unset cpu rss ups
+  notes+=("- $sc: lpsim / sumo in each round: ${per_round[*]} (median $(median "${per_round[@]}")×)")
+  unset cpus rsss cpu rss ups n
 done
 
 {
-  echo "### Engine: vehicle-updates per CPU-second (end $end s, runs $runs, median)"
+  echo "### Engine: vehicle-updates per CPU-second (end $end s, $runs rounds, LPSim $lpsim_repeats runs per round)"
   echo
   machine_info
   echo
-  echo "| scenario | simulator | vehicle-updates | CPU s | updates / CPU-s | peak RSS MiB |"
+  echo "| scenario | simulator | vehicle-updates | CPU s (each round) | updates / CPU-s (median) | peak RSS MiB |"
   echo "|---|---|---:|---:|---:|---:|"
   printf '%s\n' "${rows[@]}"
+  echo
+  printf '%s\n' "${notes[@]}"
 } | tee "$work/results.md"

@@ -35,8 +35,8 @@ measure() {
 median() {
   printf '%s\n' "$@" | sort -g | awk '{ v[NR] = $1 }
     END { if (NR == 0) { print "nan"; exit }
-          if (NR % 2) printf "%.2f\n", v[(NR + 1) / 2]
-          else printf "%.2f\n", (v[NR / 2] + v[NR / 2 + 1]) / 2 }'
+          if (NR % 2) printf "%.3f\n", v[(NR + 1) / 2]
+          else printf "%.3f\n", (v[NR / 2] + v[NR / 2 + 1]) / 2 }'
 }
 
 # ratio A B: A / B with two decimals, "n/a" when either is missing or B is zero.
