@@ -578,7 +578,8 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t i, uint32_t slot) {
   float cand = 1e30f;
   float free_speed = -1.0f;
   const float budget = lp_fminf(lookahead_distance(p, speed, dt) + p.min_gap, kMaxLookahead);
-  const float decision_dist = stopping_distance(speed, p.decel, dt) + speed * dt + kDecisionMargin;
+  // Computed where a link decision comes up, which most plans (a leader ahead on the lane) never reach.
+  auto decision_dist = [&] { return stopping_distance(speed, p.decel, dt) + speed * dt + kDecisionMargin; };
 
   // Walk the path ahead: current lane, then the lanes the route leads through, up to the budget.
   int32_t path[kMaxPathHops];
@@ -635,7 +636,7 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t i, uint32_t slot) {
       const char st = link_state_of(s, static_cast<uint32_t>(c));
       bool stop = signal_must_stop(st, end_dist, speed, p.decel, dt) || link_rule(st) == LinkRule::Closed;
       if (stop) reason = kSignal;
-      if (!stop && end_dist <= decision_dist) {
+      if (!stop && end_dist <= decision_dist()) {
         const LinkRule rule = link_rule(st);
         const bool needs_halt = rule == LinkRule::StopThenYield || rule == LinkRule::AllwayStop;
         if (needs_halt && !(waiting && end_dist < 1.0f)) stop = true, reason = kHaltRule;
@@ -662,7 +663,7 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t i, uint32_t slot) {
         stop_at_own_line = hops == 0;
         break;
       }
-    } else if (entry_conn >= 0 && end_dist <= decision_dist && net.conn_via_lane[entry_conn] == cur &&
+    } else if (entry_conn >= 0 && end_dist <= decision_dist() && net.conn_via_lane[entry_conn] == cur &&
                has_internal_junction(net, static_cast<uint32_t>(entry_conn)) &&
                !may_enter(s, static_cast<uint32_t>(entry_conn), end_dist, speed, v0, p, length, waiting)) {
       // At the internal junction: wait for the prioritised foes of the link entered.
