@@ -12,8 +12,9 @@ namespace lpsim {
 namespace {
 
 // Cost model: a path's cost is the sum of length/speed over ALL its edges, the first and the last included
-// (depart and arrival positions are ignored). For a single destination this ranks paths exactly as leaving
-// the last edge out would; with several destinations a long destination edge counts against itself.
+// (depart and arrival positions are ignored), plus the junction crossings between them (see Router). For
+// a single destination this ranks paths exactly as leaving the last edge out would, as SUMO's router does;
+// with several destinations a long destination edge counts against itself.
 // Edges without car lanes or with speed 0 are impassable; internal edges are never part of a route
 // because edge_succ links normal edges only, and internal edges given as origin, destination or via yield
 // no path.
@@ -35,9 +36,10 @@ inline bool heap_after(const HeapItem& a, const HeapItem& b) {
 // cleared, so a query costs only what it touches.
 class Search {
  public:
-  Search(const Network& net, const std::vector<float>& cost)
+  Search(const Network& net, const std::vector<float>& cost, const std::vector<double>& step_cost)
       : net_(net),
         cost_(cost),
+        step_cost_(step_cost),
         dist_(net.num_edges()),
         pred_(net.num_edges()),
         seen_(net.num_edges(), 0),
@@ -70,7 +72,7 @@ class Search {
       if (on_settle(e)) return;
       for (uint32_t i = net_.edge_succ_begin[e]; i < net_.edge_succ_begin[e + 1]; ++i) {
         const uint32_t s = net_.edge_succ[i];
-        const double c = cost_[s];
+        const double c = step_cost_[i];
         if (!std::isfinite(c) || settled_[s] == version_) continue;
         const double d = top.dist + c;
         if (seen_[s] != version_ || d < dist_[s]) {
@@ -155,6 +157,7 @@ class Search {
 
   const Network& net_;
   const std::vector<float>& cost_;
+  const std::vector<double>& step_cost_;
   std::vector<double> dist_;
   std::vector<int32_t> pred_;
   std::vector<uint32_t> seen_, settled_, target_, target_slot_;
@@ -182,15 +185,64 @@ std::vector<uint32_t> route_one(Search& search, const RouteRequest& r) {
 
 }  // namespace
 
-Router::Router(const Network& net) : net_(net), edge_cost_(net.num_edges()) {
+namespace {
+
+// Time to cross the junction-internal lanes of connection c: from its via lane on, through any internal
+// junction, to the next normal lane. Each internal lane costs its length / speed, and kMinorLinkPenalty
+// when the link entering it has no priority (state not an upper-case letter) and no signal, as SUMO adds
+// to such internal edges' travel time.
+double crossing_cost(const Network& net, uint32_t c) {
+  double total = 0;
+  for (;;) {
+    const int32_t via = net.conn_via_lane[c];
+    if (via < 0) return total;
+    const float speed = net.lane_speed[via];
+    if (speed <= 0) return std::numeric_limits<double>::infinity();
+    total += net.lane_length[via] / speed;
+    const char state = net.conn_state[c];
+    if (net.conn_signal[c] < 0 && !(state >= 'A' && state <= 'Z')) total += kMinorLinkPenalty;
+    const uint32_t next = net.lane_conn_begin[via];
+    if (next == net.lane_conn_begin[via + 1]) return total;
+    c = next;  // the internal lane's link onward (to a second internal lane, or out of the junction)
+  }
+}
+
+}  // namespace
+
+Router::Router(const Network& net)
+    : net_(net), edge_cost_(net.num_edges()), step_cost_(net.edge_succ.size()) {
   for (uint32_t e = 0; e < net.num_edges(); ++e)
     edge_cost_[e] = net.edge_speed[e] > 0 ? net.edge_length[e] / net.edge_speed[e]
                                           : std::numeric_limits<float>::infinity();
+  for (uint32_t e = 0; e < net.num_edges(); ++e)
+    for (uint32_t i = net.edge_succ_begin[e]; i < net.edge_succ_begin[e + 1]; ++i) {
+      const uint32_t to = net.edge_succ[i];
+      // SUMO keeps one crossing per successor edge: that of the first link onto it, in lane order.
+      int32_t first = -1;
+      const uint32_t l0 = net.edge_first_lane[e];
+      for (uint32_t l = l0; l < l0 + net.edge_num_lanes[e] && first < 0; ++l)
+        for (uint32_t c = net.lane_conn_begin[l]; c < net.lane_conn_begin[l + 1]; ++c)
+          if (net.lane_edge[net.conn_to_lane[c]] == to) {
+            first = static_cast<int32_t>(c);
+            break;
+          }
+      step_cost_[i] = edge_cost_[to] + (first >= 0 ? crossing_cost(net, static_cast<uint32_t>(first)) : 0.0);
+    }
 }
 
 double Router::cost(const std::vector<uint32_t>& path) const {
   double total = 0;
-  for (uint32_t e : path) total += edge_cost_[e];
+  for (size_t k = 0; k < path.size(); ++k) {
+    if (k == 0) {
+      total += edge_cost_[path[0]];
+      continue;
+    }
+    const uint32_t e = path[k - 1];
+    double step = std::numeric_limits<double>::infinity();
+    for (uint32_t i = net_.edge_succ_begin[e]; i < net_.edge_succ_begin[e + 1]; ++i)
+      if (net_.edge_succ[i] == path[k]) step = std::min(step, step_cost_[i]);
+    total += step;
+  }
   return total;
 }
 
@@ -238,7 +290,7 @@ std::vector<std::vector<uint32_t>> Router::route_all(const std::vector<RouteRequ
   std::vector<std::vector<uint32_t>> out(requests.size());
   std::atomic<size_t> next{0};
   auto worker = [&]() {
-    Search search(net_, edge_cost_);
+    Search search(net_, edge_cost_, step_cost_);
     std::vector<uint32_t> group;
     for (size_t k; (k = next.fetch_add(1, std::memory_order_relaxed)) < items.size();) {
       const Item& it = items[k];

@@ -12,19 +12,29 @@ struct RouteRequest {
   std::vector<uint32_t> origins, destinations, via;
 };
 
-/// Fastest paths on free-flow travel time (edge length / edge speed) over the edge graph that lane
-/// connections induce. Deterministic: ties are broken by edge index.
+/// SUMO's default time penalty (--weights.minor-penalty) for crossing a junction on a link without
+/// priority that no signal controls [s].
+constexpr double kMinorLinkPenalty = 1.5;
+
+/// Fastest paths on free-flow travel time over the edge graph that lane connections induce, costed as
+/// SUMO's router costs them: each edge's length / speed, plus, from an edge into a successor, the
+/// junction-internal lanes between them (those of the first connection onto the successor, in lane order)
+/// at their length / speed, each with kMinorLinkPenalty when the link entering it has no priority and no
+/// signal. Deterministic: ties are broken by edge index.
 class Router {
  public:
   explicit Router(const Network& net);
   /// Routes all requests on `threads` threads (0: all). An empty result means "no path".
   std::vector<std::vector<uint32_t>> route_all(const std::vector<RouteRequest>& requests, int threads) const;
-  /// Free-flow cost of a path (seconds).
+  /// Free-flow cost of a path (seconds), its edges' and the junction crossings between them.
   double cost(const std::vector<uint32_t>& path) const;
+  /// Cost of entering net.edge_succ[i] from its predecessor edge: the crossing plus the edge (seconds).
+  double step_cost(uint32_t i) const { return step_cost_[i]; }
 
  private:
   const Network& net_;
   std::vector<float> edge_cost_;
+  std::vector<double> step_cost_;  // parallel to net.edge_succ
 };
 
 }  // namespace lpsim

@@ -163,7 +163,39 @@ TEST(Router, InternalEdgesNeverInRoutes) {
   EXPECT_TRUE(is_connected_path(net, p));
 }
 
-// Random strongly-or-not connected nets: the router's cost equals the Bellman-Ford optimum on edge_succ.
+// Two four-edge paths of equal length on a grid with 5 m internal lanes, over junction (2,0) or over (1,1):
+// a link without priority on one of them (SUMO's minor-link penalty) sends the route over the other, either
+// way round; the path's cost counts its three crossings.
+TEST(Router, CrossingsCostTheirInternalLanesAndMinorLinksAPenalty) {
+  const std::string from = grid_edge(0, 0, 1, 0), to = grid_edge(2, 1, 2, 2);
+  const std::vector<std::string> over_20 = {from, grid_edge(1, 0, 2, 0), grid_edge(2, 0, 2, 1), to};
+  const std::vector<std::string> over_11 = {from, grid_edge(1, 0, 1, 1), grid_edge(1, 1, 2, 1), to};
+  for (int minor_on_20 = 0; minor_on_20 < 2; ++minor_on_20) {
+    test::GridOptions o;
+    o.with_internal = true;
+    o.internal_length = 5;
+    NetSpec s = test::make_grid_spec(3, 3, o);
+    const auto& slowed = minor_on_20 ? over_20 : over_11;
+    for (auto& c : s.connections)
+      if (c.from == slowed[1] && c.to == slowed[2]) c.state = 'm';
+    Network net = build_network(s);
+    Router router(net);
+    const Path p = router.route_all({{{net.edge_index.at(from)}, {net.edge_index.at(to)}, {}}}, 1)[0];
+    EXPECT_EQ(p, ids_to_path(net, minor_on_20 ? over_11 : over_20)) << minor_on_20;
+    EXPECT_NEAR(router.cost(p), 4 * 100 / 13.89 + 3 * 5 / 13.89, 1e-4);
+    const uint32_t a = net.edge_index.at(slowed[1]), b = net.edge_index.at(slowed[2]);
+    int found = 0;
+    for (uint32_t i = net.edge_succ_begin[a]; i < net.edge_succ_begin[a + 1]; ++i) {
+      if (net.edge_succ[i] != b) continue;
+      EXPECT_NEAR(router.step_cost(i), (100 + 5) / 13.89 + kMinorLinkPenalty, 1e-4);
+      ++found;
+    }
+    EXPECT_EQ(found, 1);
+  }
+}
+
+// Random strongly-or-not connected nets: the router's cost equals the Bellman-Ford optimum on edge_succ
+// (with the router's step costs; crossing costs are tested on their own below).
 TEST(Router, MatchesBellmanFordOnRandomGraphs) {
   std::mt19937 rng(12345);
   size_t reachable = 0, unreachable = 0;
@@ -196,6 +228,8 @@ TEST(Router, MatchesBellmanFordOnRandomGraphs) {
     Router router(net);
     std::vector<float> cost(net.num_edges());
     for (uint32_t e = 0; e < net.num_edges(); ++e) cost[e] = net.edge_length[e] / net.edge_speed[e];
+    for (uint32_t i = 0; i < net.edge_succ.size(); ++i)  // a step costs at least its edge
+      ASSERT_GE(router.step_cost(i), cost[net.edge_succ[i]] * (1 - 1e-6));
 
     std::vector<RouteRequest> reqs;
     std::vector<uint32_t> normal;
@@ -212,7 +246,7 @@ TEST(Router, MatchesBellmanFordOnRandomGraphs) {
       for (uint32_t it = 0; it < net.num_edges(); ++it)
         for (uint32_t e = 0; e < net.num_edges(); ++e)
           for (uint32_t i = net.edge_succ_begin[e]; i < net.edge_succ_begin[e + 1]; ++i)
-            dist[net.edge_succ[i]] = std::min(dist[net.edge_succ[i]], dist[e] + cost[net.edge_succ[i]]);
+            dist[net.edge_succ[i]] = std::min(dist[net.edge_succ[i]], dist[e] + router.step_cost(i));
       for (size_t q = 0; q < reqs.size(); ++q) {
         if (reqs[q].origins[0] != a) continue;
         const uint32_t b = reqs[q].destinations[0];
