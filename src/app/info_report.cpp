@@ -1,10 +1,12 @@
 #include "app/info_report.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <map>
 
 #include "net/junction_type.hpp"
+#include "net/router.hpp"
 
 namespace lpsim {
 
@@ -102,14 +104,17 @@ std::string describe_scenario(const Scenario& sc) {
     out += fmt("routing: %llu trips (%llu distinct requests)\n",
                static_cast<unsigned long long>(d.routing.vehicles),
                static_cast<unsigned long long>(d.routing.requests));
-  // Sum over vehicles of their route's free-flow travel time (length / speed of every edge), the measure
+  // Sum over vehicles of their route's free-flow travel time (its edges and junction crossings), the measure
   // the router minimises; comparable between LPSim's routes and another router's on the same net.
+  const Router router(net);
   double cost = 0;
-  for (uint32_t v = 0; v < d.size(); ++v)
-    for (uint32_t k = 0; k < d.route_length[v]; ++k) {
-      const uint32_t e = d.route_edges[d.route_begin[v] + k];
-      if (net.edge_speed[e] > 0) cost += static_cast<double>(net.edge_length[e]) / net.edge_speed[e];
-    }
+  std::vector<uint32_t> route;
+  for (uint32_t v = 0; v < d.size(); ++v) {
+    route.assign(d.route_edges.begin() + d.route_begin[v],
+                 d.route_edges.begin() + d.route_begin[v] + d.route_length[v]);
+    const double c = router.cost(route);
+    if (std::isfinite(c)) cost += c;
+  }
   out += fmt("free-flow route cost: %.1f s\n", cost);
   out += fmt("unrouted or skipped vehicles: %zu\n", d.unroutable.size());
   for (size_t i = 0; i < d.unroutable.size() && i < 10; ++i)
