@@ -183,17 +183,13 @@ std::vector<uint32_t> route_one(Search& search, const RouteRequest& r) {
   return path;
 }
 
-}  // namespace
-
-namespace {
-
 // Time to cross the junction-internal lanes of connection c: from its via lane on, through any internal
 // junction, to the next normal lane. Each internal lane costs its length / speed, and kMinorLinkPenalty
 // when the link entering it has no priority (state not an upper-case letter) and no signal, as SUMO adds
 // to such internal edges' travel time.
 double crossing_cost(const Network& net, uint32_t c) {
   double total = 0;
-  for (;;) {
+  for (int parts = 0; parts < 8; ++parts) {  // a junction has at most a few internal lanes in a row
     const int32_t via = net.conn_via_lane[c];
     if (via < 0) return total;
     const float speed = net.lane_speed[via];
@@ -205,6 +201,7 @@ double crossing_cost(const Network& net, uint32_t c) {
     if (next == net.lane_conn_begin[via + 1]) return total;
     c = next;  // the internal lane's link onward (to a second internal lane, or out of the junction)
   }
+  return total;
 }
 
 }  // namespace
