@@ -54,7 +54,15 @@ cfg_of() {
     grid40)
       /usr/bin/python3 bench/make_load_scenario.py --grid 40 --vehicles "$vehicles" --out "$work/grid40" >&2
       echo "$work/grid40/load.sumocfg" ;;
-    bologna) echo "../shared/scenarios/bologna_acosta/run.sumocfg" ;;
+    bologna)
+      # A copy in the work folder: the scenario's add-files name output files (detectors) that SUMO writes
+      # beside them, and ../shared is not ours to write into.
+      local src=../shared/scenarios/bologna_acosta
+      [[ -d "$src" ]] || { echo "$src/run.sumocfg"; return; }
+      mkdir -p "$work/bologna_src"
+      cp -f "$src"/* "$work/bologna_src/"
+      chmod u+w "$work/bologna_src"/*
+      echo "$work/bologna_src/run.sumocfg" ;;
     *) echo "unknown scenario $1" >&2; exit 2 ;;
   esac
 }
@@ -67,9 +75,9 @@ for sc in $scenarios; do
   out="$work/$sc"
   mkdir -p "$out"
   declare -A cpus=() rsss=() cpu=() rss=() ups=() n=()
-  # A tripinfo output the cfg names (Bologna's does) would land in the scenario's own folder: send it to the
-  # work folder instead, for all three simulators, so they write the same files there. (SUMO still writes
-  # the detector files Bologna's add-file names into that folder: they are part of the scenario's work.)
+  # A tripinfo output the cfg names (Bologna's does) goes to the scenario's work folder, for all three
+  # simulators, so they write the same files there. (SUMO also writes the detector files Bologna's add-file
+  # names, beside the copy of the scenario.)
   extra=()
   if grep -q "tripinfo-output" "$cfg"; then extra=(--tripinfo-output "$out/tripinfo.xml"); fi
   # Rounds of sumo, meso, lpsim in turn, so that the three see the same machine load (these machines are
