@@ -84,7 +84,9 @@ for sc in $scenarios; do
   # shared; a run of SUMO and one of LPSim minutes apart can see different loads). Within a round LPSim,
   # much the shortest run, is repeated and its mean CPU time taken, so that it is timed over a window
   # closer to SUMO's and above the 10 ms resolution of the timer.
+  loads=()
   for ((r = 1; r <= runs; r++)); do
+    loads+=("$(cut -d' ' -f1 /proc/loadavg)")
     for sim in sumo meso lpsim; do
       summary="$out/$sim.summary.xml"
       case "$sim" in
@@ -126,7 +128,7 @@ for sc in $scenarios; do
   done
   rows+=("| $sc | **lpsim / sumo** | | | **$(ratio "${ups[lpsim]}" "${ups[sumo]}")×** | $(ratio "${rss[lpsim]}" "${rss[sumo]}")× |")
   rows+=("| $sc | **lpsim / meso** | | | **$(ratio "${ups[lpsim]}" "${ups[meso]}")×** | $(ratio "${rss[lpsim]}" "${rss[meso]}")× |")
-  notes+=("- $sc: lpsim / sumo in each round: ${per_round[*]} (median $(median "${per_round[@]}")×)")
+  notes+=("- $sc: lpsim / sumo in each round: ${per_round[*]} (median $(median "${per_round[@]}")×); load average at each round's start: ${loads[*]}")
   unset cpus rsss cpu rss ups n
 done
 
