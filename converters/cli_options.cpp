@@ -47,6 +47,7 @@ const OptionDef kOptions[] = {
   {"seed", "", 0, Kind::Integer, Check::None, false, [](ConfigSpec& c, Value&& v) { c.seed = v.integer; }},
   // Negative disables teleporting, as in SUMO.
   {"time-to-teleport", "", 0, Kind::Time, Check::None, false, [](ConfigSpec& c, Value&& v) { c.time_to_teleport = v.seconds; }},
+  {"weights.minor-penalty", "", 0, Kind::Time, Check::NonNegative, false, [](ConfigSpec& c, Value&& v) { c.minor_penalty = v.seconds; }},
   {"no-warnings", "", 'W', Kind::Bool, Check::None, false, [](ConfigSpec& c, Value&& v) { c.no_warnings = v.flag; }},
   {"ignore-route-errors", "", 0, Kind::Bool, Check::None, false, [](ConfigSpec& c, Value&& v) { c.ignore_route_errors = v.flag; }},
   {"threads", "", 0, Kind::Integer, Check::NonNegative, false, [](ConfigSpec& c, Value&& v) { c.threads = static_cast<int>(v.integer); }},

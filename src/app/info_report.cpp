@@ -106,7 +106,7 @@ std::string describe_scenario(const Scenario& sc) {
                static_cast<unsigned long long>(d.routing.requests));
   // Sum over vehicles of their route's free-flow travel time (its edges and junction crossings), the measure
   // the router minimises; comparable between LPSim's routes and another router's on the same net.
-  const Router router(net);
+  const Router router(net, sc.config.minor_penalty);
   double cost = 0;
   std::vector<uint32_t> route;
   for (uint32_t v = 0; v < d.size(); ++v) {

@@ -38,6 +38,7 @@ Scenario load_scenario(const ConfigSpec& config) {
   opt.begin = config.begin;
   opt.end = config.end;
   opt.step_length = config.step_length;
+  opt.minor_penalty = config.minor_penalty;
   sc.demand = build_demand(demand, sc.network, opt);
   sc.mean_data = std::move(additional.mean_data);
   sc.load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -21,6 +21,8 @@ struct ConfigSpec {
   double begin = 0, end = -1, step_length = 1.0;               // end -1: until all vehicles arrived
   long long seed = 23423;
   double time_to_teleport = 300;
+  double minor_penalty =
+      1.5;                   // SUMO's --weights.minor-penalty: routing cost of a crossing on a minor link [s]
   bool no_warnings = false;  // SUMO's --no-warnings: no teleport warnings on stderr
   bool ignore_route_errors = false;
   int threads = 0;  // 0: all hardware threads

@@ -64,7 +64,7 @@ class Builder {
     for (uint32_t i = 0; i < spec_.vehicles.size(); ++i) add_vehicle(i);
     for (uint32_t f = 0; f < spec_.flows.size(); ++f) add_flow(f, flow_times[f]);
     flow_times.clear();
-    demand_.routing.seconds = trips_.route_all(opt_.threads);
+    demand_.routing.seconds = trips_.route_all(opt_.threads, opt_.minor_penalty);
     demand_.routing.requests = trips_.num_requests();
     check_unique_ids();
     assemble();

@@ -2,6 +2,7 @@
 #include "core/demand_spec.hpp"
 #include "demand/demand.hpp"
 #include "net/network.hpp"
+#include "net/router.hpp"
 
 namespace lpsim {
 
@@ -10,6 +11,7 @@ struct DemandOptions {
   bool ignore_route_errors = false;  // as SUMO's --ignore-route-errors: skip unroutable/broken, report them
   int threads = 0;                   // routing threads; 0: all hardware threads
   double step_length = 1.0;          // s; the grid on which probability flows draw
+  double minor_penalty = kMinorLinkPenalty;  // s; routing cost of crossing on a link without priority
   // Kept for the engine: every vehicle is built whatever its depart; the engine decides what runs.
   double begin = 0, end = -1;
 };

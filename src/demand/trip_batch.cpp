@@ -124,10 +124,10 @@ uint32_t TripBatch::add(const TripEnds& ends, std::string_view kind, std::string
   return slot;
 }
 
-double TripBatch::route_all(int threads) {
+double TripBatch::route_all(int threads, double minor_penalty) {
   if (requests_.empty()) return 0;
   const auto t0 = std::chrono::steady_clock::now();
-  Router router(net_);
+  Router router(net_, minor_penalty);
   const auto paths = router.route_all(requests_, threads);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   for (size_t i = 0; i < pending_.size(); ++i) {

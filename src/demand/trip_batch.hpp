@@ -34,7 +34,7 @@ class TripBatch {
   /// Routes every pending request in one Router::route_all call and fills their slots. A request without
   /// a path: InputError "no route from X to Y for trip T" at the first trip's location, or a broken slot.
   /// Returns the wall time spent in the router (s).
-  double route_all(int threads);
+  double route_all(int threads, double minor_penalty = kMinorLinkPenalty);
   size_t num_requests() const { return requests_.size(); }
 
  private:

@@ -184,10 +184,10 @@ std::vector<uint32_t> route_one(Search& search, const RouteRequest& r) {
 }
 
 // Time to cross the junction-internal lanes of connection c: from its via lane on, through any internal
-// junction, to the next normal lane. Each internal lane costs its length / speed, and kMinorLinkPenalty
+// junction, to the next normal lane. Each internal lane costs its length / speed, and minor_penalty
 // when the link entering it has no priority (state not an upper-case letter) and no signal, as SUMO adds
 // to such internal edges' travel time.
-double crossing_cost(const Network& net, uint32_t c) {
+double crossing_cost(const Network& net, uint32_t c, double minor_penalty) {
   double total = 0;
   for (int parts = 0; parts < 8; ++parts) {  // a junction has at most a few internal lanes in a row
     const int32_t via = net.conn_via_lane[c];
@@ -196,7 +196,7 @@ double crossing_cost(const Network& net, uint32_t c) {
     if (speed <= 0) return std::numeric_limits<double>::infinity();
     total += net.lane_length[via] / speed;
     const char state = net.conn_state[c];
-    if (net.conn_signal[c] < 0 && !(state >= 'A' && state <= 'Z')) total += kMinorLinkPenalty;
+    if (net.conn_signal[c] < 0 && !(state >= 'A' && state <= 'Z')) total += minor_penalty;
     const uint32_t next = net.lane_conn_begin[via];
     if (next == net.lane_conn_begin[via + 1]) return total;
     c = next;  // the internal lane's link onward (to a second internal lane, or out of the junction)
@@ -206,7 +206,7 @@ double crossing_cost(const Network& net, uint32_t c) {
 
 }  // namespace
 
-Router::Router(const Network& net)
+Router::Router(const Network& net, double minor_penalty)
     : net_(net), edge_cost_(net.num_edges()), step_cost_(net.edge_succ.size()) {
   for (uint32_t e = 0; e < net.num_edges(); ++e)
     edge_cost_[e] = net.edge_speed[e] > 0 ? net.edge_length[e] / net.edge_speed[e]
@@ -223,7 +223,8 @@ Router::Router(const Network& net)
             first = static_cast<int32_t>(c);
             break;
           }
-      step_cost_[i] = edge_cost_[to] + (first >= 0 ? crossing_cost(net, static_cast<uint32_t>(first)) : 0.0);
+      step_cost_[i] = edge_cost_[to] +
+                      (first >= 0 ? crossing_cost(net, static_cast<uint32_t>(first), minor_penalty) : 0.0);
     }
 }
 

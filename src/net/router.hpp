@@ -23,7 +23,8 @@ constexpr double kMinorLinkPenalty = 1.5;
 /// signal. Deterministic: ties are broken by edge index.
 class Router {
  public:
-  explicit Router(const Network& net);
+  /// minor_penalty: SUMO's --weights.minor-penalty [s].
+  explicit Router(const Network& net, double minor_penalty = kMinorLinkPenalty);
   /// Routes all requests on `threads` threads (0: all). An empty result means "no path".
   std::vector<std::vector<uint32_t>> route_all(const std::vector<RouteRequest>& requests, int threads) const;
   /// Free-flow cost of a path (seconds), its edges' and the junction crossings between them.

@@ -87,6 +87,8 @@ TEST(CliOptionsParse, BothValueFormsAndShortNames) {
                                     "2",
                                     "--time-to-teleport",
                                     "-1",
+                                    "--weights.minor-penalty",
+                                    "4",
                                     "-o",
                                     "result.txt",
                                     "--lpsim-nodes",
@@ -111,6 +113,7 @@ TEST(CliOptionsParse, BothValueFormsAndShortNames) {
   EXPECT_EQ(c.outputs.summary, "su.xml");
   EXPECT_EQ(c.threads, 2);
   EXPECT_DOUBLE_EQ(c.time_to_teleport, -1);
+  EXPECT_DOUBLE_EQ(c.minor_penalty, 4);
   EXPECT_EQ(c.output_file, "result.txt");
   EXPECT_EQ(c.lpsim_nodes_csv, "nodes.csv");
   EXPECT_EQ(c.lpsim_edges_csv, "edges.csv");

@@ -194,6 +194,21 @@ TEST(Router, CrossingsCostTheirInternalLanesAndMinorLinksAPenalty) {
   }
 }
 
+// SUMO's --weights.minor-penalty sets the penalty: a route's cost grows by it for each minor crossing.
+TEST(Router, MinorPenaltyIsAParameter) {
+  test::GridOptions o;
+  o.with_internal = true;
+  o.internal_length = 5;
+  NetSpec s = test::make_grid_spec(3, 3, o);
+  const std::string a = grid_edge(0, 0, 1, 0), b = grid_edge(1, 0, 2, 0);
+  for (auto& c : s.connections)
+    if (c.from == a && c.to == b) c.state = 'm';
+  Network net = build_network(s);
+  const Path p = ids_to_path(net, {a, b});
+  for (double penalty : {0.0, 1.5, 7.0})
+    EXPECT_NEAR(Router(net, penalty).cost(p), (2 * 100 + 5) / 13.89 + penalty, 1e-4) << penalty;
+}
+
 // Random strongly-or-not connected nets: the router's cost equals the Bellman-Ford optimum on edge_succ
 // (with the router's step costs; crossing costs are tested on their own below).
 TEST(Router, MatchesBellmanFordOnRandomGraphs) {
