@@ -598,30 +598,11 @@ void Simulation::sample_fcd(FcdFrame& frame) const {
   }
 }
 
-uint8_t Simulation::status(uint32_t v) const {
-  const int32_t k = slot_of(v);
-  return k >= 0 ? status_[static_cast<size_t>(k)] : trip_status_[v];
-}
-
-int32_t Simulation::lane(uint32_t v) const {
-  const int32_t k = slot_of(v);
-  return k >= 0 ? lane_[static_cast<size_t>(k)] : -1;
-}
-
-float Simulation::pos(uint32_t v) const {
-  const int32_t k = slot_of(v);
-  return k >= 0 ? pos_[static_cast<size_t>(k)] : 0.0f;
-}
-
-float Simulation::speed(uint32_t v) const {
-  const int32_t k = slot_of(v);
-  return k >= 0 ? speed_[static_cast<size_t>(k)] : 0.0f;
-}
-
-uint8_t Simulation::limit_reason(uint32_t v) const {
-  const int32_t k = slot_of(v);
-  return k >= 0 ? limit_reason_[static_cast<size_t>(k)] : 0;
-}
+uint8_t Simulation::status(uint32_t v) const { return on_road(status_, v, trip_status_[v]); }
+int32_t Simulation::lane(uint32_t v) const { return on_road(lane_, v, int32_t{-1}); }
+float Simulation::pos(uint32_t v) const { return on_road(pos_, v, 0.0f); }
+float Simulation::speed(uint32_t v) const { return on_road(speed_, v, 0.0f); }
+uint8_t Simulation::limit_reason(uint32_t v) const { return on_road(limit_reason_, v, uint8_t{0}); }
 
 const std::vector<uint32_t>& Simulation::active() const {
   sync_host();

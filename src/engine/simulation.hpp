@@ -103,6 +103,12 @@ class Simulation {
   void check_kept(size_t kept) const;
   const std::vector<uint32_t>& added_slots();
   int32_t slot_of(uint32_t v) const { return sync_host(), slot_of_[v]; }
+  /// Test support: vehicle v's entry of a slot column, or `off_road` while it holds no slot.
+  template <class T>
+  T on_road(const std::vector<T>& column, uint32_t v, T off_road) const {
+    const int32_t k = slot_of(v);
+    return k >= 0 ? column[static_cast<size_t>(k)] : off_road;
+  }
   const std::vector<uint64_t>& active_by_vehicle() const;
   void sync_sample() const;
   void sync_host() const;
