@@ -43,6 +43,20 @@ LPSIM_HD LinkRule link_rule(char c) {
   }
 }
 
+// How far before a link without priority a driver sees whether foes come: SUMO's default foe visibility
+// distance of a connection (a connection's own `visibility` attribute is not read) [m].
+constexpr float kFoeVisibility = 4.5f;
+
+/// A link whose state gives no priority ('m', 'g', 'o', 's', '=', 'w'; not the zipper 'Z', which SUMO counts
+/// as prioritised), `dist` metres ahead, whose foes the driver cannot see yet: SUMO's vehicles then plan to
+/// stop at the link, whether or not a foe comes, until they are within the visibility distance.
+LPSIM_HD bool foes_unseen(char c, float dist) {
+  const LinkRule r = link_rule(c);
+  const bool minor = c != 'Z' && (r == LinkRule::Yield || r == LinkRule::StopThenYield ||
+                                  r == LinkRule::RightBeforeLeft || r == LinkRule::AllwayStop);
+  return minor && dist > kFoeVisibility;
+}
+
 // "Never arrives" for a standing vehicle that cannot accelerate [s].
 constexpr float kNeverArrives = 1e30f;
 

@@ -268,6 +268,15 @@ LPSIM_HD bool yielder_inside(const StepContext& s, uint32_t c, float own_arrival
   return false;
 }
 
+/// The link at the internal junction of connection c (a link without priority), `dist` metres ahead, whose
+/// foes cannot be seen yet. As in SUMO, not after entering on a prioritised or yellow signal (the vehicle
+/// is then committed to crossing).
+LPSIM_HD bool unseen_at_internal_junction(const StepContext& s, uint32_t c, float dist) {
+  const char entered = link_state_of(s, c);
+  if (link_rule(entered) == LinkRule::Priority) return false;  // 'M', 'G', 'O' and yellow
+  return foes_unseen('m', dist);
+}
+
 /// Right of way for entering connection c, `dist` metres ahead: every foe link it must yield to is either
 /// closed by its signal, empty inside the junction and without an approaching vehicle that would arrive
 /// before this one has cleared. Foes beyond their request horizon (the distance within which they could
@@ -653,6 +662,11 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t i, uint32_t slot) {
             yielder_inside(s, static_cast<uint32_t>(c), speed > kHaltingSpeed ? end_dist / speed : 0.0f))
           stop = true, reason = kYield;
       }
+      // Too far to see the foes of a link without priority: plan to stop at it while that is still possible.
+      // A link with an internal junction is entered freely; its foes are seen at the internal junction.
+      if (!stop && foes_unseen(st, end_dist) && !has_internal_junction(net, static_cast<uint32_t>(c)) &&
+          can_stop_before(end_dist, speed, p.decel, dt))
+        stop = true, reason = kYield;
       if (stop) {
         cand = lp_fminf(cand, stop_speed(p, speed, v0, end_dist, dt, s.params.substeps, &free_speed));
         if (signal_is_red(st) || link_rule(st) == LinkRule::Closed || signal_is_yellow(st))
@@ -663,10 +677,14 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t i, uint32_t slot) {
         stop_at_own_line = hops == 0;
         break;
       }
-    } else if (entry_conn >= 0 && end_dist <= decision_dist() && net.conn_via_lane[entry_conn] == cur &&
+    } else if (entry_conn >= 0 && net.conn_via_lane[entry_conn] == cur &&
                has_internal_junction(net, static_cast<uint32_t>(entry_conn)) &&
-               !may_enter(s, static_cast<uint32_t>(entry_conn), end_dist, speed, v0, p, length, waiting)) {
-      // At the internal junction: wait for the prioritised foes of the link entered.
+               ((unseen_at_internal_junction(s, static_cast<uint32_t>(entry_conn), end_dist) &&
+                 can_stop_before(end_dist, speed, p.decel, dt)) ||
+                (end_dist <= decision_dist() && !may_enter(s, static_cast<uint32_t>(entry_conn), end_dist,
+                                                           speed, v0, p, length, waiting)))) {
+      // At the internal junction: wait for the prioritised foes of the link entered, or until they can be
+      // seen.
       cand = lp_fminf(cand, stop_speed(p, speed, v0, end_dist, dt, s.params.substeps, &free_speed));
       if (can_stop_before(end_dist, speed, p.emergency_decel, dt))
         hard_limit = lp_fminf(hard_limit, end_dist - kClampEps);

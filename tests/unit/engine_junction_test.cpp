@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <vector>
 
+#include "kernels/right_of_way.hpp"
 #include "unit/engine_invariant_checker.hpp"
 
 namespace lpsim::engine_test {
@@ -48,6 +50,71 @@ TEST(EngineJunctionTest, PrioritisedFlowKeepsMoving) {
   const FlowStats st = run_flow(sc, "by_number.");
   ASSERT_EQ(st.trips, 40);
   EXPECT_LT(st.duration_sum / st.trips, 40.0);
+}
+
+TEST(EngineJunctionTest, MinorLinkIsCrossedOnlyFromWithinTheFoeVisibilityDistance) {
+  // A1B1's links at B1 are 'm' without an internal junction. As in SUMO, a vehicle that cannot yet see the
+  // foes (farther than 4.5 m from the line) plans to stop at the line, so it crosses only from closer, even
+  // with no foe in sight.
+  const Scenario sc = load_sumo_scenario("flows");
+  Simulation sim(sc.network, sc.demand, options_of(sc.config, 1));
+  const Network& net = sc.network;
+  std::vector<uint32_t> tracked;
+  for (uint32_t v = 0; v < sc.demand.vehicle_id.size(); ++v)
+    if (sc.demand.vehicle_id[v].rfind("by_period.", 0) == 0) tracked.push_back(v);
+  ASSERT_EQ(tracked.size(), 60u);
+  auto on_approach = [&](int32_t lane) { return lane >= 0 && net.edge_id[net.lane_edge[lane]] == "A1B1"; };
+  int crossings = 0, from_afar = 0;
+  std::vector<int32_t> lane(tracked.size(), -1);
+  std::vector<float> dist(tracked.size(), 0.0f);
+  while (!sim.finished() && sim.time() < 3600) {
+    for (size_t k = 0; k < tracked.size(); ++k) {
+      lane[k] = sim.lane(tracked[k]);
+      dist[k] = lane[k] >= 0 ? net.lane_length[lane[k]] - sim.pos(tracked[k]) : 0.0f;
+    }
+    sim.step();
+    for (size_t k = 0; k < tracked.size(); ++k) {
+      if (!on_approach(lane[k]) || on_approach(sim.lane(tracked[k]))) continue;
+      ++crossings;
+      if (dist[k] > 4.5f) ++from_afar;
+    }
+  }
+  EXPECT_EQ(crossings, 60);
+  EXPECT_EQ(from_afar, 0);
+}
+
+TEST(EngineJunctionTest, InternalJunctionIsCrossedOnlyFromWithinTheFoeVisibilityDistance) {
+  // grid_tls's turns with an internal junction: a vehicle that entered on a link without priority waits at
+  // the internal junction until it is within 4.5 m of it, as SUMO's do (not after a 'G' or yellow entry).
+  const Scenario sc = load_sumo_scenario("grid_tls");
+  const Network& net = sc.network;
+  Simulation sim(sc.network, sc.demand, options_of(sc.config, 1));
+  std::vector<int32_t> entry(net.lane_id.size(), -1);  // first internal lane -> the connection entering it
+  for (uint32_t c = 0; c < net.num_connections(); ++c) {
+    const int32_t via = net.conn_via_lane[c];
+    if (via < 0) continue;
+    const uint32_t b = net.lane_conn_begin[via];
+    if (b < net.lane_conn_begin[via + 1] && net.conn_via_lane[b] >= 0) entry[via] = static_cast<int32_t>(c);
+  }
+  const uint32_t n = static_cast<uint32_t>(sc.demand.vehicle_id.size());
+  std::vector<int32_t> lane(n);
+  std::vector<float> dist(n);
+  int crossings = 0, from_afar = 0;
+  while (!sim.finished() && sim.time() < 3600) {
+    for (uint32_t v = 0; v < n; ++v) {
+      lane[v] = sim.lane(v);
+      dist[v] = lane[v] >= 0 ? net.lane_length[lane[v]] - sim.pos(v) : 0.0f;
+    }
+    sim.step();
+    for (uint32_t v = 0; v < n; ++v) {
+      if (lane[v] < 0 || entry[lane[v]] < 0 || sim.lane(v) == lane[v]) continue;
+      if (link_rule(sim.link_state(static_cast<uint32_t>(entry[lane[v]]))) == LinkRule::Priority) continue;
+      ++crossings;
+      if (dist[v] > 4.5f) ++from_afar;
+    }
+  }
+  EXPECT_GT(crossings, 100);
+  EXPECT_EQ(from_afar, 0);
 }
 
 }  // namespace

@@ -89,5 +89,15 @@ TEST(ModelsRightOfWay, AllwayStopFirstComeFirstServedTiesByLane) {
   EXPECT_EQ(goes, 1);
 }
 
+TEST(ModelsRightOfWay, FoesOfLinksWithoutPriorityAreSeenWithinTheVisibilityDistance) {
+  for (char c : {'m', 'g', 'o', 's', '=', 'w'}) {
+    EXPECT_TRUE(foes_unseen(c, 4.6f)) << c;
+    EXPECT_FALSE(foes_unseen(c, 4.5f)) << c;
+    EXPECT_FALSE(foes_unseen(c, 0.0f)) << c;
+  }
+  // Prioritised links (the zipper counts as one in SUMO), and signal states that stop or commit anyway.
+  for (char c : {'M', 'G', 'O', 'Z', 'y', 'Y', 'r', 'u'}) EXPECT_FALSE(foes_unseen(c, 50.0f)) << c;
+}
+
 }  // namespace
 }  // namespace lpsim
