@@ -159,7 +159,7 @@ void copy_to_host(T* dst, const T* src, size_t n) {
 static_assert(sizeof(VehicleView) == 23 * sizeof(void*),
               "VehicleView changed: update for_each_vehicle_column");
 static_assert(sizeof(PlanView) == 13 * sizeof(void*), "PlanView changed: update reserve_plan_slots");
-static_assert(sizeof(NetView) == 20 * sizeof(void*) + sizeof(void*),
+static_assert(sizeof(NetView) == 21 * sizeof(void*) + sizeof(void*),
               "NetView changed: update upload_network");
 static_assert(sizeof(TypeView) == 8 * sizeof(void*) && sizeof(TripView) == 7 * sizeof(void*),
               "TypeView or TripView changed: update upload_demand");
@@ -644,6 +644,7 @@ class CudaStepper final : public GpuStepper {
     d.conn_state = upload(h.conn_state, nc);
     d.conn_foe_begin = upload(h.conn_foe_begin, static_cast<size_t>(nc) + 1);
     d.conn_foe = upload(h.conn_foe, h.conn_foe_begin[nc]);
+    d.conn_foe_block_cells = upload(h.conn_foe_block_cells, h.conn_foe_begin[nc]);
   }
 
   void upload_signals(const SignalTable& h) {

@@ -30,6 +30,9 @@ struct NetView {
   const char* conn_state;          // SUMO connection state (M m = s w ...)
   const uint32_t* conn_foe_begin;  // [num_conns+1] connections this one must yield to (junction response)
   const uint32_t* conn_foe;
+  // Per conn_foe entry: cells of the foe's via lane, from its start, within which a vehicle still blocks the
+  // connection (up to where the two paths cross, plus clearance).
+  const uint16_t* conn_foe_block_cells;
   const uint32_t* signal_link_begin;  // [num_signals+1] offset of each signal's links in link_state
 };
 

@@ -204,11 +204,6 @@ LPSIM_HD char link_state_of(const StepContext& s, uint32_t c) {
   return s.link_state[s.net.signal_link_begin[sig] + static_cast<uint32_t>(s.net.conn_link_index[c])];
 }
 
-/// Whether some cell of a lane is occupied (a foe crossing the junction on its internal lane).
-LPSIM_HD bool lane_occupied(const StepContext& s, int32_t lane) {
-  return first_occupied(s.map_now, s.net, lane, 0, static_cast<int32_t>(lane_cells(s.net, lane)) - 1) >= 0;
-}
-
 /// The lane after a junction-internal lane (its single link), or -1.
 LPSIM_HD int32_t lane_after_internal(const NetView& net, int32_t lane) {
   const uint32_t b = net.lane_conn_begin[lane];
@@ -295,10 +290,12 @@ LPSIM_HD bool may_enter(const StepContext& s, uint32_t c, float dist, float spee
     const uint32_t f = net.conn_foe[k];
     const char fs = link_state_of(s, f);
     if (signal_is_red(fs)) continue;
-    // A foe on its via lane blocks, unless that link has an internal junction: the vehicle there waits
-    // before the crossing (for links that include this one's).
+    // A foe on its via lane blocks until its rear has passed the crossing, unless that link has an internal
+    // junction: the vehicle there waits before the crossing (for links that include this one's).
     const int32_t fvia = net.conn_via_lane[f];
-    if (fvia >= 0 && !has_internal_junction(net, f) && lane_occupied(s, fvia)) return false;
+    if (fvia >= 0 && !has_internal_junction(net, f) && net.conn_foe_block_cells[k] > 0 &&
+        first_occupied(s.map_now, net, fvia, 0, net.conn_foe_block_cells[k] - 1) >= 0)
+      return false;
     const uint32_t flane = net.conn_from_lane[f];
     const LaneApproach& a = s.approach[flane];
     if (a.step != s.params.step || a.conn != static_cast<int32_t>(f) || a.held) continue;

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "engine/foe_crossings.hpp"
+
 namespace lpsim {
 
 EngineNet::EngineNet(const Network& net) {
@@ -27,6 +29,7 @@ EngineNet::EngineNet(const Network& net) {
   } else {
     conn_foe_begin.assign(net.num_connections() + 1, 0);
   }
+  foe_block_cells = lpsim::foe_block_cells(net, conn_foe_begin, conn_foe);
   // Reverse of the foe CSR; ascending c keeps each list sorted, independent of anything else.
   const size_t nc = conn_foe_begin.size() - 1;
   yielder_begin.assign(nc + 1, 0);
@@ -81,6 +84,7 @@ NetView EngineNet::view(const Network& net) const {
   v.conn_state = net.conn_state.data();
   v.conn_foe_begin = conn_foe_begin.data();
   v.conn_foe = conn_foe.data();
+  v.conn_foe_block_cells = foe_block_cells.data();
   v.signal_link_begin = link_begin.data();
   return v;
 }
