@@ -293,7 +293,7 @@ LPSIM_HD bool may_enter(const StepContext& s, uint32_t c, float dist, float spee
     // A foe on its via lane blocks until its rear has passed the crossing, unless that link has an internal
     // junction: the vehicle there waits before the crossing (for links that include this one's).
     const int32_t fvia = net.conn_via_lane[f];
-    if (fvia >= 0 && !has_internal_junction(net, f) && net.conn_foe_block_cells[k] > 0 &&
+    if (fvia >= 0 && !has_internal_junction(net, f) &&
         first_occupied(s.map_now, net, fvia, 0, net.conn_foe_block_cells[k] - 1) >= 0)
       return false;
     const uint32_t flane = net.conn_from_lane[f];

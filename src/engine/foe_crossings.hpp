@@ -15,8 +15,8 @@ constexpr double kCrossingClearance = 2.0;
 /// For each entry k of the foe CSR (connection c yields to foe_list[k]): the cells of the foe's via lane,
 /// counted from its start, within which a vehicle still blocks c: up to the last point where the foe's via
 /// lane crosses c's internal lanes (its via lane and, past an internal junction, the lane after it), plus
-/// kCrossingClearance. The whole via lane where the shapes do not cross (a merge) or are missing; 0 where
-/// the foe has no via lane.
+/// kCrossingClearance, and at least 1. The whole via lane where the shapes do not cross (a merge) or are
+/// missing; 0 where the foe has no via lane.
 std::vector<uint16_t> foe_block_cells(const Network& net, const std::vector<uint32_t>& foe_begin,
                                       const std::vector<uint32_t>& foe_list);
 
