@@ -40,6 +40,8 @@ constexpr float kIdmEps = 1e-3f;
 constexpr float kSafeGapEps = 1e-3f;
 // Below this distance to a stop point the vehicle simply stands (SUMO uses 0.01 m as well) [m].
 constexpr float kStopReachedEps = 0.01f;
+// A standing vehicle this close to its jam distance behind a standing leader stays standing [m].
+constexpr float kStandstillSlack = 0.01f;
 
 /// x^delta; exact products for the integer exponents 1..4 so CPU and GPU agree bit for bit (powf is only
 /// used for other exponents, where the two backends may differ in the last bit).
@@ -270,16 +272,17 @@ LPSIM_HD bool can_stop_before(float gap, float speed, float decel, float dt) {
 
 /// Next speed following a leader: min(IDM, safe speed). leader_decel is the hardest braking the leader may
 /// use (its emergency decel for the hard guarantee); the follower plans with its comfortable decel.
-/// With free_speed set, also stores idm_free_speed's result there (computed alongside, same bits).
+/// With free_speed set, also stores idm_free_speed's result there (computed alongside, same bits), except
+/// where the result is 0 without the IDM (standing in a queue): a free speed, never negative, could not
+/// lower it, and *free_speed is left as it was.
 LPSIM_HD float follow_speed(const IdmParams& p, float speed, float v0, float gap, float leader_speed,
                             float leader_decel, float dt, int substeps, float* free_speed = nullptr) {
-  // Standing within the jam distance of a standing leader: every IDM sub-step gives exactly 0 (the
-  // interaction term is at least 1), and the safe speed is never negative. Common in queues, so worth the
-  // test.
-  if (speed == 0.0f && leader_speed == 0.0f && gap <= p.min_gap) {
-    if (free_speed != nullptr) *free_speed = idm_free_speed(p, speed, v0, dt, substeps);
-    return 0.0f;
-  }
+  // Standing within the jam distance of a standing leader (or less than kStandstillSlack beyond it): stays.
+  // Within the jam distance every IDM sub-step gives exactly 0 (the interaction term is at least 1). Just
+  // beyond it the IDM creeps asymptotically, by micrometres per step that a position far along a lane
+  // rounds away, so the same queued vehicle would compute the same creep every step. The most common state
+  // in queues, so worth the test.
+  if (speed == 0.0f && leader_speed == 0.0f && gap <= p.min_gap + kStandstillSlack) return 0.0f;
   const float v_idm = idm_follow_speed(p, speed, v0, gap, leader_speed, dt, substeps, free_speed);
   return lp_fminf(v_idm, safe_speed(gap, leader_speed, leader_decel, p.decel, dt));
 }
@@ -287,13 +290,11 @@ LPSIM_HD float follow_speed(const IdmParams& p, float speed, float v0, float gap
 /// Next speed approaching a stop point: zero once within kStopReachedEps, else min(IDM, safe stop speed).
 /// A standing vehicle close to the line gets a zero IDM speed (its own first sub-step closes too much of
 /// the gap); like SUMO it then moves up with the safe stop speed instead of standing short of the line.
-/// With free_speed set, also stores idm_free_speed's result there (computed alongside, same bits).
+/// With free_speed set, as follow_speed: idm_free_speed's result, or left as it was when the result is 0
+/// without the IDM (the stop point reached).
 LPSIM_HD float stop_speed(const IdmParams& p, float speed, float v0, float gap, float dt, int substeps,
                           float* free_speed = nullptr) {
-  if (gap < kStopReachedEps) {
-    if (free_speed != nullptr) *free_speed = idm_free_speed(p, speed, v0, dt, substeps);
-    return 0.0f;
-  }
+  if (gap < kStopReachedEps) return 0.0f;
   const float v_safe = safe_stop_speed(gap, p.decel, dt);
   const float v_idm = idm_stop_speed(p, speed, v0, gap, dt, substeps, free_speed);
   if (speed < kIdmEps && v_idm < kIdmEps) return v_safe;

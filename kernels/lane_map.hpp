@@ -24,6 +24,10 @@ LPSIM_HD uint8_t encode_cell_speed(float v) {
 
 LPSIM_HD float decode_cell_speed(uint8_t cell) { return static_cast<float>(cell - 1) * 0.25f; }
 
+/// decode_cell_speed(encode_cell_speed(v)) == 0: the lane map shows a vehicle at speed v as standing (the
+/// encoding floors v*4, and scaling by 4 is exact).
+LPSIM_HD bool encodes_as_standing(float v) { return v * 4.0f < 1.0f; }
+
 LPSIM_HD uint32_t lane_cells(const NetView& net, int32_t lane) {
   return net.lane_cell_begin[lane + 1] - net.lane_cell_begin[lane];
 }

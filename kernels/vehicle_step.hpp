@@ -373,10 +373,11 @@ constexpr float kMaxLanesToCross = 8.0f;  // bounds the request zone for the che
 /// Approach pass: the first vehicle on its lane (nothing ahead until the lane end) publishes itself, and
 /// a vehicle stuck on a wrong lane near its end asks the followers on the target lane to open a gap (as
 /// SUMO's cooperative lane changing does), so queues cannot lock it out forever.
-LPSIM_HD void approach_vehicle(StepContext& s, uint32_t /*i*/, uint32_t slot) {
+LPSIM_HD void approach_vehicle(StepContext& s, uint32_t i, uint32_t slot) {
   const VehicleRef r{slot, s.veh.vehicle[slot]};
   const uint32_t v = r.id;
   if (s.veh.status[slot] != kRunning) return;
+  s.plan.lane_end_conn[i] = -2;
   const int32_t lane = s.veh.lane[slot];
   const float pos = s.veh.pos[slot];
   int32_t to_cross = 0;
@@ -395,6 +396,7 @@ LPSIM_HD void approach_vehicle(StepContext& s, uint32_t /*i*/, uint32_t slot) {
   // which also spares scanning the rest of long lanes for every vehicle.
   const float dist = s.net.lane_length[lane] - pos;
   const float reach = lookahead_distance(idm_of(s, s.trips.type[v]), s.veh.speed[slot], s.params.dt);
+  s.plan.lookahead[i] = reach;
   if (dist > reach) return;
   const int32_t cells = static_cast<int32_t>(lane_cells(s.net, lane));
   const int32_t from = static_cast<int32_t>(cell_of(s.net, lane, pos)) + 1;
@@ -402,6 +404,7 @@ LPSIM_HD void approach_vehicle(StepContext& s, uint32_t /*i*/, uint32_t slot) {
   LaneApproach a;
   a.step = s.params.step;
   a.conn = choose_connection(s, r, lane, s.veh.route_pos[slot]);
+  s.plan.lane_end_conn[i] = a.conn;
   a.dist = dist;
   a.speed = s.veh.speed[slot];
   a.waiting = s.veh.stopped_steps[slot];
@@ -557,8 +560,7 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t i, uint32_t slot) {
 
   // Stuck side by side at the lane end with a vehicle that needs this lane: swap, standing still.
   // The same test both vehicles of a swap apply to each other (from the lane map): standing in the last cell.
-  if (decode_cell_speed(encode_cell_speed(speed)) == 0.0f &&
-      cell_of(net, lane, pos) == lane_cells(net, lane) - 1) {
+  if (encodes_as_standing(speed) && cell_of(net, lane, pos) == lane_cells(net, lane) - 1) {
     int32_t to_cross = 0;
     const int32_t target = mandatory_target(s, r, lane, &to_cross);
     if (target >= 0 && swap_with_neighbour(s, r, lane, target)) {
@@ -583,7 +585,7 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t i, uint32_t slot) {
   // v_lim >= cand is at least v_lim, and so could not have lowered the minimum either.
   float cand = 1e30f;
   float free_speed = -1.0f;
-  const float budget = lp_fminf(lookahead_distance(p, speed, dt) + p.min_gap, kMaxLookahead);
+  const float budget = lp_fminf(out.lookahead[i] + p.min_gap, kMaxLookahead);
   // Computed where a link decision comes up, which most plans (a leader ahead on the lane) never reach.
   auto decision_dist = [&] { return stopping_distance(speed, p.decel, dt) + speed * dt + kDecisionMargin; };
 
@@ -630,7 +632,8 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t i, uint32_t slot) {
     if (end_dist > budget || hops == kMaxPathHops) break;
     const bool normal = !net.lane_internal[cur];
     if (normal && cur_rp + 1 >= rlen) break;  // the route ends on this lane: arrival, no boundary to pass
-    const int32_t c = choose_connection(s, r, cur, cur_rp);
+    const int32_t c =
+        hops == 0 && out.lane_end_conn[i] != -2 ? out.lane_end_conn[i] : choose_connection(s, r, cur, cur_rp);
     if (c < 0) {  // wrong lane for the route (or a dead end): the lane end is a wall until a lane change
       cand = lp_fminf(cand, stop_speed(p, speed, v0, end_dist, dt, s.params.substeps, &free_speed));
       hard_limit = lp_fminf(hard_limit, end_dist - kClampEps);
@@ -700,8 +703,11 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t i, uint32_t slot) {
     cur = nxt;
     cur_start = end_dist;
   }
-  if (free_speed < 0.0f) free_speed = idm_free_speed(p, speed, v0, dt, s.params.substeps);
-  cand = lp_fminf(free_speed, cand);
+  // A free speed (never negative) cannot lower a candidate of 0 or less: not computed then.
+  if (cand > 0.0f) {
+    if (free_speed < 0.0f) free_speed = idm_free_speed(p, speed, v0, dt, s.params.substeps);
+    cand = lp_fminf(free_speed, cand);
+  }
 
   // A vehicle that stops at its own lane's end (red, full next lane, yielding, wrong lane) will not enter the
   // junction now: foes need not yield to it (SUMO's approaching vehicles that will not pass).

@@ -130,16 +130,17 @@ void Simulation::PlanColumns::reserve_slots(size_t n) {
   // Grows by half again so a slowly growing active list does not resize every step. Contents are scratch:
   // the plan pass writes every entry the commit pass reads.
   const size_t c = std::max(n, new_speed.size() + new_speed.size() / 2);
-  for (auto* col : {&new_speed, &new_pos, &stop_pos}) col->resize(c);
-  for (auto* col : {&new_lane, &new_prev, &new_prev2, &claim0, &claim1, &stop_lane}) col->resize(c);
+  for (auto* col : {&new_speed, &new_pos, &stop_pos, &lookahead}) col->resize(c);
+  for (auto* col : {&new_lane, &new_prev, &new_prev2, &claim0, &claim1, &stop_lane, &lane_end_conn})
+    col->resize(c);
   for (auto* col : {&arrives, &claim_prio}) col->resize(c);
   for (auto* col : {&new_rp, &first_rp}) col->resize(c);
 }
 
 PlanView Simulation::PlanColumns::view() {
-  return PlanView{ptr(new_speed), ptr(new_lane), ptr(new_pos),   ptr(new_prev),  ptr(new_prev2),
-                  ptr(claim0),    ptr(claim1),   ptr(stop_pos),  ptr(stop_lane), ptr(arrives),
-                  ptr(new_rp),    ptr(first_rp), ptr(claim_prio)};
+  return PlanView{ptr(new_speed), ptr(new_lane), ptr(new_pos),    ptr(new_prev),  ptr(new_prev2),
+                  ptr(claim0),    ptr(claim1),   ptr(stop_pos),   ptr(stop_lane), ptr(arrives),
+                  ptr(new_rp),    ptr(first_rp), ptr(claim_prio), ptr(lookahead), ptr(lane_end_conn)};
 }
 
 VehicleView Simulation::vehicle_view() {
@@ -515,17 +516,20 @@ void Simulation::rebuild_active() {
   std::vector<uint32_t>& next = scratch_;
   next.clear();
   const VehicleView veh = vehicle_view();
-  for (uint32_t k : active_)
+  // Running vehicles counted on the way: those kept, and every one inserted (as the GPU backend counts).
+  uint64_t running = 0;
+  for (uint32_t k : active_) {
+    running += veh.status[k] == kRunning;
     if (stays_active(veh, k)) next.push_back(k);
+  }
   check_kept(next.size());
   const std::vector<uint32_t>& added = added_slots();
+  running += added.size();
   active_.clear();
   std::merge(next.begin(), next.end(), added.begin(), added.end(), std::back_inserter(active_));
   inits_.clear();
   release_retired_slots();
   num_active_ = static_cast<uint32_t>(active_.size());
-  uint64_t running = 0;
-  for (uint32_t k : active_) running += status_[k] == kRunning;
   counts_.running = running;
   counts_.waiting = waiting_;
 }

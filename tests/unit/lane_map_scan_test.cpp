@@ -1,8 +1,10 @@
 // The lane-map scans (word-wise on the host) find exactly what a cell-by-cell scan finds, for every range
 // of sparse and dense lanes, including ranges shorter than a word and ends that are not word-aligned; and
-// footprint fills (word stores on the host) write exactly the cells of their range.
+// footprint fills (word stores on the host) write exactly the cells of their range; and the standing test
+// equals decoding the encoded speed.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -77,6 +79,22 @@ TEST(LaneMapScan, FillWritesExactlyItsRange) {
       }
   }
   EXPECT_GT(filled, 10000);
+}
+
+TEST(LaneMapScan, StandingTestEqualsTheDecodedCellSpeed) {
+  int standing = 0, moving = 0;
+  // Every float from 0 to 1 m/s in steps of 2^-20, the neighbours of 0.25 and a spread of larger speeds.
+  std::vector<float> speeds = {0.0f, -0.0f, 0.25f, std::nextafter(0.25f, 0.0f), std::nextafter(0.25f, 1.0f),
+                               70.0f};
+  for (int k = 0; k <= (1 << 20); ++k) speeds.push_back(static_cast<float>(k) / static_cast<float>(1 << 20));
+  for (uint64_t k = 0; k < 1000; ++k) speeds.push_back(0.25f + rng_uniform(5, 1, k) * 80.0f);
+  for (float v : speeds) {
+    const bool by_decoding = decode_cell_speed(encode_cell_speed(v)) == 0.0f;
+    ASSERT_EQ(encodes_as_standing(v), by_decoding) << v;
+    (by_decoding ? standing : moving) += 1;
+  }
+  EXPECT_EQ(standing, 2 + 1 + (1 << 18));  // 0, -0, 0.25's lower neighbour, and [0, 0.25) of the sweep
+  EXPECT_GT(moving, 1000);
 }
 
 }  // namespace
