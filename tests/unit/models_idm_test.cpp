@@ -194,6 +194,25 @@ TEST(ModelsIdm, FollowAndStopSpeedCombineIdmWithSafety) {
   EXPECT_LE(creep * 1.0f, 5.0f);
 }
 
+// A standing vehicle behind a standing leader stays standing up to 1 cm beyond its jam distance (the IDM
+// alone would creep by micrometres there), and moves up from farther back; the free speed is left alone
+// when the IDM is not run.
+TEST(ModelsIdm, StandingInAQueueStaysWithinTheStandstillSlack) {
+  float free_speed = -1.0f;
+  EXPECT_EQ(follow_speed(kP, 0.0f, 14.0f, kP.min_gap + 0.005f, 0.0f, 9.0f, 1.0f, 4, &free_speed), 0.0f);
+  EXPECT_EQ(free_speed, -1.0f);
+  // Without the rule the same vehicle creeps (the IDM's own result there is positive).
+  EXPECT_GT(idm_follow_speed(kP, 0.0f, 14.0f, kP.min_gap + 0.005f, 0.0f, 1.0f, 4), 0.0f);
+  // A little farther back, or a leader that moves, or a moving follower: the IDM decides.
+  const float farther = follow_speed(kP, 0.0f, 14.0f, kP.min_gap + 0.05f, 0.0f, 9.0f, 1.0f, 4, &free_speed);
+  EXPECT_GT(farther, 0.0f);
+  EXPECT_EQ(free_speed, idm_free_speed(kP, 0.0f, 14.0f, 1.0f, 4));
+  EXPECT_GT(follow_speed(kP, 0.0f, 14.0f, kP.min_gap + 0.005f, 0.5f, 9.0f, 1.0f, 4), 0.0f);
+  EXPECT_EQ(follow_speed(kP, 0.2f, 14.0f, kP.min_gap + 0.005f, 0.0f, 9.0f, 1.0f, 4),
+            lp_fminf(idm_follow_speed(kP, 0.2f, 14.0f, kP.min_gap + 0.005f, 0.0f, 1.0f, 4),
+                     safe_speed(kP.min_gap + 0.005f, 0.0f, 9.0f, kP.decel, 1.0f)));
+}
+
 // The IDM integrated one sub-step at a time, written out longhand with idm_pow_delta and the reciprocals of
 // v0 and 2*sqrt(ab) taken once: what the fast paths (exponent picked once per call, free-road chain
 // interleaved with the leader's) must reproduce bit for bit.
