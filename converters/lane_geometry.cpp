@@ -50,8 +50,7 @@ LaneGeometry::LaneGeometry(const Network& net)
     double length = 0;
     for (uint32_t i = first; i < end; ++i) {
       if (i > first) {
-        length += std::hypot(double(net.shape_x[i]) - net.shape_x[i - 1],
-                             double(net.shape_y[i]) - net.shape_y[i - 1]);
+        length += net.shape_segment_length(i);
       }
       cumulative_[i] = length;
     }

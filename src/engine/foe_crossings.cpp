@@ -12,8 +12,7 @@ double cross(double ax, double ay, double bx, double by) { return ax * by - ay *
 double shape_length(const Network& net, uint32_t lane) {
   double length = 0.0;
   for (uint32_t i = net.lane_shape_begin[lane] + 1; i < net.lane_shape_begin[lane + 1]; ++i)
-    length +=
-        std::hypot(double(net.shape_x[i]) - net.shape_x[i - 1], double(net.shape_y[i]) - net.shape_y[i - 1]);
+    length += net.shape_segment_length(i);
   return length;
 }
 
@@ -23,7 +22,7 @@ double last_crossing(const Network& net, uint32_t a, uint32_t b) {
   for (uint32_t i = net.lane_shape_begin[a] + 1; i < net.lane_shape_begin[a + 1]; ++i) {
     const double ax = net.shape_x[i - 1], ay = net.shape_y[i - 1];
     const double rx = net.shape_x[i] - ax, ry = net.shape_y[i] - ay;
-    const double segment = std::hypot(rx, ry);
+    const double segment = net.shape_segment_length(i);
     for (uint32_t j = net.lane_shape_begin[b] + 1; j < net.lane_shape_begin[b + 1]; ++j) {
       const double bx = net.shape_x[j - 1], by = net.shape_y[j - 1];
       const double sx = net.shape_x[j] - bx, sy = net.shape_y[j] - by;

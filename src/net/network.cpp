@@ -1,6 +1,7 @@
 #include "net/network.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace lpsim {
 
@@ -15,6 +16,10 @@ double Network::lane_km() const {
   for (uint32_t l = 0; l < num_lanes(); ++l)
     if (!edge_is_internal[lane_edge[l]]) metres += lane_length[l];
   return metres / 1000.0;
+}
+
+double Network::shape_segment_length(uint32_t i) const {
+  return std::hypot(double(shape_x[i]) - shape_x[i - 1], double(shape_y[i]) - shape_y[i - 1]);
 }
 
 }  // namespace lpsim

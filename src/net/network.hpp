@@ -104,6 +104,8 @@ struct Network {
 
   /// Lane-km of normal (non-internal) car lanes.
   double lane_km() const;
+  /// Length of the shape segment from point i-1 to point i of shape_x/shape_y [m], in double precision.
+  double shape_segment_length(uint32_t i) const;
 };
 
 }  // namespace lpsim
