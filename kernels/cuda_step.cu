@@ -156,7 +156,7 @@ void copy_to_host(T* dst, const T* src, size_t n) {
 }
 
 // The stepper lists every column of the views by hand: a column added to one of them must be added here.
-static_assert(sizeof(VehicleView) == 23 * sizeof(void*),
+static_assert(sizeof(VehicleView) == 26 * sizeof(void*),
               "VehicleView changed: update for_each_vehicle_column");
 static_assert(sizeof(PlanView) == 15 * sizeof(void*), "PlanView changed: update reserve_plan_slots");
 static_assert(sizeof(NetView) == 21 * sizeof(void*) + sizeof(void*),
@@ -195,6 +195,9 @@ void for_each_vehicle_column(A& a, B& b, F&& f) {
   f(a.limit_reason, b.limit_reason, 1u);
   f(a.best_rp, b.best_rp, kBestLaneEntries);
   f(a.best_mask, b.best_mask, kBestLaneEntries);
+  f(a.conn_lane, b.conn_lane, 1u);
+  f(a.conn_rp, b.conn_rp, 1u);
+  f(a.conn, b.conn, 1u);
 }
 
 static_assert(sizeof(DepartView) == 6 * sizeof(void*), "DepartView changed: update the depart uploads");

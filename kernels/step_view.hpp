@@ -101,6 +101,11 @@ struct VehicleView {
   // slot k's at [k * kBestLaneEntries, (k + 1) * kBestLaneEntries).
   uint32_t* best_rp;    // route position an entry was computed for (0xFFFFFFFF: none yet)
   uint32_t* best_mask;  // best lanes of that route edge
+  // Cache of the connection taken at the end of the current lane (a pure function of vehicle, lane and route
+  // position), which a vehicle waiting at its lane's end asks for every step.
+  int32_t* conn_lane;  // lane the entry was computed for (-1: none yet)
+  uint32_t* conn_rp;   // route position it was computed for
+  int32_t* conn;       // choose_connection's result there
 };
 
 constexpr uint32_t kBestLaneEntries = 2;  // a power of two

@@ -197,6 +197,17 @@ LPSIM_HD int32_t choose_connection(const StepContext& s, VehicleRef r, int32_t l
   return first;
 }
 
+/// choose_connection at the end of the vehicle's current lane, through the slot's cache: a vehicle waiting
+/// at its lane's end asks for it step after step. Only the vehicle's own thread reads or writes its entry.
+LPSIM_HD int32_t current_lane_connection(const StepContext& s, VehicleRef r, int32_t lane, uint32_t rp) {
+  if (s.veh.conn_lane[r.slot] != lane || s.veh.conn_rp[r.slot] != rp) {
+    s.veh.conn[r.slot] = choose_connection(s, r, lane, rp);
+    s.veh.conn_lane[r.slot] = lane;
+    s.veh.conn_rp[r.slot] = rp;
+  }
+  return s.veh.conn[r.slot];
+}
+
 /// Signal character (or the connection's own state) currently governing a connection.
 LPSIM_HD char link_state_of(const StepContext& s, uint32_t c) {
   const int32_t sig = s.net.conn_signal[c];
@@ -403,7 +414,7 @@ LPSIM_HD void approach_vehicle(StepContext& s, uint32_t i, uint32_t slot) {
   if (from < cells && first_occupied(s.map_now, s.net, lane, from, cells - 1) >= 0) return;
   LaneApproach a;
   a.step = s.params.step;
-  a.conn = choose_connection(s, r, lane, s.veh.route_pos[slot]);
+  a.conn = current_lane_connection(s, r, lane, s.veh.route_pos[slot]);
   s.plan.lane_end_conn[i] = a.conn;
   a.dist = dist;
   a.speed = s.veh.speed[slot];
@@ -632,8 +643,9 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t i, uint32_t slot) {
     if (end_dist > budget || hops == kMaxPathHops) break;
     const bool normal = !net.lane_internal[cur];
     if (normal && cur_rp + 1 >= rlen) break;  // the route ends on this lane: arrival, no boundary to pass
-    const int32_t c =
-        hops == 0 && out.lane_end_conn[i] != -2 ? out.lane_end_conn[i] : choose_connection(s, r, cur, cur_rp);
+    const int32_t c = hops > 0                     ? choose_connection(s, r, cur, cur_rp)
+                      : out.lane_end_conn[i] != -2 ? out.lane_end_conn[i]
+                                                   : current_lane_connection(s, r, cur, cur_rp);
     if (c < 0) {  // wrong lane for the route (or a dead end): the lane end is a wall until a lane change
       cand = lp_fminf(cand, stop_speed(p, speed, v0, end_dist, dt, s.params.substeps, &free_speed));
       hard_limit = lp_fminf(hard_limit, end_dist - kClampEps);
@@ -1042,6 +1054,9 @@ LPSIM_HD void activate_slot(const VehicleView& veh, const SlotInit& in) {
     veh.best_rp[k * kBestLaneEntries + e] = 0xFFFFFFFFu;
     veh.best_mask[k * kBestLaneEntries + e] = 0;
   }
+  veh.conn_lane[k] = -1;
+  veh.conn_rp[k] = 0;
+  veh.conn[k] = -1;
 }
 
 }  // namespace lpsim

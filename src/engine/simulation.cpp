@@ -93,7 +93,8 @@ Simulation::Simulation(const Network& net, const Demand& demand, const Simulatio
   update_signals(time_ms_);
   enqueue_due(time_ms_);
   insert_waiting(cur_);
-  rebuild_active();
+  kept_.clear();
+  rebuild_active(0);
 }
 
 bool Simulation::finished() const {
@@ -149,7 +150,8 @@ VehicleView Simulation::vehicle_view() {
                      ptr(old_lane_),      ptr(old_prev_),      ptr(old_prev2_),       ptr(old_pos_),
                      ptr(stopped_steps_), ptr(waiting_steps_), ptr(waiting_count_),   ptr(time_loss_),
                      ptr(route_length_),  ptr(arrival_step_),  ptr(lane_change_dir_), ptr(held_at_line_),
-                     ptr(limit_reason_),  ptr(best_rp_),       ptr(best_mask_)};
+                     ptr(limit_reason_),  ptr(best_rp_),       ptr(best_mask_),       ptr(conn_lane_),
+                     ptr(conn_rp_),       ptr(conn_)};
 }
 
 StepParams Simulation::step_params() const {
@@ -228,17 +230,28 @@ void Simulation::step_cpu() {
 
   time_ms_ += dt_ms_;
   ++step_;
+  // One walk over the active list: the vehicles whose trip or road time ended in this step, and the slots
+  // that stay active (running, or left the road in this step: the next clear pass removes their footprint).
+  // Neither handling the ends nor inserting changes which slots stay: ends and teleports set no vehicle
+  // running, and insertion takes only free slots.
   ends_.clear();
+  kept_.resize(active_.size());
+  size_t kept = 0;
+  uint64_t running = 0;
   for (uint32_t k : active_) {
     const uint32_t kind = step_end_kind(ctx.veh, k, step_, teleport_steps_);
     if (kind != kEndNone) ends_.push_back(vehicle_end(ctx.veh, k, kind));
+    running += ctx.veh.status[k] == kRunning ? 1u : 0u;
+    kept_[kept] = k;  // a branch on staying would be mispredicted
+    kept += stays_active(ctx.veh, k) ? 1u : 0u;
   }
+  kept_.resize(kept);
   handle_vehicle_ends(ends_);
   for (const TeleportMove& m : moves_) apply_teleport_move(ctx.veh, m, step_);
   enqueue_due(time_ms_);
   insert_waiting(1 - cur_);
   cur_ = 1 - cur_;
-  rebuild_active();
+  rebuild_active(running);
 }
 
 void Simulation::step_gpu() {
@@ -468,12 +481,13 @@ void Simulation::take_slot(SlotInit& init) {
     // Grows by half again; an entry's contents are set when its slot is taken (activate_slot).
     const size_t c = std::max(n, status_.size() + status_.size() / 2);
     for (auto* col : {&status_, &lane_change_dir_, &held_at_line_, &limit_reason_}) col->resize(c);
-    for (auto* col :
-         {&vehicle_, &route_pos_, &stopped_steps_, &waiting_steps_, &waiting_count_, &arrival_step_})
+    for (auto* col : {&vehicle_, &route_pos_, &stopped_steps_, &waiting_steps_, &waiting_count_,
+                      &arrival_step_, &conn_rp_})
       col->resize(c);
     for (auto* col : {&best_rp_, &best_mask_}) col->resize(c * kBestLaneEntries);
     for (auto* col : {&speed_, &pos_, &old_pos_, &time_loss_, &route_length_}) col->resize(c);
-    for (auto* col : {&lane_, &prev_, &prev2_, &old_lane_, &old_prev_, &old_prev2_}) col->resize(c);
+    for (auto* col : {&lane_, &prev_, &prev2_, &old_lane_, &old_prev_, &old_prev2_, &conn_lane_, &conn_})
+      col->resize(c);
   }
   slot_of_[init.vehicle] = static_cast<int32_t>(init.slot);
   inits_.push_back(init);
@@ -509,24 +523,14 @@ void Simulation::release_retired_slots() {
   retiring_next_.clear();
 }
 
-void Simulation::rebuild_active() {
-  // Keep running vehicles and those that left the road this step (their old footprint is cleared by
-  // the next step's clear pass); add the newly inserted ones; ascending slots.
-  // Member scratch buffers: fresh large vectors every step would cost page faults.
-  std::vector<uint32_t>& next = scratch_;
-  next.clear();
-  const VehicleView veh = vehicle_view();
-  // Running vehicles counted on the way: those kept, and every one inserted (as the GPU backend counts).
-  uint64_t running = 0;
-  for (uint32_t k : active_) {
-    running += veh.status[k] == kRunning;
-    if (stays_active(veh, k)) next.push_back(k);
-  }
-  check_kept(next.size());
+void Simulation::rebuild_active(uint64_t running) {
+  // The kept slots (kept_, ascending) and the newly inserted ones, ascending. Running vehicles: those of
+  // the step's active list, and every one inserted (as the GPU backend counts).
+  check_kept(kept_.size());
   const std::vector<uint32_t>& added = added_slots();
   running += added.size();
-  active_.clear();
-  std::merge(next.begin(), next.end(), added.begin(), added.end(), std::back_inserter(active_));
+  active_.resize(kept_.size() + added.size());
+  std::merge(kept_.begin(), kept_.end(), added.begin(), added.end(), active_.begin());
   inits_.clear();
   release_retired_slots();
   num_active_ = static_cast<uint32_t>(active_.size());

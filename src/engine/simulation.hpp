@@ -97,7 +97,7 @@ class Simulation {
   void insert_waiting(int map_index);
   void handle_vehicle_ends(std::vector<VehicleEnd>& ends);
   void record_trip(const VehicleEnd& e, bool teleported);
-  void rebuild_active();
+  void rebuild_active(uint64_t running);
   void take_slot(SlotInit& init);
   void release_retired_slots();
   void check_kept(size_t kept) const;
@@ -137,9 +137,9 @@ class Simulation {
   SlotPool slots_;
   std::vector<uint8_t> status_, lane_change_dir_, held_at_line_, limit_reason_;
   std::vector<uint32_t> vehicle_, best_rp_, best_mask_, route_pos_, stopped_steps_, waiting_steps_,
-      waiting_count_, arrival_step_;
+      waiting_count_, arrival_step_, conn_rp_;
   std::vector<float> speed_, pos_, old_pos_, time_loss_, route_length_;
-  std::vector<int32_t> lane_, prev_, prev2_, old_lane_, old_prev_, old_prev2_;
+  std::vector<int32_t> lane_, prev_, prev2_, old_lane_, old_prev_, old_prev2_, conn_lane_, conn_;
   // Slots whose vehicle left the road in the previous step (free after this step's passes), and in this one.
   std::vector<uint32_t> retiring_, retiring_next_;
   // This step's insertions, each with the slot it took (the GPU backend initialises them on the device).
@@ -187,6 +187,7 @@ class Simulation {
   uint32_t num_active_ = 0;
   uint32_t teleport_steps_ = 0;  // stopped steps before a teleport (0: never)
   std::vector<uint32_t> scratch_;
+  std::vector<uint32_t> kept_;  // active slots that stay active after the step (member: no page faults)
   // This step's queue heads handed to insertion (InsertBatch), and what came back.
   std::vector<uint32_t> batch_edge_, batch_begin_, batch_entry_, batch_rp_, batch_inserted_;
   std::vector<int32_t> batch_lane_;
