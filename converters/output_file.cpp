@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstring>
 
+#include "converters/fixed_decimal.hpp"
 #include "core/error.hpp"
 
 namespace lpsim {
@@ -134,8 +135,10 @@ void OutputFile::fixed(double v, int decimals) {
   }
   reserve(kMaxNumberChars);
   char* begin = buffer_.data() + used_;
-  auto result = std::to_chars(begin, buffer_.data() + buffer_.size(), v, std::chars_format::fixed, decimals);
-  used_ += static_cast<size_t>(result.ptr - begin);
+  char* end = write_fixed_decimal(begin, v, decimals);
+  if (end == nullptr)
+    end = std::to_chars(begin, buffer_.data() + buffer_.size(), v, std::chars_format::fixed, decimals).ptr;
+  used_ += static_cast<size_t>(end - begin);
 }
 
 void OutputFile::integer(int64_t v) {
