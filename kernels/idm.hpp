@@ -282,7 +282,8 @@ LPSIM_HD float follow_speed(const IdmParams& p, float speed, float v0, float gap
   // beyond it the IDM creeps asymptotically, by micrometres per step that a position far along a lane
   // rounds away, so the same queued vehicle would compute the same creep every step. The most common state
   // in queues, so worth the test.
-  if (speed == 0.0f && leader_speed == 0.0f && gap <= p.min_gap + kStandstillSlack) return 0.0f;
+  // One branch for the three tests (each alone would be a mispredicted branch).
+  if ((speed == 0.0f) & (leader_speed == 0.0f) & (gap <= p.min_gap + kStandstillSlack)) return 0.0f;
   const float v_idm = idm_follow_speed(p, speed, v0, gap, leader_speed, dt, substeps, free_speed);
   return lp_fminf(v_idm, safe_speed(gap, leader_speed, leader_decel, p.decel, dt));
 }

@@ -74,8 +74,8 @@ LPSIM_HD void fill_cells(uint8_t* map, const NetView& net, int32_t lane, uint32_
 }
 
 /// Writes `value` into every cell of a footprint of a vehicle `length` metres long.
-LPSIM_HD void apply_footprint(uint8_t* map, const NetView& net, const Footprint& fp, float length,
-                              uint8_t value) {
+LPSIM_HD_INLINED void apply_footprint(uint8_t* map, const NetView& net, const Footprint& fp, float length,
+                                      uint8_t value) {
   if (fp.lane < 0) return;
   const float rear = fp.pos - length;
   fill_cells(map, net, fp.lane, cell_of(net, fp.lane, rear), cell_of(net, fp.lane, fp.pos), value);
@@ -90,8 +90,8 @@ LPSIM_HD void apply_footprint(uint8_t* map, const NetView& net, const Footprint&
 }
 
 /// First occupied cell in [first, last] of a lane, or -1.
-LPSIM_HD int32_t first_occupied(const uint8_t* map, const NetView& net, int32_t lane, int32_t first,
-                                int32_t last) {
+LPSIM_HD_INLINED int32_t first_occupied(const uint8_t* map, const NetView& net, int32_t lane, int32_t first,
+                                        int32_t last) {
   const uint8_t* cells = map + net.lane_cell_begin[lane];
   int32_t c = first;
   // Eight cells per test: look-ahead scans mostly cross empty cells. Little-endian (host and device), so

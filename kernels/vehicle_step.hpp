@@ -571,7 +571,7 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t i, uint32_t slot) {
 
   // Stuck side by side at the lane end with a vehicle that needs this lane: swap, standing still.
   // The same test both vehicles of a swap apply to each other (from the lane map): standing in the last cell.
-  if (encodes_as_standing(speed) && cell_of(net, lane, pos) == lane_cells(net, lane) - 1) {
+  if (encodes_as_standing(speed) & (cell_of(net, lane, pos) == lane_cells(net, lane) - 1)) {
     int32_t to_cross = 0;
     const int32_t target = mandatory_target(s, r, lane, &to_cross);
     if (target >= 0 && swap_with_neighbour(s, r, lane, target)) {
@@ -852,7 +852,7 @@ LPSIM_HD void clear_old_footprint(StepContext& s, uint32_t /*i*/, uint32_t slot)
 
 /// Commit pass for the vehicle in `slot` (its plan at `i`): settle claims, write the new footprint, update
 /// counters.
-LPSIM_HD void commit_vehicle(StepContext& s, uint32_t i, uint32_t slot) {
+LPSIM_HD_INLINED void commit_vehicle(StepContext& s, uint32_t i, uint32_t slot) {
   const uint32_t v = s.veh.vehicle[slot];
   VehicleView& veh = s.veh;
   // The footprint at the start of this step becomes "one step ago" (cleared two buffers later).
