@@ -56,7 +56,7 @@ Simulation::Simulation(const Network& net, const Demand& demand, const Simulatio
   const uint32_t nv = demand.size(), nl = net.num_lanes();
   counts_.loaded = nv;
 
-  for (int b = 0; b < 2; ++b) map_[b].assign(net.num_cells(), 0);
+  for (int b = 0; b < 2; ++b) map_[b].assign(net.num_cells() + kLaneMapPadding, 0);
   link_state_.assign(engine_net_.link_begin.back(), 'r');
   approach_.assign(nl, LaneApproach{0xFFFFFFFFu, -1, 0, 0, 0, 0, 0});
   claims_.assign(nl, 0);
@@ -686,7 +686,7 @@ std::string Simulation::check_lane_map() const {
     }
   }
   const std::vector<uint8_t>& map = map_[cur_];
-  for (uint64_t c = 0; c < map.size(); ++c)
+  for (uint64_t c = 0; c < net_.num_cells(); ++c)
     if ((map[c] != 0) != (expect[c] != 0))
       return "lane map cell " + std::to_string(c) +
              (map[c] ? " marked but no vehicle there" : " unmarked under a vehicle") +

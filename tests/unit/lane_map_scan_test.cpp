@@ -36,8 +36,9 @@ TEST(LaneMapScan, WordScansEqualCellByCellScans) {
   for (uint64_t trial = 0; trial < 60; ++trial) {
     // Occupancy from very sparse (one cell in 40) to dense (one in 2).
     const uint32_t one_in = 2 + static_cast<uint32_t>(trial % 40);
-    std::vector<uint8_t> map(begin.back());
-    for (uint32_t i = 0; i < map.size(); ++i)
+    // Padded as the engine's maps are, with occupied cells: the scans must not see past their range.
+    std::vector<uint8_t> map(begin.back() + kLaneMapPadding, 1);
+    for (uint32_t i = 0; i < begin.back(); ++i)
       map[i] = (rng_bits(7, trial, i) % one_in == 0) ? static_cast<uint8_t>(1 + i % 200) : 0;
     for (int32_t lane = 0; lane < 3; ++lane) {
       const int32_t cells = static_cast<int32_t>(begin[lane + 1] - begin[lane]);
