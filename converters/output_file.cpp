@@ -16,7 +16,9 @@ namespace lpsim {
 
 namespace {
 
-constexpr size_t kBufferBytes = size_t{1} << 20;
+// Large enough that a write call moves a lot at once, small enough that its pages (each touched once, a page
+// fault apiece) are few: a 1 MiB buffer cost 256 page faults per output file.
+constexpr size_t kBufferBytes = size_t{1} << 17;
 // Longest fixed-point text we ever produce: sign, 309 integer digits of DBL_MAX, point, decimals.
 constexpr size_t kMaxNumberChars = 330;
 
