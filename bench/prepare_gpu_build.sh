@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Prepares build-gpu/ here (where nvcc compiles but no GPU runs) for a lent GPU machine, which has CUDA,
+# cmake and ninja but no package registry: the CUDA build of lpsim and of the GPU tests, the shared libraries
+# lpsim needs that such a machine may lack (libxml2 with its ICU, lzma and zlib), GNU time as gnu-time, and
+# the Bay Area base network the regional benchmark grows. Then pass the device tool
+#   carry: build-gpu/lpsim build-gpu/tests/lpsim_gpu_tests build-gpu/libs build-gpu/bayarea
+#          build-gpu/CMakeCache.txt
+# and run `bench/gpu_machine.sh tests` (then `... bench`) there.
+#
+# Usage: bench/prepare_gpu_build.sh [CUDA architectures, default 90 (H100/H200)]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+arch=${1:-90}
+build=${BUILD:-build-gpu}
+if [[ ! -f "$build/CMakeCache.txt" ]]; then
+  cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DLPSIM_CUDA=ON -DCMAKE_CUDA_ARCHITECTURES="$arch"
+fi
+cmake --build "$build" --target lpsim lpsim_gpu_tests
+
+mkdir -p "$build/libs"
+# The C and C++ runtimes are on any machine with CUDA; the XML reader's libraries may not be.
+ldd "$build/lpsim" | awk '$2 == "=>" && $3 ~ /^\// {print $3}' |
+  grep -E '/lib(xml2|icu[a-z]*|lzma|z)\.so' | while read -r lib; do cp -L "$lib" "$build/libs/"; done
+cp -L /usr/bin/time "$build/libs/gnu-time"
+
+network=../shared/lpsim_bayarea_tertiary
+if [[ -d "$network" ]]; then
+  mkdir -p "$build/bayarea"
+  cp -r "$network" "$build/bayarea/"
+else
+  echo "prepare_gpu_build: $network not found; the regional benchmark will need it" >&2
+fi
+du -sch "$build/lpsim" "$build/tests/lpsim_gpu_tests" "$build/libs" "$build/bayarea" "$build/CMakeCache.txt" 2>/dev/null
