@@ -158,7 +158,7 @@ void copy_to_host(T* dst, const T* src, size_t n) {
 // The stepper lists every column of the views by hand: a column added to one of them must be added here.
 static_assert(sizeof(VehicleView) == 26 * sizeof(void*),
               "VehicleView changed: update for_each_vehicle_column");
-static_assert(sizeof(PlanView) == 15 * sizeof(void*), "PlanView changed: update reserve_plan_slots");
+static_assert(sizeof(PlanView) == 14 * sizeof(void*), "PlanView changed: update reserve_plan_slots");
 static_assert(sizeof(NetView) == 21 * sizeof(void*) + sizeof(void*),
               "NetView changed: update upload_network");
 static_assert(sizeof(TypeView) == 8 * sizeof(void*) && sizeof(TripView) == 7 * sizeof(void*),
@@ -564,7 +564,7 @@ class CudaStepper final : public GpuStepper {
   void reserve_plan_slots(uint32_t n) {
     if (n <= plan_capacity_) return;
     const size_t c = std::max<size_t>(n, plan_capacity_ + plan_capacity_ / 2);
-    constexpr size_t kWordColumns = 13, kByteColumns = 2;
+    constexpr size_t kWordColumns = 12, kByteColumns = 2;
     const size_t words = (kWordColumns * 4 * c + 255) / 256 * 256;  // keeps the byte columns aligned
     plan_bytes_ = words + kByteColumns * c;
     plan_buffer_ = DeviceBuffer(plan_bytes_);
@@ -576,7 +576,7 @@ class CudaStepper final : public GpuStepper {
     PlanView& p = dev_.plan;
     carve(p.new_speed), carve(p.new_lane), carve(p.new_pos), carve(p.new_prev), carve(p.new_prev2);
     carve(p.claim_lane0), carve(p.claim_lane1), carve(p.stop_pos), carve(p.stop_lane);
-    carve(p.new_rp), carve(p.first_rp), carve(p.lookahead), carve(p.lane_end_conn);
+    carve(p.new_rp), carve(p.first_rp), carve(p.lookahead);
     base = static_cast<char*>(plan_buffer_.get()) + words;  // the byte columns after the aligned words
     carve(p.arrives), carve(p.claim_prio);
     plan_capacity_ = c;

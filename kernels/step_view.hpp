@@ -140,11 +140,10 @@ struct PlanView {
   uint32_t* first_rp;  // route position on claim_lane0 (kept if only the second claim is lost)
   // Priority of this vehicle's claims (1 entering a lane, 0 changing lanes near a start).
   uint8_t* claim_prio;
-  // Written by the approach pass for the plan pass of the same step, so that the plan does not compute
-  // them again: the vehicle's look-ahead distance, and the connection it takes at its lane's end (-2: not
-  // chosen by the approach pass).
+  // Written by the approach pass for the plan pass of the same step, so that the plan does not compute it
+  // again: the vehicle's look-ahead distance. (The connection at its lane's end is shared through the
+  // slot's cache instead: current_lane_connection.)
   float* lookahead;
-  int32_t* lane_end_conn;
 };
 
 /// Claims on lane entries: one 64-bit word per lane; the largest value of the current step wins.

@@ -388,7 +388,6 @@ LPSIM_HD void approach_vehicle(StepContext& s, uint32_t i, uint32_t slot) {
   const VehicleRef r{slot, s.veh.vehicle[slot]};
   const uint32_t v = r.id;
   if (s.veh.status[slot] != kRunning) return;
-  s.plan.lane_end_conn[i] = -2;
   const int32_t lane = s.veh.lane[slot];
   const float pos = s.veh.pos[slot];
   int32_t to_cross = 0;
@@ -415,7 +414,6 @@ LPSIM_HD void approach_vehicle(StepContext& s, uint32_t i, uint32_t slot) {
   LaneApproach a;
   a.step = s.params.step;
   a.conn = current_lane_connection(s, r, lane, s.veh.route_pos[slot]);
-  s.plan.lane_end_conn[i] = a.conn;
   a.dist = dist;
   a.speed = s.veh.speed[slot];
   a.waiting = s.veh.stopped_steps[slot];
@@ -643,9 +641,9 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t i, uint32_t slot) {
     if (end_dist > budget || hops == kMaxPathHops) break;
     const bool normal = !net.lane_internal[cur];
     if (normal && cur_rp + 1 >= rlen) break;  // the route ends on this lane: arrival, no boundary to pass
-    const int32_t c = hops > 0                     ? choose_connection(s, r, cur, cur_rp)
-                      : out.lane_end_conn[i] != -2 ? out.lane_end_conn[i]
-                                                   : current_lane_connection(s, r, cur, cur_rp);
+    // At the current lane's end through the slot's cache (filled by the approach pass where it published).
+    const int32_t c =
+        hops > 0 ? choose_connection(s, r, cur, cur_rp) : current_lane_connection(s, r, cur, cur_rp);
     if (c < 0) {  // wrong lane for the route (or a dead end): the lane end is a wall until a lane change
       cand = lp_fminf(cand, stop_speed(p, speed, v0, end_dist, dt, s.params.substeps, &free_speed));
       hard_limit = lp_fminf(hard_limit, end_dist - kClampEps);

@@ -132,8 +132,7 @@ void Simulation::PlanColumns::reserve_slots(size_t n) {
   // the plan pass writes every entry the commit pass reads.
   const size_t c = std::max(n, new_speed.size() + new_speed.size() / 2);
   for (auto* col : {&new_speed, &new_pos, &stop_pos, &lookahead}) col->resize(c);
-  for (auto* col : {&new_lane, &new_prev, &new_prev2, &claim0, &claim1, &stop_lane, &lane_end_conn})
-    col->resize(c);
+  for (auto* col : {&new_lane, &new_prev, &new_prev2, &claim0, &claim1, &stop_lane}) col->resize(c);
   for (auto* col : {&arrives, &claim_prio}) col->resize(c);
   for (auto* col : {&new_rp, &first_rp}) col->resize(c);
 }
@@ -141,7 +140,7 @@ void Simulation::PlanColumns::reserve_slots(size_t n) {
 PlanView Simulation::PlanColumns::view() {
   return PlanView{ptr(new_speed), ptr(new_lane), ptr(new_pos),    ptr(new_prev),  ptr(new_prev2),
                   ptr(claim0),    ptr(claim1),   ptr(stop_pos),   ptr(stop_lane), ptr(arrives),
-                  ptr(new_rp),    ptr(first_rp), ptr(claim_prio), ptr(lookahead), ptr(lane_end_conn)};
+                  ptr(new_rp),    ptr(first_rp), ptr(claim_prio), ptr(lookahead)};
 }
 
 VehicleView Simulation::vehicle_view() {

@@ -160,7 +160,7 @@ class Simulation {
   // Plan scratch (see PlanView): one entry per position in the active list, grown with it.
   struct PlanColumns {
     std::vector<float> new_speed, new_pos, stop_pos, lookahead;
-    std::vector<int32_t> new_lane, new_prev, new_prev2, claim0, claim1, stop_lane, lane_end_conn;
+    std::vector<int32_t> new_lane, new_prev, new_prev2, claim0, claim1, stop_lane;
     std::vector<uint8_t> arrives, claim_prio;
     std::vector<uint32_t> new_rp, first_rp;
     void reserve_slots(size_t n);
