@@ -61,7 +61,7 @@ TEST_F(RouteReaderTest, VTypeAttributesDefaultsAndParams) {
   EXPECT_EQ(a.params.at("color"), "red");
   EXPECT_EQ(a.params.at("lcStrategic"), "2");
   EXPECT_EQ(a.params.at("k1"), "v1");
-  EXPECT_EQ(a.loc.line, 3);  // libxml2 gives the line where a multi-line start tag ends
+  EXPECT_EQ(a.loc.line, 3);  // the line where a multi-line start tag ends, as SUMO reports it
 
   const auto& b = demand_.vtypes[1];
   EXPECT_DOUBLE_EQ(b.length, 5.0);

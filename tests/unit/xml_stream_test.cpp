@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <utility>
 #include <vector>
@@ -135,6 +137,107 @@ TEST_F(XmlStreamTest, MalformedXmlNamesTheLineWhereParsingStopped) {
   EXPECT_NE(cut.find("malformed XML"), std::string::npos) << cut;
 }
 
+// Comments, processing instructions, CDATA, text and a DOCTYPE whose internal subset holds '>' and ']' in
+// quoted literals and comments are skipped; the elements around them arrive with their lines.
+TEST_F(XmlStreamTest, MarkupOtherThanElementsIsSkipped) {
+  const std::string text =
+      "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+      "<!DOCTYPE r [<!ATTLIST a v CDATA \"x>]y\"> <!-- ]> -->]>\n"
+      "<!-- <fake/> -->\n"
+      "<r>\n"
+      "  <?pi <no/> ?>\n"
+      "  text &amp; &#x3C;refs&gt; <![CDATA[ <not an=\"element\"/> ]]>\n"
+      "  <a v='say \"hi\"'/><b\n"
+      "     w = \"2\" ></b>\n"
+      "</r>\n"
+      "<!-- trailing comment -->\n";
+  XmlStream xs(write("markup.xml", text));
+  std::vector<std::string> seen;
+  for (auto ev = xs.next(); ev != XmlStream::Event::Eof; ev = xs.next())
+    seen.push_back((ev == XmlStream::Event::Start ? "+" : "-") + xs.name() + "@" + std::to_string(xs.line()) +
+                   (ev == XmlStream::Event::Start ? xs.get("v", "") + xs.get("w", "") : ""));
+  const std::vector<std::string> expected{"+r@4",
+                                          "+a@7say \"hi\"",
+                                          "-a@7",
+                                          "+b@8"
+                                          "2",
+                                          "-b@8",
+                                          "-r@9"};
+  EXPECT_EQ(seen, expected);
+}
+
+// Tabs and line breaks in attribute values read as spaces (CR LF as one), as XML's normalisation has it.
+TEST_F(XmlStreamTest, AttributeValuesAreNormalised) {
+  XmlStream xs(write("norm.xml", "<r v=\"a\nb\tc\r\nd\" w=\"&#10;\"/>"));
+  ASSERT_EQ(xs.next(), XmlStream::Event::Start);
+  EXPECT_EQ(xs.get("v", ""), "a b c d");
+  EXPECT_EQ(xs.get("w", ""), "\n");  // a character reference is kept as written
+}
+
+TEST_F(XmlStreamTest, EncodingsUtf8WithBomAndLatin1AreRead) {
+  XmlStream bom(write("bom.xml",
+                      "\xEF\xBB\xBF<?xml version=\"1.0\"?>\n<r v=\"Stra\xC3\x9F"
+                      "e\"/>"));
+  ASSERT_EQ(bom.next(), XmlStream::Event::Start);
+  EXPECT_EQ(bom.get("v", ""),
+            "Stra\xC3\x9F"
+            "e");
+  XmlStream latin1(write("latin1.xml",
+                         "<?xml version=\"1.0\" encoding=\"ISO-8859-1\"?>\n<r v=\"Stra\xDF"
+                         "e\"/>"));
+  ASSERT_EQ(latin1.next(), XmlStream::Event::Start);
+  EXPECT_EQ(latin1.get("v", ""),
+            "Stra\xC3\x9F"
+            "e");
+  const std::string utf16 = error_reading(write("utf16.xml", std::string("\xFF\xFE<\0r\0/\0>\0", 10)));
+  EXPECT_NE(utf16.find("utf16.xml:1: unsupported encoding UTF-16"), std::string::npos) << utf16;
+  const std::string sjis =
+      error_reading(write("sjis.xml", "<?xml version=\"1.0\" encoding=\"Shift_JIS\"?>\n<r/>"));
+  EXPECT_NE(sjis.find("unsupported encoding 'Shift_JIS'"), std::string::npos) << sjis;
+}
+
+// Each structural error is caught and named with its line; nothing is guessed.
+TEST_F(XmlStreamTest, StructuralErrorsNameTheirLine) {
+  auto error = [&](const std::string& text) { return error_reading(write("e.xml", text)); };
+  EXPECT_NE(
+      error("<r>\n<a>\n</b>\n</r>").find("e.xml:3: malformed XML: opening and ending tag mismatch: a and b"),
+      std::string::npos);
+  EXPECT_NE(
+      error("<r/>\n<r/>").find("e.xml:2: malformed XML: premature end of data or content after the root"),
+      std::string::npos);
+  EXPECT_NE(error("<r/>\ntext").find("e.xml:2: malformed XML"), std::string::npos);
+  EXPECT_NE(error("<r>\n<a v=1/>\n</r>").find("e.xml:2: malformed XML: attribute v not quoted"),
+            std::string::npos);
+  EXPECT_NE(error("<r>\n<a v/>\n</r>").find("e.xml:2: malformed XML: attribute v without a value"),
+            std::string::npos);
+  EXPECT_NE(error("<r>\n<a v=\"<\"/>\n</r>").find("e.xml:2: malformed XML: '<' in the value of attribute v"),
+            std::string::npos);
+  EXPECT_NE(error("<r>\n<a v=\"1\"w=\"2\"/>\n</r>").find("e.xml:2: malformed XML: bad attribute syntax"),
+            std::string::npos);
+  EXPECT_NE(error("<r>\n<a v=\"&#0;\"/>\n</r>").find("e.xml:2: malformed XML: invalid character reference"),
+            std::string::npos);
+  EXPECT_NE(error("<r>\n a & b\n</r>").find("e.xml:2: malformed XML: '&' not followed by a reference"),
+            std::string::npos);
+  EXPECT_NE(error("<r>\n<a>\n").find("e.xml:3: malformed XML: premature end of data in <a>"),
+            std::string::npos);
+  EXPECT_NE(error("<!-- only a comment -->\n").find("malformed XML: no root element"), std::string::npos);
+}
+
+// A start tag longer than the read buffer (an attribute of 1 MB) is read whole.
+TEST_F(XmlStreamTest, TagsLongerThanTheBufferAreReadWhole) {
+  const std::string big(1 << 20, 'e');
+  XmlStream xs(write("big.xml", "<r>\n<a v=\"" + big + "\" w=\"1\"/>\n<b/>\n</r>\n"));
+  ASSERT_EQ(xs.next(), XmlStream::Event::Start);
+  ASSERT_EQ(xs.next(), XmlStream::Event::Start);
+  EXPECT_EQ(xs.get("v", "").size(), big.size());
+  EXPECT_EQ(xs.get("w", ""), "1");
+  EXPECT_EQ(xs.line(), 2);
+  ASSERT_EQ(xs.next(), XmlStream::Event::End);
+  ASSERT_EQ(xs.next(), XmlStream::Event::Start);
+  EXPECT_EQ(xs.name(), "b");
+  EXPECT_EQ(xs.line(), 3);
+}
+
 TEST_F(XmlStreamTest, GzipFilesReadLikePlainOnes) {
   std::string text = "<root>\n";
   for (int i = 0; i < 3000; ++i) text += "  <a id=\"" + std::to_string(i) + "\"/>\n";
@@ -158,6 +261,14 @@ TEST_F(XmlStreamTest, GzipFilesReadLikePlainOnes) {
   };
   EXPECT_EQ(ids(gz), ids(write("f.xml", text)));
   EXPECT_EQ(ids(gz).first, 3000);
+  // A gzip file cut short is an error, not a shorter document.
+  std::string bytes;
+  {
+    std::ifstream in(gz, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  const std::string cut = error_reading(write("cut.xml.gz", bytes.substr(0, bytes.size() / 2)));
+  EXPECT_NE(cut.find("cut.xml.gz"), std::string::npos) << cut;
 }
 
 }  // namespace
