@@ -16,8 +16,12 @@ char* write_fixed_decimal(char* out, double v, int decimals) {
   static constexpr long double kScale[kMaxFastDecimals + 1] = {1.0L, 10.0L, 100.0L, 1000.0L, 10000.0L};
   if (decimals < 0 || decimals > kMaxFastDecimals || !(std::fabs(v) < 1e15)) return nullptr;
   const long double scaled = static_cast<long double>(std::fabs(v)) * kScale[decimals];
-  uint64_t n = static_cast<uint64_t>(std::nearbyintl(scaled));  // < 1e19: fits
-  char digits[24];                                              // least significant first
+  // Rounded to nearest, ties to even, by hand: the truncation and its remainder are exact (the integer part
+  // of a long double below 2^64 fits a uint64_t), and nearbyintl is a library call per number.
+  uint64_t n = static_cast<uint64_t>(scaled);  // < 1e19: fits
+  const long double rest = scaled - static_cast<long double>(n);
+  if (rest > 0.5L || (rest == 0.5L && (n & 1u) != 0)) ++n;
+  char digits[24];  // least significant first
   int len = 0;
   do {
     digits[len++] = static_cast<char>('0' + n % 10);
