@@ -96,7 +96,8 @@ struct XmlStream::Impl {
   size_t line_pos = 0;            // buf offset up to which lines are counted
   int line = 1;                   // line of buf[line_pos]
   bool latin1 = false;            // declared ISO-8859-1: values are converted to UTF-8
-  bool started = false;           // past the first byte (the XML declaration may only come first)
+  bool started = false;           // the first read done (and a byte order mark looked for)
+  bool at_file_start = true;      // nothing but a byte order mark read yet: an XML declaration may come
   std::vector<std::string> open;  // names of the open elements, root first
   bool root_seen = false;
   bool pending_end = false;  // an empty element's End is due
@@ -231,8 +232,10 @@ struct XmlStream::Impl {
     size_t past = 0;
     if (head.substr(0, 2) == "<?") {
       past = find_past(pos + 2, "?>");
-      if (past && head.substr(0, 5) == "<?xml" && past - pos > 5 && is_space(s[pos + 5]))
+      if (past && head.substr(0, 5) == "<?xml" && past - pos > 5 && is_space(s[pos + 5])) {
+        if (!at_file_start) malformed(pos, "XML declaration not at the start of the file");
         read_declaration(pos, past);
+      }
     } else if (head.substr(0, 4) == "<!--") {
       past = find_past(pos + 4, "-->");
     } else if (head.substr(0, 9) == "<![CDATA[") {
@@ -275,8 +278,6 @@ struct XmlStream::Impl {
   }
 
   void read_declaration(size_t from, size_t past) {
-    if (from != 0 && !(from == 3 && static_cast<unsigned char>(buf[0]) == 0xEF))
-      malformed(from, "XML declaration not at the start of the file");
     const std::string_view decl(buf.data() + from, past - from);
     const size_t at = decl.find("encoding");
     if (at == std::string_view::npos) return;
@@ -470,18 +471,25 @@ XmlStream::Event XmlStream::next() {
       return Event::Eof;
     }
     const size_t at = static_cast<size_t>(lt - im.buf.data());
-    im.check_text(im.pos, at);
-    im.pos = at;
+    if (at != im.pos) {
+      im.at_file_start = false;
+      im.check_text(im.pos, at);
+      im.pos = at;
+    }
     const char next = at + 1 < im.end ? im.buf[at + 1] : '\0';
     Impl::Status status;
     if (at + 1 >= im.end) {
       status = Impl::Status::NeedMore;
     } else if (next == '!' || next == '?') {
       status = im.skip_markup();
-      if (status == Impl::Status::Done) continue;
+      if (status == Impl::Status::Done) {
+        im.at_file_start = false;
+        continue;
+      }
     } else if (next == '/') {
       status = im.end_tag(name_);
       if (status == Impl::Status::Done) {
+        im.at_file_start = false;
         depth_ = static_cast<int>(im.open.size());
         line_ = im.last_line;
         im.last_was_start = false;
@@ -493,6 +501,7 @@ XmlStream::Event XmlStream::next() {
       bool empty = false;
       status = im.start_tag(name_, empty);
       if (status == Impl::Status::Done) {
+        im.at_file_start = false;
         line_ = im.line_at(im.pos - 1);  // where the start tag ends, as SUMO's parser reports it
         depth_ = static_cast<int>(im.open.size());
         im.root_seen = true;

@@ -221,6 +221,12 @@ TEST_F(XmlStreamTest, StructuralErrorsNameTheirLine) {
   EXPECT_NE(error("<r>\n<a>\n").find("e.xml:3: malformed XML: premature end of data in <a>"),
             std::string::npos);
   EXPECT_NE(error("<!-- only a comment -->\n").find("malformed XML: no root element"), std::string::npos);
+  // A declaration anywhere but at the very start is refused, even after the buffer has been refilled.
+  EXPECT_NE(error(" <?xml version=\"1.0\"?><r/>").find("XML declaration not at the start"),
+            std::string::npos);
+  EXPECT_NE(error("<r>\n" + std::string(300000, ' ') + "<?xml version=\"1.0\" encoding=\"ISO-8859-1\"?></r>")
+                .find("e.xml:2: malformed XML: XML declaration not at the start"),
+            std::string::npos);
 }
 
 // A start tag longer than the read buffer (an attribute of 1 MB) is read whole.
