@@ -101,14 +101,15 @@ struct XmlStream::Impl {
   std::vector<std::string> open;  // names of the open elements, root first
   bool root_seen = false;
   bool pending_end = false;  // an empty element's End is due
+  // The previous event was a non-empty element's start: an end tag right after it must close that element,
+  // and is reported at the start tag's line (as SUMO's parser does for an element without children).
   bool last_was_start = false;
   int last_start_line = 0;
+  int last_line = 0;  // line reported for the end tag just read
   std::vector<Attr> attrs;
   std::string decoded;
 
   explicit Impl(const std::string& p) : input(p), path(p) { buf.resize(1 << 18); }
-
-  const char* data() const { return buf.data(); }
 
   // Line of buffer offset `at` (>= line_pos): counts the newlines on the way.
   int line_at(size_t at) {
@@ -314,13 +315,10 @@ struct XmlStream::Impl {
     const int l = line_at(i);
     name_out = std::move(open.back());
     open.pop_back();
-    last_line = last_was_start && static_cast<int>(open.size()) == last_start_depth ? last_start_line : l;
+    last_line = last_was_start ? last_start_line : l;
     pos = i + 1;
     return Status::Done;
   }
-  int last_line = 0;
-  int last_start_depth = -1;
-
   // Decodes a value that holds references, line breaks or (ISO-8859-1) high bytes into `decoded`.
   Attr decode_value(std::string_view name, size_t from, size_t to) {
     const char* s = buf.data();
@@ -511,7 +509,6 @@ XmlStream::Event XmlStream::next() {
           im.open.push_back(name_);
           im.last_was_start = true;
           im.last_start_line = line_;
-          im.last_start_depth = depth_;
         }
         return Event::Start;
       }
