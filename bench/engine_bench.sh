@@ -85,8 +85,11 @@ for sc in $scenarios; do
   # much the shortest run, is repeated and its mean CPU time taken, so that it is timed over a window
   # closer to SUMO's and above the 10 ms resolution of the timer.
   loads=()
+  probes=()
   for ((r = 1; r <= runs; r++)); do
     loads+=("$(cut -d' ' -f1 /proc/loadavg)")
+    # The L3 share this VM gets varies with its neighbours; SUMO's CPU time follows it, LPSim's far less.
+    probes+=("$(host_probe | sed -n 's/.*, 4 MiB \([0-9.]*\) ns.*/\1/p')")
     for sim in sumo meso lpsim; do
       summary="$out/$sim.summary.xml"
       case "$sim" in
@@ -128,7 +131,7 @@ for sc in $scenarios; do
   done
   rows+=("| $sc | **lpsim / sumo** | | | **$(ratio "${ups[lpsim]}" "${ups[sumo]}")×** | $(ratio "${rss[lpsim]}" "${rss[sumo]}")× |")
   rows+=("| $sc | **lpsim / meso** | | | **$(ratio "${ups[lpsim]}" "${ups[meso]}")×** | $(ratio "${rss[lpsim]}" "${rss[meso]}")× |")
-  notes+=("- $sc: lpsim / sumo in each round: ${per_round[*]} (median $(median "${per_round[@]}")×); load average at each round's start: ${loads[*]}")
+  notes+=("- $sc: lpsim / sumo in each round: ${per_round[*]} (median $(median "${per_round[@]}")×); load average at each round's start: ${loads[*]}; ns per load of a 4 MiB pointer chase (bench/host_probe.cpp) at each round's start: ${probes[*]}")
   unset cpus rsss cpu rss ups n
 done
 

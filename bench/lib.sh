@@ -47,6 +47,20 @@ ratio() {
     else printf "%.2f\n", a / b }'
 }
 
+# Clock and cache/memory latencies of this machine now (see bench/host_probe.cpp); built on first use.
+host_probe() {
+  local dir src bin
+  dir="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+  src="$dir/host_probe.cpp"
+  bin="$dir/work/host_probe"
+  if [[ ! -x "$bin" || "$src" -nt "$bin" ]]; then
+    command -v g++ >/dev/null || { echo "unavailable (no g++)"; return; }
+    mkdir -p "$dir/work"
+    g++ -O2 -std=c++20 "$src" -o "$bin" || { echo "unavailable (build failed)"; return; }
+  fi
+  "$bin"
+}
+
 machine_info() {
   local cpu
   cpu=$(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo | head -n 1)
@@ -58,6 +72,7 @@ machine_info() {
   echo "- date: $(date -u '+%Y-%m-%d %H:%M:%S UTC')"
   echo "- host: nproc=$(nproc), CPU: ${cpu:-unknown}, memory: $(awk '/MemTotal/ { printf "%.1f GiB", $2 / 1048576 }' /proc/meminfo)"
   echo "- load average at start: $(cut -d' ' -f1-3 /proc/loadavg)"
+  echo "- host probe (bench/host_probe.cpp): $(host_probe)"
   echo "- $(sumo --version 2>/dev/null | head -n 1)"
   echo "- lpsim commit: $(git -C "$(dirname "${BASH_SOURCE[0]}")" rev-parse --short HEAD 2>/dev/null || echo unknown)"
 }
