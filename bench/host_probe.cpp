@@ -5,8 +5,8 @@
 //
 //   compute: ns per step of a dependent floating-point chain (tracks the core clock);
 //   chase N: ns per load of a random pointer chase through N bytes of cache lines (a miss per load in every
-//   cache too small or too contended to hold them: 512 KiB sits in L2, 4 and 16 MiB in an L3 of 32 MiB if this VM gets its share of
-//   it, 256 MiB in DRAM).
+//   cache too small or too contended to hold them: 512 KiB sits in L2, 4 and 16 MiB in an L3 of 32 MiB if
+//   this VM gets its share of it, 256 MiB in DRAM).
 //
 // Build: g++ -O2 -std=c++20 bench/host_probe.cpp -o host_probe (bench/lib.sh does this on first use).
 #include <chrono>

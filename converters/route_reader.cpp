@@ -324,7 +324,7 @@ class RouteFileReader {
     v.loc = xs_.loc();
     const SourceLoc& loc = v.loc;
     attrs_.read(xs_);
-    if (!attrs_.present[kId] || attrs_.value[kId].empty()) fail(loc, element, "", "missing attribute 'id'");
+    if (!attrs_.present[kId] || attrs_.value[kId].empty()) fail(loc, element, "", "missing or empty attribute 'id'");
     const std::string& id = attrs_.value[kId];
     const std::string* depart = attrs_.get(kDepart);
     if (!depart) fail(loc, element, id, "missing attribute 'depart'");
@@ -358,7 +358,7 @@ class RouteFileReader {
     f.loc = xs_.loc();
     const SourceLoc& loc = f.loc;
     attrs_.read(xs_);
-    if (!attrs_.present[kId] || attrs_.value[kId].empty()) fail(loc, element, "", "missing attribute 'id'");
+    if (!attrs_.present[kId] || attrs_.value[kId].empty()) fail(loc, element, "", "missing or empty attribute 'id'");
     if (skip_if_taz(element)) return;
     f.id = attrs_.value[kId];
     const std::string& id = f.id;
@@ -413,7 +413,7 @@ class RouteFileReader {
     RouteSpec r;
     r.loc = loc;
     r.id = xs_.get("id", "");
-    if (r.id.empty()) fail(loc, "route", "", "missing attribute 'id'");
+    if (r.id.empty()) fail(loc, "route", "", "missing or empty attribute 'id'");
     auto edges = xs_.attr("edges");
     if (!edges) fail(loc, "route", r.id, "missing attribute 'edges'");
     r.edges = split_ids(*edges);
@@ -462,7 +462,7 @@ class RouteFileReader {
     RouteDistSpec dist;
     dist.loc = xs_.loc();
     dist.id = xs_.get("id", fallback_id);
-    if (dist.id.empty()) fail(dist.loc, element, "", "missing attribute 'id'");
+    if (dist.id.empty()) fail(dist.loc, element, "", "missing or empty attribute 'id'");
     register_route_id(dist.loc, element, dist.id);
     dist.members = listed_members(xs_, "routes", element, dist.id);
     int nested = 0;
@@ -510,7 +510,7 @@ class RouteFileReader {
     VTypeDistSpec dist;
     dist.loc = xs_.loc();
     dist.id = xs_.get("id", "");
-    if (dist.id.empty()) fail(dist.loc, element, "", "missing attribute 'id'");
+    if (dist.id.empty()) fail(dist.loc, element, "", "missing or empty attribute 'id'");
     register_type_id(dist.loc, element, dist.id);
     dist.members = listed_members(xs_, "vTypes", element, dist.id);
     for_each_child(dist.loc, element, dist.id, [&] {
@@ -531,7 +531,7 @@ class RouteFileReader {
     m.loc = xs_.loc();
     m.lane_level = lane_level;
     m.id = xs_.get("id", "");
-    if (m.id.empty()) fail(m.loc, element, "", "missing attribute 'id'");
+    if (m.id.empty()) fail(m.loc, element, "", "missing or empty attribute 'id'");
     auto file = xs_.attr("file");
     if (!file || trim(*file).empty()) fail(m.loc, element, m.id, "missing attribute 'file'");
     std::filesystem::path out(std::string(trim(*file)));

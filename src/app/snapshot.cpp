@@ -90,7 +90,7 @@ struct Reader {
     if constexpr (std::is_arithmetic_v<T> || std::is_enum_v<T>) {
       need(n * sizeof(T));
       v.resize(n);
-      std::memcpy(v.data(), p, n * sizeof(T));
+      if (n > 0) std::memcpy(v.data(), p, n * sizeof(T));  // an empty vector's data() may be null
       p += n * sizeof(T);
     } else {
       if (n > static_cast<uint64_t>(end - p)) throw InputError(SourceLoc{path, 0}, "snapshot is truncated");
