@@ -324,7 +324,8 @@ class RouteFileReader {
     v.loc = xs_.loc();
     const SourceLoc& loc = v.loc;
     attrs_.read(xs_);
-    if (!attrs_.present[kId] || attrs_.value[kId].empty()) fail(loc, element, "", "missing or empty attribute 'id'");
+    if (!attrs_.present[kId] || attrs_.value[kId].empty())
+      fail(loc, element, "", "missing or empty attribute 'id'");
     const std::string& id = attrs_.value[kId];
     const std::string* depart = attrs_.get(kDepart);
     if (!depart) fail(loc, element, id, "missing attribute 'depart'");
@@ -358,7 +359,8 @@ class RouteFileReader {
     f.loc = xs_.loc();
     const SourceLoc& loc = f.loc;
     attrs_.read(xs_);
-    if (!attrs_.present[kId] || attrs_.value[kId].empty()) fail(loc, element, "", "missing or empty attribute 'id'");
+    if (!attrs_.present[kId] || attrs_.value[kId].empty())
+      fail(loc, element, "", "missing or empty attribute 'id'");
     if (skip_if_taz(element)) return;
     f.id = attrs_.value[kId];
     const std::string& id = f.id;
