@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <string>
 #include <string_view>
@@ -225,6 +226,24 @@ class Builder {
     const uint32_t lanes = net_.num_lanes();
     net_.lane_cell_begin.resize(lanes + 1);
     net_.lane_shape_begin.resize(lanes + 1);
+    // The engine addresses cells with 32-bit offsets (half the state per vehicle of 64-bit ones). Checked
+    // in doubles first, so that no absurd length overflows an integer conversion.
+    double total = 0;
+    uint32_t longest = 0;
+    for (uint32_t l = 0; l < lanes; ++l) {
+      total += std::max(1.0, std::ceil(static_cast<double>(net_.lane_length[l])));
+      if (net_.lane_length[l] > net_.lane_length[longest]) longest = l;
+    }
+    if (total >= 4294967296.0) {
+      char what[160];
+      std::snprintf(what, sizeof what, "the lanes need %.0f lane-map cells (one per metre)", total);
+      char lane_len[64];
+      std::snprintf(lane_len, sizeof lane_len, "%.0f m", static_cast<double>(net_.lane_length[longest]));
+      throw InputError(lane_spec_[longest]->loc, std::string(what) +
+                                                     ", more than the 4294967295 LPSim can address; the "
+                                                     "longest lane, '" +
+                                                     net_.lane_id[longest] + "', is " + lane_len);
+    }
     uint64_t cells = 0;
     for (uint32_t l = 0; l < lanes; ++l) {
       net_.lane_cell_begin[l] = cells;

@@ -289,6 +289,14 @@ TEST(NetworkBuilder, ErrorsNameTheIds) {
     s.edges[1].id = "E0";
     expect_input_error(s, {"duplicate edge id 'E0'"});
   }
+  {
+    // Beyond the lane map's 32-bit cell offsets: an input error naming the longest lane, not an internal one.
+    NetSpec s = test::make_corridor_spec(2);
+    s.edges[1].lanes[0].length = 5e9;
+    expect_input_error(s, {"more than the 4294967295", "'" + s.edges[1].lanes[0].id + "'", "5000000000 m"});
+    s.edges[1].lanes[0].length = 1e30;  // far beyond any integer cell count
+    expect_input_error(s, {"more than the 4294967295", "'" + s.edges[1].lanes[0].id + "'"});
+  }
 }
 
 TEST(NetworkBuilder, PedestrianEdgesAreSkipped) {
