@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 
 #include "converters/route_attributes.hpp"  // split_ids
 #include "converters/tl_logic_reader.hpp"
@@ -92,6 +93,8 @@ double required_non_negative(const XmlStream& xs, const char* key, const std::st
   auto d = parse_double(*v);
   if (!d) xs.fail(std::string("attribute '") + key + "' is not a finite number: '" + *v + "'");
   if (*d < 0) xs.fail(std::string("attribute '") + key + "' must not be negative: '" + *v + "'");
+  if (*d > std::numeric_limits<float>::max())  // lane lengths and speeds are stored as floats
+    xs.fail(std::string("attribute '") + key + "' is beyond a 32-bit float's range: '" + *v + "'");
   return *d;
 }
 

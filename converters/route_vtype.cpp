@@ -1,5 +1,6 @@
 #include "converters/route_vtype.hpp"
 
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -48,12 +49,13 @@ enum class Sign { Positive, NonNegative };
 double number_value(const SourceLoc& loc, std::string_view element, const std::string& id,
                     std::string_view key, std::string_view text, Sign sign) {
   auto v = parse_double(text);
-  bool ok = v && (sign == Sign::Positive ? *v > 0 : *v >= 0);
+  // The engine keeps vType values as floats: beyond their range a value would become infinite.
+  bool ok = v && (sign == Sign::Positive ? *v > 0 : *v >= 0) && *v <= std::numeric_limits<float>::max();
   if (!ok)
     fail_at(loc, element, id,
             "attribute '" + std::string(key) + "' must be a " +
-                (sign == Sign::Positive ? "positive" : "non-negative") + " number: '" + std::string(text) +
-                "'");
+                (sign == Sign::Positive ? "positive" : "non-negative") +
+                " number within a 32-bit float's range: '" + std::string(text) + "'");
   return *v;
 }
 

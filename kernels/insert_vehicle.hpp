@@ -134,7 +134,7 @@ LPSIM_HD bool try_insert_vehicle(const StepContext& s, const DepartView& d, cons
     if (first_occupied(map, net, li, rear_cell, front_cell) >= 0) continue;
     // Leader ahead: the inserted vehicle must be able to follow it safely.
     const int32_t cells = static_cast<int32_t>(lane_cells(net, li));
-    const int32_t look = front_cell + 1 + static_cast<int32_t>(lookahead_distance(ip, speed, p.dt) + min_gap);
+    const int32_t look = front_cell + 1 + metres_as_cells(lookahead_distance(ip, speed, p.dt) + min_gap);
     const int32_t ahead = front_cell + 1 < cells ? first_occupied(map, net, li, front_cell + 1,
                                                                   look < cells - 1 ? look : cells - 1)
                                                  : -1;
@@ -150,8 +150,7 @@ LPSIM_HD bool try_insert_vehicle(const StepContext& s, const DepartView& d, cons
     }
     // Follower behind: it must be able to stay safe behind the new vehicle.
     if (rear_cell > 0) {
-      const int32_t reach =
-          rear_cell - 1 - static_cast<int32_t>(lookahead_distance(ip, net.lane_speed[l], p.dt));
+      const int32_t reach = rear_cell - 1 - metres_as_cells(lookahead_distance(ip, net.lane_speed[l], p.dt));
       const int32_t lag = last_occupied(map, net, li, reach > 0 ? reach : 0, rear_cell - 1);
       if (lag >= 0) {
         const float gap = (pos - length) - static_cast<float>(lag + 1);

@@ -39,6 +39,18 @@ LPSIM_HD uint32_t lane_cells(const NetView& net, int32_t lane) {
   return net.lane_cell_begin[lane + 1] - net.lane_cell_begin[lane];
 }
 
+/// Longest lane, in cells, the network builder accepts: with a look-ahead clamped to kMaxCellSpan, cell
+/// arithmetic (front cell + 1 + reach) stays within int32.
+constexpr uint32_t kMaxLaneCells = 1u << 30;
+constexpr int32_t kMaxCellSpan = 1 << 29;
+
+/// Whole cells in a non-negative distance of `metres` (floored), at most kMaxCellSpan: absurd vType
+/// values or lane speeds make look-ahead distances that no integer holds (NaN gives the maximum too).
+/// Any distance a network can hold converts exactly as a plain cast would.
+LPSIM_HD int32_t metres_as_cells(float metres) {
+  return metres < static_cast<float>(kMaxCellSpan) ? static_cast<int32_t>(metres) : kMaxCellSpan;
+}
+
 /// Cell index on a lane of a position (m from the lane start), clamped to the lane.
 LPSIM_HD uint32_t cell_of(const NetView& net, int32_t lane, float pos) {
   const uint32_t n = lane_cells(net, lane);

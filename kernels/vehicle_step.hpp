@@ -329,7 +329,7 @@ constexpr float kJamSpeed = 2.0f;
 /// leave.
 LPSIM_HD bool room_at_start(const StepContext& s, int32_t lane, float need) {
   const int32_t cells = static_cast<int32_t>(lane_cells(s.net, lane));
-  const int32_t last = static_cast<int32_t>(need) < cells ? static_cast<int32_t>(need) : cells - 1;
+  const int32_t last = metres_as_cells(need) < cells ? metres_as_cells(need) : cells - 1;
   const uint8_t* c = s.map_now + s.net.lane_cell_begin[lane];
   for (int32_t k = 0; k <= last; ++k)
     if (c[k] != 0 && decode_cell_speed(c[k]) < kJamSpeed) return false;
@@ -459,7 +459,7 @@ LPSIM_HD LaneChangeResult try_lane_change(const StepContext& s, VehicleRef me, i
   const float v0 = desired_speed(net.lane_speed[target], s.trips.speed_factor[v], s.types.max_speed[type]);
   const float look = lookahead_distance(p, speed, dt);
   LcNeighbor lead = lc_no_neighbor();
-  int32_t last = front_cell + 1 + static_cast<int32_t>(look);
+  int32_t last = front_cell + 1 + metres_as_cells(look);
   if (last > cells - 1) last = cells - 1;
   const int32_t lc =
       front_cell + 1 <= last ? first_occupied(s.map_now, net, target, front_cell + 1, last) : -1;
@@ -470,8 +470,7 @@ LPSIM_HD LaneChangeResult try_lane_change(const StepContext& s, VehicleRef me, i
     lead.idm.emergency_decel = s.params.max_emergency_decel;
   }
   LcNeighbor lag = lc_no_neighbor();
-  int32_t back_first =
-      rear_cell - 1 - static_cast<int32_t>(lookahead_distance(p, net.lane_speed[target], dt));
+  int32_t back_first = rear_cell - 1 - metres_as_cells(lookahead_distance(p, net.lane_speed[target], dt));
   if (back_first < 0) back_first = 0;
   const int32_t gc =
       rear_cell - 1 >= back_first ? last_occupied(s.map_now, net, target, back_first, rear_cell - 1) : -1;

@@ -9,6 +9,7 @@
 #include <string_view>
 #include <unordered_set>
 
+#include "kernels/lane_map.hpp"
 #include "net/junction_foes.hpp"
 #include "net/junction_type.hpp"
 
@@ -228,11 +229,19 @@ class Builder {
     net_.lane_shape_begin.resize(lanes + 1);
     // The engine addresses cells with 32-bit offsets (half the state per vehicle of 64-bit ones). Checked
     // in doubles first, so that no absurd length overflows an integer conversion.
+    // A lane's cells are indexed in int32 by the step (kMaxLaneCells leaves room for look-ahead arithmetic).
     double total = 0;
     uint32_t longest = 0;
     for (uint32_t l = 0; l < lanes; ++l) {
       total += std::max(1.0, std::ceil(static_cast<double>(net_.lane_length[l])));
       if (net_.lane_length[l] > net_.lane_length[longest]) longest = l;
+    }
+    if (lanes > 0 && std::ceil(static_cast<double>(net_.lane_length[longest])) > kMaxLaneCells) {
+      char len[64];
+      std::snprintf(len, sizeof len, "%.0f m", static_cast<double>(net_.lane_length[longest]));
+      throw InputError(lane_spec_[longest]->loc, "lane '" + net_.lane_id[longest] + "' is " + len +
+                                                     " long, more than the " + std::to_string(kMaxLaneCells) +
+                                                     " m (one lane-map cell per metre) LPSim allows a lane");
     }
     if (total >= 4294967296.0) {
       char what[160];

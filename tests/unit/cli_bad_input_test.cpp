@@ -230,6 +230,37 @@ TEST_F(CliBadInputTest, NanVTypeMaxSpeed) {
   expect_input_error(info_with_routes("r.rou.xml"), "r.rou.xml:3", {"maxSpeed", "NaN", "t_bad"});
 }
 
+// Finite but absurd vType values and lane speeds are accepted (SUMO has no upper bounds either) and must
+// not overflow the step's distance-to-cell conversions: the run ends normally, every vehicle accounted for.
+TEST_F(CliBadInputTest, AbsurdFiniteValuesRunToTheEnd) {
+  write_grid_net_with("fast.net.xml", "speed=\"13.89\"", "speed=\"1e30\"");
+  write_routes("r.rou.xml",
+               "<vType id=\"gap\" minGap=\"1e19\"/>\n"
+               "<vType id=\"accel\" accel=\"2147483648\" decel=\"1e-30\"/>\n"
+               "<vType id=\"long\" length=\"3e38\"/>\n"
+               "<vehicle id=\"v0\" depart=\"0\"><route edges=\"A0A1 A1A2\"/></vehicle>\n"
+               "<vehicle id=\"v1\" type=\"gap\" depart=\"1\"><route edges=\"A0A1 A1A2\"/></vehicle>\n"
+               "<vehicle id=\"v2\" type=\"accel\" depart=\"2\"><route edges=\"A0A1 A1A2\"/></vehicle>\n"
+               "<vehicle id=\"v3\" type=\"long\" depart=\"3\"><route edges=\"A0A1 A1A2\"/></vehicle>\n"
+               "<vehicle id=\"v4\" depart=\"4\"><route edges=\"A0A1 A1A2\"/></vehicle>");
+  const CliResult r = run({"run", "-n", "fast.net.xml", "-r", "r.rou.xml", "--end", "600"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  // Each goes in on an empty road (the long one with its body behind the lane start, as SUMO allows) and
+  // arrives.
+  EXPECT_NE(r.out.find("Inserted: 5 (Loaded: 5)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(" Arrived: 5"), std::string::npos) << r.out;
+}
+
+TEST_F(CliBadInputTest, ValuesBeyondFloatRange) {
+  // Finite as doubles, infinite as the floats the engine keeps.
+  write_routes("r.rou.xml",
+               "<vType id=\"t_bad\" accel=\"1e300\"/>\n"
+               "<vehicle id=\"v1\" type=\"t_bad\" depart=\"0\"><route edges=\"A0A1 A1A2\"/></vehicle>");
+  expect_input_error(info_with_routes("r.rou.xml"), "r.rou.xml:3", {"accel", "1e300", "t_bad", "float"});
+  write_grid_net_with("big.net.xml", "speed=\"8.96\"", "speed=\"1e300\"");
+  expect_input_error(run({"info", "-n", "big.net.xml"}), "big.net.xml:8", {"speed", "'1e300'", "float"});
+}
+
 TEST_F(CliBadInputTest, NegativeDepart) {
   write_routes("r.rou.xml", R"(<vehicle id="v_bad" depart="-5"><route edges="A0A1 A1A2"/></vehicle>)");
   expect_input_error(info_with_routes("r.rou.xml"), "r.rou.xml:3", {"depart", "-5", "v_bad"});

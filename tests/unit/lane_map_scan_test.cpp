@@ -1,7 +1,7 @@
 // The lane-map scans (word-wise on the host) find exactly what a cell-by-cell scan finds, for every range
 // of sparse and dense lanes, including ranges shorter than a word and ends that are not word-aligned; and
-// footprint fills (word stores on the host) write exactly the cells of their range; and the standing test
-// equals decoding the encoded speed.
+// footprint fills (word stores on the host) write exactly the cells of their range; the standing test
+// equals decoding the encoded speed; and distances convert to cells as a cast does, capped.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -96,6 +96,20 @@ TEST(LaneMapScan, StandingTestEqualsTheDecodedCellSpeed) {
   }
   EXPECT_EQ(standing, 2 + 1 + (1 << 18));  // 0, -0, 0.25's lower neighbour, and [0, 0.25) of the sweep
   EXPECT_GT(moving, 1000);
+}
+
+TEST(LaneMapScan, MetresAsCellsFloorsAndCapsHugeDistances) {
+  EXPECT_EQ(metres_as_cells(0.0f), 0);
+  EXPECT_EQ(metres_as_cells(5.99f), 5);
+  EXPECT_EQ(metres_as_cells(1000.0f), 1000);
+  // The largest float below the cap converts exactly; the cap and anything beyond (NaN too) give the cap.
+  const float below = std::nextafter(static_cast<float>(kMaxCellSpan), 0.0f);
+  EXPECT_EQ(metres_as_cells(below), static_cast<int32_t>(below));
+  EXPECT_EQ(metres_as_cells(static_cast<float>(kMaxCellSpan)), kMaxCellSpan);
+  EXPECT_EQ(metres_as_cells(3e38f), kMaxCellSpan);
+  EXPECT_EQ(metres_as_cells(std::nanf("")), kMaxCellSpan);
+  // With lanes capped at kMaxLaneCells, a front cell plus a capped reach still fits an int32.
+  EXPECT_LT(int64_t{kMaxLaneCells} + 1 + kMaxCellSpan, int64_t{INT32_MAX});
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "kernels/lane_map.hpp"
 #include "unit/test_nets.hpp"
 
 namespace lpsim {
@@ -290,12 +291,19 @@ TEST(NetworkBuilder, ErrorsNameTheIds) {
     expect_input_error(s, {"duplicate edge id 'E0'"});
   }
   {
-    // Beyond the lane map's 32-bit cell offsets: an input error naming the longest lane, not an internal one.
+    // Lanes within a lane's limit that together exceed the lane map's 32-bit cell offsets.
+    NetSpec s = test::make_corridor_spec(6);
+    for (auto& e : s.edges)
+      for (auto& l : e.lanes) l.length = 9e8;
+    expect_input_error(s, {"more than the 4294967295", "lane-map cells"});
+  }
+  {
+    // One lane longer than int32 cell indices allow (with room for look-ahead sums), however absurd.
     NetSpec s = test::make_corridor_spec(2);
-    s.edges[1].lanes[0].length = 5e9;
-    expect_input_error(s, {"more than the 4294967295", "'" + s.edges[1].lanes[0].id + "'", "5000000000 m"});
-    s.edges[1].lanes[0].length = 1e30;  // far beyond any integer cell count
-    expect_input_error(s, {"more than the 4294967295", "'" + s.edges[1].lanes[0].id + "'"});
+    s.edges[1].lanes[0].length = 1.1e9;
+    expect_input_error(s, {"lane '" + s.edges[1].lanes[0].id + "'", "1100000000 m", "allows a lane"});
+    s.edges[1].lanes[0].length = 1e30;
+    expect_input_error(s, {"lane '" + s.edges[1].lanes[0].id + "'", "allows a lane"});
   }
 }
 
