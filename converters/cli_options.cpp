@@ -22,7 +22,11 @@ struct Value {
   ComputeDevice device = ComputeDevice::Auto;
 };
 
-enum class Check { None, NonNegative, Positive };
+// StepLength: LPSim's clock counts milliseconds; ThreadCount: a team beyond this is a typo, and would exhaust
+// the process limit before the run starts.
+enum class Check { None, NonNegative, Positive, StepLength, ThreadCount };
+constexpr double kMinStepLength = 0.001, kMaxStepLength = 86400;
+constexpr long long kMaxThreads = 1024;
 
 struct OptionDef {
   std::string_view name, synonym;  // long name and SUMO synonym (empty if none)
@@ -43,14 +47,14 @@ const OptionDef kOptions[] = {
   {"additional-files", "additional", 'a', Kind::PathList, Check::None, false, [](ConfigSpec& c, Value&& v) { c.additional_files = std::move(v.list); }},
   {"begin", "", 'b', Kind::Time, Check::None, false, [](ConfigSpec& c, Value&& v) { c.begin = v.seconds; }},
   {"end", "", 'e', Kind::Time, Check::None, false, [](ConfigSpec& c, Value&& v) { c.end = v.seconds; }},
-  {"step-length", "", 0, Kind::Time, Check::Positive, false, [](ConfigSpec& c, Value&& v) { c.step_length = v.seconds; }},
+  {"step-length", "", 0, Kind::Time, Check::StepLength, false, [](ConfigSpec& c, Value&& v) { c.step_length = v.seconds; }},
   {"seed", "", 0, Kind::Integer, Check::None, false, [](ConfigSpec& c, Value&& v) { c.seed = v.integer; }},
   // Negative disables teleporting, as in SUMO.
   {"time-to-teleport", "", 0, Kind::Time, Check::None, false, [](ConfigSpec& c, Value&& v) { c.time_to_teleport = v.seconds; }},
   {"weights.minor-penalty", "", 0, Kind::Time, Check::NonNegative, false, [](ConfigSpec& c, Value&& v) { c.minor_penalty = v.seconds; }},
   {"no-warnings", "", 'W', Kind::Bool, Check::None, false, [](ConfigSpec& c, Value&& v) { c.no_warnings = v.flag; }},
   {"ignore-route-errors", "", 0, Kind::Bool, Check::None, false, [](ConfigSpec& c, Value&& v) { c.ignore_route_errors = v.flag; }},
-  {"threads", "", 0, Kind::Integer, Check::NonNegative, false, [](ConfigSpec& c, Value&& v) { c.threads = static_cast<int>(v.integer); }},
+  {"threads", "", 0, Kind::Integer, Check::ThreadCount, false, [](ConfigSpec& c, Value&& v) { c.threads = static_cast<int>(v.integer); }},
   // Not a SUMO option: command line only, so a .sumocfg stays valid for SUMO.
   {"device", "", 0, Kind::Device, Check::None, true, [](ConfigSpec& c, Value&& v) { c.device = v.device; }},
   {"fcd-output", "", 0, Kind::Path, Check::None, false, [](ConfigSpec& c, Value&& v) { c.outputs.fcd = std::move(v.text); }},
@@ -114,6 +118,8 @@ Value convert(const OptionDef& def, std::string_view name, const std::string& va
       if (!t) bad_value(where, name, value, "expected a time (seconds, h:m:s or d:h:m:s)");
       if (def.check == Check::Positive && *t <= 0) bad_value(where, name, value, "expected a positive time");
       if (def.check == Check::NonNegative && *t < 0) bad_value(where, name, value, "expected a time >= 0");
+      if (def.check == Check::StepLength && !(*t >= kMinStepLength && *t <= kMaxStepLength))
+        bad_value(where, name, value, "expected a step length from 0.001 to 86400 s");
       v.seconds = *t;
       break;
     }
@@ -126,8 +132,8 @@ Value convert(const OptionDef& def, std::string_view name, const std::string& va
     case Kind::Integer: {
       auto n = parse_integer(value);
       if (!n) bad_value(where, name, value, "expected an integer");
-      if (def.check == Check::NonNegative && (*n < 0 || *n > 1'000'000))
-        bad_value(where, name, value, "expected an integer between 0 and 1000000");
+      if (def.check == Check::ThreadCount && (*n < 0 || *n > kMaxThreads))
+        bad_value(where, name, value, "expected a thread count from 0 to 1024");
       v.integer = *n;
       break;
     }

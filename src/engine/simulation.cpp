@@ -87,9 +87,11 @@ Simulation::Simulation(const Network& net, const Demand& demand, const Simulatio
     ++counts_.removed;
     ++next_departure_;
   }
-  teleport_steps_ = opt_.time_to_teleport > 0
-                        ? static_cast<uint32_t>(std::ceil(opt_.time_to_teleport / opt_.step_length))
-                        : 0;
+  // A time-to-teleport beyond 2^32 - 1 steps never fires (the stopped-steps counter is 32 bits): capped.
+  teleport_steps_ =
+      opt_.time_to_teleport > 0
+          ? static_cast<uint32_t>(std::min(std::ceil(opt_.time_to_teleport / opt_.step_length), 4294967295.0))
+          : 0;
   update_signals(time_ms_);
   enqueue_due(time_ms_);
   insert_waiting(cur_);

@@ -175,5 +175,19 @@ TEST(CliOptionsParse, ErrorsNameTheOption) {
   EXPECT_DOUBLE_EQ(parse_cli_options({"-e", "-1"}).end, -1);  // a negative number is a value, not an option
 }
 
+TEST(CliOptionsParse, StepLengthAndThreadsWithinRange) {
+  for (const char* bad : {"0", "-1", "0.0005", "1e-30", "86401", "1e30"}) {
+    const std::string msg = error_of({"--step-length", bad});
+    EXPECT_NE(msg.find("from 0.001 to 86400 s"), std::string::npos) << bad << ": " << msg;
+  }
+  EXPECT_DOUBLE_EQ(parse_cli_options({"--step-length", "0.001"}).step_length, 0.001);
+  EXPECT_DOUBLE_EQ(parse_cli_options({"--step-length", "86400"}).step_length, 86400);
+  for (const char* bad : {"-1", "1025", "100000"}) {
+    const std::string msg = error_of({"--threads", bad});
+    EXPECT_NE(msg.find("from 0 to 1024"), std::string::npos) << bad << ": " << msg;
+  }
+  EXPECT_EQ(parse_cli_options({"--threads", "1024"}).threads, 1024);
+}
+
 }  // namespace
 }  // namespace lpsim
