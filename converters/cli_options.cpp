@@ -24,7 +24,7 @@ struct Value {
 
 // StepLength: LPSim's clock counts milliseconds; ThreadCount: a team beyond this is a typo, and would exhaust
 // the process limit before the run starts.
-enum class Check { None, NonNegative, Positive, StepLength, ThreadCount };
+enum class Check { None, NonNegative, StepLength, ThreadCount };
 constexpr double kMinStepLength = 0.001, kMaxStepLength = 86400;
 constexpr long long kMaxThreads = 1024;
 
@@ -116,7 +116,6 @@ Value convert(const OptionDef& def, std::string_view name, const std::string& va
     case Kind::Time: {
       auto t = parse_sumo_time(value);
       if (!t) bad_value(where, name, value, "expected a time (seconds, h:m:s or d:h:m:s)");
-      if (def.check == Check::Positive && *t <= 0) bad_value(where, name, value, "expected a positive time");
       if (def.check == Check::NonNegative && *t < 0) bad_value(where, name, value, "expected a time >= 0");
       if (def.check == Check::StepLength && !(*t >= kMinStepLength && *t <= kMaxStepLength))
         bad_value(where, name, value, "expected a step length from 0.001 to 86400 s");

@@ -128,7 +128,7 @@ TEST_F(SumocfgReaderTest, BadValuesOfOtherKinds) {
     return std::string("no error");
   };
   EXPECT_NE(message("seed", "1.5").find("'1.5'"), std::string::npos);
-  EXPECT_NE(message("step-length", "0").find("positive"), std::string::npos);
+  EXPECT_NE(message("step-length", "0").find("from 0.001 to 86400 s"), std::string::npos);
   EXPECT_NE(message("ignore-route-errors", "maybe").find("'maybe'"), std::string::npos);
   EXPECT_NE(message("threads", "-2").find("'-2'"), std::string::npos);
   EXPECT_NE(message("device.fcd.period", "-5").find(":2:"), std::string::npos);
