@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# Builds LPSim and its tests with AddressSanitizer and UndefinedBehaviorSanitizer (float-to-int overflow
+# included) into build-sanitize/, without the CUDA backend, and runs the CPU tests there: memory errors and
+# undefined behaviour (which the optimised build may hide, and which the CPU and the GPU can resolve
+# differently) fail the run. tools/test.sh runs it when CI=true; about five minutes on two cores.
+# Extra arguments go to ctest.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+generator=()
+command -v ninja >/dev/null && generator=(-G Ninja)
+flags="-O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined,float-cast-overflow -fno-sanitize-recover=all"
+if [ ! -f build-sanitize/CMakeCache.txt ]; then
+  cmake -S . -B build-sanitize "${generator[@]}" -DCMAKE_BUILD_TYPE=Debug -DLPSIM_CUDA=OFF \
+    -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined"
+fi
+cmake --build build-sanitize -j "$(nproc)"
+export SUMO_HOME="${SUMO_HOME:-/usr/share/sumo}"
+export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1}"
+export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1}"
+cd build-sanitize
+# The format check does not depend on the build; the GPU tests skip without a GPU anyway.
+ctest --output-on-failure -j "$(nproc)" -E '^clang_format_clean$' -LE gpu "$@"
