@@ -46,16 +46,26 @@ constexpr VClassDefaults kVClassDefaults[] = {
 
 enum class Sign { Positive, NonNegative };
 
+// Upper bounds far beyond any vehicle, so that the step's float arithmetic (speeds squared, stopping
+// distances, IDM powers) stays finite; SUMO has none, and a real scenario never comes near them.
+constexpr double kMaxAcceleration = 1000;  // m/s^2: accel, decel, emergencyDecel
+constexpr double kMaxTau = 3600;           // s
+constexpr double kMaxLength = 10000;       // m: length, minGap
+constexpr double kMaxSpeed = 1000;         // m/s: maxSpeed
+constexpr double kMaxSpeedFactor = 100;
+constexpr double kNoMax = std::numeric_limits<float>::max();  // the float range only (probability, speedDev)
+
 double number_value(const SourceLoc& loc, std::string_view element, const std::string& id,
-                    std::string_view key, std::string_view text, Sign sign) {
+                    std::string_view key, std::string_view text, Sign sign, double max) {
   auto v = parse_double(text);
-  // The engine keeps vType values as floats: beyond their range a value would become infinite.
-  bool ok = v && (sign == Sign::Positive ? *v > 0 : *v >= 0) && *v <= std::numeric_limits<float>::max();
-  if (!ok)
+  bool ok = v && (sign == Sign::Positive ? *v > 0 : *v >= 0) && *v <= max;
+  if (!ok) {
+    std::string range = sign == Sign::Positive ? "a positive number" : "a non-negative number";
+    range += max < kNoMax ? " up to " + std::to_string(static_cast<long long>(max))
+                          : " within a 32-bit float's range";
     fail_at(loc, element, id,
-            "attribute '" + std::string(key) + "' must be a " +
-                (sign == Sign::Positive ? "positive" : "non-negative") +
-                " number within a 32-bit float's range: '" + std::string(text) + "'");
+            "attribute '" + std::string(key) + "' must be " + range + ": '" + std::string(text) + "'");
+  }
   return *v;
 }
 
@@ -63,17 +73,17 @@ double number_value(const SourceLoc& loc, std::string_view element, const std::s
 // is not one of them.
 bool set_cf_field(const SourceLoc& loc, std::string_view element, VTypeSpec& t, std::string_view key,
                   std::string_view value) {
-  auto num = [&](Sign sign) { return number_value(loc, element, t.id, key, value, sign); };
+  auto num = [&](Sign sign, double max) { return number_value(loc, element, t.id, key, value, sign, max); };
   if (key == "accel")
-    t.accel = num(Sign::Positive);
+    t.accel = num(Sign::Positive, kMaxAcceleration);
   else if (key == "decel")
-    t.decel = num(Sign::Positive);
+    t.decel = num(Sign::Positive, kMaxAcceleration);
   else if (key == "emergencyDecel")
-    t.emergency_decel = num(Sign::Positive);
+    t.emergency_decel = num(Sign::Positive, kMaxAcceleration);
   else if (key == "tau")
-    t.tau = num(Sign::NonNegative);
+    t.tau = num(Sign::NonNegative, kMaxTau);
   else if (key == "sigma") {
-    t.sigma = num(Sign::NonNegative);
+    t.sigma = num(Sign::NonNegative, kNoMax);
     if (t.sigma > 1)
       fail_at(loc, element, t.id, "attribute 'sigma' must lie in [0, 1]: '" + std::string(value) + "'");
   } else {
@@ -128,30 +138,30 @@ VTypeSpec read_vtype(XmlStream& xs, std::map<std::string, int64_t>& skipped, dou
 
   probability = 1.0;
   std::optional<double> speed_dev, factor_dev;
-  auto num = [&](const std::string& key, const std::string& value, Sign sign) {
-    return number_value(t.loc, "vType", t.id, key, value, sign);
+  auto num = [&](const std::string& key, const std::string& value, Sign sign, double max) {
+    return number_value(t.loc, "vType", t.id, key, value, sign, max);
   };
   for (const auto& [k, v] : attrs) {
     if (k == "id" || k == "vClass") continue;
     if (set_cf_field(t.loc, "vType", t, k, v)) continue;
     if (k == "length")
-      t.length = num(k, v, Sign::Positive);
+      t.length = num(k, v, Sign::Positive, kMaxLength);
     else if (k == "minGap")
-      t.min_gap = num(k, v, Sign::NonNegative);
+      t.min_gap = num(k, v, Sign::NonNegative, kMaxLength);
     else if (k == "maxSpeed")
-      t.max_speed = num(k, v, Sign::Positive);
+      t.max_speed = num(k, v, Sign::Positive, kMaxSpeed);
     else if (k == "speedDev")
-      speed_dev = num(k, v, Sign::NonNegative);
+      speed_dev = num(k, v, Sign::NonNegative, kNoMax);
     else if (k == "probability")
-      probability = num(k, v, Sign::NonNegative);
+      probability = num(k, v, Sign::NonNegative, kNoMax);
     else if (k == "carFollowModel")
       t.car_follow_model = std::string(trim(v));
     else if (k == "speedFactor") {
       auto sf = parse_speed_factor(v);
-      if (!sf || sf->mean <= 0)
+      if (!sf || sf->mean <= 0 || sf->mean > kMaxSpeedFactor)
         xs.fail(
-            "attribute 'speedFactor' must be a positive number, norm(mean,dev) or normc(mean,dev,min,max): "
-            "'" +
+            "attribute 'speedFactor' must be a positive number up to 100, norm(mean,dev) or "
+            "normc(mean,dev,min,max): '" +
             v + "'");
       t.speed_factor = sf->mean;
       factor_dev = sf->dev;

@@ -230,14 +230,16 @@ TEST_F(CliBadInputTest, NanVTypeMaxSpeed) {
   expect_input_error(info_with_routes("r.rou.xml"), "r.rou.xml:3", {"maxSpeed", "NaN", "t_bad"});
 }
 
-// Finite but absurd vType values and lane speeds are accepted (SUMO has no upper bounds either) and must
-// not overflow the step's distance-to-cell conversions: the run ends normally, every vehicle accounted for.
-TEST_F(CliBadInputTest, AbsurdFiniteValuesRunToTheEnd) {
+// vType values at LPSim's upper bounds (far beyond any vehicle) and an absurd lane speed must not overflow
+// the step's float arithmetic or its distance-to-cell conversions: the run ends normally, every vehicle
+// accounted for.
+TEST_F(CliBadInputTest, ExtremeValuesRunToTheEnd) {
   write_grid_net_with("fast.net.xml", "speed=\"13.89\"", "speed=\"1e30\"");
   write_routes("r.rou.xml",
-               "<vType id=\"gap\" minGap=\"1e19\"/>\n"
-               "<vType id=\"accel\" accel=\"2147483648\" decel=\"1e-30\"/>\n"
-               "<vType id=\"long\" length=\"3e38\"/>\n"
+               "<vType id=\"gap\" minGap=\"10000\" tau=\"3600\"/>\n"
+               "<vType id=\"accel\" accel=\"1000\" decel=\"1e-30\" emergencyDecel=\"1000\" maxSpeed=\"1000\" "
+               "speedFactor=\"100\"/>\n"
+               "<vType id=\"long\" length=\"10000\"/>\n"
                "<vehicle id=\"v0\" depart=\"0\"><route edges=\"A0A1 A1A2\"/></vehicle>\n"
                "<vehicle id=\"v1\" type=\"gap\" depart=\"1\"><route edges=\"A0A1 A1A2\"/></vehicle>\n"
                "<vehicle id=\"v2\" type=\"accel\" depart=\"2\"><route edges=\"A0A1 A1A2\"/></vehicle>\n"
@@ -251,12 +253,20 @@ TEST_F(CliBadInputTest, AbsurdFiniteValuesRunToTheEnd) {
   EXPECT_NE(r.out.find(" Arrived: 5"), std::string::npos) << r.out;
 }
 
-TEST_F(CliBadInputTest, ValuesBeyondFloatRange) {
-  // Finite as doubles, infinite as the floats the engine keeps.
+TEST_F(CliBadInputTest, ValuesBeyondLpsimBounds) {
+  for (const char* attr : {"accel=\"1001\"", "decel=\"1e300\"", "length=\"1e19\"", "maxSpeed=\"5000\"",
+                           "tau=\"4000\"", "minGap=\"2e4\""}) {
+    write_routes("r.rou.xml", std::string("<vType id=\"t_bad\" ") + attr +
+                                  "/>\n<vehicle id=\"v1\" type=\"t_bad\" depart=\"0\"><route edges=\"A0A1 "
+                                  "A1A2\"/></vehicle>");
+    expect_input_error(info_with_routes("r.rou.xml"), "r.rou.xml:3", {"t_bad", "up to"});
+  }
   write_routes("r.rou.xml",
-               "<vType id=\"t_bad\" accel=\"1e300\"/>\n"
+               "<vType id=\"t_bad\" speedFactor=\"4294967296\"/>\n"
                "<vehicle id=\"v1\" type=\"t_bad\" depart=\"0\"><route edges=\"A0A1 A1A2\"/></vehicle>");
-  expect_input_error(info_with_routes("r.rou.xml"), "r.rou.xml:3", {"accel", "1e300", "t_bad", "float"});
+  expect_input_error(info_with_routes("r.rou.xml"), "r.rou.xml:3",
+                     {"speedFactor", "up to 100", "4294967296"});
+  // Lane values: finite as doubles, infinite as the floats the engine keeps.
   write_grid_net_with("big.net.xml", "speed=\"8.96\"", "speed=\"1e300\"");
   expect_input_error(run({"info", "-n", "big.net.xml"}), "big.net.xml:8", {"speed", "'1e300'", "float"});
 }
