@@ -159,10 +159,9 @@ VTypeSpec read_vtype(XmlStream& xs, std::map<std::string, int64_t>& skipped, dou
     else if (k == "speedFactor") {
       auto sf = parse_speed_factor(v);
       if (!sf || sf->mean <= 0 || sf->mean > kMaxSpeedFactor)
-        xs.fail(
-            "attribute 'speedFactor' must be a positive number up to 100, norm(mean,dev) or "
-            "normc(mean,dev,min,max): '" +
-            v + "'");
+        xs.fail("attribute 'speedFactor' must be a positive number up to " +
+                std::to_string(static_cast<long long>(kMaxSpeedFactor)) +
+                ", norm(mean,dev) or normc(mean,dev,min,max): '" + v + "'");
       t.speed_factor = sf->mean;
       factor_dev = sf->dev;
     } else {

@@ -329,7 +329,8 @@ constexpr float kJamSpeed = 2.0f;
 /// leave.
 LPSIM_HD bool room_at_start(const StepContext& s, int32_t lane, float need) {
   const int32_t cells = static_cast<int32_t>(lane_cells(s.net, lane));
-  const int32_t last = metres_as_cells(need) < cells ? metres_as_cells(need) : cells - 1;
+  const int32_t need_cells = metres_as_cells(need);
+  const int32_t last = need_cells < cells ? need_cells : cells - 1;
   const uint8_t* c = s.map_now + s.net.lane_cell_begin[lane];
   for (int32_t k = 0; k <= last; ++k)
     if (c[k] != 0 && decode_cell_speed(c[k]) < kJamSpeed) return false;

@@ -2,7 +2,7 @@
 # Builds LPSim and its tests with AddressSanitizer and UndefinedBehaviorSanitizer (float-to-int overflow
 # included) into build-sanitize/, without the CUDA backend, and runs the CPU tests there: memory errors and
 # undefined behaviour (which the optimised build may hide, and which the CPU and the GPU can resolve
-# differently) fail the run. tools/test.sh runs it when CI=true; about five minutes on two cores.
+# differently) fail the run. tools/test.sh runs it when CI=true; about seven minutes on two cores.
 # Extra arguments go to ctest.
 set -euo pipefail
 cd "$(dirname "$0")/.."

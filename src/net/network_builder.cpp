@@ -227,9 +227,9 @@ class Builder {
     const uint32_t lanes = net_.num_lanes();
     net_.lane_cell_begin.resize(lanes + 1);
     net_.lane_shape_begin.resize(lanes + 1);
-    // The engine addresses cells with 32-bit offsets (half the state per vehicle of 64-bit ones). Checked
-    // in doubles first, so that no absurd length overflows an integer conversion.
-    // A lane's cells are indexed in int32 by the step (kMaxLaneCells leaves room for look-ahead arithmetic).
+    // The engine addresses cells with 32-bit offsets (half the state per vehicle of 64-bit ones) and a lane's
+    // cells with int32 (kMaxLaneCells leaves room for look-ahead sums). Checked in doubles, so that no absurd
+    // length overflows an integer conversion.
     double total = 0;
     uint32_t longest = 0;
     for (uint32_t l = 0; l < lanes; ++l) {
