@@ -20,6 +20,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cub/device/device_merge.cuh>
+#include <cub/device/device_radix_sort.cuh>
 #include <cub/device/device_select.cuh>
 #include <stdexcept>
 #include <string>
@@ -120,6 +121,25 @@ __global__ void sample_kernel(VehicleView veh, const uint32_t* active, uint32_t 
   speed[i] = veh.speed[k];
 }
 
+// Slot sort (Simulation::sort_slots): each active slot's lane as an unsigned key (-1, off the road, last).
+__global__ void lane_key_kernel(VehicleView veh, const uint32_t* active, uint32_t n, uint32_t* key) {
+  const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i < n) key[i] = static_cast<uint32_t>(veh.lane[active[i]]);
+}
+
+// to[i * per + e] = from[order[i] * per + e]: a slot column's entries in their new slots.
+template <class T>
+__global__ void gather_slots_kernel(const T* from, T* to, const uint32_t* order, uint32_t n, uint32_t per) {
+  const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i >= n) return;
+  for (uint32_t e = 0; e < per; ++e) to[size_t{i} * per + e] = from[size_t{order[i]} * per + e];
+}
+
+__global__ void iota_kernel(uint32_t* out, uint32_t n) {
+  const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i < n) out[i] = i;
+}
+
 struct AscendingIndex {
   __device__ bool operator()(uint32_t a, uint32_t b) const { return a < b; }
 };
@@ -156,8 +176,6 @@ void copy_to_host(T* dst, const T* src, size_t n) {
 }
 
 // The stepper lists every column of the views by hand: a column added to one of them must be added here.
-static_assert(sizeof(VehicleView) == 26 * sizeof(void*),
-              "VehicleView changed: update for_each_vehicle_column");
 static_assert(sizeof(PlanView) == 14 * sizeof(void*), "PlanView changed: update reserve_plan_slots");
 static_assert(sizeof(NetView) == 21 * sizeof(void*) + sizeof(void*),
               "NetView changed: update upload_network");
@@ -167,38 +185,6 @@ static_assert(sizeof(StepContext) == sizeof(NetView) + sizeof(TypeView) + sizeof
                                          sizeof(VehicleView) + sizeof(PlanView) + sizeof(StepParams) +
                                          16 * sizeof(void*),
               "StepContext changed: update CudaStepper");
-
-/// Calls f(a.column, b.column, entries per slot) for every column of two vehicle views (a may be written:
-/// f gets references).
-template <class A, class B, class F>
-void for_each_vehicle_column(A& a, B& b, F&& f) {
-  f(a.status, b.status, 1u);
-  f(a.vehicle, b.vehicle, 1u);
-  f(a.route_pos, b.route_pos, 1u);
-  f(a.speed, b.speed, 1u);
-  f(a.lane, b.lane, 1u);
-  f(a.prev, b.prev, 1u);
-  f(a.prev2, b.prev2, 1u);
-  f(a.pos, b.pos, 1u);
-  f(a.old_lane, b.old_lane, 1u);
-  f(a.old_prev, b.old_prev, 1u);
-  f(a.old_prev2, b.old_prev2, 1u);
-  f(a.old_pos, b.old_pos, 1u);
-  f(a.stopped_steps, b.stopped_steps, 1u);
-  f(a.waiting_steps, b.waiting_steps, 1u);
-  f(a.waiting_count, b.waiting_count, 1u);
-  f(a.time_loss, b.time_loss, 1u);
-  f(a.route_length, b.route_length, 1u);
-  f(a.arrival_step, b.arrival_step, 1u);
-  f(a.lane_change_dir, b.lane_change_dir, 1u);
-  f(a.held_at_line, b.held_at_line, 1u);
-  f(a.limit_reason, b.limit_reason, 1u);
-  f(a.best_rp, b.best_rp, kBestLaneEntries);
-  f(a.best_mask, b.best_mask, kBestLaneEntries);
-  f(a.conn_lane, b.conn_lane, 1u);
-  f(a.conn_rp, b.conn_rp, 1u);
-  f(a.conn, b.conn, 1u);
-}
 
 static_assert(sizeof(DepartView) == 6 * sizeof(void*), "DepartView changed: update the depart uploads");
 
@@ -250,6 +236,7 @@ class PinnedArray {
 class PhaseTimer {
  public:
   static constexpr int kEvents = 7;  // start, signals, clear, approach, plan, commit, finish
+  static constexpr int kCalls = 5;   // stepper calls timed on the host (add_host)
   PhaseTimer() : on_(std::getenv("LPSIM_GPU_TIMING") != nullptr) {
     if (on_)
       for (auto& e : events_) LPSIM_CUDA_CHECK(cudaEventCreate(&e));
@@ -259,8 +246,9 @@ class PhaseTimer {
     static const char* kernel[kEvents - 1] = {"signals", "clear", "approach", "plan", "commit", "finish"};
     std::fprintf(stderr, "GPU timing over %llu steps (ms total):", static_cast<unsigned long long>(steps_));
     for (int k = 0; k < kEvents - 1; ++k) std::fprintf(stderr, " %s %.1f", kernel[k], device_ms_[k]);
-    static const char* call[4] = {"step()", "apply_teleports()", "insert()", "rebuild_active()"};
-    for (int k = 0; k < 4; ++k) std::fprintf(stderr, " | %s %.1f", call[k], host_ms_[k]);
+    static const char* call[kCalls] = {"step()", "apply_teleports()", "insert()", "rebuild_active()",
+                                       "sort_slots()"};
+    for (int k = 0; k < kCalls; ++k) std::fprintf(stderr, " | %s %.1f", call[k], host_ms_[k]);
     std::fprintf(stderr, "\n");
     const double v = static_cast<double>(std::max<uint64_t>(vehicles_, 1));
     const double state = static_cast<double>(per_vehicle_) * v + static_cast<double>(slot_bytes_) +
@@ -311,7 +299,7 @@ class PhaseTimer {
   uint64_t slots_ = 0, slot_bytes_ = 0, plan_bytes_ = 0;
   cudaEvent_t events_[kEvents] = {};
   double device_ms_[kEvents - 1] = {};
-  double host_ms_[4] = {};
+  double host_ms_[kCalls] = {};
   unsigned long long steps_ = 0;
 };
 
@@ -512,6 +500,35 @@ class CudaStepper final : public GpuStepper {
         cub::DeviceMerge::MergeKeys(temp_.get(bytes), bytes, kept_, kept, add, na, to, AscendingIndex{}));
     cur_active_ = 1 - cur_active_;
     num_active_ = kept + na;
+  }
+
+  void sort_slots(std::vector<uint32_t>& order) override {
+    const auto t0 = std::chrono::steady_clock::now();
+    const uint32_t n = num_active_;
+    order.resize(n);
+    if (n == 0) return;
+    uint32_t* active = active_[cur_active_];
+    uint32_t* keys = sort_keys_.get(2 * static_cast<size_t>(n));
+    uint32_t* dev_order = sort_order_.get(n);
+    lane_key_kernel<<<blocks_for(n), kBlock>>>(dev_.veh, active, n, keys);
+    LPSIM_CUDA_CHECK_LAUNCH(lane_key_kernel);
+    // The active list is ascending and the radix sort stable: ties stay in slot order, as on the host.
+    size_t bytes = 0;
+    LPSIM_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(nullptr, bytes, keys, keys + n, active, dev_order, n));
+    LPSIM_CUDA_CHECK(
+        cub::DeviceRadixSort::SortPairs(temp_.get(bytes), bytes, keys, keys + n, active, dev_order, n));
+    for_each_vehicle_column(dev_.veh, dev_.veh, [&](auto* column, auto*, uint32_t per) {
+      using T = std::remove_pointer_t<decltype(column)>;
+      const size_t entries = static_cast<size_t>(n) * per;
+      T* moved = reinterpret_cast<T*>(sort_moved_.get(entries * sizeof(T)));
+      gather_slots_kernel<T><<<blocks_for(n), kBlock>>>(column, moved, dev_order, n, per);
+      LPSIM_CUDA_CHECK_LAUNCH(gather_slots_kernel);
+      LPSIM_CUDA_CHECK(cudaMemcpyAsync(column, moved, entries * sizeof(T), cudaMemcpyDeviceToDevice));
+    });
+    iota_kernel<<<blocks_for(n), kBlock>>>(active, n);
+    LPSIM_CUDA_CHECK_LAUNCH(iota_kernel);
+    copy_to_host(order.data(), dev_order, n);
+    timer_.add_host(4, t0);
   }
 
   void sample(std::vector<uint32_t>& active, std::vector<uint32_t>& vehicle, std::vector<uint8_t>& status,
@@ -722,6 +739,8 @@ class CudaStepper final : public GpuStepper {
   ScratchArray<uint32_t> batch_in_, batch_out_, added_, num_selected_;
   ScratchArray<unsigned char> temp_;
   ScratchArray<SlotInit> inits_;
+  ScratchArray<uint32_t> sort_keys_, sort_order_;  // sort_slots
+  ScratchArray<unsigned char> sort_moved_;
   ScratchArray<uint32_t> sample_vehicle_;
   ScratchArray<uint8_t> sample_status_;
   ScratchArray<int32_t> sample_lane_;

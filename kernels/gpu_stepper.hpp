@@ -62,6 +62,9 @@ class GpuStepper {
   /// order unchanged) merged with `added` (the inits' slots, ascending, none of them kept). Both ascending,
   /// so the list stays ascending.
   virtual void rebuild_active(const std::vector<SlotInit>& inits, const std::vector<uint32_t>& added) = 0;
+  /// Renumbers the active slots densely from 0 by lane, ties by slot (Simulation::sort_slots): every slot
+  /// column is moved, and the active list becomes 0..n-1. `order` receives the old slot of each new one.
+  virtual void sort_slots(std::vector<uint32_t>& order) = 0;
   /// The active list (slots) and each active slot's vehicle, status, lane, position and speed (outputs).
   virtual void sample(std::vector<uint32_t>& active, std::vector<uint32_t>& vehicle,
                       std::vector<uint8_t>& status, std::vector<int32_t>& lane, std::vector<float>& pos,

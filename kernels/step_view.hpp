@@ -110,6 +110,40 @@ struct VehicleView {
 
 constexpr uint32_t kBestLaneEntries = 2;  // a power of two
 
+/// Calls f(a.column, b.column, entries per slot) for every column of two vehicle views (a may be written:
+/// f gets references). Host code only (the backends' slot management); kernels name columns directly.
+template <class A, class B, class F>
+void for_each_vehicle_column(A& a, B& b, F&& f) {
+  f(a.status, b.status, 1u);
+  f(a.vehicle, b.vehicle, 1u);
+  f(a.route_pos, b.route_pos, 1u);
+  f(a.speed, b.speed, 1u);
+  f(a.lane, b.lane, 1u);
+  f(a.prev, b.prev, 1u);
+  f(a.prev2, b.prev2, 1u);
+  f(a.pos, b.pos, 1u);
+  f(a.old_lane, b.old_lane, 1u);
+  f(a.old_prev, b.old_prev, 1u);
+  f(a.old_prev2, b.old_prev2, 1u);
+  f(a.old_pos, b.old_pos, 1u);
+  f(a.stopped_steps, b.stopped_steps, 1u);
+  f(a.waiting_steps, b.waiting_steps, 1u);
+  f(a.waiting_count, b.waiting_count, 1u);
+  f(a.time_loss, b.time_loss, 1u);
+  f(a.route_length, b.route_length, 1u);
+  f(a.arrival_step, b.arrival_step, 1u);
+  f(a.lane_change_dir, b.lane_change_dir, 1u);
+  f(a.held_at_line, b.held_at_line, 1u);
+  f(a.limit_reason, b.limit_reason, 1u);
+  f(a.best_rp, b.best_rp, kBestLaneEntries);
+  f(a.best_mask, b.best_mask, kBestLaneEntries);
+  f(a.conn_lane, b.conn_lane, 1u);
+  f(a.conn_rp, b.conn_rp, 1u);
+  f(a.conn, b.conn, 1u);
+}
+static_assert(sizeof(VehicleView) == 26 * sizeof(void*),
+              "VehicleView changed: update for_each_vehicle_column");
+
 enum StopReason : uint8_t {
   kFree = 0,
   kLeader = 1,

@@ -18,6 +18,9 @@ T* ptr(std::vector<T>& v) {
   return v.data();
 }
 
+// The summary's speed sums count in units of 2^-24 m/s (and of 2^-24 of the desired speed).
+constexpr double kSummaryUnits = 16777216.0;
+
 // Fewer active vehicles than this run the passes on the calling thread.
 constexpr int64_t kParallelMinVehicles = 2048;
 
@@ -253,6 +256,7 @@ void Simulation::step_cpu() {
   insert_waiting(1 - cur_);
   cur_ = 1 - cur_;
   rebuild_active(running);
+  if (opt_.slot_sort_interval > 0 && step_ % opt_.slot_sort_interval == 0) sort_slots();
 }
 
 void Simulation::step_gpu() {
@@ -287,6 +291,7 @@ void Simulation::step_gpu() {
   inits_.clear();
   release_retired_slots();
   ends_.swap(out.ends);
+  if (opt_.slot_sort_interval > 0 && step_ % opt_.slot_sort_interval == 0) sort_slots();
 }
 
 void Simulation::record_trip(const VehicleEnd& e, bool teleported) {
@@ -491,6 +496,7 @@ void Simulation::take_slot(SlotInit& init) {
       col->resize(c);
   }
   slot_of_[init.vehicle] = static_cast<int32_t>(init.slot);
+  vehicle_[init.slot] = init.vehicle;  // the GPU backend's host copy too: releasing the slot reads it
   inits_.push_back(init);
   // On the CPU the slot starts now; the GPU backend starts this step's inits on the device.
   if (!gpu_) activate_slot(vehicle_view(), init);
@@ -522,6 +528,67 @@ void Simulation::release_retired_slots() {
   }
   retiring_.swap(retiring_next_);
   retiring_next_.clear();
+}
+
+// Renumbers the slots of the vehicles on the road densely from 0 in the order of their lanes (ties: the old
+// slot), so that a pass meets the vehicles of one lane, and of neighbouring lanes, one after the other: their
+// lane-map cells and lane columns are then read together instead of scattered over the network. Runs between
+// steps, when the slots in use are exactly the active list. Nothing depends on a vehicle's slot number
+// (claims break ties by vehicle, random draws are keyed by vehicle, ends are handled in vehicle order), so
+// results are unchanged.
+void Simulation::sort_slots() {
+  std::vector<uint32_t>& order = slot_order_;  // order[new slot] = old slot
+  if (gpu_) {
+    gpu_->sort_slots(order);  // the device's columns and active list are renumbered
+  } else {
+    const size_t n = active_.size();
+    std::vector<uint64_t>& keys = slot_keys_;
+    keys.resize(n);
+    for (size_t i = 0; i < n; ++i)
+      keys[i] = uint64_t{static_cast<uint32_t>(lane_[active_[i]])} << 32 | active_[i];
+    std::sort(keys.begin(), keys.end());
+    order.resize(n);
+    for (size_t i = 0; i < n; ++i) order[i] = static_cast<uint32_t>(keys[i]);
+  }
+  const uint32_t n = static_cast<uint32_t>(order.size());
+  if (n != num_active_)
+    throw std::logic_error("slot sort moved " + std::to_string(n) + " slots, " + std::to_string(num_active_) +
+                           " are active");
+  // Which vehicles' current slot moves where, found before anything is renumbered. A vehicle that re-entered
+  // after a teleport also holds its old slot, which slot_of_ does not name.
+  std::vector<std::pair<uint32_t, uint32_t>> moves;
+  for (uint32_t i = 0; i < n; ++i) {
+    const uint32_t v = vehicle_[order[i]];
+    if (slot_of_[v] == static_cast<int32_t>(order[i])) moves.emplace_back(v, i);
+  }
+  // The host's columns: all of them on the CPU; on the GPU backend its copy of the vehicle column (releasing
+  // a slot reads it; the others are fetched when asked for).
+  VehicleView veh = vehicle_view();
+  std::vector<uint8_t>& moved = slot_bytes_;
+  auto renumber = [&](auto* column, uint32_t per) {
+    using T = std::remove_pointer_t<decltype(column)>;
+    moved.resize(size_t{n} * per * sizeof(T));
+    T* to = reinterpret_cast<T*>(moved.data());
+    for (size_t i = 0; i < n; ++i)
+      for (uint32_t e = 0; e < per; ++e) to[i * per + e] = column[size_t{order[i]} * per + e];
+    std::copy_n(to, size_t{n} * per, column);
+  };
+  if (gpu_) {
+    renumber(veh.vehicle, 1u);
+  } else {
+    for_each_vehicle_column(veh, veh, [&](auto* column, auto*, uint32_t per) { renumber(column, per); });
+    for (uint32_t i = 0; i < n; ++i) active_[i] = i;
+  }
+  for (const auto& [v, k] : moves) slot_of_[v] = static_cast<int32_t>(k);
+  std::vector<uint32_t> new_slot(slots_.size(), 0xFFFFFFFFu);
+  for (uint32_t i = 0; i < n; ++i) new_slot[order[i]] = i;
+  for (uint32_t& k : retiring_) {
+    if (new_slot[k] == 0xFFFFFFFFu)
+      throw std::logic_error("slot " + std::to_string(k) + " is to leave but was not active");
+    k = new_slot[k];
+  }
+  slots_.reset(n);
+  by_vehicle_step_ = 0xFFFFFFFFu;
 }
 
 void Simulation::rebuild_active(uint64_t running) {
@@ -639,25 +706,26 @@ SummaryRow Simulation::summary_row() const {
   r.arrived = counts_.arrived;
   r.ended = counts_.arrived;
   r.teleports = counts_.teleports;
-  double speed_sum = 0, rel_sum = 0;
+  // Summed in units of 2^-24 (integers: the sums do not depend on the order of the slots, which sort_slots
+  // changes; each term is off by at most 3e-8).
+  int64_t speed_sum = 0, rel_sum = 0;
   uint64_t running = 0, halting = 0;
   const VehicleTypes& t = demand_.types;
-  // Summed in slot order, which both backends share: no vehicle-order sort for a row that lists no vehicle.
   sync_sample();
   for (const uint32_t k : active_) {
     if (status_[k] != kRunning) continue;
     const uint32_t v = vehicle_[k];
     ++running;
-    speed_sum += speed_[k];
+    speed_sum += std::llround(static_cast<double>(speed_[k]) * kSummaryUnits);
     const float v0 = desired_speed(net_.lane_speed[lane_[k]], demand_.speed_factor[v],
                                    t.max_speed[demand_.vehicle_type[v]]);
-    if (v0 > 0) rel_sum += speed_[k] / v0;
+    if (v0 > 0) rel_sum += std::llround(static_cast<double>(speed_[k] / v0) * kSummaryUnits);
     if (speed_[k] < kHaltingSpeed) ++halting;
   }
   r.halting = halting;
   if (running > 0) {
-    r.mean_speed = speed_sum / static_cast<double>(running);
-    r.mean_speed_relative = rel_sum / static_cast<double>(running);
+    r.mean_speed = static_cast<double>(speed_sum) / kSummaryUnits / static_cast<double>(running);
+    r.mean_speed_relative = static_cast<double>(rel_sum) / kSummaryUnits / static_cast<double>(running);
   }
   // As SUMO: meanWaitingTime is the mean insertion delay of the vehicles inserted so far, meanTravelTime
   // the mean trip duration of the vehicles that arrived so far.

@@ -34,6 +34,9 @@ struct SimulationOptions {
   // Accumulate the per-lane edgeData/laneData counters (lane_counters()). Off when no such output is
   // requested: the passes then skip their atomics.
   bool lane_counters = true;
+  // Every this many steps the vehicles on the road are renumbered by lane (slot_order), so that the passes
+  // visit the vehicles of a lane, and neighbouring lanes, together; 0: never. Results do not depend on it.
+  uint32_t slot_sort_interval = 16;
 };
 
 class Simulation {
@@ -76,7 +79,7 @@ class Simulation {
   char link_state(uint32_t conn) const;
   /// Slots handed out so far: the length of the per-slot state columns (the most vehicles on the road at
   /// once, counting those that left it in the last two steps).
-  uint32_t slots_used() const { return slots_.size(); }
+  uint32_t slots_used() const { return slots_.peak(); }
   /// The vehicles the passes visit (on the road, or left it this step), ascending.
   const std::vector<uint32_t>& active() const;
   /// Test support: the vehicles that teleported in the last step (and whether that ended their trip).
@@ -100,6 +103,7 @@ class Simulation {
   void rebuild_active(uint64_t running);
   void take_slot(SlotInit& init);
   void release_retired_slots();
+  void sort_slots();
   void check_kept(size_t kept) const;
   const std::vector<uint32_t>& added_slots();
   int32_t slot_of(uint32_t v) const { return sync_host(), slot_of_[v]; }
@@ -187,6 +191,10 @@ class Simulation {
   uint32_t num_active_ = 0;
   uint32_t teleport_steps_ = 0;  // stopped steps before a teleport (0: never)
   std::vector<uint32_t> scratch_;
+  // sort_slots' scratch.
+  std::vector<uint32_t> slot_order_;
+  std::vector<uint64_t> slot_keys_;
+  std::vector<uint8_t> slot_bytes_;
   std::vector<uint32_t> kept_;  // active slots that stay active after the step (member: no page faults)
   // This step's queue heads handed to insertion (InsertBatch), and what came back.
   std::vector<uint32_t> batch_edge_, batch_begin_, batch_entry_, batch_rp_, batch_inserted_;

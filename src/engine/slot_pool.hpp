@@ -2,6 +2,7 @@
 // Slots of the vehicles on the road (VehicleView's columns). The lowest free slot is taken first, so the
 // slots in use stay dense (a pass over them reads the columns nearly contiguously) and the same sequence of
 // takes and releases gives the same slots on every backend.
+#include <algorithm>
 #include <cstdint>
 #include <functional>
 #include <queue>
@@ -12,18 +13,28 @@ namespace lpsim {
 class SlotPool {
  public:
   uint32_t take() {
-    if (free_.empty()) return used_++;
+    if (free_.empty()) {
+      peak_ = std::max(peak_, used_ + 1);
+      return used_++;
+    }
     const uint32_t slot = free_.top();
     free_.pop();
     return slot;
   }
   void release(uint32_t slot) { free_.push(slot); }
-  /// Slots handed out at least once: the length the slot columns need.
+  /// Slots 0..n-1 in use, every other one free (after the slots in use were renumbered densely).
+  void reset(uint32_t n) {
+    free_ = {};
+    used_ = n;
+  }
+  /// Slots handed out at least once since the last reset: the length the slot columns need now.
   uint32_t size() const { return used_; }
+  /// The most slots size() ever reached: the length the slot columns grew to.
+  uint32_t peak() const { return peak_; }
 
  private:
   std::priority_queue<uint32_t, std::vector<uint32_t>, std::greater<uint32_t>> free_;
-  uint32_t used_ = 0;
+  uint32_t used_ = 0, peak_ = 0;
 };
 
 }  // namespace lpsim

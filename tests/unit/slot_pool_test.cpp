@@ -24,6 +24,25 @@ TEST(SlotPoolTest, TakesTheLowestFreeSlot) {
   EXPECT_EQ(pool.size(), 4u);
 }
 
+// After the slots in use were renumbered 0..n-1 (Simulation::sort_slots), the next one taken is n; the peak
+// keeps the most ever handed out.
+TEST(SlotPoolTest, ResetLeavesTheFirstSlotsInUse) {
+  SlotPool pool;
+  for (int k = 0; k < 5; ++k) pool.take();
+  pool.release(1);
+  pool.release(3);
+  pool.reset(3);
+  EXPECT_EQ(pool.size(), 3u);
+  EXPECT_EQ(pool.take(), 3u);
+  EXPECT_EQ(pool.take(), 4u);
+  EXPECT_EQ(pool.take(), 5u);
+  EXPECT_EQ(pool.size(), 6u);
+  EXPECT_EQ(pool.peak(), 6u);
+  pool.reset(2);
+  EXPECT_EQ(pool.size(), 2u);
+  EXPECT_EQ(pool.peak(), 6u);
+}
+
 // A vehicle holds its slot while on the road and for the step after it leaves (its footprint is cleared
 // then), so at an insertion the slots in use are those of the vehicles running now, of those that left in
 // this step and the step before, and of the ones being inserted.
