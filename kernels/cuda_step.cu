@@ -104,9 +104,9 @@ __global__ void insert_kernel(StepContext ctx, DepartView depart, InsertParams p
   if (slot < b.num_slots) insert_queue_head(ctx, depart, p, map, b, slot);
 }
 
-__global__ void activate_kernel(VehicleView veh, const SlotInit* inits, uint32_t n) {
+__global__ void activate_kernel(VehicleView veh, TripView trips, const SlotInit* inits, uint32_t n) {
   const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
-  if (i < n) activate_slot(veh, inits[i]);
+  if (i < n) activate_slot(veh, trips, inits[i]);
 }
 
 __global__ void sample_kernel(VehicleView veh, const uint32_t* active, uint32_t n, uint32_t* vehicle,
@@ -473,7 +473,7 @@ class CudaStepper final : public GpuStepper {
     if (ni > 0) {
       SlotInit* dev = inits_.get(ni);
       copy_to_device(dev, inits.data(), ni);
-      activate_kernel<<<blocks_for(ni), kBlock>>>(dev_.veh, dev, ni);
+      activate_kernel<<<blocks_for(ni), kBlock>>>(dev_.veh, dev_.trips, dev, ni);
       LPSIM_CUDA_CHECK_LAUNCH(activate_kernel);
     }
     rebuild(added);

@@ -68,11 +68,12 @@ LPSIM_HD bool try_insert_vehicle(const StepContext& s, const DepartView& d, cons
   const uint32_t v = entry & ~kInsertTeleported;
   const bool teleported = (entry & kInsertTeleported) != 0;
   const NetView& net = s.net;
-  const uint32_t e = route_edge(s, v, rp);
+  const uint32_t e = trip_route_edge(s, v, rp);
   const uint32_t first = net.edge_first_lane[e], nlanes = net.edge_num_lanes[e];
   const uint32_t type = s.trips.type[v];
   const float length = s.types.length[type], min_gap = s.types.min_gap[type];
-  const uint32_t best = best_lanes(net, s.trips, v, rp).mask[0];
+  const uint32_t best =
+      best_lanes(net, s.trips.route_edges + s.trips.route_begin[v], s.trips.route_length[v], rp).mask[0];
   const uint64_t seed = p.seed ^ kDepartRngSalt;
 
   // Candidate lanes in the order they are tried.

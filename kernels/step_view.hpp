@@ -106,6 +106,12 @@ struct VehicleView {
   int32_t* conn_lane;  // lane the entry was computed for (-1: none yet)
   uint32_t* conn_rp;   // route position it was computed for
   int32_t* conn;       // choose_connection's result there
+  // The trip's fields the passes read, copied from TripView when the slot is taken, so that a pass reads
+  // them next to the rest of the slot instead of chasing the vehicle index into the whole demand's columns.
+  uint32_t* trip_type;
+  float* trip_speed_factor;
+  uint32_t* trip_route_begin;  // first of its route's edges in TripView::route_edges
+  uint32_t* trip_route_size;   // edges in its route
 };
 
 constexpr uint32_t kBestLaneEntries = 2;  // a power of two
@@ -140,8 +146,12 @@ void for_each_vehicle_column(A& a, B& b, F&& f) {
   f(a.conn_lane, b.conn_lane, 1u);
   f(a.conn_rp, b.conn_rp, 1u);
   f(a.conn, b.conn, 1u);
+  f(a.trip_type, b.trip_type, 1u);
+  f(a.trip_speed_factor, b.trip_speed_factor, 1u);
+  f(a.trip_route_begin, b.trip_route_begin, 1u);
+  f(a.trip_route_size, b.trip_route_size, 1u);
 }
-static_assert(sizeof(VehicleView) == 26 * sizeof(void*),
+static_assert(sizeof(VehicleView) == 30 * sizeof(void*),
               "VehicleView changed: update for_each_vehicle_column");
 
 enum StopReason : uint8_t {

@@ -67,8 +67,14 @@ LPSIM_HD IdmParams idm_of(const StepContext& s, uint32_t type) {
                    s.types.tau[type],   s.types.min_gap[type], s.types.delta[type]};
 }
 
-LPSIM_HD uint32_t route_edge(const StepContext& s, uint32_t v, uint32_t k) {
+/// Edge k of the route of vehicle v (from the whole demand's columns: for a vehicle not on the road yet).
+LPSIM_HD uint32_t trip_route_edge(const StepContext& s, uint32_t v, uint32_t k) {
   return s.trips.route_edges[s.trips.route_begin[v] + k];
+}
+
+/// Edge k of the route of the vehicle in slot r.slot.
+LPSIM_HD uint32_t route_edge(const StepContext& s, VehicleRef r, uint32_t k) {
+  return s.trips.route_edges[s.veh.trip_route_begin[r.slot] + k];
 }
 
 LPSIM_HD bool lane_has_conn_to(const NetView& net, int32_t lane, uint32_t edge) {
@@ -96,10 +102,8 @@ LPSIM_HD uint32_t lane_bit(const NetView& net, uint32_t lane) {
   return rank < 32 ? (1u << rank) : 0u;
 }
 
-LPSIM_HD BestLanes best_lanes(const NetView& net, const TripView& trips, uint32_t v, uint32_t rp) {
+LPSIM_HD BestLanes best_lanes(const NetView& net, const uint32_t* route, uint32_t len, uint32_t rp) {
   BestLanes b{};
-  const uint32_t len = trips.route_length[v];
-  const uint32_t* route = trips.route_edges + trips.route_begin[v];
   // The current edge and always the next one; further edges while they start within the distance.
   float dist = 0.0f;
   uint32_t n = 1;
@@ -135,7 +139,9 @@ LPSIM_HD BestLanes best_lanes(const NetView& net, const TripView& trips, uint32_
 LPSIM_HD uint32_t best_mask_at(const StepContext& s, VehicleRef r, uint32_t rp) {
   const uint32_t entry = r.slot * kBestLaneEntries + (rp & (kBestLaneEntries - 1u));
   if (s.veh.best_rp[entry] != rp) {
-    s.veh.best_mask[entry] = best_lanes(s.net, s.trips, r.id, rp).mask[0];
+    s.veh.best_mask[entry] = best_lanes(s.net, s.trips.route_edges + s.veh.trip_route_begin[r.slot],
+                                        s.veh.trip_route_size[r.slot], rp)
+                                 .mask[0];
     s.veh.best_rp[entry] = rp;
   }
   return s.veh.best_mask[entry];
@@ -164,20 +170,19 @@ LPSIM_HD int32_t conn_through(const NetView& net, int32_t lane, uint32_t next, u
 /// a short next edge that have no connection to the edge after it (a trap: the vehicle waits here, where it
 /// can still change lanes, as SUMO's vehicles stop where their lane's continuation ends).
 LPSIM_HD int32_t choose_connection(const StepContext& s, VehicleRef r, int32_t lane, uint32_t rp) {
-  const uint32_t v = r.id;
   const NetView& net = s.net;
-  const uint32_t len = s.trips.route_length[v];
+  const uint32_t len = s.veh.trip_route_size[r.slot];
   int32_t first = -1;
   if (net.lane_internal[lane]) {
     // Internal lanes continue along their single link (or the one towards the route's next edge).
     for (uint32_t c = net.lane_conn_begin[lane]; c < net.lane_conn_begin[lane + 1]; ++c) {
       if (first < 0) first = static_cast<int32_t>(c);
-      if (rp + 1 < len && net.conn_to_edge[c] == route_edge(s, v, rp + 1)) return static_cast<int32_t>(c);
+      if (rp + 1 < len && net.conn_to_edge[c] == route_edge(s, r, rp + 1)) return static_cast<int32_t>(c);
     }
     return first;
   }
   if (rp + 1 >= len) return -1;
-  const uint32_t next = route_edge(s, v, rp + 1);
+  const uint32_t next = route_edge(s, r, rp + 1);
   const uint32_t best = best_mask_at(s, r, rp + 1);
   for (uint32_t c = net.lane_conn_begin[lane]; c < net.lane_conn_begin[lane + 1]; ++c) {
     if (net.conn_to_edge[c] != next) continue;
@@ -185,7 +190,7 @@ LPSIM_HD int32_t choose_connection(const StepContext& s, VehicleRef r, int32_t l
     if (lane_bit(net, net.conn_to_lane[c]) & best) return static_cast<int32_t>(c);
   }
   if (first >= 0 && rp + 2 < len && net.lane_length[net.edge_first_lane[next]] < kMinLaneChangeEdge) {
-    const uint32_t after = route_edge(s, v, rp + 2);
+    const uint32_t after = route_edge(s, r, rp + 2);
     const int32_t through = conn_through(net, lane, next, after);
     if (through >= 0) return through;
     // A trap only if another lane of this edge avoids it; else there is nothing better to wait for.
@@ -365,7 +370,7 @@ LPSIM_HD int32_t mandatory_target_in(const NetView& net, int32_t lane, uint32_t 
 
 LPSIM_HD int32_t mandatory_target(const StepContext& s, VehicleRef r, int32_t lane, int32_t* lanes_to_cross) {
   const uint32_t rp = s.veh.route_pos[r.slot];
-  if (s.net.lane_internal[lane] || rp + 1 >= s.trips.route_length[r.id]) return -1;
+  if (s.net.lane_internal[lane] || rp + 1 >= s.veh.trip_route_size[r.slot]) return -1;
   return mandatory_target_in(s.net, lane, current_best_mask(s, r), lanes_to_cross);
 }
 
@@ -387,7 +392,6 @@ constexpr float kMaxLanesToCross = 8.0f;  // bounds the request zone for the che
 /// SUMO's cooperative lane changing does), so queues cannot lock it out forever.
 LPSIM_HD void approach_vehicle(StepContext& s, uint32_t i, uint32_t slot) {
   const VehicleRef r{slot, s.veh.vehicle[slot]};
-  const uint32_t v = r.id;
   if (s.veh.status[slot] != kRunning) return;
   const int32_t lane = s.veh.lane[slot];
   const float pos = s.veh.pos[slot];
@@ -398,7 +402,7 @@ LPSIM_HD void approach_vehicle(StepContext& s, uint32_t i, uint32_t slot) {
       (s.veh.speed[slot] < 2.0f) & (s.net.lane_length[lane] - pos < kMergeRequestZone * kMaxLanesToCross);
   const int32_t target = may_request ? mandatory_target(s, r, lane, &to_cross) : -1;
   if (target >= 0 && s.net.lane_length[lane] - pos < kMergeRequestZone * static_cast<float>(to_cross)) {
-    const float rear = pos - s.types.length[s.trips.type[v]];
+    const float rear = pos - s.types.length[s.veh.trip_type[slot]];
     // target is this lane's right neighbour when this lane is on its left.
     const bool from_left = target == s.net.lane_right[lane];
     if (rear > 0.0f) atomic_max_u64(&s.merge_requests[target], merge_key(s.params.step, from_left, rear));
@@ -406,7 +410,7 @@ LPSIM_HD void approach_vehicle(StepContext& s, uint32_t i, uint32_t slot) {
   // A vehicle farther from the lane end than its reach is ignored by foes (may_enter): it need not publish,
   // which also spares scanning the rest of long lanes for every vehicle.
   const float dist = s.net.lane_length[lane] - pos;
-  const float reach = lookahead_distance(idm_of(s, s.trips.type[v]), s.veh.speed[slot], s.params.dt);
+  const float reach = lookahead_distance(idm_of(s, s.veh.trip_type[slot]), s.veh.speed[slot], s.params.dt);
   s.plan.lookahead[i] = reach;
   if (dist > reach) return;
   const int32_t cells = static_cast<int32_t>(lane_cells(s.net, lane));
@@ -437,8 +441,7 @@ LPSIM_HD LaneChangeResult try_lane_change(const StepContext& s, VehicleRef me, i
                                           float own_leader_gap, float own_leader_speed, bool own_has_leader) {
   LaneChangeResult r{false, 0.0f, 1e30f, false};
   const NetView& net = s.net;
-  const uint32_t v = me.id;
-  const uint32_t type = s.trips.type[v];
+  const uint32_t type = s.veh.trip_type[me.slot];
   const IdmParams p = idm_of(s, type);
   const float length = s.types.length[type];
   const float pos = s.veh.pos[me.slot];
@@ -457,7 +460,8 @@ LPSIM_HD LaneChangeResult try_lane_change(const StepContext& s, VehicleRef me, i
   const int32_t rear_cell = static_cast<int32_t>(cell_of(net, target, rear));
   const int32_t front_cell = static_cast<int32_t>(cell_of(net, target, pos));
   if (first_occupied(s.map_now, net, target, rear_cell, front_cell) >= 0) return r;
-  const float v0 = desired_speed(net.lane_speed[target], s.trips.speed_factor[v], s.types.max_speed[type]);
+  const float v0 =
+      desired_speed(net.lane_speed[target], s.veh.trip_speed_factor[me.slot], s.types.max_speed[type]);
   const float look = lookahead_distance(p, speed, dt);
   LcNeighbor lead = lc_no_neighbor();
   int32_t last = front_cell + 1 + metres_as_cells(look);
@@ -510,7 +514,7 @@ LPSIM_HD bool swap_with_neighbour(const StepContext& s, VehicleRef r, int32_t la
   const uint32_t step = s.params.step & 0xFFFFFFu;
   const uint64_t mine = s.merge_requests[target], theirs = s.merge_requests[lane];
   if ((mine >> 40) != step || (theirs >> 40) != step) return false;
-  const float length = s.types.length[s.trips.type[r.id]];
+  const float length = s.types.length[s.veh.trip_type[r.slot]];
   const float pos = s.veh.pos[r.slot];
   const float my_rear = pos - length;
   const bool target_is_right = target == net.lane_right[lane];
@@ -553,17 +557,17 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t i, uint32_t slot) {
   out.claim_prio[i] = 1;
   if (s.veh.status[slot] != kRunning) return;
   const NetView& net = s.net;
-  const uint32_t type = s.trips.type[v];
+  const uint32_t type = s.veh.trip_type[slot];
   const IdmParams p = idm_of(s, type);
   const float length = s.types.length[type];
-  const float sf = s.trips.speed_factor[v];
+  const float sf = s.veh.trip_speed_factor[slot];
   const float vmax = s.types.max_speed[type];
   const float dt = s.params.dt;
   const int32_t lane = s.veh.lane[slot];
   const float pos = s.veh.pos[slot];
   const float speed = s.veh.speed[slot];
   const uint32_t rp = s.veh.route_pos[slot];
-  const uint32_t rlen = s.trips.route_length[v];
+  const uint32_t rlen = s.veh.trip_route_size[slot];
   const float v0 = desired_speed(net.lane_speed[lane], sf, vmax);
   const bool waiting = s.veh.stopped_steps[slot] > 0;
 
@@ -766,7 +770,7 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t i, uint32_t slot) {
           change_claim = lc.near_start;
           new_speed = finalize_speed(p, speed, lp_fminf(cand, lc.speed_cap), dt);
           hard_limit = lp_fminf(hard_limit, lc.leader_gap - kClampEps);
-          if (!lane_has_conn_to(net, target, route_edge(s, v, rp + 1))) {
+          if (!lane_has_conn_to(net, target, route_edge(s, r, rp + 1))) {
             const float end_dist = net.lane_length[target] - pos;
             new_speed = lp_fminf(new_speed,
                                  lp_fmaxf(0.0f, stop_speed(p, speed, v0, end_dist, dt, s.params.substeps)));
@@ -843,9 +847,8 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t i, uint32_t slot) {
 
 /// Clears the footprint a vehicle had one step ago from the buffer that is about to be written.
 LPSIM_HD void clear_old_footprint(StepContext& s, uint32_t /*i*/, uint32_t slot) {
-  const uint32_t v = s.veh.vehicle[slot];
   const Footprint fp{s.veh.old_lane[slot], s.veh.old_prev[slot], s.veh.old_prev2[slot], s.veh.old_pos[slot]};
-  apply_footprint(s.map_next, s.net, fp, s.types.length[s.trips.type[v]], 0);
+  apply_footprint(s.map_next, s.net, fp, s.types.length[s.veh.trip_type[slot]], 0);
 }
 
 /// Commit pass for the vehicle in `slot` (its plan at `i`): settle claims, write the new footprint, update
@@ -861,7 +864,7 @@ LPSIM_HD_INLINED void commit_vehicle(StepContext& s, uint32_t i, uint32_t slot) 
   if (veh.status[slot] != kRunning) return;
   const NetView& net = s.net;
   PlanView& plan = s.plan;
-  const uint32_t type = s.trips.type[v];
+  const uint32_t type = s.veh.trip_type[slot];
   const float length = s.types.length[type];
   const float dt = s.params.dt;
   const int32_t lane = veh.lane[slot];
@@ -913,7 +916,7 @@ LPSIM_HD_INLINED void commit_vehicle(StepContext& s, uint32_t i, uint32_t slot) 
   veh.route_pos[slot] = rp;
 
   // Per-vehicle counters (tripinfo).
-  const float v0 = desired_speed(net.lane_speed[nlane], s.trips.speed_factor[v], s.types.max_speed[type]);
+  const float v0 = desired_speed(net.lane_speed[nlane], veh.trip_speed_factor[slot], s.types.max_speed[type]);
   // Time lost this step against the desired speed [s]; no loss where the desired speed is 0.
   const float lost = v0 > 0.0f ? dt * lp_fmaxf(0.0f, (v0 - nspeed) / v0) : 0.0f;
   veh.route_length[slot] += driven;
@@ -1025,10 +1028,14 @@ LPSIM_HD void apply_teleport_move(const VehicleView& veh, const TeleportMove& m,
 
 /// A vehicle takes a free slot after its insertion: its state starts from where it was placed, with no
 /// earlier footprint, and the trip counters it carries over.
-LPSIM_HD void activate_slot(const VehicleView& veh, const SlotInit& in) {
+LPSIM_HD void activate_slot(const VehicleView& veh, const TripView& trips, const SlotInit& in) {
   const uint32_t k = in.slot;
   veh.status[k] = kRunning;
   veh.vehicle[k] = in.vehicle;
+  veh.trip_type[k] = trips.type[in.vehicle];
+  veh.trip_speed_factor[k] = trips.speed_factor[in.vehicle];
+  veh.trip_route_begin[k] = trips.route_begin[in.vehicle];
+  veh.trip_route_size[k] = trips.route_length[in.vehicle];
   veh.route_pos[k] = in.route_pos;
   veh.speed[k] = in.speed;
   veh.lane[k] = in.lane;

@@ -149,13 +149,36 @@ PlanView Simulation::PlanColumns::view() {
 }
 
 VehicleView Simulation::vehicle_view() {
-  return VehicleView{ptr(status_),        ptr(vehicle_),       ptr(route_pos_),       ptr(speed_),
-                     ptr(lane_),          ptr(prev_),          ptr(prev2_),           ptr(pos_),
-                     ptr(old_lane_),      ptr(old_prev_),      ptr(old_prev2_),       ptr(old_pos_),
-                     ptr(stopped_steps_), ptr(waiting_steps_), ptr(waiting_count_),   ptr(time_loss_),
-                     ptr(route_length_),  ptr(arrival_step_),  ptr(lane_change_dir_), ptr(held_at_line_),
-                     ptr(limit_reason_),  ptr(best_rp_),       ptr(best_mask_),       ptr(conn_lane_),
-                     ptr(conn_rp_),       ptr(conn_)};
+  return VehicleView{ptr(status_),
+                     ptr(vehicle_),
+                     ptr(route_pos_),
+                     ptr(speed_),
+                     ptr(lane_),
+                     ptr(prev_),
+                     ptr(prev2_),
+                     ptr(pos_),
+                     ptr(old_lane_),
+                     ptr(old_prev_),
+                     ptr(old_prev2_),
+                     ptr(old_pos_),
+                     ptr(stopped_steps_),
+                     ptr(waiting_steps_),
+                     ptr(waiting_count_),
+                     ptr(time_loss_),
+                     ptr(route_length_),
+                     ptr(arrival_step_),
+                     ptr(lane_change_dir_),
+                     ptr(held_at_line_),
+                     ptr(limit_reason_),
+                     ptr(best_rp_),
+                     ptr(best_mask_),
+                     ptr(conn_lane_),
+                     ptr(conn_rp_),
+                     ptr(conn_),
+                     ptr(trip_type_),
+                     ptr(trip_speed_factor_),
+                     ptr(trip_route_begin_),
+                     ptr(trip_route_size_)};
 }
 
 StepParams Simulation::step_params() const {
@@ -488,10 +511,11 @@ void Simulation::take_slot(SlotInit& init) {
     const size_t c = std::max(n, status_.size() + status_.size() / 2);
     for (auto* col : {&status_, &lane_change_dir_, &held_at_line_, &limit_reason_}) col->resize(c);
     for (auto* col : {&vehicle_, &route_pos_, &stopped_steps_, &waiting_steps_, &waiting_count_,
-                      &arrival_step_, &conn_rp_})
+                      &arrival_step_, &conn_rp_, &trip_type_, &trip_route_begin_, &trip_route_size_})
       col->resize(c);
     for (auto* col : {&best_rp_, &best_mask_}) col->resize(c * kBestLaneEntries);
-    for (auto* col : {&speed_, &pos_, &old_pos_, &time_loss_, &route_length_}) col->resize(c);
+    for (auto* col : {&speed_, &pos_, &old_pos_, &time_loss_, &route_length_, &trip_speed_factor_})
+      col->resize(c);
     for (auto* col : {&lane_, &prev_, &prev2_, &old_lane_, &old_prev_, &old_prev2_, &conn_lane_, &conn_})
       col->resize(c);
   }
@@ -499,7 +523,7 @@ void Simulation::take_slot(SlotInit& init) {
   vehicle_[init.slot] = init.vehicle;  // the GPU backend's host copy too: releasing the slot reads it
   inits_.push_back(init);
   // On the CPU the slot starts now; the GPU backend starts this step's inits on the device.
-  if (!gpu_) activate_slot(vehicle_view(), init);
+  if (!gpu_) activate_slot(vehicle_view(), trip_view(), init);
 }
 
 // Exactly the slots whose vehicles left the road in the previous step drop out of the active list

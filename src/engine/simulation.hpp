@@ -141,8 +141,8 @@ class Simulation {
   SlotPool slots_;
   std::vector<uint8_t> status_, lane_change_dir_, held_at_line_, limit_reason_;
   std::vector<uint32_t> vehicle_, best_rp_, best_mask_, route_pos_, stopped_steps_, waiting_steps_,
-      waiting_count_, arrival_step_, conn_rp_;
-  std::vector<float> speed_, pos_, old_pos_, time_loss_, route_length_;
+      waiting_count_, arrival_step_, conn_rp_, trip_type_, trip_route_begin_, trip_route_size_;
+  std::vector<float> speed_, pos_, old_pos_, time_loss_, route_length_, trip_speed_factor_;
   std::vector<int32_t> lane_, prev_, prev2_, old_lane_, old_prev_, old_prev2_, conn_lane_, conn_;
   // Slots whose vehicle left the road in the previous step (free after this step's passes), and in this one.
   std::vector<uint32_t> retiring_, retiring_next_;

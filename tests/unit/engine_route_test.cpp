@@ -57,6 +57,14 @@ TEST(EngineRouteTest, TheCachedLaneEndConnectionFollowsTheRoutePosition) {
   ctx.veh.conn_lane = &conn_lane;
   ctx.veh.conn_rp = &conn_rp;
   ctx.veh.conn = &conn;
+  // Its trip fields, as activate_slot copies them.
+  uint32_t type = s.demand.vehicle_type[0], route_begin = s.demand.route_begin[0],
+           route_size = s.demand.route_length[0];
+  float speed_factor = s.demand.speed_factor[0];
+  ctx.veh.trip_type = &type;
+  ctx.veh.trip_speed_factor = &speed_factor;
+  ctx.veh.trip_route_begin = &route_begin;
+  ctx.veh.trip_route_size = &route_size;
   const VehicleRef r{0, 0};
   const int32_t lane = static_cast<int32_t>(s.net.lane_index_by_id.at(test::lane_of(s.route[0], 0)));
   // The same lane at route positions 0 and 4, asked for one after the other (no other lane in between).
