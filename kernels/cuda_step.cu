@@ -135,6 +135,18 @@ __global__ void gather_slots_kernel(const T* from, T* to, const uint32_t* order,
   for (uint32_t e = 0; e < per; ++e) to[size_t{i} * per + e] = from[size_t{order[i]} * per + e];
 }
 
+// inverse[order[i]] = i: the new number of each slot that was active.
+__global__ void invert_order_kernel(const uint32_t* order, uint32_t n, uint32_t* inverse) {
+  const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i < n) inverse[order[i]] = i;
+}
+
+// Each asked slot's new number (kNotActive where it was not active or lies beyond the columns).
+__global__ void renumber_kernel(const uint32_t* inverse, uint32_t capacity, uint32_t* slots, uint32_t n) {
+  const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i < n) slots[i] = slots[i] < capacity ? inverse[slots[i]] : kNotActive;
+}
+
 __global__ void iota_kernel(uint32_t* out, uint32_t n) {
   const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
   if (i < n) out[i] = i;
@@ -502,32 +514,46 @@ class CudaStepper final : public GpuStepper {
     num_active_ = kept + na;
   }
 
-  void sort_slots(std::vector<uint32_t>& order) override {
+  void sort_slots(std::vector<uint32_t>& slots) override {
     const auto t0 = std::chrono::steady_clock::now();
     const uint32_t n = num_active_;
-    order.resize(n);
-    if (n == 0) return;
     uint32_t* active = active_[cur_active_];
     uint32_t* keys = sort_keys_.get(2 * static_cast<size_t>(n));
-    uint32_t* dev_order = sort_order_.get(n);
-    lane_key_kernel<<<blocks_for(n), kBlock>>>(dev_.veh, active, n, keys);
-    LPSIM_CUDA_CHECK_LAUNCH(lane_key_kernel);
-    // The active list is ascending and the radix sort stable: ties stay in slot order, as on the host.
-    size_t bytes = 0;
-    LPSIM_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(nullptr, bytes, keys, keys + n, active, dev_order, n));
-    LPSIM_CUDA_CHECK(
-        cub::DeviceRadixSort::SortPairs(temp_.get(bytes), bytes, keys, keys + n, active, dev_order, n));
-    for_each_vehicle_column(dev_.veh, dev_.veh, [&](auto* column, auto*, uint32_t per) {
-      using T = std::remove_pointer_t<decltype(column)>;
-      const size_t entries = static_cast<size_t>(n) * per;
-      T* moved = reinterpret_cast<T*>(sort_moved_.get(entries * sizeof(T)));
-      gather_slots_kernel<T><<<blocks_for(n), kBlock>>>(column, moved, dev_order, n, per);
-      LPSIM_CUDA_CHECK_LAUNCH(gather_slots_kernel);
-      LPSIM_CUDA_CHECK(cudaMemcpyAsync(column, moved, entries * sizeof(T), cudaMemcpyDeviceToDevice));
-    });
-    iota_kernel<<<blocks_for(n), kBlock>>>(active, n);
-    LPSIM_CUDA_CHECK_LAUNCH(iota_kernel);
-    copy_to_host(order.data(), dev_order, n);
+    uint32_t* order = sort_order_.get(n);
+    if (n > 0) {
+      lane_key_kernel<<<blocks_for(n), kBlock>>>(dev_.veh, active, n, keys);
+      LPSIM_CUDA_CHECK_LAUNCH(lane_key_kernel);
+      // The active list is ascending and the radix sort stable: ties stay in slot order, as on the host.
+      size_t bytes = 0;
+      LPSIM_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(nullptr, bytes, keys, keys + n, active, order, n));
+      LPSIM_CUDA_CHECK(
+          cub::DeviceRadixSort::SortPairs(temp_.get(bytes), bytes, keys, keys + n, active, order, n));
+      for_each_vehicle_column(dev_.veh, dev_.veh, [&](auto* column, auto*, uint32_t per) {
+        using T = std::remove_pointer_t<decltype(column)>;
+        const size_t entries = static_cast<size_t>(n) * per;
+        T* moved = reinterpret_cast<T*>(sort_moved_.get(entries * sizeof(T)));
+        gather_slots_kernel<T><<<blocks_for(n), kBlock>>>(column, moved, order, n, per);
+        LPSIM_CUDA_CHECK_LAUNCH(gather_slots_kernel);
+        LPSIM_CUDA_CHECK(cudaMemcpyAsync(column, moved, entries * sizeof(T), cudaMemcpyDeviceToDevice));
+      });
+      iota_kernel<<<blocks_for(n), kBlock>>>(active, n);
+      LPSIM_CUDA_CHECK_LAUNCH(iota_kernel);
+    }
+    // The new numbers of the host's slots: the inverse of the order, read where the host asks.
+    const uint32_t ns = static_cast<uint32_t>(slots.size());
+    if (ns > 0) {
+      uint32_t* inverse = sort_inverse_.get(slot_capacity_);
+      LPSIM_CUDA_CHECK(cudaMemsetAsync(inverse, 0xFF, slot_capacity_ * sizeof(uint32_t)));  // kNotActive
+      if (n > 0) {
+        invert_order_kernel<<<blocks_for(n), kBlock>>>(order, n, inverse);
+        LPSIM_CUDA_CHECK_LAUNCH(invert_order_kernel);
+      }
+      uint32_t* asked = sort_asked_.get(ns);
+      copy_to_device(asked, slots.data(), ns);
+      renumber_kernel<<<blocks_for(ns), kBlock>>>(inverse, static_cast<uint32_t>(slot_capacity_), asked, ns);
+      LPSIM_CUDA_CHECK_LAUNCH(renumber_kernel);
+      copy_to_host(slots.data(), asked, ns);
+    }
     timer_.add_host(4, t0);
   }
 
@@ -739,7 +765,7 @@ class CudaStepper final : public GpuStepper {
   ScratchArray<uint32_t> batch_in_, batch_out_, added_, num_selected_;
   ScratchArray<unsigned char> temp_;
   ScratchArray<SlotInit> inits_;
-  ScratchArray<uint32_t> sort_keys_, sort_order_;  // sort_slots
+  ScratchArray<uint32_t> sort_keys_, sort_order_, sort_inverse_, sort_asked_;  // sort_slots
   ScratchArray<unsigned char> sort_moved_;
   ScratchArray<uint32_t> sample_vehicle_;
   ScratchArray<uint8_t> sample_status_;

@@ -38,6 +38,9 @@ struct GpuStepSizes {
 /// The per-lane edgeData/laneData counter columns, in LaneCounters' order (src/engine/samples.hpp).
 constexpr int kNumLaneCounters = 9;
 
+/// A slot number that names no slot in the active list (GpuStepper::sort_slots).
+constexpr uint32_t kNotActive = 0xFFFFFFFFu;
+
 /// What the host learns after a step's passes.
 struct GpuStepOutcome {
   uint32_t kept = 0;             // vehicles staying in the active list
@@ -63,8 +66,9 @@ class GpuStepper {
   /// so the list stays ascending.
   virtual void rebuild_active(const std::vector<SlotInit>& inits, const std::vector<uint32_t>& added) = 0;
   /// Renumbers the active slots densely from 0 by lane, ties by slot (Simulation::sort_slots): every slot
-  /// column is moved, and the active list becomes 0..n-1. `order` receives the old slot of each new one.
-  virtual void sort_slots(std::vector<uint32_t>& order) = 0;
+  /// column is moved, and the active list becomes 0..n-1. Each of `slots` (numbers before) is replaced by its
+  /// new number, or kNotActive if it was not in the active list.
+  virtual void sort_slots(std::vector<uint32_t>& slots) = 0;
   /// The active list (slots) and each active slot's vehicle, status, lane, position and speed (outputs).
   virtual void sample(std::vector<uint32_t>& active, std::vector<uint32_t>& vehicle,
                       std::vector<uint8_t>& status, std::vector<int32_t>& lane, std::vector<float>& pos,

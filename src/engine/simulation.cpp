@@ -66,7 +66,6 @@ Simulation::Simulation(const Network& net, const Demand& demand, const Simulatio
   merge_requests_.assign(nl, 0);
   lane_counters_.resize(nl);
 
-  slot_of_.assign(nv, -1);
   trip_status_.assign(nv, kPending);
   resume_rp_.assign(nv, 0);
   teleport_pending_.assign(nv, 0);
@@ -519,8 +518,6 @@ void Simulation::take_slot(SlotInit& init) {
     for (auto* col : {&lane_, &prev_, &prev2_, &old_lane_, &old_prev_, &old_prev2_, &conn_lane_, &conn_})
       col->resize(c);
   }
-  slot_of_[init.vehicle] = static_cast<int32_t>(init.slot);
-  vehicle_[init.slot] = init.vehicle;  // the GPU backend's host copy too: releasing the slot reads it
   inits_.push_back(init);
   // On the CPU the slot starts now; the GPU backend starts this step's inits on the device.
   if (!gpu_) activate_slot(vehicle_view(), trip_view(), init);
@@ -545,11 +542,7 @@ const std::vector<uint32_t>& Simulation::added_slots() {
 // The slots that left the active list in this step (their vehicles left the road in the previous one) are
 // free; this step's ends leave in the next.
 void Simulation::release_retired_slots() {
-  for (uint32_t k : retiring_) {
-    slots_.release(k);
-    const uint32_t v = vehicle_[k];
-    if (slot_of_[v] == static_cast<int32_t>(k)) slot_of_[v] = -1;  // not if it re-entered in another slot
-  }
+  for (uint32_t k : retiring_) slots_.release(k);
   retiring_.swap(retiring_next_);
   retiring_next_.clear();
 }
@@ -558,12 +551,12 @@ void Simulation::release_retired_slots() {
 // slot), so that a pass meets the vehicles of one lane, and of neighbouring lanes, one after the other: their
 // lane-map cells and lane columns are then read together instead of scattered over the network. Runs between
 // steps, when the slots in use are exactly the active list. Nothing depends on a vehicle's slot number
-// (claims break ties by vehicle, random draws are keyed by vehicle, ends are handled in vehicle order), so
-// results are unchanged.
+// (claims break ties by vehicle, random draws are keyed by vehicle, ends are handled in vehicle order, a
+// vehicle's slot is looked up in the active list), so results are unchanged. The host keeps only the slots
+// due to leave (retiring_), which are renumbered with the rest.
 void Simulation::sort_slots() {
-  std::vector<uint32_t>& order = slot_order_;  // order[new slot] = old slot
   if (gpu_) {
-    gpu_->sort_slots(order);  // the device's columns and active list are renumbered
+    gpu_->sort_slots(retiring_);  // the device's columns, its active list and retiring_
   } else {
     const size_t n = active_.size();
     std::vector<uint64_t>& keys = slot_keys_;
@@ -571,47 +564,30 @@ void Simulation::sort_slots() {
     for (size_t i = 0; i < n; ++i)
       keys[i] = uint64_t{static_cast<uint32_t>(lane_[active_[i]])} << 32 | active_[i];
     std::sort(keys.begin(), keys.end());
+    std::vector<uint32_t>& order = slot_order_;  // order[new slot] = old slot
     order.resize(n);
     for (size_t i = 0; i < n; ++i) order[i] = static_cast<uint32_t>(keys[i]);
+    VehicleView veh = vehicle_view();
+    std::vector<uint8_t>& moved = slot_bytes_;
+    for_each_vehicle_column(veh, veh, [&](auto* column, auto*, uint32_t per) {
+      using T = std::remove_pointer_t<decltype(column)>;
+      moved.resize(n * per * sizeof(T));
+      T* to = reinterpret_cast<T*>(moved.data());
+      for (size_t i = 0; i < n; ++i)
+        for (uint32_t e = 0; e < per; ++e) to[i * per + e] = column[size_t{order[i]} * per + e];
+      std::copy_n(to, n * per, column);
+    });
+    std::vector<uint32_t>& new_slot = slot_new_;
+    new_slot.assign(slots_.size(), kNotActive);
+    for (size_t i = 0; i < n; ++i) {
+      new_slot[order[i]] = static_cast<uint32_t>(i);
+      active_[i] = static_cast<uint32_t>(i);
+    }
+    for (uint32_t& k : retiring_) k = new_slot[k];
   }
-  const uint32_t n = static_cast<uint32_t>(order.size());
-  if (n != num_active_)
-    throw std::logic_error("slot sort moved " + std::to_string(n) + " slots, " + std::to_string(num_active_) +
-                           " are active");
-  // Which vehicles' current slot moves where, found before anything is renumbered. A vehicle that re-entered
-  // after a teleport also holds its old slot, which slot_of_ does not name.
-  std::vector<std::pair<uint32_t, uint32_t>> moves;
-  for (uint32_t i = 0; i < n; ++i) {
-    const uint32_t v = vehicle_[order[i]];
-    if (slot_of_[v] == static_cast<int32_t>(order[i])) moves.emplace_back(v, i);
-  }
-  // The host's columns: all of them on the CPU; on the GPU backend its copy of the vehicle column (releasing
-  // a slot reads it; the others are fetched when asked for).
-  VehicleView veh = vehicle_view();
-  std::vector<uint8_t>& moved = slot_bytes_;
-  auto renumber = [&](auto* column, uint32_t per) {
-    using T = std::remove_pointer_t<decltype(column)>;
-    moved.resize(size_t{n} * per * sizeof(T));
-    T* to = reinterpret_cast<T*>(moved.data());
-    for (size_t i = 0; i < n; ++i)
-      for (uint32_t e = 0; e < per; ++e) to[i * per + e] = column[size_t{order[i]} * per + e];
-    std::copy_n(to, size_t{n} * per, column);
-  };
-  if (gpu_) {
-    renumber(veh.vehicle, 1u);
-  } else {
-    for_each_vehicle_column(veh, veh, [&](auto* column, auto*, uint32_t per) { renumber(column, per); });
-    for (uint32_t i = 0; i < n; ++i) active_[i] = i;
-  }
-  for (const auto& [v, k] : moves) slot_of_[v] = static_cast<int32_t>(k);
-  std::vector<uint32_t> new_slot(slots_.size(), 0xFFFFFFFFu);
-  for (uint32_t i = 0; i < n; ++i) new_slot[order[i]] = i;
-  for (uint32_t& k : retiring_) {
-    if (new_slot[k] == 0xFFFFFFFFu)
-      throw std::logic_error("slot " + std::to_string(k) + " is to leave but was not active");
-    k = new_slot[k];
-  }
-  slots_.reset(n);
+  for (const uint32_t k : retiring_)
+    if (k == kNotActive) throw std::logic_error("a slot due to leave was not in the active list");
+  slots_.reset(num_active_);
   by_vehicle_step_ = 0xFFFFFFFFu;
 }
 
@@ -696,6 +672,21 @@ void Simulation::sample_fcd(FcdFrame& frame) const {
     frame.pos.push_back(pos_[k]);
     frame.speed.push_back(speed_[k]);
   }
+}
+
+// The slot of vehicle v while it holds one, else -1. A vehicle that re-entered the road right after a
+// teleport holds its old slot for one more step (to clear its footprint) besides the new one; the new one is
+// further along the route.
+int32_t Simulation::slot_of(uint32_t v) const {
+  sync_host();
+  const std::vector<uint64_t>& keys = active_by_vehicle();
+  int32_t slot = -1;
+  for (auto it = std::lower_bound(keys.begin(), keys.end(), uint64_t{v} << 32);
+       it != keys.end() && (*it >> 32) == v; ++it) {
+    const uint32_t k = static_cast<uint32_t>(*it);
+    if (slot < 0 || route_pos_[k] > route_pos_[static_cast<uint32_t>(slot)]) slot = static_cast<int32_t>(k);
+  }
+  return slot;
 }
 
 uint8_t Simulation::status(uint32_t v) const { return on_road(status_, v, trip_status_[v]); }

@@ -106,7 +106,7 @@ class Simulation {
   void sort_slots();
   void check_kept(size_t kept) const;
   const std::vector<uint32_t>& added_slots();
-  int32_t slot_of(uint32_t v) const { return sync_host(), slot_of_[v]; }
+  int32_t slot_of(uint32_t v) const;
   /// Test support: vehicle v's entry of a slot column, or `off_road` while it holds no slot.
   template <class T>
   T on_road(const std::vector<T>& column, uint32_t v, T off_road) const {
@@ -150,10 +150,9 @@ class Simulation {
   std::vector<SlotInit> inits_;
   std::vector<uint32_t> added_;  // added_slots()
 
-  // Per vehicle (host only): its slot while on the road (-1 otherwise), its status off the road (pending,
-  // arrived or removed, teleporting = queued to re-enter), where a teleported vehicle re-enters, and the
-  // trip counters it carries over the teleport.
-  std::vector<int32_t> slot_of_;
+  // Per vehicle (host only): its status off the road (pending, arrived or removed, teleporting = queued to
+  // re-enter), where a teleported vehicle re-enters, and the trip counters it carries over the teleport.
+  // (Its slot while on the road is looked up in the active list: slot_of.)
   std::vector<uint8_t> trip_status_;
   std::vector<uint32_t> resume_rp_;
   struct Carried {
@@ -192,7 +191,7 @@ class Simulation {
   uint32_t teleport_steps_ = 0;  // stopped steps before a teleport (0: never)
   std::vector<uint32_t> scratch_;
   // sort_slots' scratch.
-  std::vector<uint32_t> slot_order_;
+  std::vector<uint32_t> slot_order_, slot_new_;
   std::vector<uint64_t> slot_keys_;
   std::vector<uint8_t> slot_bytes_;
   std::vector<uint32_t> kept_;  // active slots that stay active after the step (member: no page faults)
