@@ -59,6 +59,14 @@ struct InsertParams {
   int64_t* cnt_entered;
 };
 
+/// Whether a queued vehicle is placed at the start of its lane (teleported, or departPos base or free): its
+/// body then covers the lane's first cell, so that no second such vehicle fits on that lane in the same
+/// step. An edge takes at most one of them per lane and step, and the host offers none beyond that.
+LPSIM_HD bool inserts_at_lane_start(uint8_t pos_kind, bool teleported) {
+  return teleported ||
+         (pos_kind != kDepartPosGiven && pos_kind != kDepartPosRandom && pos_kind != kDepartPosRandomFree);
+}
+
 /// Tries to put vehicle v (entry flags included) on the road at the start of route edge `rp`, writing its
 /// footprint into `map` and where it was placed into the out_ values (the host then gives it a slot).
 /// Returns false, changing nothing, when no candidate lane has room.
@@ -104,12 +112,12 @@ LPSIM_HD bool try_insert_vehicle(const StepContext& s, const DepartView& d, cons
     const int32_t li = static_cast<int32_t>(l);
     const float lane_len = net.lane_length[l];
     float pos = lp_fminf(lane_len, length + 0.1f);
-    if (!teleported) {
-      const uint8_t pk = d.pos_kind[v];
+    const uint8_t pk = d.pos_kind[v];
+    if (!inserts_at_lane_start(pk, teleported)) {
       if (pk == kDepartPosGiven) {  // negative values were made absolute by the builder
         const float given = d.pos[v];
         pos = given < 0.0f ? 0.0f : (lane_len < given ? lane_len : given);
-      } else if (pk == kDepartPosRandom || pk == kDepartPosRandomFree) {
+      } else {  // random or random_free
         pos = lp_fminf(lane_len, length + static_cast<float>(rng_uniform_double(seed, v, 1)) *
                                               lp_fmaxf(0.0f, lane_len - length));
       }

@@ -410,7 +410,10 @@ void Simulation::enqueue_due(int64_t until_ms) {
 }
 
 void Simulation::insert_waiting(int map_index) {
-  // The head of each queue (up to kMaxInsertPerEdge), edges ascending.
+  // The head of each queue (up to kMaxInsertPerEdge), edges ascending. Insertion stops at the first vehicle
+  // that does not fit, and once each lane of the edge has taken a vehicle at its start the next one placed
+  // there cannot fit (inserts_at_lane_start): the offer ends before it, with the same result (on a
+  // congested day most queues are long, and the batch is a few entries per edge instead of 16).
   batch_edge_.clear();
   batch_begin_.assign(1, 0);
   batch_entry_.clear();
@@ -418,10 +421,16 @@ void Simulation::insert_waiting(int map_index) {
   for (uint32_t e : queued_edges_) {
     const auto& q = queue_[e];
     const size_t end = std::min<size_t>(q.size(), queue_head_[e] + kMaxInsertPerEdge);
+    uint32_t lane_starts_left = net_.edge_num_lanes[e];
     for (size_t i = queue_head_[e]; i < end; ++i) {
-      const bool teleported = teleport_pending_[q[i]] != 0;
-      batch_entry_.push_back(q[i] | (teleported ? kInsertTeleported : 0u));
-      batch_rp_.push_back(teleported ? resume_rp_[q[i]] : 0u);
+      const uint32_t v = q[i];
+      const bool teleported = teleport_pending_[v] != 0;
+      if (inserts_at_lane_start(demand_.depart_pos_kind[v], teleported)) {
+        if (lane_starts_left == 0) break;
+        --lane_starts_left;
+      }
+      batch_entry_.push_back(v | (teleported ? kInsertTeleported : 0u));
+      batch_rp_.push_back(teleported ? resume_rp_[v] : 0u);
     }
     batch_edge_.push_back(e);
     batch_begin_.push_back(static_cast<uint32_t>(batch_entry_.size()));
