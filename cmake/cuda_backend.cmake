@@ -26,7 +26,7 @@ elseif(LPSIM_WITH_CUDA)
   endif()
   enable_language(CUDA)
   find_package(CUDAToolkit REQUIRED)
-  add_library(lpsim_cuda STATIC ${LPSIM_CUDA_SOURCES})
+  add_library(lpsim_cuda OBJECT ${LPSIM_CUDA_SOURCES})
   target_include_directories(lpsim_cuda PUBLIC ${PROJECT_SOURCE_DIR}/src ${PROJECT_SOURCE_DIR})
   # The project-wide add_compile_options are host-compiler flags nvcc rejects ("Unknown option '-Wall'"):
   # replace them on this target with their nvcc spelling.
@@ -40,12 +40,9 @@ elseif(LPSIM_WITH_CUDA)
   set_property(TARGET lpsim_cuda PROPERTY COMPILE_OPTIONS "")
   target_compile_options(lpsim_cuda PRIVATE
     $<$<COMPILE_LANGUAGE:CUDA>:--fmad=false -Xcompiler=-Wall,-Wextra,-ffp-contract=off>)
+  # What links it (LPSIM_BACKEND, in CMakeLists.txt) sees LPSIM_HAVE_CUDA.
   target_link_libraries(lpsim_cuda PUBLIC CUDA::cudart_static)
-  # The engine picks the backend at run time (src/engine/device_select.cpp): every target sees
-  # LPSIM_HAVE_CUDA, and lpsim_core links the kernels. lpsim_core is defined after this file is included,
-  # hence the deferred call (it runs at the end of the top-level CMakeLists.txt).
-  add_compile_definitions(LPSIM_HAVE_CUDA=1)
-  cmake_language(DEFER CALL target_link_libraries lpsim_core PUBLIC lpsim_cuda)
+  target_compile_definitions(lpsim_cuda INTERFACE LPSIM_HAVE_CUDA=1)
   message(STATUS "LPSim CUDA backend: ON (${CMAKE_CUDA_COMPILER}, sm ${CMAKE_CUDA_ARCHITECTURES})")
 else()
   message(STATUS "LPSim CUDA backend: OFF")

@@ -13,6 +13,8 @@
 //   device -> host: how many of each queue head were inserted, and where.
 // Outputs fetch more only when they sample: FCD and summary the active vehicles' positions, edgeData the
 // counters at the end of an interval.
+// Built by nvcc for the GPU, or by the host compiler against tests/cuda_emulation (a host emulation of the
+// CUDA runtime and cub calls made here) so that the tests run this file's host logic without a GPU.
 #include <cuda_runtime.h>
 
 #include <algorithm>
@@ -37,6 +39,18 @@ namespace lpsim {
 namespace {
 
 constexpr uint32_t kBlock = 128;
+
+// Slots the device starts with, at least (grown by half again when the host hands out more). The host
+// emulation starts from one, so that every test there runs the growth.
+#ifndef LPSIM_GPU_INITIAL_SLOTS
+#define LPSIM_GPU_INITIAL_SLOTS 1024
+#endif
+
+#if defined(__CUDACC__)
+#define LPSIM_LAUNCH(kernel, grid, block) kernel<<<(grid), (block)>>>
+#else  // host emulation: the kernel's threads run one after another, in a shuffled order
+#define LPSIM_LAUNCH(kernel, grid, block) ::cuda_emulation::launch((grid), (block), kernel)
+#endif
 
 uint32_t blocks_for(uint32_t n) { return (n + kBlock - 1) / kBlock; }
 
@@ -86,11 +100,16 @@ __global__ void finish_kernel(VehicleView veh, const uint32_t* active, uint32_t 
     running = kept && veh.status[k] == kRunning;
     keep[i] = kept ? 1 : 0;
   }
+#if defined(__CUDACC__)
   const int k = __syncthreads_count(kept), r = __syncthreads_count(running);
   if (threadIdx.x == 0) {
     if (k > 0) atomicAdd(&tally->kept, static_cast<uint32_t>(k));
     if (r > 0) atomicAdd(&tally->running, static_cast<uint32_t>(r));
   }
+#else  // host emulation: a block's threads run one at a time, so there is no barrier to count at
+  if (kept) atomicAdd(&tally->kept, 1u);
+  if (running) atomicAdd(&tally->running, 1u);
+#endif
 }
 
 __global__ void teleport_kernel(VehicleView veh, const TeleportMove* moves, uint32_t n, uint32_t steps_done) {
@@ -329,7 +348,7 @@ class CudaStepper final : public GpuStepper {
         DepartView{upload(depart.lane_kind, nv), upload(depart.lane, nv),       upload(depart.pos_kind, nv),
                    upload(depart.pos, nv),       upload(depart.speed_kind, nv), upload(depart.speed, nv)};
 
-    grow_slots(std::max<size_t>(sizes.num_slots, 1024));
+    grow_slots(std::max<size_t>(sizes.num_slots, LPSIM_GPU_INITIAL_SLOTS));
     for_each_vehicle_column(dev_.veh, host.veh, [&](auto* dev, auto* h, uint32_t per) {
       copy_to_device(dev, h, static_cast<size_t>(sizes.num_slots) * per);
     });
@@ -387,8 +406,8 @@ class CudaStepper final : public GpuStepper {
     ctx.map_now = map_[map_now];
     ctx.map_next = map_[1 - map_now];
     if (signals_.num_signals > 0) {
-      signals_kernel<<<blocks_for(signals_.num_signals), kBlock>>>(signals_, params.signal_time_ms,
-                                                                   link_state_);
+      LPSIM_LAUNCH(signals_kernel, blocks_for(signals_.num_signals), kBlock)
+      (signals_, params.signal_time_ms, link_state_);
       LPSIM_CUDA_CHECK_LAUNCH(signals_kernel);
     }
     timer_.mark(1);
@@ -400,23 +419,23 @@ class CudaStepper final : public GpuStepper {
 
     const uint32_t* active = active_[cur_active_];
     const uint32_t grid = blocks_for(n);
-    pass_kernel<clear_old_footprint><<<grid, kBlock>>>(ctx, active, n);
+    LPSIM_LAUNCH(pass_kernel<clear_old_footprint>, grid, kBlock)(ctx, active, n);
     LPSIM_CUDA_CHECK_LAUNCH(clear_old_footprint);
     timer_.mark(2);
-    pass_kernel<approach_vehicle><<<grid, kBlock>>>(ctx, active, n);
+    LPSIM_LAUNCH(pass_kernel<approach_vehicle>, grid, kBlock)(ctx, active, n);
     LPSIM_CUDA_CHECK_LAUNCH(approach_vehicle);
     timer_.mark(3);
-    pass_kernel<plan_vehicle><<<grid, kBlock>>>(ctx, active, n);
+    LPSIM_LAUNCH(pass_kernel<plan_vehicle>, grid, kBlock)(ctx, active, n);
     LPSIM_CUDA_CHECK_LAUNCH(plan_vehicle);
     timer_.mark(4);
-    pass_kernel<commit_vehicle><<<grid, kBlock>>>(ctx, active, n);
+    LPSIM_LAUNCH(pass_kernel<commit_vehicle>, grid, kBlock)(ctx, active, n);
     LPSIM_CUDA_CHECK_LAUNCH(commit_vehicle);
     timer_.mark(5);
 
     VehicleEnd* ends = ends_.get(n);
     LPSIM_CUDA_CHECK(cudaMemsetAsync(tally_dev_, 0, sizeof(StepTally)));
-    finish_kernel<<<grid, kBlock>>>(ctx.veh, active, n, steps_done, params.teleport_steps, keep_, ends,
-                                    tally_dev_);
+    LPSIM_LAUNCH(finish_kernel, grid, kBlock)
+    (ctx.veh, active, n, steps_done, params.teleport_steps, keep_, ends, tally_dev_);
     LPSIM_CUDA_CHECK_LAUNCH(finish_kernel);
     timer_.mark(6);
     // Waits for the passes: a fault inside them is reported here.
@@ -434,7 +453,7 @@ class CudaStepper final : public GpuStepper {
     if (n == 0) return;
     TeleportMove* dev = moves_.get(n);
     copy_to_device(dev, moves.data(), n);
-    teleport_kernel<<<blocks_for(n), kBlock>>>(dev_.veh, dev, n, steps_done);
+    LPSIM_LAUNCH(teleport_kernel, blocks_for(n), kBlock)(dev_.veh, dev, n, steps_done);
     LPSIM_CUDA_CHECK_LAUNCH(teleport_kernel);
     timer_.add_host(1, t0);
   }
@@ -466,7 +485,7 @@ class CudaStepper final : public GpuStepper {
     InsertParams params = p;
     params.cnt_departed = cnt_departed_;
     params.cnt_entered = dev_.cnt_entered;
-    insert_kernel<<<blocks_for(slots), kBlock>>>(dev_, depart_, params, map_[map], dev);
+    LPSIM_LAUNCH(insert_kernel, blocks_for(slots), kBlock)(dev_, depart_, params, map_[map], dev);
     LPSIM_CUDA_CHECK_LAUNCH(insert_kernel);
     uint32_t* back = staging_out_.get(out_words);
     copy_to_host(back, out, out_words);
@@ -485,7 +504,7 @@ class CudaStepper final : public GpuStepper {
     if (ni > 0) {
       SlotInit* dev = inits_.get(ni);
       copy_to_device(dev, inits.data(), ni);
-      activate_kernel<<<blocks_for(ni), kBlock>>>(dev_.veh, dev_.trips, dev, ni);
+      LPSIM_LAUNCH(activate_kernel, blocks_for(ni), kBlock)(dev_.veh, dev_.trips, dev, ni);
       LPSIM_CUDA_CHECK_LAUNCH(activate_kernel);
     }
     rebuild(added);
@@ -521,7 +540,7 @@ class CudaStepper final : public GpuStepper {
     uint32_t* keys = sort_keys_.get(2 * static_cast<size_t>(n));
     uint32_t* order = sort_order_.get(n);
     if (n > 0) {
-      lane_key_kernel<<<blocks_for(n), kBlock>>>(dev_.veh, active, n, keys);
+      LPSIM_LAUNCH(lane_key_kernel, blocks_for(n), kBlock)(dev_.veh, active, n, keys);
       LPSIM_CUDA_CHECK_LAUNCH(lane_key_kernel);
       // The active list is ascending and the radix sort stable: ties stay in slot order, as on the host.
       size_t bytes = 0;
@@ -532,11 +551,11 @@ class CudaStepper final : public GpuStepper {
         using T = std::remove_pointer_t<decltype(column)>;
         const size_t entries = static_cast<size_t>(n) * per;
         T* moved = reinterpret_cast<T*>(sort_moved_.get(entries * sizeof(T)));
-        gather_slots_kernel<T><<<blocks_for(n), kBlock>>>(column, moved, order, n, per);
+        LPSIM_LAUNCH(gather_slots_kernel<T>, blocks_for(n), kBlock)(column, moved, order, n, per);
         LPSIM_CUDA_CHECK_LAUNCH(gather_slots_kernel);
         LPSIM_CUDA_CHECK(cudaMemcpyAsync(column, moved, entries * sizeof(T), cudaMemcpyDeviceToDevice));
       });
-      iota_kernel<<<blocks_for(n), kBlock>>>(active, n);
+      LPSIM_LAUNCH(iota_kernel, blocks_for(n), kBlock)(active, n);
       LPSIM_CUDA_CHECK_LAUNCH(iota_kernel);
     }
     // The new numbers of the host's slots: the inverse of the order, read where the host asks.
@@ -545,12 +564,13 @@ class CudaStepper final : public GpuStepper {
       uint32_t* inverse = sort_inverse_.get(slot_capacity_);
       LPSIM_CUDA_CHECK(cudaMemsetAsync(inverse, 0xFF, slot_capacity_ * sizeof(uint32_t)));  // kNotActive
       if (n > 0) {
-        invert_order_kernel<<<blocks_for(n), kBlock>>>(order, n, inverse);
+        LPSIM_LAUNCH(invert_order_kernel, blocks_for(n), kBlock)(order, n, inverse);
         LPSIM_CUDA_CHECK_LAUNCH(invert_order_kernel);
       }
       uint32_t* asked = sort_asked_.get(ns);
       copy_to_device(asked, slots.data(), ns);
-      renumber_kernel<<<blocks_for(ns), kBlock>>>(inverse, static_cast<uint32_t>(slot_capacity_), asked, ns);
+      LPSIM_LAUNCH(renumber_kernel, blocks_for(ns), kBlock)
+      (inverse, static_cast<uint32_t>(slot_capacity_), asked, ns);
       LPSIM_CUDA_CHECK_LAUNCH(renumber_kernel);
       copy_to_host(slots.data(), asked, ns);
     }
@@ -572,7 +592,7 @@ class CudaStepper final : public GpuStepper {
     int32_t* ln = sample_lane_.get(n);
     float* ps = sample_pos_.get(n);
     float* sp = sample_speed_.get(n);
-    sample_kernel<<<blocks_for(n), kBlock>>>(dev_.veh, active_[cur_active_], n, vh, st, ln, ps, sp);
+    LPSIM_LAUNCH(sample_kernel, blocks_for(n), kBlock)(dev_.veh, active_[cur_active_], n, vh, st, ln, ps, sp);
     LPSIM_CUDA_CHECK_LAUNCH(sample_kernel);
     copy_to_host(active.data(), active_[cur_active_], n);
     copy_to_host(vehicle.data(), vh, n);

@@ -1,7 +1,8 @@
 #pragma once
 // The CUDA backend as host code sees it: plain C++, no CUDA types, so the engine includes it without nvcc.
-// The implementation (kernels/cuda_step.cu) exists only in builds that define LPSIM_HAVE_CUDA; the engine
-// reaches it through src/engine/device_select, which reports "built without CUDA" otherwise.
+// The engine reaches it through src/engine/device_select. The backend an executable links defines the two
+// functions at the end: kernels/cuda_step.cu (built by nvcc, or against the host emulation in
+// tests/cuda_emulation), or src/engine/no_cuda_backend.cpp ("built without CUDA").
 //
 // The device owns the run state (vehicle columns, both lane maps, signal states, the active list, the
 // edgeData counters); the host keeps the insertion queues, the trip records and the outputs. Per step only
@@ -81,7 +82,6 @@ class GpuStepper {
   virtual void download_state(const StepContext& host, uint32_t num_slots, int map, char* link_state) = 0;
 };
 
-#if defined(LPSIM_HAVE_CUDA)
 /// Checks device 0: present, driver recent enough, and able to run this build's kernels.
 CudaDeviceStatus cuda_device_status();
 /// A stepper on device 0 holding the network, types and trips of `host`, its state after the host's first
@@ -92,6 +92,5 @@ std::unique_ptr<GpuStepper> make_cuda_stepper(const StepContext& host, const Sig
                                               const GpuStepSizes& sizes, const DepartView& depart,
                                               const uint8_t* other_map, int map_now,
                                               const std::vector<uint32_t>& active, bool lane_counters);
-#endif
 
 }  // namespace lpsim

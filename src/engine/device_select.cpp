@@ -1,18 +1,10 @@
 #include "engine/device_select.hpp"
 
-#include <stdexcept>
-
 #include "core/error.hpp"
 
 namespace lpsim {
 
-CudaDeviceStatus gpu_status() {
-#if defined(LPSIM_HAVE_CUDA)
-  return cuda_device_status();
-#else
-  return CudaDeviceStatus{false, "built without CUDA"};
-#endif
-}
+CudaDeviceStatus gpu_status() { return cuda_device_status(); }
 
 DeviceChoice select_device(ComputeDevice requested) {
   if (requested == ComputeDevice::Cpu) return DeviceChoice{false, "cpu (requested)"};
@@ -28,19 +20,7 @@ std::unique_ptr<GpuStepper> make_gpu_stepper(const StepContext& host, const Sign
                                              const GpuStepSizes& sizes, const DepartView& depart,
                                              const uint8_t* other_map, int map_now,
                                              const std::vector<uint32_t>& active, bool lane_counters) {
-#if defined(LPSIM_HAVE_CUDA)
   return make_cuda_stepper(host, signals, sizes, depart, other_map, map_now, active, lane_counters);
-#else
-  (void)host;
-  (void)signals;
-  (void)sizes;
-  (void)depart;
-  (void)other_map;
-  (void)map_now;
-  (void)active;
-  (void)lane_counters;
-  throw std::runtime_error("the GPU backend was requested, but lpsim was built without CUDA");
-#endif
 }
 
 }  // namespace lpsim
