@@ -7,12 +7,20 @@
 # The tests have the repository's absolute path compiled in: where the copy lies elsewhere, a link stands in.
 #
 # Usage: bench/gpu_machine.sh tests|bench [regional_bench.sh options...]
+#        bench/gpu_machine.sh all [seconds, default 360]
+# `all` is the whole device check in one call, in order of value, each part started only while the budget
+# leaves room for it: the GPU tests; the 9M-trip day on the GPU with the CPU backend on the same snapshot
+# (first 600 s); the 1M and 3M days on the GPU. Its reports and logs go to $OUT (8 files at most), else to
+# bench/work/gpu_all. A lease is 15 minutes of device time with the machine's start: keep the budget so
+# that a second, shorter call still fits.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 here=$PWD
 build=${BUILD:-build-gpu}
 export LD_LIBRARY_PATH=$here/$build/libs${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
 export GNU_TIME=$here/$build/libs/gnu-time
+# The device copy's git metadata is not this build's: prepare_gpu_build.sh wrote the commit it built.
+[[ -f "$build/COMMIT" ]] && export LPSIM_COMMIT=$(cat "$build/COMMIT")
 origin=$(sed -n 's/^CMAKE_HOME_DIRECTORY:INTERNAL=//p' "$build/CMakeCache.txt")
 if [[ -n "$origin" && "$origin" != "$here" && ! -e "$origin" ]]; then
   mkdir -p "$(dirname "$origin")" && ln -s "$here" "$origin"
@@ -28,5 +36,35 @@ case "$what" in
   bench)
     bench/regional_bench.sh --lpsim "$build/lpsim" --bayarea "$build/bayarea/lpsim_bayarea_tertiary" "$@"
     ;;
-  *) echo "usage: $0 tests|bench [options]" >&2; exit 2 ;;
+  all)
+    budget=${1:-360}
+    out=${OUT:-bench/work/gpu_all}
+    mkdir -p "$out"
+    regional=bench/work/regional
+    left() { echo $((budget - SECONDS)); }
+    SECONDS=0
+    nvidia-smi >"$out/nvidia-smi.txt" 2>&1
+    echo "== tests (budget ${budget} s)"
+    timeout 150 "$0" tests >"$out/tests.log" 2>&1
+    echo "tests: exit $? after $SECONDS s; $(grep -E '^\[  (PASSED|FAILED) ' "$out/tests.log" | paste -sd' ')"
+    # The 9M day: generation ~30 s, conversion ~30 s, the GPU day ~100 s, the CPU's first 600 s.
+    if (($(left) > 150)); then
+      echo "== 9M trips, GPU day and CPU first 600 s"
+      timeout "$(left)" "$0" bench --trips 9000000 --devices "gpu cpu" --cpu-end 600 --runs 1 --warmup 0 \
+        >"$out/bench_9m.log" 2>&1
+      echo "9M: exit $? after $SECONDS s"
+      cp "$regional/results.md" "$out/regional_9m.md" 2>/dev/null
+      cp "$regional/9000000/gpu.log" "$out/gpu_9m.log" 2>/dev/null
+    fi
+    if (($(left) > 120)); then
+      echo "== 1M and 3M trips, GPU days"
+      timeout "$(left)" "$0" bench --trips "1000000 3000000" --devices gpu --runs 1 --warmup 0 \
+        >"$out/bench_1m_3m.log" 2>&1
+      echo "1M, 3M: exit $? after $SECONDS s"
+      cp "$regional/results.md" "$out/regional_1m_3m.md" 2>/dev/null
+    fi
+    # Each regional report names its runs' logs; the bench logs hold their progress lines.
+    tail -n 40 "$out"/regional_*.md 2>/dev/null
+    ;;
+  *) echo "usage: $0 tests|bench|all [options]" >&2; exit 2 ;;
 esac

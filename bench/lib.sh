@@ -74,5 +74,5 @@ machine_info() {
   echo "- load average at start: $(cut -d' ' -f1-3 /proc/loadavg)"
   echo "- host probe (bench/host_probe.cpp): $(host_probe)"
   echo "- $(sumo --version 2>/dev/null | head -n 1)"
-  echo "- lpsim commit: $(git -C "$(dirname "${BASH_SOURCE[0]}")" rev-parse --short HEAD 2>/dev/null || echo unknown)"
+  echo "- lpsim commit: ${LPSIM_COMMIT:-$(git -C "$(dirname "${BASH_SOURCE[0]}")" rev-parse --short HEAD 2>/dev/null || echo unknown)}"
 }

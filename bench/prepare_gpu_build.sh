@@ -4,8 +4,9 @@
 # lpsim needs that such a machine may lack (zlib), GNU time as gnu-time, and
 # the Bay Area base network the regional benchmark grows. Then pass the device tool
 #   carry: build-gpu/lpsim build-gpu/tests/lpsim_gpu_tests build-gpu/libs build-gpu/bayarea
-#          build-gpu/CMakeCache.txt
-# and run `bench/gpu_machine.sh tests` (then `... bench`) there.
+#          build-gpu/CMakeCache.txt build-gpu/COMMIT
+# and run `bench/gpu_machine.sh all` there (or `tests`, then `bench ...`). COMMIT names the commit built
+# (with "+changes" when the working tree differed), for the reports.
 #
 # Usage: bench/prepare_gpu_build.sh [CUDA architectures, default 90 (H100/H200)]
 set -euo pipefail
@@ -16,6 +17,9 @@ if [[ ! -f "$build/CMakeCache.txt" ]]; then
   cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DLPSIM_CUDA=ON -DCMAKE_CUDA_ARCHITECTURES="$arch"
 fi
 cmake --build "$build" --target lpsim lpsim_gpu_tests
+commit=$(git rev-parse --short HEAD)
+git diff --quiet HEAD -- . ':!bench/work' || commit="$commit+changes"
+echo "$commit" >"$build/COMMIT"
 
 mkdir -p "$build/libs"
 # The C and C++ runtimes are on any machine with CUDA; zlib (gzip input and output) may not be.
@@ -30,4 +34,5 @@ if [[ -d "$network" ]]; then
 else
   echo "prepare_gpu_build: $network not found; the regional benchmark will need it" >&2
 fi
-du -sch "$build/lpsim" "$build/tests/lpsim_gpu_tests" "$build/libs" "$build/bayarea" "$build/CMakeCache.txt" 2>/dev/null
+du -sch "$build/lpsim" "$build/tests/lpsim_gpu_tests" "$build/libs" "$build/bayarea" "$build/CMakeCache.txt" \
+  "$build/COMMIT" 2>/dev/null
