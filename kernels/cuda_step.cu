@@ -378,8 +378,14 @@ class CudaStepper final : public GpuStepper {
     }
 
     cells_ = host.net.lane_cell_begin[nl];
-    map_[map_now] = upload(host.map_now, cells_);
-    map_[1 - map_now] = upload(other_map, cells_);
+    // With the host's kLaneMapPadding zero bytes after the last cell: the device scans stay within a lane,
+    // but the host emulation (tests/cuda_emulation) runs the host scan, which reads past a lane's end.
+    for (int b = 0; b < 2; ++b) {
+      map_[b] = allocate<uint8_t>(cells_ + kLaneMapPadding);
+      LPSIM_CUDA_CHECK(cudaMemset(map_[b] + cells_, 0, kLaneMapPadding));
+    }
+    copy_to_device(map_[map_now], host.map_now, cells_);
+    copy_to_device(map_[1 - map_now], other_map, cells_);
 
     copy_to_device(active_[0], active.data(), active.size());
     num_active_ = static_cast<uint32_t>(active.size());
