@@ -7,13 +7,12 @@
 // CUDA's default stream; a launch runs every thread of its grid one after another in a shuffled order (the
 // kernels must not depend on thread order). What it cannot check: device arithmetic, real concurrency
 // between threads, and stream timing — those need a GPU (tests/gpu on the real build).
-#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
-#include <new>
 #include <numeric>
+#include <utility>
 #include <vector>
 
 #define CUDART_VERSION 13000
