@@ -65,9 +65,10 @@ void check(cudaError_t rc, const char* call, const char* file, int line) {
 // Launch errors (bad configuration, no kernel image) surface here; faults inside a kernel at the next sync.
 #define LPSIM_CUDA_CHECK_LAUNCH(kernel) check(cudaGetLastError(), "launch of " #kernel, __FILE__, __LINE__)
 
-__global__ void signals_kernel(SignalTable table, int64_t time_ms, char* link_state) {
+__global__ void signals_kernel(SignalTable table, int64_t time_ms, char* link_state,
+                               int64_t* next_switch_ms) {
   const uint32_t s = blockIdx.x * blockDim.x + threadIdx.x;
-  if (s < table.num_signals) update_signal(table, s, time_ms, link_state);
+  if (s < table.num_signals) update_signal(table, s, time_ms, link_state, next_switch_ms);
 }
 
 // One thread per active vehicle, running one of the step's passes (the same functions the CPU backend loops
@@ -413,7 +414,7 @@ class CudaStepper final : public GpuStepper {
     ctx.map_next = map_[1 - map_now];
     if (signals_.num_signals > 0) {
       LPSIM_LAUNCH(signals_kernel, blocks_for(signals_.num_signals), kBlock)
-      (signals_, params.signal_time_ms, link_state_);
+      (signals_, params.signal_time_ms, link_state_, signal_next_switch_ms_);
       LPSIM_CUDA_CHECK_LAUNCH(signals_kernel);
     }
     timer_.mark(1);
@@ -729,6 +730,9 @@ class CudaStepper final : public GpuStepper {
     signals_ = SignalTable{};
     signals_.num_signals = ns;
     if (ns == 0) return;
+    // The device's link characters start unset: every signal sets them in the first step.
+    const std::vector<int64_t> never(ns, kSignalNeverSet);
+    signal_next_switch_ms_ = upload(never.data(), ns);
     const uint32_t phases = h.phase_begin[ns];
     size_t chars = 0;  // the state strings end after the last phase's links
     for (uint32_t s = 0; s < ns; ++s)
@@ -767,6 +771,7 @@ class CudaStepper final : public GpuStepper {
   DepartView depart_{};
   SignalTable signals_{};
   char* link_state_ = nullptr;
+  int64_t* signal_next_switch_ms_ = nullptr;
   uint32_t num_links_ = 0, num_vehicles_ = 0, num_lanes_ = 0;
   uint64_t bytes_total_ = 0, bytes_per_vehicle_ = 0;  // fixed allocations (scratch arrays not included)
   DeviceBuffer plan_buffer_;

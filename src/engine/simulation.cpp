@@ -61,6 +61,7 @@ Simulation::Simulation(const Network& net, const Demand& demand, const Simulatio
 
   for (int b = 0; b < 2; ++b) map_[b].assign(net.num_cells() + kLaneMapPadding, 0);
   link_state_.assign(engine_net_.link_begin.back(), 'r');
+  signal_next_switch_ms_.assign(net.num_signals(), kSignalNeverSet);
   approach_.assign(nl, LaneApproach{0xFFFFFFFFu, -1, 0, 0, 0, 0, 0});
   claims_.assign(nl, 0);
   merge_requests_.assign(nl, 0);
@@ -119,7 +120,8 @@ TripView Simulation::trip_view() const {
 
 void Simulation::update_signals(int64_t time_ms) {
   const SignalTable table = engine_net_.signal_table(net_);
-  for (uint32_t s = 0; s < table.num_signals; ++s) update_signal(table, s, time_ms, link_state_.data());
+  for (uint32_t s = 0; s < table.num_signals; ++s)
+    update_signal(table, s, time_ms, link_state_.data(), signal_next_switch_ms_.data());
 }
 
 char Simulation::link_state(uint32_t conn) const {

@@ -132,6 +132,7 @@ class Simulation {
   std::vector<uint8_t> map_[2];
   int cur_ = 0;
   std::vector<char> link_state_;
+  std::vector<int64_t> signal_next_switch_ms_;  // per signal: when the phase link_state_ shows ends
   std::vector<LaneApproach> approach_;
   // Reverse of the junction response: for each connection, the connections that must yield to it (CSR).
   std::vector<uint64_t> claims_, merge_requests_;

@@ -1,7 +1,12 @@
-// Signal programs: phase lookup with SUMO's offset semantics, and the meaning of the state characters.
+// Signal programs: phase lookup with SUMO's offset semantics, the meaning of the state characters, and the
+// per-step update of every signal's link characters.
 #include <gtest/gtest.h>
 
+#include <string>
+#include <vector>
+
 #include "kernels/signal_state.hpp"
+#include "kernels/signal_step.hpp"
 
 namespace lpsim {
 namespace {
@@ -53,6 +58,90 @@ TEST(ModelsSignal, ZeroOffsetStartsWithPhaseZero) {
   EXPECT_EQ(signal_phase_at(p, 42000), 1);
   EXPECT_EQ(signal_phase_at(p, 89999), 3);
   EXPECT_EQ(signal_phase_at(p, 90000), 0);
+}
+
+// Three signals in one table: the 3x3 grid's program (offset 10 s), a two-link program with a zero-length
+// phase and an offset beyond its cycle, and a one-phase program of zero length (never switches).
+struct ThreeSignals {
+  std::vector<uint32_t> phase_begin{0, 4, 7, 8};
+  std::vector<int32_t> durations{42000, 3000, 42000, 3000, 5000, 0, 2500, 0};
+  std::vector<uint32_t> state_begin{0, 9, 18, 27, 36, 38, 40, 42};
+  std::string states = std::string(kStates) + "GrryrG" + "g";
+  std::vector<int32_t> num_links{9, 2, 1};
+  std::vector<int64_t> cycle{90000, 7500, 0};
+  std::vector<int64_t> offset{10000, 20000, 0};
+  std::vector<uint32_t> link_begin{0, 9, 11, 12};
+  SignalTable table() const {
+    return SignalTable{3,
+                       phase_begin.data(),
+                       durations.data(),
+                       state_begin.data(),
+                       states.data(),
+                       num_links.data(),
+                       cycle.data(),
+                       offset.data(),
+                       link_begin.data()};
+  }
+  SignalProgramView program(uint32_t s) const {
+    return SignalProgramView{durations.data() + phase_begin[s],
+                             nullptr,
+                             static_cast<int32_t>(phase_begin[s + 1] - phase_begin[s]),
+                             num_links[s],
+                             cycle[s],
+                             offset[s]};
+  }
+  // What signal s shows on link k at time t, from the pure lookup.
+  char expected(uint32_t s, int32_t k, int64_t t) const {
+    const SignalProgramView p = program(s);
+    return states[state_begin[phase_begin[s] + static_cast<uint32_t>(signal_phase_at(p, t))] +
+                  static_cast<uint32_t>(k)];
+  }
+};
+
+TEST(ModelsSignal, StepUpdateEqualsThePureLookupAtEveryStep) {
+  const ThreeSignals sig;
+  const SignalTable t = sig.table();
+  // Step lengths that do and do not divide the phase lengths, and a long jump.
+  for (const int64_t dt : {1000, 500, 300, 7, 100000}) {
+    std::vector<char> links(12, '?');
+    std::vector<int64_t> next(3, kSignalNeverSet);
+    int64_t mismatches = 0, steps = 0;
+    for (int64_t time = -3000; time < 400000; time += dt, ++steps) {
+      for (uint32_t s = 0; s < 3; ++s) update_signal(t, s, time, links.data(), next.data());
+      for (uint32_t s = 0; s < 3; ++s)
+        for (int32_t k = 0; k < sig.num_links[s]; ++k)
+          mismatches += links[sig.link_begin[s] + static_cast<uint32_t>(k)] != sig.expected(s, k, time);
+    }
+    EXPECT_EQ(mismatches, 0) << "step " << dt << " ms, " << steps << " steps";
+  }
+}
+
+TEST(ModelsSignal, StepUpdateRewritesASignalOnlyWhenItsPhaseEnds) {
+  const ThreeSignals sig;
+  const SignalTable t = sig.table();
+  std::vector<char> links(12, '?');
+  std::vector<int64_t> next(3, kSignalNeverSet);
+  for (uint32_t s = 0; s < 3; ++s) update_signal(t, s, 0, links.data(), next.data());
+  EXPECT_EQ(next[0], 7000);  // phase 2 of the grid's program ends at t = 7 s
+  EXPECT_EQ(next[1], 2500);  // in-cycle (0 - 20 s) mod 7.5 s = 2.5 s: phase 0 ends at 5 s
+  EXPECT_EQ(next[2], 0);     // no positive duration: set again at every call
+  // Marks left in the output stay until the phase ends: nothing is rewritten before then.
+  links[0] = 'X', links[9] = 'X', links[11] = 'X';
+  for (uint32_t s = 0; s < 3; ++s) update_signal(t, s, 2000, links.data(), next.data());
+  EXPECT_EQ(links[0], 'X');
+  EXPECT_EQ(links[9], 'X');
+  EXPECT_EQ(links[11], 'g');  // the zero-length program: rewritten every time
+  for (uint32_t s = 0; s < 3; ++s) update_signal(t, s, 2500, links.data(), next.data());
+  EXPECT_EQ(links[0], 'X');
+  EXPECT_EQ(links[9], 'r');  // past the zero-length phase 1 straight to phase 2, "rG"
+  EXPECT_EQ(links[10], 'G');
+  EXPECT_EQ(next[1], 5000);
+  for (uint32_t s = 0; s < 3; ++s) update_signal(t, s, 6999, links.data(), next.data());
+  EXPECT_EQ(links[0], 'X');
+  for (uint32_t s = 0; s < 3; ++s) update_signal(t, s, 7000, links.data(), next.data());
+  EXPECT_EQ(links[0], 'r');  // yellow phase 3 of the grid's program: "rrryyyyrr"
+  EXPECT_EQ(links[3], 'y');
+  EXPECT_EQ(next[0], 10000);
 }
 
 TEST(ModelsSignal, CharacterClasses) {
