@@ -11,6 +11,8 @@
 //   device -> host: a tally (vehicles kept, running, ended) and the step's arrivals and teleports;
 //   host -> device: the teleport decisions, the queue heads to insert, the vehicles inserted and their slots;
 //   device -> host: how many of each queue head were inserted, and where.
+// The host waits for the device twice per step, for those two answers (the first with as many of the ends
+// as one copy guesses); the uploads are asynchronous, staged in page-locked memory.
 // Outputs fetch more only when they sample: FCD and summary the active vehicles' positions, edgeData the
 // counters at the end of an interval.
 // Built by nvcc for the GPU, or by the host compiler against tests/cuda_emulation (a host emulation of the
@@ -21,6 +23,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <cub/device/device_merge.cuh>
 #include <cub/device/device_radix_sort.cuh>
 #include <cub/device/device_select.cuh>
@@ -44,6 +47,12 @@ constexpr uint32_t kBlock = 128;
 // emulation starts from one, so that every test there runs the growth.
 #ifndef LPSIM_GPU_INITIAL_SLOTS
 #define LPSIM_GPU_INITIAL_SLOTS 1024
+#endif
+
+// Ends fetched with the step's tally at least (more when the last step had more). The host emulation
+// fetches one, so that its tests also take the path that fetches the rest.
+#ifndef LPSIM_GPU_MIN_ENDS_FETCHED
+#define LPSIM_GPU_MIN_ENDS_FETCHED 64
 #endif
 
 #if defined(__CUDACC__)
@@ -263,6 +272,18 @@ class PinnedArray {
   size_t capacity_ = 0;
 };
 
+/// Copies n values to the device without waiting for the copy: through `staging`, page-locked, so that the
+/// copy runs asynchronously and the caller's array may change at once. A staging array must not be written
+/// again before the device has made the copy: each is used by one stepper call, which runs once per step,
+/// and every step synchronises with the device (the tally) before the next such call.
+template <class T>
+void upload_async(T* dst, const T* src, size_t n, PinnedArray<T>& staging) {
+  if (n == 0) return;
+  T* staged = staging.get(n);
+  std::copy_n(src, n, staged);
+  LPSIM_CUDA_CHECK(cudaMemcpyAsync(dst, staged, n * sizeof(T), cudaMemcpyHostToDevice));
+}
+
 /// Where a run's time goes, printed at the end when LPSIM_GPU_TIMING is set: device time of each kernel
 /// phase (events, read at the step's one synchronisation) and host wall time of each stepper call.
 class PhaseTimer {
@@ -390,13 +411,7 @@ class CudaStepper final : public GpuStepper {
 
     copy_to_device(active_[0], active.data(), active.size());
     num_active_ = static_cast<uint32_t>(active.size());
-    tally_dev_ = allocate<StepTally>(1);
-    LPSIM_CUDA_CHECK(cudaMallocHost(&tally_host_, sizeof(StepTally)));
     timer_.set_state_bytes(bytes_total_, bytes_per_vehicle_, nv, sizes.num_route_edges * sizeof(uint32_t));
-  }
-
-  ~CudaStepper() override {
-    if (tally_host_ != nullptr) cudaFreeHost(tally_host_);
   }
 
   void step(const StepParams& params, int map_now, uint32_t steps_done, GpuStepOutcome& out) override {
@@ -439,19 +454,33 @@ class CudaStepper final : public GpuStepper {
     LPSIM_CUDA_CHECK_LAUNCH(commit_vehicle);
     timer_.mark(5);
 
-    VehicleEnd* ends = ends_.get(n);
-    LPSIM_CUDA_CHECK(cudaMemsetAsync(tally_dev_, 0, sizeof(StepTally)));
+    // The tally and the step's ends share one buffer, so that one copy brings back the tally and as many
+    // ends as the guess allows (twice the last step's, at least LPSIM_GPU_MIN_ENDS_FETCHED): the step's
+    // first synchronisation. Ends beyond the guess take a second copy.
+    unsigned char* outcome = outcome_.get(kEndsOffset + sizeof(VehicleEnd) * static_cast<size_t>(n));
+    StepTally* tally = reinterpret_cast<StepTally*>(outcome);
+    VehicleEnd* ends = reinterpret_cast<VehicleEnd*>(outcome + kEndsOffset);
+    LPSIM_CUDA_CHECK(cudaMemsetAsync(tally, 0, sizeof(StepTally)));
     LPSIM_LAUNCH(finish_kernel, grid, kBlock)
-    (ctx.veh, active, n, steps_done, params.teleport_steps, keep_, ends, tally_dev_);
+    (ctx.veh, active, n, steps_done, params.teleport_steps, keep_, ends, tally);
     LPSIM_CUDA_CHECK_LAUNCH(finish_kernel);
     timer_.mark(6);
+    const uint32_t guess = std::min(n, std::max<uint32_t>(LPSIM_GPU_MIN_ENDS_FETCHED, 2 * last_ends_));
+    const size_t fetched = kEndsOffset + sizeof(VehicleEnd) * static_cast<size_t>(guess);
+    unsigned char* host = outcome_host_.get(fetched);
+    LPSIM_CUDA_CHECK(cudaMemcpyAsync(host, outcome, fetched, cudaMemcpyDeviceToHost));
     // Waits for the passes: a fault inside them is reported here.
-    LPSIM_CUDA_CHECK(cudaMemcpy(tally_host_, tally_dev_, sizeof(StepTally), cudaMemcpyDeviceToHost));
+    LPSIM_CUDA_CHECK(cudaStreamSynchronize(nullptr));
     timer_.collect();
-    out.kept = kept_count_ = tally_host_->kept;
-    out.running = tally_host_->running;
-    out.ends.resize(tally_host_->ends);
-    copy_to_host(out.ends.data(), ends, out.ends.size());
+    StepTally t;
+    std::memcpy(&t, host, sizeof t);
+    out.kept = kept_count_ = t.kept;
+    out.running = t.running;
+    out.ends.resize(t.ends);
+    const uint32_t in_guess = std::min(t.ends, guess);
+    if (in_guess > 0) std::memcpy(out.ends.data(), host + kEndsOffset, sizeof(VehicleEnd) * in_guess);
+    copy_to_host(out.ends.data() + in_guess, ends + in_guess, t.ends - in_guess);  // beyond the guess
+    last_ends_ = t.ends;
   }
 
   void apply_teleports(const std::vector<TeleportMove>& moves, uint32_t steps_done) override {
@@ -459,7 +488,7 @@ class CudaStepper final : public GpuStepper {
     const uint32_t n = static_cast<uint32_t>(moves.size());
     if (n == 0) return;
     TeleportMove* dev = moves_.get(n);
-    copy_to_device(dev, moves.data(), n);
+    upload_async(dev, moves.data(), n, moves_host_);
     LPSIM_LAUNCH(teleport_kernel, blocks_for(n), kBlock)(dev_.veh, dev, n, steps_done);
     LPSIM_CUDA_CHECK_LAUNCH(teleport_kernel);
     timer_.add_host(1, t0);
@@ -477,7 +506,7 @@ class CudaStepper final : public GpuStepper {
     std::copy_n(batch.begin, slots + 1, staged + slots);
     std::copy_n(batch.entry, num_entries, staged + 2 * slots + 1);
     std::copy_n(batch.route_pos, num_entries, staged + 2 * slots + 1 + num_entries);
-    copy_to_device(in, staged, in_words);
+    LPSIM_CUDA_CHECK(cudaMemcpyAsync(in, staged, in_words * sizeof(uint32_t), cudaMemcpyHostToDevice));
     const size_t out_words = static_cast<size_t>(slots) + 3 * static_cast<size_t>(num_entries);
     uint32_t* out = batch_out_.get(out_words);
     InsertBatch dev{slots,
@@ -510,7 +539,7 @@ class CudaStepper final : public GpuStepper {
     const uint32_t ni = static_cast<uint32_t>(inits.size());
     if (ni > 0) {
       SlotInit* dev = inits_.get(ni);
-      copy_to_device(dev, inits.data(), ni);
+      upload_async(dev, inits.data(), ni, inits_host_);
       LPSIM_LAUNCH(activate_kernel, blocks_for(ni), kBlock)(dev_.veh, dev_.trips, dev, ni);
       LPSIM_CUDA_CHECK_LAUNCH(activate_kernel);
     }
@@ -531,7 +560,7 @@ class CudaStepper final : public GpuStepper {
           cub::DeviceSelect::Flagged(temp_.get(bytes), bytes, from, keep_, kept_, num_selected_.get(1), n));
     }
     uint32_t* add = added_.get(na);
-    copy_to_device(add, added.data(), na);
+    upload_async(add, added.data(), na, added_host_);
     size_t bytes = 0;
     LPSIM_CUDA_CHECK(cub::DeviceMerge::MergeKeys(nullptr, bytes, kept_, kept, add, na, to, AscendingIndex{}));
     LPSIM_CUDA_CHECK(
@@ -789,9 +818,11 @@ class CudaStepper final : public GpuStepper {
   uint32_t num_active_ = 0, kept_count_ = 0;
   uint32_t* kept_ = nullptr;  // the kept slots, compacted
   uint8_t* keep_ = nullptr;   // per active index: stays active
-  StepTally* tally_dev_ = nullptr;
-  StepTally* tally_host_ = nullptr;  // pinned
-  ScratchArray<VehicleEnd> ends_;
+  // The step's tally, then (from kEndsOffset) its ends; the pinned copy of the part fetched each step.
+  static constexpr size_t kEndsOffset = 16;
+  ScratchArray<unsigned char> outcome_;
+  PinnedArray<unsigned char> outcome_host_;
+  uint32_t last_ends_ = 0;
   ScratchArray<TeleportMove> moves_;
   ScratchArray<uint32_t> batch_in_, batch_out_, added_, num_selected_;
   ScratchArray<unsigned char> temp_;
@@ -803,6 +834,10 @@ class CudaStepper final : public GpuStepper {
   ScratchArray<int32_t> sample_lane_;
   ScratchArray<float> sample_pos_, sample_speed_;
   PinnedArray<uint32_t> staging_in_, staging_out_;
+  // Staging of the uploads that nothing waits for (upload_async).
+  PinnedArray<TeleportMove> moves_host_;
+  PinnedArray<SlotInit> inits_host_;
+  PinnedArray<uint32_t> added_host_;
   PhaseTimer timer_;
 };
 
