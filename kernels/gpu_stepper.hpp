@@ -53,10 +53,13 @@ struct GpuStepOutcome {
 class GpuStepper {
  public:
   virtual ~GpuStepper() = default;
-  /// Signal states, then clear / approach / plan / commit over the active list, reading lane map
-  /// `map_now` (0 or 1) and writing the other; then each vehicle's end of step. `steps_done` is the step
-  /// count after this step (arrivals are stamped with it).
-  virtual void step(const StepParams& params, int map_now, uint32_t steps_done, GpuStepOutcome& out) = 0;
+  /// Starts a step without waiting for it: signal states, then clear / approach / plan / commit over the
+  /// active list, reading lane map `map_now` (0 or 1) and writing the other; then each vehicle's end of step.
+  /// `steps_done` is the step count after this step (arrivals are stamped with it). The host may meanwhile
+  /// do work that does not depend on the step's outcome.
+  virtual void start_step(const StepParams& params, int map_now, uint32_t steps_done) = 0;
+  /// Waits for the step started last and reports its outcome.
+  virtual void finish_step(GpuStepOutcome& out) = 0;
   /// Applies the host's decisions for this step's teleports.
   virtual void apply_teleports(const std::vector<TeleportMove>& moves, uint32_t steps_done) = 0;
   /// Inserts from the batch's queue heads into lane map `map` (the host's InsertBatch arrays: inputs are

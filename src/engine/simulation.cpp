@@ -293,9 +293,14 @@ void Simulation::step_gpu() {
                                       demand_.types.size(), demand_.route_edges.size()},
                          depart_view(), map_[1 - cur_].data(), cur_, active_, opt_.lane_counters);
   }
+  gpu_->start_step(step_params(), cur_, step_ + 1);
+  // While the device runs the passes: the departures due by the end of the step join their queues. Nothing
+  // there depends on the step's outcome, and the order does not matter: a vehicle teleported in the step
+  // joins its queue at the head (handle_vehicle_ends), a departure at the tail.
+  enqueue_due(time_ms_ + dt_ms_);
   GpuStepOutcome out;
   out.ends.swap(ends_);
-  gpu_->step(step_params(), cur_, step_ + 1, out);
+  gpu_->finish_step(out);
   counts_.vehicle_updates += num_active_;
   check_kept(out.kept);
 
@@ -303,7 +308,6 @@ void Simulation::step_gpu() {
   ++step_;
   handle_vehicle_ends(out.ends);
   if (!moves_.empty()) gpu_->apply_teleports(moves_, step_);
-  enqueue_due(time_ms_);
   insert_waiting(1 - cur_);
   cur_ = 1 - cur_;
 
