@@ -39,6 +39,12 @@ static_assert(kDepartSpeedGiven == uint8_t(DepartSpeed::Given) &&
               kDepartSpeedLimit == uint8_t(DepartSpeed::SpeedLimit) &&
               kDepartSpeedLast == uint8_t(DepartSpeed::Last) && kDepartSpeedAvg == uint8_t(DepartSpeed::Avg));
 
+// Queue entry flag (host only, taken off before an entry is offered): the vehicle is placed at its lane's
+// start (inserts_at_lane_start). With kInsertTeleported the entry says all the batch building needs, so that
+// it reads no per-vehicle column.
+constexpr uint32_t kQueuedAtLaneStart = 0x40000000u;
+constexpr uint32_t kMaxVehicles = kQueuedAtLaneStart;  // vehicle indices below both flags
+
 // The LaneCounters columns in the order the GPU stepper keeps them.
 std::vector<int64_t>* counter_columns(LaneCounters& c, int k) {
   std::vector<int64_t>* columns[kNumLaneCounters] = {&c.sampled_steps, &c.travelled_mm,      &c.waiting_steps,
@@ -52,6 +58,9 @@ std::vector<int64_t>* counter_columns(LaneCounters& c, int k) {
 Simulation::Simulation(const Network& net, const Demand& demand, const SimulationOptions& options)
     : net_(net), demand_(demand), opt_(options), engine_net_(net), pool_(std::max(1, options.threads)) {
   if (!(opt_.step_length > 0)) throw std::invalid_argument("step length must be positive");
+  if (demand.size() >= kMaxVehicles)
+    throw std::invalid_argument("too many vehicles: " + std::to_string(demand.size()) + " (at most " +
+                                std::to_string(kMaxVehicles - 1) + ")");
   dt_ms_ = std::llround(opt_.step_length * 1000.0);
   if (dt_ms_ <= 0 || std::fabs(static_cast<double>(dt_ms_) - opt_.step_length * 1000.0) > 1e-6)
     throw std::invalid_argument("step length must be a whole number of milliseconds");
@@ -69,13 +78,12 @@ Simulation::Simulation(const Network& net, const Demand& demand, const Simulatio
 
   trip_status_.assign(nv, kPending);
   resume_rp_.assign(nv, 0);
-  teleport_pending_.assign(nv, 0);
   depart_time_.assign(nv, 0);
   depart_pos_.assign(nv, 0);
   depart_speed_.assign(nv, 0);
   depart_lane_.assign(nv, -1);
   queue_.resize(net.num_edges());
-  queue_head_.assign(net.num_edges(), 0);
+  for (uint32_t e = 0; e < net.num_edges(); ++e) queue_[e].lanes = net.edge_num_lanes[e];
 
   const VehicleTypes& t = demand.types;
   for (uint32_t k = 0; k < t.size(); ++k) {
@@ -378,12 +386,14 @@ void Simulation::handle_vehicle_ends(std::vector<VehicleEnd>& ends) {
     trip_status_[v] = kTeleporting;
     resume_rp_[v] = e.route_pos + 1;
     carried_[v] = Carried{e.route_length, e.time_loss, e.waiting_steps, e.waiting_count};
-    teleport_pending_[v] = 1;
     const uint32_t edge = demand_.route_edges[demand_.route_begin[v] + e.route_pos + 1];
-    auto& q = queue_[edge];
+    EdgeQueue& q = queue_[edge];
     // Teleported vehicles go first: they have been on the road already.
-    q.insert(q.begin() + queue_head_[edge], v);
-    if (queue_head_[edge] + 1 == q.size())
+    const uint32_t entry =
+        v | kInsertTeleported |
+        (inserts_at_lane_start(demand_.depart_pos_kind[v], true) ? kQueuedAtLaneStart : 0u);
+    q.entries.insert(q.entries.begin() + q.head, entry);
+    if (q.head + 1 == q.entries.size())
       queued_edges_.insert(std::lower_bound(queued_edges_.begin(), queued_edges_.end(), edge), edge);
     ++waiting_;
   }
@@ -399,18 +409,19 @@ void Simulation::enqueue_due(int64_t until_ms) {
       continue;
     }
     const uint32_t e = demand_.route_edges[demand_.route_begin[v]];
-    if (net_.edge_num_lanes[e] == 0) {
+    EdgeQueue& q = queue_[e];
+    if (q.lanes == 0) {
       trip_status_[v] = kArrived;
       ++counts_.removed;
       continue;
     }
-    auto& q = queue_[e];
-    if (queue_head_[e] == q.size()) {
-      q.clear();
-      queue_head_[e] = 0;
+    if (q.head == q.entries.size()) {
+      q.entries.clear();
+      q.head = 0;
       queued_edges_.insert(std::lower_bound(queued_edges_.begin(), queued_edges_.end(), e), e);
     }
-    q.push_back(v);
+    q.entries.push_back(v |
+                        (inserts_at_lane_start(demand_.depart_pos_kind[v], false) ? kQueuedAtLaneStart : 0u));
     ++waiting_;
   }
 }
@@ -425,18 +436,18 @@ void Simulation::insert_waiting(int map_index) {
   batch_entry_.clear();
   batch_rp_.clear();
   for (uint32_t e : queued_edges_) {
-    const auto& q = queue_[e];
-    const size_t end = std::min<size_t>(q.size(), queue_head_[e] + kMaxInsertPerEdge);
-    uint32_t lane_starts_left = net_.edge_num_lanes[e];
-    for (size_t i = queue_head_[e]; i < end; ++i) {
-      const uint32_t v = q[i];
-      const bool teleported = teleport_pending_[v] != 0;
-      if (inserts_at_lane_start(demand_.depart_pos_kind[v], teleported)) {
+    const EdgeQueue& q = queue_[e];
+    const size_t end = std::min<size_t>(q.entries.size(), q.head + kMaxInsertPerEdge);
+    uint32_t lane_starts_left = q.lanes;
+    for (size_t i = q.head; i < end; ++i) {
+      const uint32_t entry = q.entries[i];
+      if (entry & kQueuedAtLaneStart) {
         if (lane_starts_left == 0) break;
         --lane_starts_left;
       }
-      batch_entry_.push_back(v | (teleported ? kInsertTeleported : 0u));
-      batch_rp_.push_back(teleported ? resume_rp_[v] : 0u);
+      const bool teleported = (entry & kInsertTeleported) != 0;
+      batch_entry_.push_back(entry & ~kQueuedAtLaneStart);
+      batch_rp_.push_back(teleported ? resume_rp_[entry & ~(kInsertTeleported | kQueuedAtLaneStart)] : 0u);
     }
     batch_edge_.push_back(e);
     batch_begin_.push_back(static_cast<uint32_t>(batch_entry_.size()));
@@ -481,11 +492,15 @@ void Simulation::insert_waiting(int map_index) {
   still.clear();
   for (uint32_t slot = 0; slot < batch.num_slots; ++slot) {
     const uint32_t e = batch_edge_[slot];
+    if (batch_inserted_[slot] == 0) {  // as it was: still waiting (most queues, on a congested road)
+      still.push_back(e);
+      continue;
+    }
+    EdgeQueue& q = queue_[e];
     for (uint32_t i = batch_begin_[slot]; i < batch_begin_[slot] + batch_inserted_[slot]; ++i) {
       const uint32_t v = batch_entry_[i] & ~kInsertTeleported;
       SlotInit init{0, v, batch_rp_[i], batch_lane_[i], batch_pos_[i], batch_speed_[i], 0.0f, 0.0f, 0, 0};
       if (batch_entry_[i] & kInsertTeleported) {
-        teleport_pending_[v] = 0;
         const auto c = carried_.find(v);
         if (c != carried_.end()) {
           init.route_length = c->second.route_length;
@@ -503,15 +518,14 @@ void Simulation::insert_waiting(int map_index) {
         depart_speed_[v] = batch_speed_[i];
       }
       take_slot(init);
-      ++queue_head_[e];
+      ++q.head;
       --waiting_;
     }
-    auto& q = queue_[e];
-    if (queue_head_[e] < q.size()) {
+    if (q.head < q.entries.size()) {
       still.push_back(e);
     } else {
-      q.clear();
-      queue_head_[e] = 0;
+      q.entries.clear();
+      q.head = 0;
     }
   }
   queued_edges_.swap(still);

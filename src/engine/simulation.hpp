@@ -170,16 +170,20 @@ class Simulation {
     void reserve_slots(size_t n);
     PlanView view();
   } plan_;
-  std::vector<uint8_t> teleport_pending_;
   // Departure records for tripinfo.
   std::vector<float> depart_time_, depart_pos_, depart_speed_;
   std::vector<int32_t> depart_lane_;
 
   // Insertion: vehicles due to depart wait in per-edge FIFO queues; only each queue's head is tried.
   uint32_t next_departure_ = 0;
-  std::vector<std::vector<uint32_t>> queue_;  // per edge
-  std::vector<uint32_t> queue_head_;          // per edge
-  std::vector<uint32_t> queued_edges_;        // edges with a non-empty queue, ascending
+  // Entries: vehicle index | kInsertTeleported (a teleported vehicle re-entering) | kQueuedAtLaneStart.
+  struct EdgeQueue {
+    std::vector<uint32_t> entries;  // those before head have been inserted
+    uint32_t head = 0;
+    uint32_t lanes = 0;  // the edge's car lanes (none: its departures are removed)
+  };
+  std::vector<EdgeQueue> queue_;        // per edge
+  std::vector<uint32_t> queued_edges_;  // edges with a non-empty queue, ascending
   uint64_t waiting_ = 0;
 
   std::vector<uint32_t> active_;  // slots the passes visit, ascending (GPU backend: kept on the device)
