@@ -218,7 +218,7 @@ void copy_to_host(T* dst, const T* src, size_t n) {
 
 // The stepper lists every column of the views by hand: a column added to one of them must be added here.
 static_assert(sizeof(PlanView) == 14 * sizeof(void*), "PlanView changed: update reserve_plan_slots");
-static_assert(sizeof(NetView) == 21 * sizeof(void*) + sizeof(void*),
+static_assert(sizeof(NetView) == 22 * sizeof(void*) + sizeof(void*),
               "NetView changed: update upload_network");
 static_assert(sizeof(TypeView) == 8 * sizeof(void*) && sizeof(TripView) == 7 * sizeof(void*),
               "TypeView or TripView changed: update upload_demand");
@@ -747,6 +747,7 @@ class CudaStepper final : public GpuStepper {
     d.lane_internal = upload(h.lane_internal, nl);
     d.lane_left = upload(h.lane_left, nl);
     d.lane_right = upload(h.lane_right, nl);
+    d.lane_rank = upload(h.lane_rank, nl);
     d.lane_conn_begin = upload(h.lane_conn_begin, nl + 1);
     d.edge_first_lane = upload(h.edge_first_lane, ne);
     d.edge_num_lanes = upload(h.edge_num_lanes, ne);

@@ -18,6 +18,7 @@ struct NetView {
   const uint8_t* lane_internal;     // 1: junction-internal lane
   const int32_t* lane_left;         // car lane to the left on the same edge (index+1), -1 if none
   const int32_t* lane_right;        // car lane to the right on the same edge, -1 if none
+  const uint8_t* lane_rank;         // rank among the edge's car lanes (0: rightmost), 255 from there on
   const uint32_t* lane_conn_begin;  // [num_lanes+1] outgoing connections
   const uint32_t* edge_first_lane;
   const uint8_t* edge_num_lanes;

@@ -98,7 +98,7 @@ struct BestLanes {
 };
 
 LPSIM_HD uint32_t lane_bit(const NetView& net, uint32_t lane) {
-  const uint32_t rank = lane - net.edge_first_lane[net.lane_edge[lane]];
+  const uint32_t rank = net.lane_rank[lane];
   return rank < 32 ? (1u << rank) : 0u;
 }
 

@@ -1,5 +1,6 @@
 #include "engine/engine_net.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -16,12 +17,14 @@ EngineNet::EngineNet(const Network& net) {
   lane_internal.resize(nl);
   lane_left.assign(nl, -1);
   lane_right.assign(nl, -1);
+  lane_rank.resize(nl);
   for (uint32_t l = 0; l < nl; ++l) {
     const uint32_t e = net.lane_edge[l];
     lane_internal[l] = net.edge_is_internal[e];
     const uint32_t first = net.edge_first_lane[e], n = net.edge_num_lanes[e];
     if (l + 1 < first + n) lane_left[l] = static_cast<int32_t>(l + 1);
     if (l > first) lane_right[l] = static_cast<int32_t>(l - 1);
+    lane_rank[l] = static_cast<uint8_t>(std::min<uint32_t>(l - first, 255));
   }
   if (net.conn_foe_begin.size() == net.num_connections() + 1) {
     conn_foe_begin = net.conn_foe_begin;
@@ -72,6 +75,7 @@ NetView EngineNet::view(const Network& net) const {
   v.lane_internal = lane_internal.data();
   v.lane_left = lane_left.data();
   v.lane_right = lane_right.data();
+  v.lane_rank = lane_rank.data();
   v.lane_conn_begin = net.lane_conn_begin.data();
   v.edge_first_lane = net.edge_first_lane.data();
   v.edge_num_lanes = net.edge_num_lanes.data();

@@ -14,6 +14,7 @@ struct EngineNet {
   std::vector<uint32_t> lane_cell_begin;
   std::vector<uint8_t> lane_internal;
   std::vector<int32_t> lane_left, lane_right;
+  std::vector<uint8_t> lane_rank;  // so that a lane's rank costs one load, not two dependent ones
   std::vector<uint32_t> conn_foe_begin, conn_foe;  // copies, or an empty CSR if the net has none
   std::vector<uint16_t> foe_block_cells;           // per conn_foe entry (foe_crossings.hpp)
   std::vector<uint32_t> yielder_begin, yielder;    // the reverse: connections that must yield to each one
