@@ -67,6 +67,28 @@ LPSIM_HD bool inserts_at_lane_start(uint8_t pos_kind, bool teleported) {
          (pos_kind != kDepartPosGiven && pos_kind != kDepartPosRandom && pos_kind != kDepartPosRandomFree);
 }
 
+/// Where on lane l vehicle v's front would be placed (its departPos; teleported: at the lane start).
+LPSIM_HD float insert_pos(const NetView& net, const DepartView& d, uint64_t seed, uint32_t v, bool teleported,
+                          uint32_t l, float length) {
+  const float lane_len = net.lane_length[l];
+  const uint8_t pk = d.pos_kind[v];
+  if (inserts_at_lane_start(pk, teleported)) return lp_fminf(lane_len, length + 0.1f);
+  if (pk == kDepartPosGiven) {  // negative values were made absolute by the builder
+    const float given = d.pos[v];
+    return given < 0.0f ? 0.0f : (lane_len < given ? lane_len : given);
+  }
+  // random or random_free
+  return lp_fminf(lane_len, length + static_cast<float>(rng_uniform_double(seed, v, 1)) *
+                                         lp_fmaxf(0.0f, lane_len - length));
+}
+
+/// Whether the cells vehicle v's body would cover on lane l are all free.
+LPSIM_HD bool body_cells_free(const NetView& net, const uint8_t* map, int32_t l, float pos, float length) {
+  const int32_t rear_cell = static_cast<int32_t>(cell_of(net, l, pos - length));
+  const int32_t front_cell = static_cast<int32_t>(cell_of(net, l, pos));
+  return first_occupied(map, net, l, rear_cell, front_cell) < 0;
+}
+
 /// Tries to put vehicle v (entry flags included) on the road at the start of route edge `rp`, writing its
 /// footprint into `map` and where it was placed into the out_ values (the host then gives it a slot).
 /// Returns false, changing nothing, when no candidate lane has room.
@@ -80,8 +102,6 @@ LPSIM_HD bool try_insert_vehicle(const StepContext& s, const DepartView& d, cons
   const uint32_t first = net.edge_first_lane[e], nlanes = net.edge_num_lanes[e];
   const uint32_t type = s.trips.type[v];
   const float length = s.types.length[type], min_gap = s.types.min_gap[type];
-  const uint32_t best =
-      best_lanes(net, s.trips.route_edges + s.trips.route_begin[v], s.trips.route_length[v], rp).mask[0];
   const uint64_t seed = p.seed ^ kDepartRngSalt;
 
   // Candidate lanes in the order they are tried.
@@ -94,8 +114,17 @@ LPSIM_HD bool try_insert_vehicle(const StepContext& s, const DepartView& d, cons
   } else if (kind == kDepartLaneRandom) {
     candidates[nc++] = first + static_cast<uint32_t>(rng_bits(seed, v, 0) % nlanes);
   } else if (kind == kDepartLaneBest || kind == kDepartLaneFree) {
+    // Every candidate is a lane of the edge, and one whose body cells are taken is skipped: where no lane has
+    // room (most retries on a congested day) the answer is no without the route walk of the best lanes.
+    bool any_room = false;
+    for (uint32_t l = first; l < first + nlanes && !any_room; ++l)
+      any_room = body_cells_free(net, map, static_cast<int32_t>(l),
+                                 insert_pos(net, d, seed, v, teleported, l, length), length);
+    if (!any_room) return false;
     // Best, as SUMO: only lanes that lead on along the route (wait for one otherwise). Free and teleported
     // vehicles: those first, then the others.
+    const uint32_t best =
+        best_lanes(net, s.trips.route_edges + s.trips.route_begin[v], s.trips.route_length[v], rp).mask[0];
     for (uint32_t l = first; l < first + nlanes && nc < 64; ++l)
       if (lane_bit(net, l) & best) candidates[nc++] = l;
     if (kind == kDepartLaneFree || teleported)
@@ -110,18 +139,7 @@ LPSIM_HD bool try_insert_vehicle(const StepContext& s, const DepartView& d, cons
   for (uint32_t k = 0; k < nc; ++k) {
     const uint32_t l = candidates[k];
     const int32_t li = static_cast<int32_t>(l);
-    const float lane_len = net.lane_length[l];
-    float pos = lp_fminf(lane_len, length + 0.1f);
-    const uint8_t pk = d.pos_kind[v];
-    if (!inserts_at_lane_start(pk, teleported)) {
-      if (pk == kDepartPosGiven) {  // negative values were made absolute by the builder
-        const float given = d.pos[v];
-        pos = given < 0.0f ? 0.0f : (lane_len < given ? lane_len : given);
-      } else {  // random or random_free
-        pos = lp_fminf(lane_len, length + static_cast<float>(rng_uniform_double(seed, v, 1)) *
-                                              lp_fmaxf(0.0f, lane_len - length));
-      }
-    }
+    const float pos = insert_pos(net, d, seed, v, teleported, l, length);
     const float v0 = desired_speed(net.lane_speed[l], s.trips.speed_factor[v], s.types.max_speed[type]);
     float speed = 0;
     bool speed_given = false;
@@ -138,9 +156,9 @@ LPSIM_HD bool try_insert_vehicle(const StepContext& s, const DepartView& d, cons
       }
     }
     // Body cells must be free.
+    if (!body_cells_free(net, map, li, pos, length)) continue;
     const int32_t rear_cell = static_cast<int32_t>(cell_of(net, li, pos - length));
     const int32_t front_cell = static_cast<int32_t>(cell_of(net, li, pos));
-    if (first_occupied(map, net, li, rear_cell, front_cell) >= 0) continue;
     // Leader ahead: the inserted vehicle must be able to follow it safely.
     const int32_t cells = static_cast<int32_t>(lane_cells(net, li));
     const int32_t look = front_cell + 1 + metres_as_cells(lookahead_distance(ip, speed, p.dt) + min_gap);
