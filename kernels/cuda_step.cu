@@ -285,7 +285,7 @@ void upload_async(T* dst, const T* src, size_t n, PinnedArray<T>& staging) {
 }
 
 /// Where a run's time goes, printed at the end when LPSIM_GPU_TIMING is set: device time of each kernel
-/// phase (events, read at the step's one synchronisation) and host wall time of each stepper call.
+/// phase (events, read at the step's first synchronisation) and host wall time of each stepper call.
 class PhaseTimer {
  public:
   static constexpr int kEvents = 7;  // start, signals, clear, approach, plan, commit, finish
@@ -837,8 +837,8 @@ class CudaStepper final : public GpuStepper {
   ScratchArray<unsigned char> outcome_;
   PinnedArray<unsigned char> outcome_host_;
   uint32_t last_ends_ = 0;
-  uint32_t launched_ = 0,
-           guess_ = 0;  // the step started: its active vehicles, the ends fetched with its tally
+  // The step started last: its active vehicles, and the ends fetched with its tally.
+  uint32_t launched_ = 0, guess_ = 0;
   ScratchArray<TeleportMove> moves_;
   ScratchArray<uint32_t> batch_in_, batch_out_, added_, num_selected_;
   ScratchArray<unsigned char> temp_;

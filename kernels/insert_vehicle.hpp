@@ -82,11 +82,13 @@ LPSIM_HD float insert_pos(const NetView& net, const DepartView& d, uint64_t seed
                                          lp_fmaxf(0.0f, lane_len - length));
 }
 
-/// Whether the cells vehicle v's body would cover on lane l are all free.
-LPSIM_HD bool body_cells_free(const NetView& net, const uint8_t* map, int32_t l, float pos, float length) {
-  const int32_t rear_cell = static_cast<int32_t>(cell_of(net, l, pos - length));
-  const int32_t front_cell = static_cast<int32_t>(cell_of(net, l, pos));
-  return first_occupied(map, net, l, rear_cell, front_cell) < 0;
+/// The cells a body `length` metres long with its front at `pos` covers on lane l: [rear, front].
+struct BodyCells {
+  int32_t rear, front;
+};
+LPSIM_HD BodyCells body_cells(const NetView& net, int32_t l, float pos, float length) {
+  return BodyCells{static_cast<int32_t>(cell_of(net, l, pos - length)),
+                   static_cast<int32_t>(cell_of(net, l, pos))};
 }
 
 /// Tries to put vehicle v (entry flags included) on the road at the start of route edge `rp`, writing its
@@ -117,9 +119,11 @@ LPSIM_HD bool try_insert_vehicle(const StepContext& s, const DepartView& d, cons
     // Every candidate is a lane of the edge, and one whose body cells are taken is skipped: where no lane has
     // room (most retries on a congested day) the answer is no without the route walk of the best lanes.
     bool any_room = false;
-    for (uint32_t l = first; l < first + nlanes && !any_room; ++l)
-      any_room = body_cells_free(net, map, static_cast<int32_t>(l),
-                                 insert_pos(net, d, seed, v, teleported, l, length), length);
+    for (uint32_t l = first; l < first + nlanes && !any_room; ++l) {
+      const int32_t li = static_cast<int32_t>(l);
+      const BodyCells body = body_cells(net, li, insert_pos(net, d, seed, v, teleported, l, length), length);
+      any_room = first_occupied(map, net, li, body.rear, body.front) < 0;
+    }
     if (!any_room) return false;
     // Best, as SUMO: only lanes that lead on along the route (wait for one otherwise). Free and teleported
     // vehicles: those first, then the others.
@@ -156,13 +160,12 @@ LPSIM_HD bool try_insert_vehicle(const StepContext& s, const DepartView& d, cons
       }
     }
     // Body cells must be free.
-    if (!body_cells_free(net, map, li, pos, length)) continue;
-    const int32_t rear_cell = static_cast<int32_t>(cell_of(net, li, pos - length));
-    const int32_t front_cell = static_cast<int32_t>(cell_of(net, li, pos));
+    const BodyCells body = body_cells(net, li, pos, length);
+    if (first_occupied(map, net, li, body.rear, body.front) >= 0) continue;
     // Leader ahead: the inserted vehicle must be able to follow it safely.
     const int32_t cells = static_cast<int32_t>(lane_cells(net, li));
-    const int32_t look = front_cell + 1 + metres_as_cells(lookahead_distance(ip, speed, p.dt) + min_gap);
-    const int32_t ahead = front_cell + 1 < cells ? first_occupied(map, net, li, front_cell + 1,
+    const int32_t look = body.front + 1 + metres_as_cells(lookahead_distance(ip, speed, p.dt) + min_gap);
+    const int32_t ahead = body.front + 1 < cells ? first_occupied(map, net, li, body.front + 1,
                                                                   look < cells - 1 ? look : cells - 1)
                                                  : -1;
     if (ahead >= 0) {
@@ -176,9 +179,9 @@ LPSIM_HD bool try_insert_vehicle(const StepContext& s, const DepartView& d, cons
       }
     }
     // Follower behind: it must be able to stay safe behind the new vehicle.
-    if (rear_cell > 0) {
-      const int32_t reach = rear_cell - 1 - metres_as_cells(lookahead_distance(ip, net.lane_speed[l], p.dt));
-      const int32_t lag = last_occupied(map, net, li, reach > 0 ? reach : 0, rear_cell - 1);
+    if (body.rear > 0) {
+      const int32_t reach = body.rear - 1 - metres_as_cells(lookahead_distance(ip, net.lane_speed[l], p.dt));
+      const int32_t lag = last_occupied(map, net, li, reach > 0 ? reach : 0, body.rear - 1);
       if (lag >= 0) {
         const float gap = (pos - length) - static_cast<float>(lag + 1);
         const float vl = decode_cell_speed(map[net.lane_cell_begin[l] + static_cast<uint32_t>(lag)]) + 0.25f;
