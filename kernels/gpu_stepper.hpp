@@ -1,8 +1,8 @@
 #pragma once
 // The CUDA backend as host code sees it: plain C++, no CUDA types, so the engine includes it without nvcc.
-// The engine reaches it through src/engine/device_select. The backend an executable links defines the two
-// functions at the end: kernels/cuda_step.cu (built by nvcc, or against the host emulation in
-// tests/cuda_emulation), or src/engine/no_cuda_backend.cpp ("built without CUDA").
+// The backend an executable links defines the two functions at the end: kernels/cuda_step.cu (built by nvcc,
+// or against the host emulation in tests/cuda_emulation), or src/engine/no_cuda_backend.cpp ("built without
+// CUDA").
 //
 // The device owns the run state (vehicle columns, both lane maps, signal states, the active list, the
 // edgeData counters); the host keeps the insertion queues, the trip records and the outputs. Per step only
@@ -85,12 +85,15 @@ class GpuStepper {
   virtual void download_state(const StepContext& host, uint32_t num_slots, int map, char* link_state) = 0;
 };
 
-/// Checks device 0: present, driver recent enough, and able to run this build's kernels.
+/// Whether the step can run on a GPU here: this build has the CUDA backend, and device 0 is present, has a
+/// recent enough driver and can run this build's kernels. `description` names the device, or says why not
+/// ("built without CUDA", a driver error...).
 CudaDeviceStatus cuda_device_status();
 /// A stepper on device 0 holding the network, types and trips of `host`, its state after the host's first
 /// insertion (both lane maps, sizes.num_slots entries of the slot columns) and the active list (slots). With
 /// `lane_counters` the passes count into the device's own counters (drain_counters), without it they skip the
-/// counting. Throws std::runtime_error naming the failed CUDA call and its file:line.
+/// counting. Throws std::runtime_error naming the failed CUDA call and its file:line, or, in a build without
+/// CUDA, saying so.
 std::unique_ptr<GpuStepper> make_cuda_stepper(const StepContext& host, const SignalTable& signals,
                                               const GpuStepSizes& sizes, const DepartView& depart,
                                               const uint8_t* other_map, int map_now,

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "engine/device_select.hpp"
+#include "kernels/gpu_stepper.hpp"
 #include "kernels/insert_vehicle.hpp"
 #include "kernels/vehicle_step.hpp"
 
@@ -295,11 +295,11 @@ void Simulation::step_gpu() {
   if (!gpu_) {
     // The device takes over the state as the host left it (signals of the current time, first insertions).
     const StepContext ctx = context(map_[cur_].data(), map_[1 - cur_].data());
-    gpu_ =
-        make_gpu_stepper(ctx, engine_net_.signal_table(net_),
-                         GpuStepSizes{demand_.size(), slots_.size(), net_.num_edges(), net_.num_connections(),
-                                      demand_.types.size(), demand_.route_edges.size()},
-                         depart_view(), map_[1 - cur_].data(), cur_, active_, opt_.lane_counters);
+    gpu_ = make_cuda_stepper(
+        ctx, engine_net_.signal_table(net_),
+        GpuStepSizes{demand_.size(), slots_.size(), net_.num_edges(), net_.num_connections(),
+                     demand_.types.size(), demand_.route_edges.size()},
+        depart_view(), map_[1 - cur_].data(), cur_, active_, opt_.lane_counters);
   }
   gpu_->start_step(step_params(), cur_, step_ + 1);
   // While the device runs the passes: the departures due by the end of the step join their queues. Nothing

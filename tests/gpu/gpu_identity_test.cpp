@@ -11,6 +11,7 @@
 
 #include "core/error.hpp"
 #include "engine/device_select.hpp"
+#include "kernels/gpu_stepper.hpp"
 #include "lpsim_cli.hpp"
 #include "temp_dir.hpp"
 
@@ -80,7 +81,7 @@ struct IdentityCase {
 class GpuIdentityTest : public ::testing::TestWithParam<IdentityCase> {};
 
 TEST_P(GpuIdentityTest, GpuOutputsEqualCpuOutputsByteForByte) {
-  const CudaDeviceStatus gpu = gpu_status();
+  const CudaDeviceStatus gpu = cuda_device_status();
   if (!gpu.usable)
     GTEST_SKIP() << "no usable CUDA device (" << gpu.description << "): CPU/GPU identity not checked";
   const test::TempDir tmp("lpsim_gpu");
@@ -122,7 +123,7 @@ TEST(DeviceSelectTest, CpuIsAlwaysTheCpu) {
 }
 
 TEST(DeviceSelectTest, AutoTakesTheGpuExactlyWhenOneIsUsable) {
-  const CudaDeviceStatus gpu = gpu_status();
+  const CudaDeviceStatus gpu = cuda_device_status();
   EXPECT_FALSE(gpu.description.empty());
   const DeviceChoice c = select_device(ComputeDevice::Auto);
   EXPECT_EQ(c.gpu, gpu.usable);
@@ -131,7 +132,7 @@ TEST(DeviceSelectTest, AutoTakesTheGpuExactlyWhenOneIsUsable) {
 }
 
 TEST(DeviceSelectTest, GpuWithoutAUsableDeviceIsBadInputNamingTheReason) {
-  const CudaDeviceStatus gpu = gpu_status();
+  const CudaDeviceStatus gpu = cuda_device_status();
   if (gpu.usable) {
     EXPECT_TRUE(select_device(ComputeDevice::Gpu).gpu);
     return;
@@ -147,13 +148,13 @@ TEST(DeviceSelectTest, GpuWithoutAUsableDeviceIsBadInputNamingTheReason) {
 
 #if !defined(LPSIM_HAVE_CUDA)
 TEST(DeviceSelectTest, BuildWithoutCudaSaysSo) {
-  EXPECT_FALSE(gpu_status().usable);
-  EXPECT_EQ(gpu_status().description, "built without CUDA");
+  EXPECT_FALSE(cuda_device_status().usable);
+  EXPECT_EQ(cuda_device_status().description, "built without CUDA");
 }
 #endif
 
 TEST(DeviceCliTest, GpuWithoutAUsableDeviceExitsWithStatus2AndOneLine) {
-  const CudaDeviceStatus gpu = gpu_status();
+  const CudaDeviceStatus gpu = cuda_device_status();
   if (gpu.usable) GTEST_SKIP() << "a CUDA device is usable (" << gpu.description << ")";
   const test::TempDir tmp("lpsim_gpu");
   const test::CliResult r = run_scenario(tmp.path(), "grid_tls", "--device gpu --end 10");

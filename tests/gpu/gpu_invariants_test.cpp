@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "engine/device_select.hpp"
+#include "kernels/gpu_stepper.hpp"
 #include "unit/engine_invariant_checker.hpp"
 
 namespace lpsim::engine_test {
@@ -20,7 +20,7 @@ RunResult run_checked_on_gpu(const Scenario& sc, const std::string& name) {
 class GpuInvariantsTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    const CudaDeviceStatus gpu = gpu_status();
+    const CudaDeviceStatus gpu = cuda_device_status();
     if (!gpu.usable)
       GTEST_SKIP() << "no usable CUDA device (" << gpu.description << "): GPU invariants not checked";
   }

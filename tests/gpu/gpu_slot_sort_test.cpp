@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/device_select.hpp"
+#include "kernels/gpu_stepper.hpp"
 #include "unit/run_trace.hpp"
 
 namespace lpsim::engine_test {
@@ -15,7 +15,7 @@ namespace {
 class GpuSlotSortTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    const CudaDeviceStatus gpu = gpu_status();
+    const CudaDeviceStatus gpu = cuda_device_status();
     if (!gpu.usable)
       GTEST_SKIP() << "no usable CUDA device (" << gpu.description << "): GPU slot sorting not checked";
   }
