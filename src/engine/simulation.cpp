@@ -45,6 +45,12 @@ static_assert(kDepartSpeedGiven == uint8_t(DepartSpeed::Given) &&
 constexpr uint32_t kQueuedAtLaneStart = 0x40000000u;
 constexpr uint32_t kMaxVehicles = kQueuedAtLaneStart;  // vehicle indices below both flags
 
+// The queue entry of vehicle v (its departPos kind `pos_kind`), departing or re-entering after a teleport.
+uint32_t queue_entry(uint32_t v, uint8_t pos_kind, bool teleported) {
+  return v | (teleported ? kInsertTeleported : 0u) |
+         (inserts_at_lane_start(pos_kind, teleported) ? kQueuedAtLaneStart : 0u);
+}
+
 // The LaneCounters columns in the order the GPU stepper keeps them.
 std::vector<int64_t>* counter_columns(LaneCounters& c, int k) {
   std::vector<int64_t>* columns[kNumLaneCounters] = {&c.sampled_steps, &c.travelled_mm,      &c.waiting_steps,
@@ -389,10 +395,7 @@ void Simulation::handle_vehicle_ends(std::vector<VehicleEnd>& ends) {
     const uint32_t edge = demand_.route_edges[demand_.route_begin[v] + e.route_pos + 1];
     EdgeQueue& q = queue_[edge];
     // Teleported vehicles go first: they have been on the road already.
-    const uint32_t entry =
-        v | kInsertTeleported |
-        (inserts_at_lane_start(demand_.depart_pos_kind[v], true) ? kQueuedAtLaneStart : 0u);
-    q.entries.insert(q.entries.begin() + q.head, entry);
+    q.entries.insert(q.entries.begin() + q.head, queue_entry(v, demand_.depart_pos_kind[v], true));
     if (q.head + 1 == q.entries.size())
       queued_edges_.insert(std::lower_bound(queued_edges_.begin(), queued_edges_.end(), edge), edge);
     ++waiting_;
@@ -420,8 +423,7 @@ void Simulation::enqueue_due(int64_t until_ms) {
       q.head = 0;
       queued_edges_.insert(std::lower_bound(queued_edges_.begin(), queued_edges_.end(), e), e);
     }
-    q.entries.push_back(v |
-                        (inserts_at_lane_start(demand_.depart_pos_kind[v], false) ? kQueuedAtLaneStart : 0u));
+    q.entries.push_back(queue_entry(v, demand_.depart_pos_kind[v], false));
     ++waiting_;
   }
 }
