@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "engine/pass_prefetch.hpp"
 #include "kernels/gpu_stepper.hpp"
 #include "kernels/insert_vehicle.hpp"
 #include "kernels/vehicle_step.hpp"
@@ -252,22 +253,39 @@ void Simulation::step_cpu() {
   plan_.reserve_slots(active_.size());
   StepContext ctx = context(map_[cur_].data(), map_[1 - cur_].data());
   update_signals(ctx.params.signal_time_ms);
-  // Each pass is one parallel loop over the active vehicles, finished before the next starts.
+  // Each pass is one parallel loop over the active vehicles, finished before the next starts. Each names
+  // where its vehicles are (the footprint it clears or writes, the front it plans from) for the prefetch.
   const int64_t n = static_cast<int64_t>(active_.size());
   const uint32_t* act = active_.data();
-  auto pass = [&](auto vehicle_pass) {
+  auto pass = [&](auto where, const uint8_t* map, const auto* per_lane, auto vehicle_pass) {
     pool_.run(
         n,
         [&](int64_t b, int64_t e) {
-          for (int64_t i = b; i < e; ++i) vehicle_pass(ctx, static_cast<uint32_t>(i), act[i]);
+          run_prefetched(
+              b, e, ctx.net, map, where,
+              [&](int64_t i) { vehicle_pass(ctx, static_cast<uint32_t>(i), act[i]); }, per_lane);
         },
         kParallelMinVehicles);
   };
+  auto old_front = [&](int64_t i) { return LaneAt{ctx.veh.old_lane[act[i]], ctx.veh.old_pos[act[i]]}; };
+  // Only running vehicles have a front to plan from, and only their plans were written this step.
+  auto front = [&](int64_t i) {
+    const uint32_t k = act[i];
+    return LaneAt{ctx.veh.status[k] == kRunning ? ctx.veh.lane[k] : -1, ctx.veh.pos[k]};
+  };
+  auto new_front = [&](int64_t i) {
+    return LaneAt{ctx.veh.status[act[i]] == kRunning ? ctx.plan.new_lane[i] : -1, ctx.plan.new_pos[i]};
+  };
+  const uint8_t* no_lane_array = nullptr;
   // Lambdas rather than function pointers, so that each pass's body is inlined into its loop.
-  pass([](StepContext& c, uint32_t i, uint32_t k) { clear_old_footprint(c, i, k); });
-  pass([](StepContext& c, uint32_t i, uint32_t k) { approach_vehicle(c, i, k); });
-  pass([](StepContext& c, uint32_t i, uint32_t k) { plan_vehicle(c, i, k); });
-  pass([](StepContext& c, uint32_t i, uint32_t k) { commit_vehicle(c, i, k); });
+  pass(old_front, ctx.map_next, no_lane_array,
+       [](StepContext& c, uint32_t i, uint32_t k) { clear_old_footprint(c, i, k); });
+  pass(front, ctx.map_now, no_lane_array,
+       [](StepContext& c, uint32_t i, uint32_t k) { approach_vehicle(c, i, k); });
+  pass(front, ctx.map_now, ctx.merge_requests,
+       [](StepContext& c, uint32_t i, uint32_t k) { plan_vehicle(c, i, k); });
+  pass(new_front, ctx.map_next, no_lane_array,
+       [](StepContext& c, uint32_t i, uint32_t k) { commit_vehicle(c, i, k); });
   counts_.vehicle_updates += static_cast<uint64_t>(n);
 
   time_ms_ += dt_ms_;
