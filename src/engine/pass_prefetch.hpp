@@ -18,21 +18,23 @@ struct LaneAt {
   float pos;
 };
 
-/// Runs body(i) for i in [b, e), prefetching for each i the lane columns and lane-map cells that where(i)
-/// names: the cells from a few metres behind the front (a footprint) to a few ahead (a leader scan).
-/// `per_lane`, if not null, is one more per-lane array the pass reads at the vehicle's lane.
-template <class Where, class Body, class PerLane = uint8_t>
-void run_prefetched(int64_t b, int64_t e, const NetView& net, const uint8_t* map, Where where, Body body,
-                    const PerLane* per_lane = nullptr) {
+/// The lane columns every pass reads at a vehicle's lane.
+inline void prefetch_lane_columns(const NetView& net, int32_t lane) {
+  __builtin_prefetch(&net.lane_cell_begin[lane]);
+  __builtin_prefetch(&net.lane_length[lane]);
+  __builtin_prefetch(&net.lane_speed[lane]);
+}
+
+/// Runs body(i) for i in [b, e), prefetching for each i the lane-map cells that where(i) names, from a few
+/// metres behind the front (a footprint) to a few ahead (a leader scan), and before that the lane's columns
+/// through fetch_lane(lane).
+template <class Where, class FetchLane, class Body>
+void run_prefetched(int64_t b, int64_t e, const NetView& net, const uint8_t* map, Where where,
+                    FetchLane fetch_lane, Body body) {
   for (int64_t i = b; i < e; ++i) {
     if (i + kPrefetchFar < e) {
       const LaneAt a = where(i + kPrefetchFar);
-      if (a.lane >= 0) {
-        __builtin_prefetch(&net.lane_cell_begin[a.lane]);
-        __builtin_prefetch(&net.lane_length[a.lane]);
-        __builtin_prefetch(&net.lane_speed[a.lane]);
-        if (per_lane != nullptr) __builtin_prefetch(&per_lane[a.lane]);
-      }
+      if (a.lane >= 0) fetch_lane(a.lane);
     }
     if (i + kPrefetchNear < e) {
       const LaneAt a = where(i + kPrefetchNear);

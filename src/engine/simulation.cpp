@@ -257,15 +257,24 @@ void Simulation::step_cpu() {
   // where its vehicles are (the footprint it clears or writes, the front it plans from) for the prefetch.
   const int64_t n = static_cast<int64_t>(active_.size());
   const uint32_t* act = active_.data();
-  auto pass = [&](auto where, const uint8_t* map, const auto* per_lane, auto vehicle_pass) {
+  auto pass = [&](auto where, const uint8_t* map, auto fetch_lane, auto vehicle_pass) {
     pool_.run(
         n,
         [&](int64_t b, int64_t e) {
-          run_prefetched(
-              b, e, ctx.net, map, where,
-              [&](int64_t i) { vehicle_pass(ctx, static_cast<uint32_t>(i), act[i]); }, per_lane);
+          run_prefetched(b, e, ctx.net, map, where, fetch_lane,
+                         [&](int64_t i) { vehicle_pass(ctx, static_cast<uint32_t>(i), act[i]); });
         },
         kParallelMinVehicles);
+  };
+  auto lane_columns = [&](int32_t l) { prefetch_lane_columns(ctx.net, l); };
+  // The plan also reads the lane's neighbours (lane changes), kind and merge request.
+  auto plan_lane_columns = [&](int32_t l) {
+    prefetch_lane_columns(ctx.net, l);
+    __builtin_prefetch(&ctx.merge_requests[l]);
+    __builtin_prefetch(&ctx.net.lane_left[l]);
+    __builtin_prefetch(&ctx.net.lane_right[l]);
+    __builtin_prefetch(&ctx.net.lane_internal[l]);
+    __builtin_prefetch(&ctx.net.lane_rank[l]);
   };
   auto old_front = [&](int64_t i) { return LaneAt{ctx.veh.old_lane[act[i]], ctx.veh.old_pos[act[i]]}; };
   // Only running vehicles have a front to plan from, and only their plans were written this step.
@@ -276,15 +285,14 @@ void Simulation::step_cpu() {
   auto new_front = [&](int64_t i) {
     return LaneAt{ctx.veh.status[act[i]] == kRunning ? ctx.plan.new_lane[i] : -1, ctx.plan.new_pos[i]};
   };
-  const uint8_t* no_lane_array = nullptr;
   // Lambdas rather than function pointers, so that each pass's body is inlined into its loop.
-  pass(old_front, ctx.map_next, no_lane_array,
+  pass(old_front, ctx.map_next, lane_columns,
        [](StepContext& c, uint32_t i, uint32_t k) { clear_old_footprint(c, i, k); });
-  pass(front, ctx.map_now, no_lane_array,
+  pass(front, ctx.map_now, lane_columns,
        [](StepContext& c, uint32_t i, uint32_t k) { approach_vehicle(c, i, k); });
-  pass(front, ctx.map_now, ctx.merge_requests,
+  pass(front, ctx.map_now, plan_lane_columns,
        [](StepContext& c, uint32_t i, uint32_t k) { plan_vehicle(c, i, k); });
-  pass(new_front, ctx.map_next, no_lane_array,
+  pass(new_front, ctx.map_next, lane_columns,
        [](StepContext& c, uint32_t i, uint32_t k) { commit_vehicle(c, i, k); });
   counts_.vehicle_updates += static_cast<uint64_t>(n);
 
