@@ -25,9 +25,9 @@ inline void prefetch_lane_columns(const NetView& net, int32_t lane) {
   __builtin_prefetch(&net.lane_speed[lane]);
 }
 
-/// Runs body(i) for i in [b, e), prefetching for each i the lane-map cells that where(i) names, from a few
-/// metres behind the front (a footprint) to a few ahead (a leader scan), and before that the lane's columns
-/// through fetch_lane(lane).
+/// Runs body(i) for i in [b, e), prefetching for each i the cells of `map` (null: none) that where(i) names,
+/// from a few metres behind the front (a footprint) to a few ahead (a leader scan), and before that the
+/// lane's columns through fetch_lane(lane).
 template <class Where, class FetchLane, class Body>
 void run_prefetched(int64_t b, int64_t e, const NetView& net, const uint8_t* map, Where where,
                     FetchLane fetch_lane, Body body) {
@@ -36,7 +36,7 @@ void run_prefetched(int64_t b, int64_t e, const NetView& net, const uint8_t* map
       const LaneAt a = where(i + kPrefetchFar);
       if (a.lane >= 0) fetch_lane(a.lane);
     }
-    if (i + kPrefetchNear < e) {
+    if (map != nullptr && i + kPrefetchNear < e) {
       const LaneAt a = where(i + kPrefetchNear);
       if (a.lane >= 0) {
         // As an integer: the lines fetched may lie a little before or beyond the lane map, which a

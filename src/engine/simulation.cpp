@@ -288,7 +288,8 @@ void Simulation::step_cpu() {
   // Lambdas rather than function pointers, so that each pass's body is inlined into its loop.
   pass(old_front, ctx.map_next, lane_columns,
        [](StepContext& c, uint32_t i, uint32_t k) { clear_old_footprint(c, i, k); });
-  pass(front, ctx.map_now, lane_columns,
+  // Approach reads the lane map only for vehicles within reach of their lane's end: no cells fetched for it.
+  pass(front, nullptr, lane_columns,
        [](StepContext& c, uint32_t i, uint32_t k) { approach_vehicle(c, i, k); });
   pass(front, ctx.map_now, plan_lane_columns,
        [](StepContext& c, uint32_t i, uint32_t k) { plan_vehicle(c, i, k); });
