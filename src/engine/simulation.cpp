@@ -474,9 +474,9 @@ void Simulation::insert_waiting(int map_index) {
         if (lane_starts_left == 0) break;
         --lane_starts_left;
       }
-      const bool teleported = (entry & kInsertTeleported) != 0;
-      batch_entry_.push_back(entry & ~kQueuedAtLaneStart);
-      batch_rp_.push_back(teleported ? resume_rp_[entry & ~(kInsertTeleported | kQueuedAtLaneStart)] : 0u);
+      const uint32_t offered = entry & ~kQueuedAtLaneStart;  // the insertion knows only kInsertTeleported
+      batch_entry_.push_back(offered);
+      batch_rp_.push_back((offered & kInsertTeleported) ? resume_rp_[offered & ~kInsertTeleported] : 0u);
     }
     batch_edge_.push_back(e);
     batch_begin_.push_back(static_cast<uint32_t>(batch_entry_.size()));
