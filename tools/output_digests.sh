@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# Digests of the outputs (tripinfo, FCD, edgeData, summary) of every bundled and ../shared scenario, on the
+# CPU backend with 1, 2 and 4 threads and, when given, on a second binary (the emulated CUDA backend,
+# build/tests/lpsim_emulated). Two runs of this script on two commits, diffed, say whether a change kept the
+# outputs byte for byte:
+#
+#   tools/output_digests.sh build/lpsim build/tests/lpsim_emulated > after.txt
+#   diff before.txt after.txt
+#
+# The scenarios are copied to a scratch folder first (their add-files may name outputs of their own).
+# The summary's duration attribute (wall time) is masked. Options: --end T (default: each scenario's own).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+end_args=()
+if [[ "${1:-}" == --end ]]; then
+  end_args=(--end "$2")
+  shift 2
+fi
+lpsim=$(realpath "${1:?usage: tools/output_digests.sh [--end T] LPSIM [LPSIM_EMULATED]}")
+emulated=${2:+$(realpath "$2")}
+shared=../shared
+work=$(mktemp -d /tmp/lpsim_digests.XXXXXX)
+trap 'rm -rf "$work"' EXIT
+
+cases=()  # name|folder|config (relative to the folder, or "csv")
+for cfg in scenarios/*/*.sumocfg; do cases+=("$(basename "$(dirname "$cfg")")|$(dirname "$cfg")|$(basename "$cfg")"); done
+cases+=("lpsim_csv_small|scenarios/lpsim_csv_small|csv")
+if [ -d "$shared/scenarios" ]; then
+  for cfg in "$shared"/scenarios/*/*.sumocfg; do
+    cases+=("$(basename "$(dirname "$cfg")")|$(dirname "$cfg")|$(basename "$cfg")")
+  done
+fi
+
+run_case() {  # binary label name folder config
+  local bin=$1 label=$2 name=$3 folder=$4 config=$5 threads=$6
+  local dir=$work/$name/$label
+  mkdir -p "$dir"
+  cp -r "$folder"/. "$dir"/
+  local input=(-c "$dir/$config")
+  if [[ $config == csv ]]; then
+    input=(--lpsim-nodes "$dir/nodes.csv" --lpsim-edges "$dir/edges.csv" --lpsim-od "$dir/od.csv")
+  fi
+  (cd "$dir" && "$bin" run "${input[@]}" "${end_args[@]}" --threads "$threads" --no-warnings \
+    --tripinfo-output out_tripinfo.xml --fcd-output out_fcd.xml --edgedata-output out_edgedata.xml \
+    --summary-output out_summary.xml > out_stdout.txt 2> out_stderr.txt) || {
+    echo "$name $label: lpsim failed" >&2
+    cat "$dir/out_stderr.txt" >&2
+    return 1
+  }
+  sed -i 's/ duration="[^"]*"/ duration="masked"/' "$dir/out_summary.xml"
+  for f in tripinfo fcd edgedata summary; do
+    printf '%s %s %s %s\n' "$name" "$label" "$f" "$(md5sum < "$dir/out_$f.xml" | cut -d' ' -f1)"
+  done
+  rm -rf "$dir"
+}
+
+for c in "${cases[@]}"; do
+  IFS='|' read -r name folder config <<< "$c"
+  for t in 1 2 4; do run_case "$lpsim" "cpu-t$t" "$name" "$folder" "$config" "$t"; done
+  if [ -n "$emulated" ]; then run_case "$emulated" "emulated" "$name" "$folder" "$config" 1; fi
+done
