@@ -1,5 +1,6 @@
 # LPSIM_CUDA=AUTO builds the CUDA backend when nvcc is found; ON requires it; OFF never builds it.
-# The backend is kernels/*.cu: thin __global__ wrappers over the same step functions the CPU runs.
+# The backend is src/backends/cuda/*.cu, launching kernels/cuda_kernels.cuh: thin __global__ wrappers over
+# the same step functions the CPU runs.
 set(LPSIM_WITH_CUDA OFF)
 if(NOT LPSIM_CUDA STREQUAL "OFF")
   if(NOT CMAKE_CUDA_COMPILER AND EXISTS /usr/local/cuda/bin/nvcc)
@@ -14,10 +15,10 @@ if(NOT LPSIM_CUDA STREQUAL "OFF")
   endif()
 endif()
 
-file(GLOB LPSIM_CUDA_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/kernels/*.cu)
+file(GLOB LPSIM_CUDA_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/backends/cuda/*.cu)
 if(LPSIM_WITH_CUDA AND NOT LPSIM_CUDA_SOURCES)
   set(LPSIM_WITH_CUDA OFF)
-  message(STATUS "LPSim CUDA backend: nvcc found, but no kernels/*.cu to build yet")
+  message(STATUS "LPSim CUDA backend: nvcc found, but no src/backends/cuda/*.cu to build yet")
 elseif(LPSIM_WITH_CUDA)
   # Set before enable_language, which otherwise fills in nvcc's own default (sm_52 up to CUDA 12, sm_75 in
   # CUDA 13). A -DCMAKE_CUDA_ARCHITECTURES given by the user wins.

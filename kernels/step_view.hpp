@@ -117,43 +117,48 @@ struct VehicleView {
 
 constexpr uint32_t kBestLaneEntries = 2;  // a power of two
 
-/// Calls f(a.column, b.column, entries per slot) for every column of two vehicle views (a may be written:
-/// f gets references). Host code only (the backends' slot management); kernels name columns directly.
-template <class A, class B, class F>
-void for_each_vehicle_column(A& a, B& b, F&& f) {
-  f(a.status, b.status, 1u);
-  f(a.vehicle, b.vehicle, 1u);
-  f(a.route_pos, b.route_pos, 1u);
-  f(a.speed, b.speed, 1u);
-  f(a.lane, b.lane, 1u);
-  f(a.prev, b.prev, 1u);
-  f(a.prev2, b.prev2, 1u);
-  f(a.pos, b.pos, 1u);
-  f(a.old_lane, b.old_lane, 1u);
-  f(a.old_prev, b.old_prev, 1u);
-  f(a.old_prev2, b.old_prev2, 1u);
-  f(a.old_pos, b.old_pos, 1u);
-  f(a.stopped_steps, b.stopped_steps, 1u);
-  f(a.waiting_steps, b.waiting_steps, 1u);
-  f(a.waiting_count, b.waiting_count, 1u);
-  f(a.time_loss, b.time_loss, 1u);
-  f(a.route_length, b.route_length, 1u);
-  f(a.arrival_step, b.arrival_step, 1u);
-  f(a.lane_change_dir, b.lane_change_dir, 1u);
-  f(a.held_at_line, b.held_at_line, 1u);
-  f(a.limit_reason, b.limit_reason, 1u);
-  f(a.best_rp, b.best_rp, kBestLaneEntries);
-  f(a.best_mask, b.best_mask, kBestLaneEntries);
-  f(a.conn_lane, b.conn_lane, 1u);
-  f(a.conn_rp, b.conn_rp, 1u);
-  f(a.conn, b.conn, 1u);
-  f(a.trip_type, b.trip_type, 1u);
-  f(a.trip_speed_factor, b.trip_speed_factor, 1u);
-  f(a.trip_route_begin, b.trip_route_begin, 1u);
-  f(a.trip_route_size, b.trip_route_size, 1u);
+/// A slot number that names no slot in the active list (Stepper::sort_slots).
+constexpr uint32_t kNotActive = 0xFFFFFFFFu;
+
+/// The one list of the slot columns: calls f(entries per slot, view.column...) for every column of
+/// VehicleView, the same column of each view given (one view, or two to pair a device and a host copy).
+/// Storage, growth, the slot sort, the device copies and the host's fetched copies all walk this list, so
+/// that a column added to VehicleView and here reaches every one of them. Host code only: the passes name
+/// columns directly.
+template <class F, class... Views>
+void visit_vehicle_columns(F&& f, Views&... v) {
+  f(1u, v.status...);
+  f(1u, v.vehicle...);
+  f(1u, v.route_pos...);
+  f(1u, v.speed...);
+  f(1u, v.lane...);
+  f(1u, v.prev...);
+  f(1u, v.prev2...);
+  f(1u, v.pos...);
+  f(1u, v.old_lane...);
+  f(1u, v.old_prev...);
+  f(1u, v.old_prev2...);
+  f(1u, v.old_pos...);
+  f(1u, v.stopped_steps...);
+  f(1u, v.waiting_steps...);
+  f(1u, v.waiting_count...);
+  f(1u, v.time_loss...);
+  f(1u, v.route_length...);
+  f(1u, v.arrival_step...);
+  f(1u, v.lane_change_dir...);
+  f(1u, v.held_at_line...);
+  f(1u, v.limit_reason...);
+  f(kBestLaneEntries, v.best_rp...);
+  f(kBestLaneEntries, v.best_mask...);
+  f(1u, v.conn_lane...);
+  f(1u, v.conn_rp...);
+  f(1u, v.conn...);
+  f(1u, v.trip_type...);
+  f(1u, v.trip_speed_factor...);
+  f(1u, v.trip_route_begin...);
+  f(1u, v.trip_route_size...);
 }
-static_assert(sizeof(VehicleView) == 30 * sizeof(void*),
-              "VehicleView changed: update for_each_vehicle_column");
+static_assert(sizeof(VehicleView) == 30 * sizeof(void*), "VehicleView changed: update visit_vehicle_columns");
 
 enum StopReason : uint8_t {
   kFree = 0,
@@ -190,6 +195,26 @@ struct PlanView {
   // slot's cache instead: current_lane_connection.)
   float* lookahead;
 };
+
+/// The one list of the plan columns (as visit_vehicle_columns): one entry per active-list position each.
+template <class F, class... Views>
+void visit_plan_columns(F&& f, Views&... v) {
+  f(1u, v.new_speed...);
+  f(1u, v.new_lane...);
+  f(1u, v.new_pos...);
+  f(1u, v.new_prev...);
+  f(1u, v.new_prev2...);
+  f(1u, v.claim_lane0...);
+  f(1u, v.claim_lane1...);
+  f(1u, v.stop_pos...);
+  f(1u, v.stop_lane...);
+  f(1u, v.arrives...);
+  f(1u, v.new_rp...);
+  f(1u, v.first_rp...);
+  f(1u, v.claim_prio...);
+  f(1u, v.lookahead...);
+}
+static_assert(sizeof(PlanView) == 14 * sizeof(void*), "PlanView changed: update visit_plan_columns");
 
 /// Claims on lane entries: one 64-bit word per lane; the largest value of the current step wins.
 /// value = step << 40 | (0xFF - priority) << 32 | (0xFFFFFFFF - vehicle): higher priority, then lower index.
@@ -260,6 +285,15 @@ struct SlotInit {
   float time_loss;
   uint32_t waiting_steps;
   uint32_t waiting_count;
+};
+
+/// A running vehicle's new route (rerouting): where its edges start in TripView::route_edges, how many, and
+/// the position on it of the edge the vehicle is on (or, on an internal lane, last left).
+struct SlotRoute {
+  uint32_t slot;
+  uint32_t route_begin;
+  uint32_t route_size;
+  uint32_t route_pos;
 };
 
 }  // namespace lpsim

@@ -1064,4 +1064,21 @@ LPSIM_HD void activate_slot(const VehicleView& veh, const TripView& trips, const
   veh.conn[k] = -1;
 }
 
+/// A running vehicle takes a new route: the slot's copy of the trip's route fields follows it, and the caches
+/// keyed by route position (best lanes, the connection at the lane's end) are emptied, as their positions
+/// now count along another route.
+LPSIM_HD void set_slot_route(const VehicleView& veh, const SlotRoute& r) {
+  const uint32_t k = r.slot;
+  veh.trip_route_begin[k] = r.route_begin;
+  veh.trip_route_size[k] = r.route_size;
+  veh.route_pos[k] = r.route_pos;
+  for (uint32_t e = 0; e < kBestLaneEntries; ++e) {
+    veh.best_rp[k * kBestLaneEntries + e] = 0xFFFFFFFFu;
+    veh.best_mask[k * kBestLaneEntries + e] = 0;
+  }
+  veh.conn_lane[k] = -1;
+  veh.conn_rp[k] = 0;
+  veh.conn[k] = -1;
+}
+
 }  // namespace lpsim

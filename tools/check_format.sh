@@ -8,7 +8,7 @@ command -v clang-format >/dev/null && command -v git >/dev/null && git rev-parse
 bad=()
 while IFS= read -r f; do
   clang-format --dry-run --Werror "$f" >/dev/null 2>&1 || bad+=("$f")
-done < <(git ls-files '*.cpp' '*.hpp' '*.cu')
+done < <(git ls-files '*.cpp' '*.hpp' '*.cu' '*.cuh')
 if ((${#bad[@]})); then
   echo "check_format: not clang-format clean (run clang-format -i on them): ${bad[*]}"
   exit 1

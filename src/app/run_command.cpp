@@ -9,11 +9,11 @@
 
 #include "app/commands.hpp"
 #include "app/scenario_args.hpp"
+#include "backends/cuda/device_select.hpp"
 #include "converters/fcd_writer.hpp"
 #include "converters/mean_data_writer.hpp"
 #include "converters/summary_writer.hpp"
 #include "converters/tripinfo_writer.hpp"
-#include "engine/device_select.hpp"
 #include "engine/simulation.hpp"
 
 namespace lpsim {
@@ -69,7 +69,10 @@ int command_run(const std::vector<std::string>& args) {
 
   SimulationOptions opt;
   opt.begin = config.begin;
-  opt.step_length = config.step_length;
+  opt.step_ms = std::llround(config.step_length * 1000.0);
+  if (std::fabs(static_cast<double>(opt.step_ms) - config.step_length * 1000.0) > 1e-6)
+    throw InputError(SourceLoc{"command line", 0}, "--step-length " + std::to_string(config.step_length) +
+                                                       ": not a whole number of milliseconds");
   opt.seed = static_cast<uint64_t>(config.seed);
   opt.threads = config.threads > 0 ? config.threads : 1;
   opt.time_to_teleport = config.time_to_teleport;
@@ -85,23 +88,24 @@ int command_run(const std::vector<std::string>& args) {
     specs.push_back(MeanDataSpec{"lanedata", out.lanedata, true, -1, -1, -1, false, false, {}});
   opt.lane_counters = !specs.empty();
   const auto wall0 = std::chrono::steady_clock::now();
-  Simulation sim(sc.network, sc.demand, opt);
+  Simulation sim(sc.network, std::move(sc.demand), opt);
+  const Demand& demand = sim.demand();
 
   std::unique_ptr<FcdWriter> fcd;
   std::unique_ptr<TripinfoWriter> tripinfo;
   std::unique_ptr<SummaryWriter> summary;
-  if (!out.fcd.empty()) fcd = std::make_unique<FcdWriter>(out.fcd, sc.network, sc.demand);
+  if (!out.fcd.empty()) fcd = std::make_unique<FcdWriter>(out.fcd, sc.network, demand);
   if (!out.tripinfo.empty()) {
     std::vector<std::string> devices{"tripinfo"};
     if (fcd) devices.push_back("fcd");
-    tripinfo = std::make_unique<TripinfoWriter>(out.tripinfo, sc.network, sc.demand, devices);
+    tripinfo = std::make_unique<TripinfoWriter>(out.tripinfo, sc.network, demand, devices);
   }
   if (!out.summary.empty()) summary = std::make_unique<SummaryWriter>(out.summary);
   std::vector<MeanDataOutput> mean;
   for (auto& s : specs) {
     MeanDataOutput m;
     m.spec = s;
-    m.writer = std::make_unique<MeanDataWriter>(s, sc.network, sc.demand);
+    m.writer = std::make_unique<MeanDataWriter>(s, sc.network, demand);
     m.interval_begin = s.begin >= 0 ? s.begin : sim.time();
     // Zero, not the counters now: vehicles inserted at the begin time belong to the first interval.
     m.at_begin.resize(sc.network.num_lanes());
@@ -144,7 +148,7 @@ int command_run(const std::vector<std::string>& args) {
   // As SUMO: with an end time the last step simulated starts at end - step (outputs run to end - step).
   while (!(end >= 0 ? sim.time() + config.step_length > end - 1e-9 : sim.finished())) {
     sim.step();
-    if (!config.no_warnings) warn_teleports(sim, sc.network, sc.demand);
+    if (!config.no_warnings) warn_teleports(sim, sc.network, demand);
     totals.peak_running = std::max<uint64_t>(totals.peak_running, sim.counts().running);
     emit();
     for (auto& m : mean)

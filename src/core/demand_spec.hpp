@@ -62,7 +62,7 @@ struct DepartSpec {
   double arrival_value = 0;
 };
 
-enum class DemandSource : uint8_t { Vehicle, Trip, Flow, OdCsv };
+enum class DemandSource : uint8_t { Vehicle, Trip, Flow, OdCsv, Added };  // Added: during a run (TripTable)
 
 /// A vehicle, a trip or an OD row: one traveller. Exactly one of route / edges / (from,to) names the path.
 struct VehicleSpec {

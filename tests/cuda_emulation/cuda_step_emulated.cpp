@@ -3,4 +3,4 @@
 // Small starting sizes, so that the tests run the paths for growth and for more ends than guessed.
 #define LPSIM_GPU_INITIAL_SLOTS 1
 #define LPSIM_GPU_MIN_ENDS_FETCHED 1
-#include "kernels/cuda_step.cu"
+#include "backends/cuda/cuda_stepper.cu"

@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
+#include "backends/cuda/cuda_stepper.hpp"
+#include "backends/cuda/device_select.hpp"
 #include "core/error.hpp"
-#include "engine/device_select.hpp"
-#include "kernels/gpu_stepper.hpp"
 #include "lpsim_cli.hpp"
 #include "temp_dir.hpp"
 

@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "kernels/gpu_stepper.hpp"
+#include "backends/cuda/cuda_stepper.hpp"
 #include "unit/engine_invariant_checker.hpp"
 
 namespace lpsim::engine_test {

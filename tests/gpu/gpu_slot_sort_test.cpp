@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "kernels/gpu_stepper.hpp"
+#include "backends/cuda/cuda_stepper.hpp"
 #include "unit/run_trace.hpp"
 
 namespace lpsim::engine_test {

@@ -36,7 +36,7 @@ inline Scenario load_csv_scenario() {
 inline SimulationOptions options_of(const ConfigSpec& c, int threads) {
   SimulationOptions o;
   o.begin = c.begin;
-  o.step_length = c.step_length;
+  o.step_ms = std::llround(c.step_length * 1000.0);
   o.seed = static_cast<uint64_t>(c.seed);
   o.threads = threads;
   o.time_to_teleport = c.time_to_teleport;
@@ -72,21 +72,17 @@ class InvariantChecker {
   InvariantChecker(const Scenario& sc, Simulation& sim, uint32_t lane_map_every,
                    bool limit_on_entered_lane = false)
       : net_(sc.network),
-        demand_(sc.demand),
+        demand_(sim.demand()),
         sim_(sim),
         lane_map_every_(lane_map_every),
         limit_on_entered_lane_(limit_on_entered_lane) {
-    const uint32_t nv = demand_.size();
-    status_.assign(nv, kPending);
-    lane_.assign(nv, -1);
-    pos_.assign(nv, 0);
-    speed_.assign(nv, 0);
-    seen_trip_.assign(nv, 0);
+    grow();
     check_counts();
     check_lane_map();
   }
 
   void before_step() {
+    grow();
     for (uint32_t v : sim_.active()) {
       status_[v] = sim_.status(v);
       lane_[v] = sim_.lane(v);
@@ -129,8 +125,20 @@ class InvariantChecker {
 
   const RunStats& stats() const { return stats_; }
   uint64_t failure_count() const { return failure_count_; }
+  /// Every trip record the run wrote (the checker takes them from the simulation after each step).
+  const std::vector<TripRecord>& trips() const { return trips_; }
 
  private:
+  // The simulation's trips grow when trips are added during the run.
+  void grow() {
+    const uint32_t nv = demand_.size();
+    status_.resize(nv, kPending);
+    lane_.resize(nv, -1);
+    pos_.resize(nv, 0);
+    speed_.resize(nv, 0);
+    seen_trip_.resize(nv, 0);
+  }
+
   void fail(uint32_t v, const std::string& what) {
     fail_text("vehicle " + demand_.vehicle_id[v] + ": " + what);
   }
@@ -207,6 +215,7 @@ class InvariantChecker {
     if (trips.size() != arrived_now)
       fail_text(std::to_string(trips.size()) + " trip records for " + std::to_string(arrived_now) +
                 " arrivals");
+    trips_.insert(trips_.end(), trips.begin(), trips.end());
     for (const TripRecord& r : trips) {
       ++stats_.trip_records;
       if (seen_trip_[r.vehicle]++) fail(r.vehicle, "second trip record");
@@ -365,6 +374,7 @@ class InvariantChecker {
   std::vector<float> pos_, speed_;
   std::vector<uint32_t> active_before_;
   std::vector<uint8_t> seen_trip_;
+  std::vector<TripRecord> trips_;
   Simulation::Counts counts_before_;
   RunStats stats_;
   std::vector<std::string> failures_;

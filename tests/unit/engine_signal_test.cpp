@@ -3,6 +3,7 @@
 // begins (not one step later).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 
 #include "demand/demand_builder.hpp"
@@ -36,7 +37,7 @@ TEST(EngineSignalTest, StandingVehicleMovesInTheStepEndingAtItsGreen) {
     const Network net = build_network(test::make_signal_spec());
     const Demand demand = one_vehicle(net, "WtoC", "CtoE");
     SimulationOptions o;
-    o.step_length = dt;
+    o.step_ms = std::llround(dt * 1000.0);
     Simulation sim(net, demand, o);
     // 100 m at up to 13.9 m/s: at the line, standing, well before the green.
     step_to(sim, kWestGreenStarts - dt);

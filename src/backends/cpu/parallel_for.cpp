@@ -1,4 +1,4 @@
-#include "engine/parallel_for.hpp"
+#include "backends/cpu/parallel_for.hpp"
 
 namespace lpsim {
 

@@ -1,7 +1,7 @@
 #pragma once
-// Which backend steps a simulation: the CPU (ParallelFor over the kernels/ passes) or a CUDA device
-// (kernels/cuda_step.cu, reached through kernels/gpu_stepper.hpp: cuda_device_status, make_cuda_stepper; a
-// build without CUDA links src/engine/no_cuda_backend.cpp instead, which answers "built without CUDA").
+// Which backend steps a simulation: the CPU (backends/cpu) or a CUDA device (backends/cuda/cuda_stepper.cu,
+// reached through backends/cuda/cuda_stepper.hpp; a build without CUDA links
+// backends/cuda/no_cuda_backend.cpp instead, which answers "built without CUDA").
 #include <string>
 
 #include "core/config_spec.hpp"

@@ -1,7 +1,7 @@
-#include "engine/device_select.hpp"
+#include "backends/cuda/device_select.hpp"
 
+#include "backends/cuda/cuda_stepper.hpp"
 #include "core/error.hpp"
-#include "kernels/gpu_stepper.hpp"
 
 namespace lpsim {
 

@@ -1,13 +1,13 @@
-// CUDA backend: thin kernels over the same functions the CPU backend runs (kernels/vehicle_step.hpp,
-// kernels/signal_step.hpp, kernels/insert_vehicle.hpp), one thread per active vehicle, per signal or per
-// edge with waiting vehicles, and the GpuStepper that owns the run state on the device. Built with
-// --fmad=false (and the CPU with -ffp-contract=off), so both compute bit-identical floats; the only
-// read-modify-writes are integer atomics, whose result does not depend on thread order.
+// The CUDA backend's host side: the CudaStepper that owns the run state on the device and launches the
+// kernels of kernels/cuda_kernels.cuh (the same functions the CPU backend runs) for each phase of the step.
+// Built with --fmad=false (and the CPU with -ffp-contract=off), so both compute bit-identical floats; the
+// only read-modify-writes are integer atomics, whose result does not depend on thread order.
 //
-// The device holds the run state for the whole run: the trips, the slot columns of the vehicles on the road
-// (grown when the host hands out a slot beyond them), plan scratch, both lane maps (a step clears only the
-// cells its vehicles left), signal states, the active list (ascending slots, kept so by a stable compaction
-// and a merge) and the edgeData counters. What crosses the bus per step:
+// The device holds the run state for the whole run: the trip table (grown as the host's grows), the slot
+// columns of the vehicles on the road (grown when the host hands out a slot beyond them), plan scratch, both
+// lane maps (a step clears only the cells its vehicles left), signal states, the active list (ascending
+// slots, kept so by a stable compaction and a merge) and the edgeData counters. What crosses the bus per
+// step:
 //   device -> host: a tally (vehicles kept, running, ended) and the step's arrivals and teleports;
 //   host -> device: the teleport decisions, the queue heads to insert, the vehicles inserted and their slots;
 //   device -> host: how many of each queue head were inserted, and where.
@@ -32,16 +32,13 @@
 #include <type_traits>
 #include <vector>
 
-#include "kernels/gpu_stepper.hpp"
-#include "kernels/insert_vehicle.hpp"
-#include "kernels/signal_step.hpp"
-#include "kernels/vehicle_step.hpp"
+#include "backends/cuda/cuda_stepper.hpp"
+#include "backends/host_columns.hpp"
+#include "kernels/cuda_kernels.cuh"
 
 namespace lpsim {
 
 namespace {
-
-constexpr uint32_t kBlock = 128;
 
 // Slots the device starts with, at least (grown by half again when the host hands out more). The host
 // emulation starts from one, so that every test there runs the growth.
@@ -74,117 +71,6 @@ void check(cudaError_t rc, const char* call, const char* file, int line) {
 // Launch errors (bad configuration, no kernel image) surface here; faults inside a kernel at the next sync.
 #define LPSIM_CUDA_CHECK_LAUNCH(kernel) check(cudaGetLastError(), "launch of " #kernel, __FILE__, __LINE__)
 
-__global__ void signals_kernel(SignalTable table, int64_t time_ms, char* link_state,
-                               int64_t* next_switch_ms) {
-  const uint32_t s = blockIdx.x * blockDim.x + threadIdx.x;
-  if (s < table.num_signals) update_signal(table, s, time_ms, link_state, next_switch_ms);
-}
-
-// One thread per active vehicle, running one of the step's passes (the same functions the CPU backend loops
-// over).
-template <void (*VehiclePass)(StepContext&, uint32_t, uint32_t)>
-__global__ void __launch_bounds__(kBlock, 8)
-    pass_kernel(StepContext ctx, const uint32_t* active, uint32_t n) {
-  const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
-  if (i < n) VehiclePass(ctx, i, active[i]);
-}
-
-/// What the host reads after a step's passes (GpuStepOutcome).
-struct StepTally {
-  uint32_t kept;
-  uint32_t running;
-  uint32_t ends;
-};
-
-// After the commit pass: records arrivals and teleports, flags the vehicles that stay active and counts
-// them. Every thread of a block reaches the block-wide counts (no early return).
-__global__ void finish_kernel(VehicleView veh, const uint32_t* active, uint32_t n, uint32_t steps_done,
-                              uint32_t teleport_steps, uint8_t* keep, VehicleEnd* ends, StepTally* tally) {
-  const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
-  bool kept = false, running = false;
-  if (i < n) {
-    const uint32_t k = active[i];
-    const uint32_t kind = step_end_kind(veh, k, steps_done, teleport_steps);
-    if (kind != kEndNone) ends[atomicAdd(&tally->ends, 1u)] = vehicle_end(veh, k, kind);
-    kept = stays_active(veh, k);
-    running = kept && veh.status[k] == kRunning;
-    keep[i] = kept ? 1 : 0;
-  }
-#if defined(__CUDACC__)
-  const int k = __syncthreads_count(kept), r = __syncthreads_count(running);
-  if (threadIdx.x == 0) {
-    if (k > 0) atomicAdd(&tally->kept, static_cast<uint32_t>(k));
-    if (r > 0) atomicAdd(&tally->running, static_cast<uint32_t>(r));
-  }
-#else  // host emulation: a block's threads run one at a time, so there is no barrier to count at
-  if (kept) atomicAdd(&tally->kept, 1u);
-  if (running) atomicAdd(&tally->running, 1u);
-#endif
-}
-
-__global__ void teleport_kernel(VehicleView veh, const TeleportMove* moves, uint32_t n, uint32_t steps_done) {
-  const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
-  if (i < n) apply_teleport_move(veh, moves[i], steps_done);
-}
-
-__global__ void insert_kernel(StepContext ctx, DepartView depart, InsertParams p, uint8_t* map,
-                              InsertBatch b) {
-  const uint32_t slot = blockIdx.x * blockDim.x + threadIdx.x;
-  if (slot < b.num_slots) insert_queue_head(ctx, depart, p, map, b, slot);
-}
-
-__global__ void activate_kernel(VehicleView veh, TripView trips, const SlotInit* inits, uint32_t n) {
-  const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
-  if (i < n) activate_slot(veh, trips, inits[i]);
-}
-
-__global__ void sample_kernel(VehicleView veh, const uint32_t* active, uint32_t n, uint32_t* vehicle,
-                              uint8_t* status, int32_t* lane, float* pos, float* speed) {
-  const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
-  if (i >= n) return;
-  const uint32_t k = active[i];
-  vehicle[i] = veh.vehicle[k];
-  status[i] = veh.status[k];
-  lane[i] = veh.lane[k];
-  pos[i] = veh.pos[k];
-  speed[i] = veh.speed[k];
-}
-
-// Slot sort (Simulation::sort_slots): each active slot's lane as an unsigned key (-1, off the road, last).
-__global__ void lane_key_kernel(VehicleView veh, const uint32_t* active, uint32_t n, uint32_t* key) {
-  const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
-  if (i < n) key[i] = static_cast<uint32_t>(veh.lane[active[i]]);
-}
-
-// to[i * per + e] = from[order[i] * per + e]: a slot column's entries in their new slots.
-template <class T>
-__global__ void gather_slots_kernel(const T* from, T* to, const uint32_t* order, uint32_t n, uint32_t per) {
-  const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
-  if (i >= n) return;
-  for (uint32_t e = 0; e < per; ++e) to[size_t{i} * per + e] = from[size_t{order[i]} * per + e];
-}
-
-// inverse[order[i]] = i: the new number of each slot that was active.
-__global__ void invert_order_kernel(const uint32_t* order, uint32_t n, uint32_t* inverse) {
-  const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
-  if (i < n) inverse[order[i]] = i;
-}
-
-// Each asked slot's new number (kNotActive where it was not active or lies beyond the columns).
-__global__ void renumber_kernel(const uint32_t* inverse, uint32_t capacity, uint32_t* slots, uint32_t n) {
-  const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
-  if (i < n) slots[i] = slots[i] < capacity ? inverse[slots[i]] : kNotActive;
-}
-
-__global__ void iota_kernel(uint32_t* out, uint32_t n) {
-  const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
-  if (i < n) out[i] = i;
-}
-
-struct AscendingIndex {
-  __device__ bool operator()(uint32_t a, uint32_t b) const { return a < b; }
-};
-
 /// One cudaMalloc'd allocation (or none), freed with its owner.
 class DeviceBuffer {
  public:
@@ -216,18 +102,18 @@ void copy_to_host(T* dst, const T* src, size_t n) {
   if (n > 0) LPSIM_CUDA_CHECK(cudaMemcpy(dst, src, n * sizeof(T), cudaMemcpyDeviceToHost));
 }
 
-// The stepper lists every column of the views by hand: a column added to one of them must be added here.
-static_assert(sizeof(PlanView) == 14 * sizeof(void*), "PlanView changed: update reserve_plan_slots");
+// The stepper lists the columns of these views by hand: a column added to one of them must be added here.
+// (The slot and plan columns are walked through their column lists.)
 static_assert(sizeof(NetView) == 22 * sizeof(void*) + sizeof(void*),
               "NetView changed: update upload_network");
 static_assert(sizeof(TypeView) == 8 * sizeof(void*) && sizeof(TripView) == 7 * sizeof(void*),
-              "TypeView or TripView changed: update upload_demand");
+              "TypeView or TripView changed: update upload_types and DeviceTrips");
 static_assert(sizeof(StepContext) == sizeof(NetView) + sizeof(TypeView) + sizeof(TripView) +
                                          sizeof(VehicleView) + sizeof(PlanView) + sizeof(StepParams) +
                                          16 * sizeof(void*),
               "StepContext changed: update CudaStepper");
 
-static_assert(sizeof(DepartView) == 6 * sizeof(void*), "DepartView changed: update the depart uploads");
+static_assert(sizeof(DepartView) == 6 * sizeof(void*), "DepartView changed: update DeviceTrips");
 
 /// A device array that grows on demand (its contents are not kept when it grows).
 template <class T>
@@ -357,34 +243,100 @@ class PhaseTimer {
   unsigned long long steps_ = 0;
 };
 
-class CudaStepper final : public GpuStepper {
+/// The trip table on the device: the per-trip columns (TripView, DepartView) and the route edges, each grown
+/// by half again when the host's table outgrows it, keeping what it holds (Stepper::update_trips).
+class DeviceTrips {
  public:
-  CudaStepper(const StepContext& host, const SignalTable& signals, const GpuStepSizes& sizes,
-              const DepartView& depart, const uint8_t* other_map, int map_now,
-              const std::vector<uint32_t>& active, bool lane_counters) {
-    num_vehicles_ = sizes.num_vehicles;
-    upload_network(host.net, sizes);
-    upload_signals(signals);
-    upload_demand(host, sizes);
-    const uint32_t nv = sizes.num_vehicles, nl = host.net.num_lanes;
-    depart_ =
-        DepartView{upload(depart.lane_kind, nv), upload(depart.lane, nv),       upload(depart.pos_kind, nv),
-                   upload(depart.pos, nv),       upload(depart.speed_kind, nv), upload(depart.speed, nv)};
+  TripView trips{};
+  DepartView depart{};
 
-    grow_slots(std::max<size_t>(sizes.num_slots, LPSIM_GPU_INITIAL_SLOTS));
-    for_each_vehicle_column(dev_.veh, host.veh, [&](auto* dev, auto* h, uint32_t per) {
-      copy_to_device(dev, h, static_cast<size_t>(sizes.num_slots) * per);
+  /// Brings the device copy up to `host` (the host's table now): entries from `first_vehicle` and route
+  /// edges from `first_route_edge` on are copied, the others are as they were.
+  void append(const TripTableView& host, uint32_t first_vehicle, uint64_t first_route_edge) {
+    if (host.num_vehicles > vehicle_capacity_) {
+      const size_t c = std::max<size_t>(host.num_vehicles, vehicle_capacity_ + vehicle_capacity_ / 2);
+      size_t k = 0;
+      each_column(trips, depart, [&](auto*& column) { regrow(column, k++, vehicle_capacity_, c); });
+      vehicle_capacity_ = c;
+    }
+    if (host.num_route_edges > route_capacity_) {
+      const size_t c = std::max<size_t>(host.num_route_edges, route_capacity_ + route_capacity_ / 2);
+      regrow(trips.route_edges, kVehicleColumns, route_capacity_, c);
+      route_capacity_ = c;
+    }
+    const size_t n = host.num_vehicles - std::min(first_vehicle, host.num_vehicles);
+    TripView h = host.trips;
+    DepartView hd = host.depart;
+    // Walks the host's and the device's columns in the same order: the k-th of each is the same column.
+    std::vector<const void*> from;
+    each_column(h, hd, [&](auto*& column) { from.push_back(column); });
+    size_t k = 0;
+    each_column(trips, depart, [&](auto*& column) {
+      using T = std::remove_const_t<std::remove_reference_t<decltype(*column)>>;
+      copy_to_device(const_cast<T*>(column) + first_vehicle, static_cast<const T*>(from[k++]) + first_vehicle,
+                     n);
     });
-    dev_.approach = upload(host.approach, nl);
-    dev_.claims = upload(host.claims, nl);
-    dev_.merge_requests = upload(host.merge_requests, nl);
-    const size_t nc = sizes.num_connections;
-    dev_.yielder_begin = upload(host.yielder_begin, nc + 1);
-    dev_.yielder = upload(host.yielder, host.yielder_begin[nc]);
+    const uint64_t first_edge = std::min<uint64_t>(first_route_edge, host.num_route_edges);
+    copy_to_device(const_cast<uint32_t*>(trips.route_edges) + first_edge, host.trips.route_edges + first_edge,
+                   host.num_route_edges - first_edge);
+  }
+
+  /// Bytes per trip and per route edge the device holds.
+  static size_t bytes_per_vehicle() {
+    size_t bytes = 0;
+    TripView t{};
+    DepartView d{};
+    each_column(t, d, [&](auto*& column) { bytes += sizeof(*column); });
+    return bytes;
+  }
+
+ private:
+  static constexpr size_t kVehicleColumns = 12;  // each_column's count; the route edges are buffer 12
+
+  /// Calls f(column) for every per-trip column of a trip and a depart view (not route_edges).
+  template <class F>
+  static void each_column(TripView& t, DepartView& d, F&& f) {
+    f(t.type), f(t.route_begin), f(t.route_length), f(t.speed_factor), f(t.arrival_pos_kind),
+        f(t.arrival_pos);
+    f(d.lane_kind), f(d.lane), f(d.pos_kind), f(d.pos), f(d.speed_kind), f(d.speed);
+  }
+
+  template <class T>
+  void regrow(const T*& column, size_t buffer, size_t old, size_t c) {
+    DeviceBuffer fresh(c * sizeof(T));
+    if (old > 0) LPSIM_CUDA_CHECK(cudaMemcpy(fresh.get(), column, old * sizeof(T), cudaMemcpyDeviceToDevice));
+    column = static_cast<const T*>(fresh.get());
+    if (buffers_.size() <= buffer) buffers_.resize(buffer + 1);
+    buffers_[buffer] = std::move(fresh);
+  }
+
+  std::vector<DeviceBuffer> buffers_;
+  size_t vehicle_capacity_ = 0, route_capacity_ = 0;
+};
+
+class CudaStepper final : public Stepper {
+ public:
+  explicit CudaStepper(const StepperSetup& setup) {
+    const uint32_t nl = setup.net.num_lanes;
+    upload_network(setup);
+    upload_signals(setup.signals);
+    upload_types(setup.types, setup.num_types);
+    update_trips(setup.trips, TripChanges{});
+
+    grow_slots(LPSIM_GPU_INITIAL_SLOTS);
+    const std::vector<LaneApproach> approach(nl, LaneApproach{0xFFFFFFFFu, -1, 0, 0, 0, 0, 0});
+    dev_.approach = upload(approach.data(), nl);
+    dev_.claims = allocate<uint64_t>(nl);
+    LPSIM_CUDA_CHECK(cudaMemset(dev_.claims, 0, nl * sizeof(uint64_t)));
+    dev_.merge_requests = allocate<uint64_t>(nl);
+    LPSIM_CUDA_CHECK(cudaMemset(dev_.merge_requests, 0, nl * sizeof(uint64_t)));
+    const size_t nc = setup.num_connections;
+    dev_.yielder_begin = upload(setup.yielder_begin, nc + 1);
+    dev_.yielder = upload(setup.yielder, setup.yielder_begin[nc]);
 
     // The counters, contiguous so that one copy fetches them and one memset clears them.
     num_lanes_ = nl;
-    if (lane_counters) {
+    if (setup.lane_counters) {
       counters_ = allocate<int64_t>(static_cast<size_t>(kNumLaneCounters) * nl);
       LPSIM_CUDA_CHECK(
           cudaMemset(counters_, 0, kNumLaneCounters * static_cast<size_t>(nl) * sizeof(int64_t)));
@@ -400,100 +352,90 @@ class CudaStepper final : public GpuStepper {
       cnt_departed_ = counters_ + static_cast<size_t>(kNumLaneCounters - 1) * nl;
     }
 
-    cells_ = host.net.lane_cell_begin[nl];
+    cells_ = setup.net.lane_cell_begin[nl];
     // With the host's kLaneMapPadding zero bytes after the last cell: the device scans stay within a lane,
     // but the host emulation (tests/cuda_emulation) runs the host scan, which reads past a lane's end.
     for (int b = 0; b < 2; ++b) {
       map_[b] = allocate<uint8_t>(cells_ + kLaneMapPadding);
-      LPSIM_CUDA_CHECK(cudaMemset(map_[b] + cells_, 0, kLaneMapPadding));
+      LPSIM_CUDA_CHECK(cudaMemset(map_[b], 0, cells_ + kLaneMapPadding));
     }
-    copy_to_device(map_[map_now], host.map_now, cells_);
-    copy_to_device(map_[1 - map_now], other_map, cells_);
-
-    copy_to_device(active_[0], active.data(), active.size());
-    num_active_ = static_cast<uint32_t>(active.size());
-    timer_.set_state_bytes(bytes_total_, bytes_per_vehicle_, nv, sizes.num_route_edges * sizeof(uint32_t));
+    timer_.set_state_bytes(bytes_total_, DeviceTrips::bytes_per_vehicle(), setup.trips.num_vehicles,
+                           setup.trips.num_route_edges * sizeof(uint32_t));
   }
 
-  void start_step(const StepParams& params, int map_now, uint32_t steps_done) override {
-    const auto t0 = std::chrono::steady_clock::now();
-    launch_step(params, map_now, steps_done);
-    timer_.add_host(0, t0);
-  }
-
-  void finish_step(GpuStepOutcome& out) override {
-    const auto t0 = std::chrono::steady_clock::now();
-    wait_step(out);
-    timer_.add_host(0, t0);
-  }
-
-  void launch_step(const StepParams& params, int map_now, uint32_t steps_done) {
+  void update_signals(int64_t time_ms) override {
     timer_.mark(0);
-    reserve_plan_slots(num_active_);
-    StepContext ctx = dev_;
-    ctx.params = params;
-    ctx.map_now = map_[map_now];
-    ctx.map_next = map_[1 - map_now];
     if (signals_.num_signals > 0) {
       LPSIM_LAUNCH(signals_kernel, blocks_for(signals_.num_signals), kBlock)
-      (signals_, params.signal_time_ms, link_state_, signal_next_switch_ms_);
+      (signals_, time_ms, link_state_, signal_next_switch_ms_);
       LPSIM_CUDA_CHECK_LAUNCH(signals_kernel);
     }
     timer_.mark(1);
-    const uint32_t n = num_active_;
-    launched_ = n;
-    kept_count_ = 0;
-    if (n == 0) return;  // nothing on the road: no pass writes anything
-
-    const uint32_t* active = active_[cur_active_];
-    const uint32_t grid = blocks_for(n);
-    LPSIM_LAUNCH(pass_kernel<clear_old_footprint>, grid, kBlock)(ctx, active, n);
-    LPSIM_CUDA_CHECK_LAUNCH(clear_old_footprint);
-    timer_.mark(2);
-    LPSIM_LAUNCH(pass_kernel<approach_vehicle>, grid, kBlock)(ctx, active, n);
-    LPSIM_CUDA_CHECK_LAUNCH(approach_vehicle);
-    timer_.mark(3);
-    LPSIM_LAUNCH(pass_kernel<plan_vehicle>, grid, kBlock)(ctx, active, n);
-    LPSIM_CUDA_CHECK_LAUNCH(plan_vehicle);
-    timer_.mark(4);
-    LPSIM_LAUNCH(pass_kernel<commit_vehicle>, grid, kBlock)(ctx, active, n);
-    LPSIM_CUDA_CHECK_LAUNCH(commit_vehicle);
-    timer_.mark(5);
-
-    // The tally and the step's ends share one buffer, so that one copy brings back the tally and as many
-    // ends as the guess allows (twice the last step's, at least LPSIM_GPU_MIN_ENDS_FETCHED): the step's
-    // first synchronisation. Ends beyond the guess take a second copy.
-    unsigned char* outcome = outcome_.get(kEndsOffset + sizeof(VehicleEnd) * static_cast<size_t>(n));
-    StepTally* tally = reinterpret_cast<StepTally*>(outcome);
-    VehicleEnd* ends = reinterpret_cast<VehicleEnd*>(outcome + kEndsOffset);
-    LPSIM_CUDA_CHECK(cudaMemsetAsync(tally, 0, sizeof(StepTally)));
-    LPSIM_LAUNCH(finish_kernel, grid, kBlock)
-    (ctx.veh, active, n, steps_done, params.teleport_steps, keep_, ends, tally);
-    LPSIM_CUDA_CHECK_LAUNCH(finish_kernel);
-    timer_.mark(6);
-    guess_ = std::min(n, std::max<uint32_t>(LPSIM_GPU_MIN_ENDS_FETCHED, 2 * last_ends_));
-    const size_t fetched = kEndsOffset + sizeof(VehicleEnd) * static_cast<size_t>(guess_);
-    LPSIM_CUDA_CHECK(cudaMemcpyAsync(outcome_host_.get(fetched), outcome, fetched, cudaMemcpyDeviceToHost));
+    ++version_;
   }
 
-  void wait_step(GpuStepOutcome& out) {
+  void start_step(const StepParams& params, int map_now) override {
+    t0_ = std::chrono::steady_clock::now();
+    reserve_plan_slots(num_active_);
+    ctx_ = dev_;
+    ctx_.params = params;
+    ctx_.map_now = map_[map_now];
+    ctx_.map_next = map_[1 - map_now];
+    state_map_ = 1 - map_now;
+    launched_ = num_active_;
+    kept_count_ = 0;
+    ++version_;
+  }
+
+  void clear_footprints() override { launch_pass<clear_old_footprint>(2); }
+  void approach() override { launch_pass<approach_vehicle>(3); }
+  void plan() override { launch_pass<plan_vehicle>(4); }
+  void commit() override { launch_pass<commit_vehicle>(5); }
+
+  // The tally and the step's ends share one buffer, so that one copy brings back the tally and as many
+  // ends as the guess allows (twice the last step's, at least LPSIM_GPU_MIN_ENDS_FETCHED): the step's
+  // first synchronisation. Ends beyond the guess take a second copy.
+  void start_end_of_step(uint32_t steps_done) override {
+    const uint32_t n = launched_;
+    if (n > 0) {
+      unsigned char* outcome = outcome_.get(kEndsOffset + sizeof(VehicleEnd) * static_cast<size_t>(n));
+      StepTally* tally = reinterpret_cast<StepTally*>(outcome);
+      VehicleEnd* ends = reinterpret_cast<VehicleEnd*>(outcome + kEndsOffset);
+      LPSIM_CUDA_CHECK(cudaMemsetAsync(tally, 0, sizeof(StepTally)));
+      LPSIM_LAUNCH(finish_kernel, blocks_for(n), kBlock)
+      (ctx_.veh, active_[cur_active_], n, steps_done, ctx_.params.teleport_steps, keep_, ends, tally);
+      LPSIM_CUDA_CHECK_LAUNCH(finish_kernel);
+      timer_.mark(6);
+      guess_ = std::min(n, std::max<uint32_t>(LPSIM_GPU_MIN_ENDS_FETCHED, 2 * last_ends_));
+      const size_t fetched = kEndsOffset + sizeof(VehicleEnd) * static_cast<size_t>(guess_);
+      LPSIM_CUDA_CHECK(cudaMemcpyAsync(outcome_host_.get(fetched), outcome, fetched, cudaMemcpyDeviceToHost));
+    }
+    timer_.add_host(0, t0_);
+  }
+
+  StepOutcome& finish_end_of_step() override {
+    const auto t0 = std::chrono::steady_clock::now();
+    StepOutcome& out = outcome_result_;
     out.ends.clear();
     out.kept = out.running = 0;
-    if (launched_ == 0) return;
-    // Waits for the passes: a fault inside them is reported here.
-    LPSIM_CUDA_CHECK(cudaStreamSynchronize(nullptr));
-    timer_.collect();
-    const unsigned char* host = outcome_host_.get(0);
-    StepTally t;
-    std::memcpy(&t, host, sizeof t);
-    out.kept = kept_count_ = t.kept;
-    out.running = t.running;
-    out.ends.resize(t.ends);
-    const uint32_t in_guess = std::min(t.ends, guess_);
-    if (in_guess > 0) std::memcpy(out.ends.data(), host + kEndsOffset, sizeof(VehicleEnd) * in_guess);
-    const VehicleEnd* ends = reinterpret_cast<const VehicleEnd*>(outcome_.get(0) + kEndsOffset);
-    copy_to_host(out.ends.data() + in_guess, ends + in_guess, t.ends - in_guess);  // beyond the guess
-    last_ends_ = t.ends;
+    if (launched_ > 0) {
+      // Waits for the passes: a fault inside them is reported here.
+      LPSIM_CUDA_CHECK(cudaStreamSynchronize(nullptr));
+      timer_.collect();
+      const unsigned char* host = outcome_host_.get(0);
+      StepTally t;
+      std::memcpy(&t, host, sizeof t);
+      out.kept = kept_count_ = t.kept;
+      out.running = t.running;
+      out.ends.resize(t.ends);
+      const uint32_t in_guess = std::min(t.ends, guess_);
+      if (in_guess > 0) std::memcpy(out.ends.data(), host + kEndsOffset, sizeof(VehicleEnd) * in_guess);
+      const VehicleEnd* ends = reinterpret_cast<const VehicleEnd*>(outcome_.get(0) + kEndsOffset);
+      copy_to_host(out.ends.data() + in_guess, ends + in_guess, t.ends - in_guess);  // beyond the guess
+      last_ends_ = t.ends;
+    }
+    timer_.add_host(0, t0);
+    return out;
   }
 
   void apply_teleports(const std::vector<TeleportMove>& moves, uint32_t steps_done) override {
@@ -504,13 +446,15 @@ class CudaStepper final : public GpuStepper {
     upload_async(dev, moves.data(), n, moves_host_);
     LPSIM_LAUNCH(teleport_kernel, blocks_for(n), kBlock)(dev_.veh, dev, n, steps_done);
     LPSIM_CUDA_CHECK_LAUNCH(teleport_kernel);
+    ++version_;
     timer_.add_host(1, t0);
   }
 
   void insert(const InsertBatch& batch, uint32_t num_entries, const InsertParams& p, int map) override {
     const auto t0 = std::chrono::steady_clock::now();
     const uint32_t slots = batch.num_slots;
-    if (slots == 0) return;
+    if (slots == 0 || num_entries == 0) return;
+    ++version_;
     // One upload of the slots' edges, bounds and entries; one download of what was inserted and where.
     const size_t in_words = 2 * static_cast<size_t>(slots) + 1 + 2 * static_cast<size_t>(num_entries);
     uint32_t* in = batch_in_.get(in_words);
@@ -534,7 +478,7 @@ class CudaStepper final : public GpuStepper {
     InsertParams params = p;
     params.cnt_departed = cnt_departed_;
     params.cnt_entered = dev_.cnt_entered;
-    LPSIM_LAUNCH(insert_kernel, blocks_for(slots), kBlock)(dev_, depart_, params, map_[map], dev);
+    LPSIM_LAUNCH(insert_kernel, blocks_for(slots), kBlock)(dev_, trips_.depart, params, map_[map], dev);
     LPSIM_CUDA_CHECK_LAUNCH(insert_kernel);
     uint32_t* back = staging_out_.get(out_words);
     copy_to_host(back, out, out_words);
@@ -546,8 +490,9 @@ class CudaStepper final : public GpuStepper {
     timer_.add_host(2, t0);
   }
 
-  void rebuild_active(const std::vector<SlotInit>& inits, const std::vector<uint32_t>& added) override {
+  void start_vehicles(const std::vector<SlotInit>& inits, const std::vector<uint32_t>& added) override {
     const auto t0 = std::chrono::steady_clock::now();
+    ++version_;
     if (!added.empty()) grow_slots(static_cast<size_t>(added.back()) + 1);
     const uint32_t ni = static_cast<uint32_t>(inits.size());
     if (ni > 0) {
@@ -558,6 +503,160 @@ class CudaStepper final : public GpuStepper {
     }
     rebuild(added);
     timer_.add_host(3, t0);
+  }
+
+  void sort_slots(std::vector<uint32_t>& slots) override {
+    const auto t0 = std::chrono::steady_clock::now();
+    ++version_;
+    const uint32_t n = num_active_;
+    uint32_t* active = active_[cur_active_];
+    uint32_t* keys = sort_keys_.get(2 * static_cast<size_t>(n));
+    uint32_t* order = sort_order_.get(n);
+    if (n > 0) {
+      LPSIM_LAUNCH(lane_key_kernel, blocks_for(n), kBlock)(dev_.veh, active, n, keys);
+      LPSIM_CUDA_CHECK_LAUNCH(lane_key_kernel);
+      // The active list is ascending and the radix sort stable: ties stay in slot order, as on the host.
+      size_t bytes = 0;
+      LPSIM_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(nullptr, bytes, keys, keys + n, active, order, n));
+      LPSIM_CUDA_CHECK(
+          cub::DeviceRadixSort::SortPairs(temp_.get(bytes), bytes, keys, keys + n, active, order, n));
+      visit_vehicle_columns(
+          [&](uint32_t per, auto* column) {
+            using T = std::remove_pointer_t<decltype(column)>;
+            const size_t entries = static_cast<size_t>(n) * per;
+            T* moved = reinterpret_cast<T*>(sort_moved_.get(entries * sizeof(T)));
+            LPSIM_LAUNCH(gather_slots_kernel<T>, blocks_for(n), kBlock)(column, moved, order, n, per);
+            LPSIM_CUDA_CHECK_LAUNCH(gather_slots_kernel);
+            LPSIM_CUDA_CHECK(cudaMemcpyAsync(column, moved, entries * sizeof(T), cudaMemcpyDeviceToDevice));
+          },
+          dev_.veh);
+      LPSIM_LAUNCH(iota_kernel, blocks_for(n), kBlock)(active, n);
+      LPSIM_CUDA_CHECK_LAUNCH(iota_kernel);
+    }
+    // The new numbers of the host's slots: the inverse of the order, read where the host asks.
+    const uint32_t ns = static_cast<uint32_t>(slots.size());
+    if (ns > 0) {
+      uint32_t* inverse = sort_inverse_.get(slot_capacity_);
+      LPSIM_CUDA_CHECK(cudaMemsetAsync(inverse, 0xFF, slot_capacity_ * sizeof(uint32_t)));  // kNotActive
+      if (n > 0) {
+        LPSIM_LAUNCH(invert_order_kernel, blocks_for(n), kBlock)(order, n, inverse);
+        LPSIM_CUDA_CHECK_LAUNCH(invert_order_kernel);
+      }
+      uint32_t* asked = sort_asked_.get(ns);
+      copy_to_device(asked, slots.data(), ns);
+      LPSIM_LAUNCH(renumber_kernel, blocks_for(ns), kBlock)
+      (inverse, static_cast<uint32_t>(slot_capacity_), asked, ns);
+      LPSIM_CUDA_CHECK_LAUNCH(renumber_kernel);
+      copy_to_host(slots.data(), asked, ns);
+    }
+    timer_.add_host(4, t0);
+  }
+
+  void update_trips(const TripTableView& now, const TripChanges& changes) override {
+    trips_.append(now, changes.first_new_vehicle, changes.first_new_route_edge);
+    dev_.trips = trips_.trips;
+    const uint32_t n = static_cast<uint32_t>(changes.new_routes.size());
+    if (n > 0) {
+      std::vector<uint32_t> changed;
+      for (const uint32_t v : changes.new_routes)
+        changed.insert(changed.end(), {v, now.trips.route_begin[v], now.trips.route_length[v]});
+      uint32_t* dev = trip_routes_.get(changed.size());
+      copy_to_device(dev, changed.data(), changed.size());
+      LPSIM_LAUNCH(trip_route_kernel, blocks_for(n), kBlock)
+      (const_cast<uint32_t*>(dev_.trips.route_begin), const_cast<uint32_t*>(dev_.trips.route_length), dev, n);
+      LPSIM_CUDA_CHECK_LAUNCH(trip_route_kernel);
+    }
+  }
+
+  void set_routes(const std::vector<SlotRoute>& routes) override {
+    const uint32_t n = static_cast<uint32_t>(routes.size());
+    if (n == 0) return;
+    ++version_;
+    SlotRoute* dev = slot_routes_.get(n);
+    copy_to_device(dev, routes.data(), n);
+    LPSIM_LAUNCH(route_kernel, blocks_for(n), kBlock)(dev_.veh, dev, n);
+    LPSIM_CUDA_CHECK_LAUNCH(route_kernel);
+  }
+
+  // A host copy of what is asked for, made at most once per state version (a Full copy serves a Sample).
+  const HostState& fetch(StateParts parts, uint32_t num_slots) override {
+    const bool full = parts == StateParts::Full;
+    if (fetched_version_ == version_ && (fetched_full_ || !full)) return state_;
+    const uint32_t n = num_active_;
+    host_active_.resize(n);
+    copy_to_host(host_active_.data(), active_[cur_active_], n);
+    if (full) {
+      host_.reserve(std::max<size_t>(num_slots, 1), false);
+      VehicleView h = host_.view();
+      visit_vehicle_columns(
+          [&](uint32_t per, auto* dev, auto* host) {
+            copy_to_host(host, dev, static_cast<size_t>(num_slots) * per);
+          },
+          dev_.veh, h);
+      host_map_.resize(cells_);
+      copy_to_host(host_map_.data(), map_[state_map_], cells_);
+      host_link_state_.resize(num_links_);
+      copy_to_host(host_link_state_.data(), link_state_, num_links_);
+    } else if (n > 0) {
+      // Only what outputs read, gathered on the device, scattered into the host columns by slot.
+      uint32_t max_slot = *std::max_element(host_active_.begin(), host_active_.end());
+      host_.reserve(size_t{max_slot} + 1, false);
+      uint32_t* vh = sample_vehicle_.get(n);
+      uint8_t* st = sample_status_.get(n);
+      int32_t* ln = sample_lane_.get(n);
+      float* ps = sample_pos_.get(n);
+      float* sp = sample_speed_.get(n);
+      LPSIM_LAUNCH(sample_kernel, blocks_for(n), kBlock)
+      (dev_.veh, active_[cur_active_], n, vh, st, ln, ps, sp);
+      LPSIM_CUDA_CHECK_LAUNCH(sample_kernel);
+      sample_u32_.resize(n);
+      sample_u8_.resize(n);
+      sample_i32_.resize(n);
+      sample_f32_.resize(2 * size_t{n});
+      copy_to_host(sample_u32_.data(), vh, n);
+      copy_to_host(sample_u8_.data(), st, n);
+      copy_to_host(sample_i32_.data(), ln, n);
+      copy_to_host(sample_f32_.data(), ps, n);
+      copy_to_host(sample_f32_.data() + n, sp, n);
+      const VehicleView& h = host_.view();
+      for (uint32_t i = 0; i < n; ++i) {
+        const uint32_t k = host_active_[i];
+        h.vehicle[k] = sample_u32_[i];
+        h.status[k] = sample_u8_[i];
+        h.lane[k] = sample_i32_[i];
+        h.pos[k] = sample_f32_[i];
+        h.speed[k] = sample_f32_[n + i];
+      }
+    }
+    fetched_version_ = version_;
+    fetched_full_ = full;
+    state_.active = host_active_.data();
+    state_.num_active = n;
+    state_.veh = host_.view();
+    state_.map = full ? host_map_.data() : nullptr;
+    state_.link_state = full ? host_link_state_.data() : nullptr;
+    return state_;
+  }
+
+  void drain_counters(int64_t* const* columns) override {
+    if (counters_ == nullptr) return;
+    const size_t nl = num_lanes_;
+    std::vector<int64_t> all(kNumLaneCounters * nl);
+    copy_to_host(all.data(), counters_, all.size());
+    LPSIM_CUDA_CHECK(cudaMemset(counters_, 0, all.size() * sizeof(int64_t)));
+    for (int k = 0; k < kNumLaneCounters; ++k)
+      for (size_t l = 0; l < nl; ++l) columns[k][l] += all[static_cast<size_t>(k) * nl + l];
+  }
+
+ private:
+  // One of the step's passes over the active list (none when nothing is on the road: no pass would write).
+  template <void (*VehiclePass)(StepContext&, uint32_t, uint32_t)>
+  void launch_pass(int timer_event) {
+    const uint32_t n = launched_;
+    if (n == 0) return;
+    LPSIM_LAUNCH(pass_kernel<VehiclePass>, blocks_for(n), kBlock)(ctx_, active_[cur_active_], n);
+    LPSIM_CUDA_CHECK_LAUNCH(pass_kernel);
+    timer_.mark(timer_event);
   }
 
   void rebuild(const std::vector<uint32_t>& added) {
@@ -582,115 +681,28 @@ class CudaStepper final : public GpuStepper {
     num_active_ = kept + na;
   }
 
-  void sort_slots(std::vector<uint32_t>& slots) override {
-    const auto t0 = std::chrono::steady_clock::now();
-    const uint32_t n = num_active_;
-    uint32_t* active = active_[cur_active_];
-    uint32_t* keys = sort_keys_.get(2 * static_cast<size_t>(n));
-    uint32_t* order = sort_order_.get(n);
-    if (n > 0) {
-      LPSIM_LAUNCH(lane_key_kernel, blocks_for(n), kBlock)(dev_.veh, active, n, keys);
-      LPSIM_CUDA_CHECK_LAUNCH(lane_key_kernel);
-      // The active list is ascending and the radix sort stable: ties stay in slot order, as on the host.
-      size_t bytes = 0;
-      LPSIM_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(nullptr, bytes, keys, keys + n, active, order, n));
-      LPSIM_CUDA_CHECK(
-          cub::DeviceRadixSort::SortPairs(temp_.get(bytes), bytes, keys, keys + n, active, order, n));
-      for_each_vehicle_column(dev_.veh, dev_.veh, [&](auto* column, auto*, uint32_t per) {
-        using T = std::remove_pointer_t<decltype(column)>;
-        const size_t entries = static_cast<size_t>(n) * per;
-        T* moved = reinterpret_cast<T*>(sort_moved_.get(entries * sizeof(T)));
-        LPSIM_LAUNCH(gather_slots_kernel<T>, blocks_for(n), kBlock)(column, moved, order, n, per);
-        LPSIM_CUDA_CHECK_LAUNCH(gather_slots_kernel);
-        LPSIM_CUDA_CHECK(cudaMemcpyAsync(column, moved, entries * sizeof(T), cudaMemcpyDeviceToDevice));
-      });
-      LPSIM_LAUNCH(iota_kernel, blocks_for(n), kBlock)(active, n);
-      LPSIM_CUDA_CHECK_LAUNCH(iota_kernel);
-    }
-    // The new numbers of the host's slots: the inverse of the order, read where the host asks.
-    const uint32_t ns = static_cast<uint32_t>(slots.size());
-    if (ns > 0) {
-      uint32_t* inverse = sort_inverse_.get(slot_capacity_);
-      LPSIM_CUDA_CHECK(cudaMemsetAsync(inverse, 0xFF, slot_capacity_ * sizeof(uint32_t)));  // kNotActive
-      if (n > 0) {
-        LPSIM_LAUNCH(invert_order_kernel, blocks_for(n), kBlock)(order, n, inverse);
-        LPSIM_CUDA_CHECK_LAUNCH(invert_order_kernel);
-      }
-      uint32_t* asked = sort_asked_.get(ns);
-      copy_to_device(asked, slots.data(), ns);
-      LPSIM_LAUNCH(renumber_kernel, blocks_for(ns), kBlock)
-      (inverse, static_cast<uint32_t>(slot_capacity_), asked, ns);
-      LPSIM_CUDA_CHECK_LAUNCH(renumber_kernel);
-      copy_to_host(slots.data(), asked, ns);
-    }
-    timer_.add_host(4, t0);
-  }
-
-  void sample(std::vector<uint32_t>& active, std::vector<uint32_t>& vehicle, std::vector<uint8_t>& status,
-              std::vector<int32_t>& lane, std::vector<float>& pos, std::vector<float>& speed) override {
-    const uint32_t n = num_active_;
-    active.resize(n);
-    vehicle.resize(n);
-    status.resize(n);
-    lane.resize(n);
-    pos.resize(n);
-    speed.resize(n);
-    if (n == 0) return;
-    uint32_t* vh = sample_vehicle_.get(n);
-    uint8_t* st = sample_status_.get(n);
-    int32_t* ln = sample_lane_.get(n);
-    float* ps = sample_pos_.get(n);
-    float* sp = sample_speed_.get(n);
-    LPSIM_LAUNCH(sample_kernel, blocks_for(n), kBlock)(dev_.veh, active_[cur_active_], n, vh, st, ln, ps, sp);
-    LPSIM_CUDA_CHECK_LAUNCH(sample_kernel);
-    copy_to_host(active.data(), active_[cur_active_], n);
-    copy_to_host(vehicle.data(), vh, n);
-    copy_to_host(status.data(), st, n);
-    copy_to_host(lane.data(), ln, n);
-    copy_to_host(pos.data(), ps, n);
-    copy_to_host(speed.data(), sp, n);
-  }
-
-  void drain_counters(int64_t* const* columns) override {
-    if (counters_ == nullptr) return;
-    const size_t nl = num_lanes_;
-    std::vector<int64_t> all(kNumLaneCounters * nl);
-    copy_to_host(all.data(), counters_, all.size());
-    LPSIM_CUDA_CHECK(cudaMemset(counters_, 0, all.size() * sizeof(int64_t)));
-    for (int k = 0; k < kNumLaneCounters; ++k)
-      for (size_t l = 0; l < nl; ++l) columns[k][l] += all[static_cast<size_t>(k) * nl + l];
-  }
-
-  void download_state(const StepContext& host, uint32_t num_slots, int map, char* link_state) override {
-    for_each_vehicle_column(dev_.veh, host.veh, [&](auto* dev, auto* h, uint32_t per) {
-      copy_to_host(h, dev, static_cast<size_t>(num_slots) * per);
-    });
-    copy_to_host(host.map_next, map_[map], cells_);
-    copy_to_host(link_state, link_state_, num_links_);
-  }
-
- private:
   /// Plan scratch, one entry per active-list position (PlanView): one allocation carved into the columns,
   /// regrown by half again when the active list outgrows it. The plan pass writes every entry the commit
   /// pass reads, so the contents need not survive a regrowth.
   void reserve_plan_slots(uint32_t n) {
     if (n <= plan_capacity_) return;
     const size_t c = std::max<size_t>(n, plan_capacity_ + plan_capacity_ / 2);
-    constexpr size_t kWordColumns = 12, kByteColumns = 2;
-    const size_t words = (kWordColumns * 4 * c + 255) / 256 * 256;  // keeps the byte columns aligned
-    plan_bytes_ = words + kByteColumns * c;
+    size_t words = 0, bytes = 0;
+    visit_plan_columns(
+        [&](uint32_t, auto* column) { (sizeof(*column) == 1 ? bytes : words) += sizeof(*column) * c; },
+        dev_.plan);
+    words = (words + 255) / 256 * 256;  // keeps the byte columns aligned
+    plan_bytes_ = words + bytes;
     plan_buffer_ = DeviceBuffer(plan_bytes_);
-    char* base = static_cast<char*>(plan_buffer_.get());
-    auto carve = [&](auto*& column) {
-      column = reinterpret_cast<std::remove_reference_t<decltype(column)>>(base);
-      base += sizeof(*column) * c;
-    };
-    PlanView& p = dev_.plan;
-    carve(p.new_speed), carve(p.new_lane), carve(p.new_pos), carve(p.new_prev), carve(p.new_prev2);
-    carve(p.claim_lane0), carve(p.claim_lane1), carve(p.stop_pos), carve(p.stop_lane);
-    carve(p.new_rp), carve(p.first_rp), carve(p.lookahead);
-    base = static_cast<char*>(plan_buffer_.get()) + words;  // the byte columns after the aligned words
-    carve(p.arrives), carve(p.claim_prio);
+    char* word_base = static_cast<char*>(plan_buffer_.get());
+    char* byte_base = word_base + words;  // the byte columns after the aligned words
+    visit_plan_columns(
+        [&](uint32_t, auto*& column) {
+          char*& base = sizeof(*column) == 1 ? byte_base : word_base;
+          column = reinterpret_cast<std::remove_reference_t<decltype(column)>>(base);
+          base += sizeof(*column) * c;
+        },
+        dev_.plan);
     plan_capacity_ = c;
     timer_.set_slot_bytes(slot_capacity_, slot_bytes_, plan_bytes_);
   }
@@ -711,7 +723,7 @@ class CudaStepper final : public GpuStepper {
       slot_buffers_[col++] = std::move(fresh);
       bytes += c * per * sizeof(T);
     };
-    for_each_vehicle_column(dev_.veh, dev_.veh, [&](auto*& dev, auto*, uint32_t per) { regrow(dev, per); });
+    visit_vehicle_columns([&](uint32_t per, auto*& column) { regrow(column, per); }, dev_.veh);
     regrow(active_[0], 1u);
     regrow(active_[1], 1u);
     regrow(kept_, 1u);
@@ -725,7 +737,6 @@ class CudaStepper final : public GpuStepper {
   T* allocate(size_t n) {
     buffers_.emplace_back(n * sizeof(T));
     bytes_total_ += n * sizeof(T);
-    if (n == num_vehicles_) bytes_per_vehicle_ += sizeof(T);  // one entry per loaded vehicle
     return static_cast<T*>(buffers_.back().get());
   }
 
@@ -736,8 +747,9 @@ class CudaStepper final : public GpuStepper {
     return dev;
   }
 
-  void upload_network(const NetView& h, const GpuStepSizes& sizes) {
-    const uint32_t nl = h.num_lanes, ne = sizes.num_edges, nc = sizes.num_connections;
+  void upload_network(const StepperSetup& setup) {
+    const NetView& h = setup.net;
+    const uint32_t nl = h.num_lanes, ne = setup.num_edges, nc = setup.num_connections;
     NetView& d = dev_.net;
     d.num_lanes = nl;
     d.lane_cell_begin = upload(h.lane_cell_begin, nl + 1);
@@ -773,7 +785,7 @@ class CudaStepper final : public GpuStepper {
     signals_ = SignalTable{};
     signals_.num_signals = ns;
     if (ns == 0) return;
-    // The device's link characters start unset: every signal sets them in the first step.
+    // The link characters start unset: every signal sets them at its first update.
     const std::vector<int64_t> never(ns, kSignalNeverSet);
     signal_next_switch_ms_ = upload(never.data(), ns);
     const uint32_t phases = h.phase_begin[ns];
@@ -792,31 +804,21 @@ class CudaStepper final : public GpuStepper {
     signals_.link_begin = dev_.net.signal_link_begin;
   }
 
-  void upload_demand(const StepContext& h, const GpuStepSizes& sizes) {
-    const uint32_t nt = sizes.num_types, nv = sizes.num_vehicles;
-    dev_.types = TypeView{upload(h.types.length, nt),
-                          upload(h.types.min_gap, nt),
-                          upload(h.types.accel, nt),
-                          upload(h.types.decel, nt),
-                          upload(h.types.emergency_decel, nt),
-                          upload(h.types.max_speed, nt),
-                          upload(h.types.tau, nt),
-                          upload(h.types.delta, nt)};
-    dev_.trips =
-        TripView{upload(h.trips.type, nv),         upload(h.trips.route_begin, nv),
-                 upload(h.trips.route_length, nv), upload(h.trips.route_edges, sizes.num_route_edges),
-                 upload(h.trips.speed_factor, nv), upload(h.trips.arrival_pos_kind, nv),
-                 upload(h.trips.arrival_pos, nv)};
+  void upload_types(const TypeView& h, uint32_t nt) {
+    dev_.types = TypeView{
+        upload(h.length, nt),          upload(h.min_gap, nt),   upload(h.accel, nt), upload(h.decel, nt),
+        upload(h.emergency_decel, nt), upload(h.max_speed, nt), upload(h.tau, nt),   upload(h.delta, nt)};
   }
 
   std::vector<DeviceBuffer> buffers_;  // every fixed allocation, freed in the stepper's destructor
   StepContext dev_{};                  // device pointers; params and lane maps filled per step
-  DepartView depart_{};
+  StepContext ctx_{};                  // the step being run
+  DeviceTrips trips_;
   SignalTable signals_{};
   char* link_state_ = nullptr;
   int64_t* signal_next_switch_ms_ = nullptr;
-  uint32_t num_links_ = 0, num_vehicles_ = 0, num_lanes_ = 0;
-  uint64_t bytes_total_ = 0, bytes_per_vehicle_ = 0;  // fixed allocations (scratch arrays not included)
+  uint32_t num_links_ = 0, num_lanes_ = 0;
+  uint64_t bytes_total_ = 0;  // fixed allocations (scratch arrays not included)
   DeviceBuffer plan_buffer_;
   size_t plan_capacity_ = 0, plan_bytes_ = 0;
   // The slot columns (dev_.veh), the active lists and the keep flags, each its own buffer, regrown together.
@@ -826,7 +828,8 @@ class CudaStepper final : public GpuStepper {
   int64_t* cnt_departed_ = nullptr;
   uint64_t cells_ = 0;
   uint8_t* map_[2] = {nullptr, nullptr};
-  // The active list, ping-ponged between two buffers by rebuild_active.
+  int state_map_ = 0;  // the lane map the state is in: the one the last step wrote
+  // The active list, ping-ponged between two buffers by rebuild.
   uint32_t* active_[2] = {nullptr, nullptr};
   int cur_active_ = 0;
   uint32_t num_active_ = 0, kept_count_ = 0;
@@ -836,13 +839,16 @@ class CudaStepper final : public GpuStepper {
   static constexpr size_t kEndsOffset = 16;
   ScratchArray<unsigned char> outcome_;
   PinnedArray<unsigned char> outcome_host_;
+  StepOutcome outcome_result_;
   uint32_t last_ends_ = 0;
   // The step started last: its active vehicles, and the ends fetched with its tally.
   uint32_t launched_ = 0, guess_ = 0;
+  std::chrono::steady_clock::time_point t0_;
   ScratchArray<TeleportMove> moves_;
-  ScratchArray<uint32_t> batch_in_, batch_out_, added_, num_selected_;
+  ScratchArray<uint32_t> batch_in_, batch_out_, added_, num_selected_, trip_routes_;
   ScratchArray<unsigned char> temp_;
   ScratchArray<SlotInit> inits_;
+  ScratchArray<SlotRoute> slot_routes_;
   ScratchArray<uint32_t> sort_keys_, sort_order_, sort_inverse_, sort_asked_;  // sort_slots
   ScratchArray<unsigned char> sort_moved_;
   ScratchArray<uint32_t> sample_vehicle_;
@@ -854,6 +860,18 @@ class CudaStepper final : public GpuStepper {
   PinnedArray<TeleportMove> moves_host_;
   PinnedArray<SlotInit> inits_host_;
   PinnedArray<uint32_t> added_host_;
+  // The host's copy of the state (fetch), and the state version it shows: every call that changes the state
+  // counts one.
+  HostVehicleColumns host_;
+  std::vector<uint32_t> host_active_, sample_u32_;
+  std::vector<uint8_t> sample_u8_;
+  std::vector<int32_t> sample_i32_;
+  std::vector<float> sample_f32_;
+  std::vector<uint8_t> host_map_;
+  std::vector<char> host_link_state_;
+  HostState state_;
+  uint64_t version_ = 0, fetched_version_ = ~uint64_t{0};
+  bool fetched_full_ = false;
   PhaseTimer timer_;
 };
 
@@ -905,12 +923,8 @@ CudaDeviceStatus cuda_device_status() {
   return status;
 }
 
-std::unique_ptr<GpuStepper> make_cuda_stepper(const StepContext& host, const SignalTable& signals,
-                                              const GpuStepSizes& sizes, const DepartView& depart,
-                                              const uint8_t* other_map, int map_now,
-                                              const std::vector<uint32_t>& active, bool lane_counters) {
-  return std::make_unique<CudaStepper>(host, signals, sizes, depart, other_map, map_now, active,
-                                       lane_counters);
+std::unique_ptr<Stepper> make_cuda_stepper(const StepperSetup& setup) {
+  return std::make_unique<CudaStepper>(setup);
 }
 
 }  // namespace lpsim

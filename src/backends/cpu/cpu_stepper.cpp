@@ -1,0 +1,279 @@
+#include "backends/cpu/cpu_stepper.hpp"
+
+#include <algorithm>
+#include <vector>
+
+#include "backends/cpu/parallel_for.hpp"
+#include "backends/cpu/pass_prefetch.hpp"
+#include "backends/host_columns.hpp"
+#include "kernels/insert_vehicle.hpp"
+#include "kernels/signal_step.hpp"
+#include "kernels/vehicle_step.hpp"
+
+namespace lpsim {
+
+namespace {
+
+// Fewer active vehicles than this run the passes on the calling thread.
+constexpr int64_t kParallelMinVehicles = 2048;
+
+class CpuStepper final : public Stepper {
+  // Where the passes find their vehicles' lanes (for the prefetch): the lane columns every pass reads.
+  auto lane_columns() const {
+    return [net = ctx_.net](int32_t l) { prefetch_lane_columns(net, l); };
+  }
+
+  // Only running vehicles have a front to plan from.
+  auto front() const {
+    const StepContext& c = ctx_;
+    const uint32_t* act = active_.data();
+    return [&c, act](int64_t i) {
+      const uint32_t k = act[i];
+      return LaneAt{c.veh.status[k] == kRunning ? c.veh.lane[k] : -1, c.veh.pos[k]};
+    };
+  }
+
+ public:
+  explicit CpuStepper(const StepperSetup& setup) : setup_(setup), pool_(std::max(1, setup.threads)) {
+    const uint32_t nl = setup.net.num_lanes;
+    const uint64_t cells = setup.net.lane_cell_begin[nl];
+    for (auto& m : map_) m.assign(cells + kLaneMapPadding, 0);
+    const uint32_t ns = setup.signals.num_signals;
+    link_state_.assign(setup.signals.link_begin[ns], 'r');
+    signal_next_switch_ms_.assign(ns, kSignalNeverSet);
+    approach_.assign(nl, LaneApproach{0xFFFFFFFFu, -1, 0, 0, 0, 0, 0});
+    claims_.assign(nl, 0);
+    merge_requests_.assign(nl, 0);
+    if (setup.lane_counters) counters_.assign(static_cast<size_t>(kNumLaneCounters) * nl, 0);
+    trips_ = setup.trips;
+  }
+
+  void update_signals(int64_t time_ms) override {
+    const SignalTable& t = setup_.signals;
+    for (uint32_t s = 0; s < t.num_signals; ++s)
+      update_signal(t, s, time_ms, link_state_.data(), signal_next_switch_ms_.data());
+  }
+
+  void start_step(const StepParams& params, int map_now) override {
+    state_map_ = 1 - map_now;
+    plan_.reserve(active_.size(), false);
+    ctx_ = context(map_[map_now].data(), map_[1 - map_now].data());
+    ctx_.params = params;
+  }
+
+  // Each pass is one parallel loop over the active vehicles, finished before the next starts. Each names
+  // where its vehicles are (the footprint it clears or writes, the front it plans from) for the prefetch.
+  void clear_footprints() override {
+    const StepContext& c = ctx_;
+    const uint32_t* act = active_.data();
+    auto old_front = [&](int64_t i) { return LaneAt{c.veh.old_lane[act[i]], c.veh.old_pos[act[i]]}; };
+    pass(old_front, ctx_.map_next, lane_columns(),
+         [](StepContext& s, uint32_t i, uint32_t k) { clear_old_footprint(s, i, k); });
+  }
+
+  // Approach reads the lane map only for vehicles within reach of their lane's end: no cells fetched for it.
+  void approach() override {
+    pass(front(), nullptr, lane_columns(),
+         [](StepContext& s, uint32_t i, uint32_t k) { approach_vehicle(s, i, k); });
+  }
+
+  void plan() override {
+    const StepContext& c = ctx_;
+    // The plan also reads the lane's neighbours (lane changes), kind and merge request.
+    auto plan_lane_columns = [&](int32_t l) {
+      prefetch_lane_columns(c.net, l);
+      __builtin_prefetch(&c.merge_requests[l]);
+      __builtin_prefetch(&c.net.lane_left[l]);
+      __builtin_prefetch(&c.net.lane_right[l]);
+      __builtin_prefetch(&c.net.lane_internal[l]);
+      __builtin_prefetch(&c.net.lane_rank[l]);
+    };
+    pass(front(), ctx_.map_now, plan_lane_columns,
+         [](StepContext& s, uint32_t i, uint32_t k) { plan_vehicle(s, i, k); });
+  }
+
+  void commit() override {
+    const StepContext& c = ctx_;
+    const uint32_t* act = active_.data();
+    // Only running vehicles' plans were written this step.
+    auto new_front = [&](int64_t i) {
+      return LaneAt{c.veh.status[act[i]] == kRunning ? c.plan.new_lane[i] : -1, c.plan.new_pos[i]};
+    };
+    pass(new_front, ctx_.map_next, lane_columns(),
+         [](StepContext& s, uint32_t i, uint32_t k) { commit_vehicle(s, i, k); });
+  }
+
+  // One walk over the active list: the vehicles whose trip or road time ended in this step, and the slots
+  // that stay active (running, or left the road in this step: the next clear pass removes their footprint).
+  void start_end_of_step(uint32_t steps_done) override {
+    const VehicleView& veh = ctx_.veh;
+    outcome_.ends.clear();
+    kept_.resize(active_.size());
+    size_t kept = 0;
+    uint32_t running = 0;
+    for (const uint32_t k : active_) {
+      const uint32_t kind = step_end_kind(veh, k, steps_done, ctx_.params.teleport_steps);
+      if (kind != kEndNone) outcome_.ends.push_back(vehicle_end(veh, k, kind));
+      running += veh.status[k] == kRunning ? 1u : 0u;
+      kept_[kept] = k;  // a branch on staying would be mispredicted
+      kept += stays_active(veh, k) ? 1u : 0u;
+    }
+    kept_.resize(kept);
+    outcome_.kept = static_cast<uint32_t>(kept);
+    outcome_.running = running;
+  }
+
+  StepOutcome& finish_end_of_step() override { return outcome_; }
+
+  void apply_teleports(const std::vector<TeleportMove>& moves, uint32_t steps_done) override {
+    for (const TeleportMove& m : moves) apply_teleport_move(veh_.view(), m, steps_done);
+  }
+
+  void insert(const InsertBatch& batch, uint32_t num_entries, const InsertParams& p, int map) override {
+    if (num_entries == 0) return;
+    uint8_t* into = map_[map].data();
+    const StepContext ctx = context(map_[1 - map].data(), into);
+    InsertParams params = p;
+    params.cnt_departed = counter(8);
+    params.cnt_entered = counter(5);
+    for (uint32_t slot = 0; slot < batch.num_slots; ++slot)
+      insert_queue_head(ctx, trips_.depart, params, into, batch, slot);
+  }
+
+  void start_vehicles(const std::vector<SlotInit>& inits, const std::vector<uint32_t>& added) override {
+    if (!added.empty()) veh_.reserve(size_t{added.back()} + 1, true);
+    for (const SlotInit& init : inits) activate_slot(veh_.view(), trips_.trips, init);
+    // The kept slots (ascending) and the new ones (ascending) make the next active list, ascending.
+    active_.resize(kept_.size() + added.size());
+    std::merge(kept_.begin(), kept_.end(), added.begin(), added.end(), active_.begin());
+  }
+
+  void sort_slots(std::vector<uint32_t>& slots) override {
+    const size_t n = active_.size();
+    VehicleView& veh = veh_.view();
+    keys_.resize(n);
+    for (size_t i = 0; i < n; ++i)
+      keys_[i] = uint64_t{static_cast<uint32_t>(veh.lane[active_[i]])} << 32 | active_[i];
+    std::sort(keys_.begin(), keys_.end());
+    order_.resize(n);  // order[new slot] = old slot
+    for (size_t i = 0; i < n; ++i) order_[i] = static_cast<uint32_t>(keys_[i]);
+    visit_vehicle_columns(
+        [&](uint32_t per, auto* column) {
+          using T = std::remove_pointer_t<decltype(column)>;
+          moved_.resize(n * per * sizeof(T));
+          T* to = reinterpret_cast<T*>(moved_.data());
+          for (size_t i = 0; i < n; ++i)
+            for (uint32_t e = 0; e < per; ++e) to[i * per + e] = column[size_t{order_[i]} * per + e];
+          std::copy_n(to, n * per, column);
+        },
+        veh);
+    new_slot_.assign(veh_.capacity(), kNotActive);
+    for (size_t i = 0; i < n; ++i) {
+      new_slot_[order_[i]] = static_cast<uint32_t>(i);
+      active_[i] = static_cast<uint32_t>(i);
+    }
+    for (uint32_t& k : slots) k = k < new_slot_.size() ? new_slot_[k] : kNotActive;
+  }
+
+  void update_trips(const TripTableView& now, const TripChanges&) override { trips_ = now; }
+
+  void set_routes(const std::vector<SlotRoute>& routes) override {
+    for (const SlotRoute& r : routes) set_slot_route(veh_.view(), r);
+  }
+
+  const HostState& fetch(StateParts, uint32_t) override {
+    state_.active = active_.data();
+    state_.num_active = static_cast<uint32_t>(active_.size());
+    state_.veh = veh_.view();
+    state_.map = map_[state_map_].data();
+    state_.link_state = link_state_.data();
+    return state_;
+  }
+
+  void drain_counters(int64_t* const* columns) override {
+    if (counters_.empty()) return;
+    const size_t nl = setup_.net.num_lanes;
+    for (int k = 0; k < kNumLaneCounters; ++k)
+      for (size_t l = 0; l < nl; ++l) {
+        int64_t& c = counters_[static_cast<size_t>(k) * nl + l];
+        columns[k][l] += c;
+        c = 0;
+      }
+  }
+
+ private:
+  int64_t* counter(int k) {
+    return counters_.empty() ? nullptr : counters_.data() + static_cast<size_t>(k) * setup_.net.num_lanes;
+  }
+
+  StepContext context(const uint8_t* map_now, uint8_t* map_next) {
+    StepContext ctx{};
+    ctx.net = setup_.net;
+    ctx.types = setup_.types;
+    ctx.trips = trips_.trips;
+    ctx.veh = veh_.view();
+    ctx.plan = plan_.view();
+    ctx.map_now = map_now;
+    ctx.map_next = map_next;
+    ctx.link_state = link_state_.data();
+    ctx.approach = approach_.data();
+    ctx.claims = claims_.data();
+    ctx.merge_requests = merge_requests_.data();
+    ctx.yielder_begin = setup_.yielder_begin;
+    ctx.yielder = setup_.yielder;
+    // Left null when no output wants them: the passes then skip their atomics.
+    ctx.cnt_sampled_steps = counter(0);
+    ctx.cnt_travelled_mm = counter(1);
+    ctx.cnt_waiting_steps = counter(2);
+    ctx.cnt_time_loss_ms = counter(3);
+    ctx.cnt_occupied_mm_steps = counter(4);
+    ctx.cnt_entered = counter(5);
+    ctx.cnt_left = counter(6);
+    ctx.cnt_arrived = counter(7);
+    return ctx;
+  }
+
+  template <class Where, class FetchLane, class VehiclePass>
+  void pass(Where where, const uint8_t* map, FetchLane fetch_lane, VehiclePass vehicle_pass) {
+    const int64_t n = static_cast<int64_t>(active_.size());
+    const uint32_t* act = active_.data();
+    StepContext& ctx = ctx_;
+    pool_.run(
+        n,
+        [&](int64_t b, int64_t e) {
+          run_prefetched(b, e, ctx.net, map, where, fetch_lane,
+                         [&](int64_t i) { vehicle_pass(ctx, static_cast<uint32_t>(i), act[i]); });
+        },
+        kParallelMinVehicles);
+  }
+
+  StepperSetup setup_;
+  TripTableView trips_;
+  ParallelFor pool_;
+  StepContext ctx_{};
+  std::vector<uint8_t> map_[2];
+  int state_map_ = 0;  // the lane map the state is in: the one the last step wrote
+  std::vector<char> link_state_;
+  std::vector<int64_t> signal_next_switch_ms_;  // per signal: when the phase link_state_ shows ends
+  std::vector<LaneApproach> approach_;
+  std::vector<uint64_t> claims_, merge_requests_;
+  std::vector<int64_t> counters_;  // kNumLaneCounters columns of num_lanes; empty without lane counters
+  HostVehicleColumns veh_;
+  HostPlanColumns plan_;
+  std::vector<uint32_t> active_;  // slots the passes visit, ascending
+  std::vector<uint32_t> kept_;    // active slots that stay active after the step (member: no page faults)
+  StepOutcome outcome_;
+  HostState state_;
+  // sort_slots' scratch.
+  std::vector<uint64_t> keys_;
+  std::vector<uint32_t> order_, new_slot_;
+  std::vector<uint8_t> moved_;
+};
+
+}  // namespace
+
+std::unique_ptr<Stepper> make_cpu_stepper(const StepperSetup& setup) {
+  return std::make_unique<CpuStepper>(setup);
+}
+
+}  // namespace lpsim

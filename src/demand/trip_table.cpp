@@ -1,0 +1,74 @@
+#include "demand/trip_table.hpp"
+
+#include <stdexcept>
+
+namespace lpsim {
+
+TripTable::TripTable(Demand demand) : d_(std::move(demand)) {
+  changes_.first_new_vehicle = d_.size();
+  changes_.first_new_route_edge = d_.route_edges.size();
+}
+
+bool TripTable::changed() const {
+  return d_.size() > changes_.first_new_vehicle || d_.route_edges.size() > changes_.first_new_route_edge ||
+         !changes_.new_routes.empty();
+}
+
+bool TripTable::connected(const Network& net, const std::vector<uint32_t>& edges) {
+  for (size_t i = 0; i + 1 < edges.size(); ++i)
+    if (!net.connected(edges[i], edges[i + 1])) return false;
+  return true;
+}
+
+uint32_t TripTable::add(const NewTrip& t, const Network& net) {
+  auto refuse = [&](const std::string& why) {
+    throw std::invalid_argument("vehicle '" + t.id + "' cannot be added: " + why);
+  };
+  if (index_.empty())
+    for (uint32_t v = 0; v < d_.size(); ++v) index_.emplace(d_.vehicle_id[v], v);
+  if (index_.count(t.id)) refuse("the id is in use");
+  if (t.type >= d_.types.size()) refuse("unknown vehicle type " + std::to_string(t.type));
+  if (t.route.empty()) refuse("empty route");
+  for (const uint32_t e : t.route)
+    if (e >= net.num_edges() || net.edge_is_internal[e]) refuse("no normal edge " + std::to_string(e));
+  if (net.edge_num_lanes[t.route.front()] == 0) refuse("its first edge has no car lane");
+  if (!connected(net, t.route)) refuse("its route is not connected");
+  if (d_.size() >= 0x40000000u) refuse("too many vehicles");
+
+  const uint32_t v = d_.size();
+  index_.emplace(t.id, v);
+  d_.vehicle_id.push_back(t.id);
+  d_.vehicle_type.push_back(t.type);
+  d_.depart.push_back(t.depart);
+  d_.route_begin.push_back(static_cast<uint32_t>(d_.route_edges.size()));
+  d_.route_length.push_back(static_cast<uint32_t>(t.route.size()));
+  d_.route_edges.insert(d_.route_edges.end(), t.route.begin(), t.route.end());
+  d_.speed_factor.push_back(t.speed_factor);
+  d_.source.push_back(DemandSource::Added);
+  d_.depart_lane_kind.push_back(static_cast<uint8_t>(t.depart_lane));
+  d_.depart_lane.push_back(t.depart_lane_index);
+  d_.depart_pos_kind.push_back(static_cast<uint8_t>(t.depart_pos));
+  d_.depart_pos.push_back(t.depart_pos_value);
+  d_.depart_speed_kind.push_back(static_cast<uint8_t>(t.depart_speed));
+  d_.depart_speed.push_back(t.depart_speed_value);
+  d_.arrival_pos_kind.push_back(static_cast<uint8_t>(t.arrival_pos));
+  d_.arrival_pos.push_back(t.arrival_pos_value);
+  return v;
+}
+
+void TripTable::set_route(uint32_t v, const std::vector<uint32_t>& edges) {
+  d_.route_begin[v] = static_cast<uint32_t>(d_.route_edges.size());
+  d_.route_length[v] = static_cast<uint32_t>(edges.size());
+  d_.route_edges.insert(d_.route_edges.end(), edges.begin(), edges.end());
+  if (v < changes_.first_new_vehicle) changes_.new_routes.push_back(v);
+}
+
+TripTable::Changes TripTable::take_changes() {
+  Changes c = std::move(changes_);
+  changes_ = Changes{};
+  changes_.first_new_vehicle = d_.size();
+  changes_.first_new_route_edge = d_.route_edges.size();
+  return c;
+}
+
+}  // namespace lpsim

@@ -1,0 +1,64 @@
+#pragma once
+// The trips a run simulates: the loaded demand, then trips added while it runs (a vehicle handed over from
+// another simulator) and routes replaced (rerouting). Append-only: a trip keeps its index for the whole run,
+// and a replaced route's edges are appended and the trip pointed at them, so that every index a backend
+// holds stays valid and a backend's copy is brought up to date by copying what was appended (changes()).
+#include <cstdint>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "demand/demand.hpp"
+#include "net/network.hpp"
+
+namespace lpsim {
+
+/// A trip added during a run. The departure attributes are SUMO's (src/core/demand_spec.hpp).
+struct NewTrip {
+  std::string id;
+  uint32_t type = 0;            // index into the demand's vehicle types
+  double depart = 0;            // s: due for insertion then (or at once, if that has passed)
+  std::vector<uint32_t> route;  // edge indices, each reachable from the one before
+  float speed_factor = 1.0f;
+  DepartLane depart_lane = DepartLane::Best;
+  int8_t depart_lane_index = 0;  // DepartLane::Given: rank among the first edge's car lanes
+  DepartPos depart_pos = DepartPos::Base;
+  float depart_pos_value = 0;
+  DepartSpeed depart_speed = DepartSpeed::Max;
+  float depart_speed_value = 0;
+  ArrivalPos arrival_pos = ArrivalPos::Max;
+  float arrival_pos_value = 0;
+};
+
+class TripTable {
+ public:
+  explicit TripTable(Demand demand);
+
+  const Demand& demand() const { return d_; }
+  uint32_t size() const { return d_.size(); }
+
+  /// Appends a trip and returns its index; std::invalid_argument naming the trip when it is not valid here
+  /// (an id in use, an unknown type, an empty or unconnected route, an edge without car lanes).
+  uint32_t add(const NewTrip& trip, const Network& net);
+  /// Trip v drives `edges` from now on (appended; its old route stays where it was, unreferenced by v).
+  /// The caller checks that they are connected and lead on from where the vehicle is.
+  void set_route(uint32_t v, const std::vector<uint32_t>& edges);
+  /// Whether each edge of `edges` is reachable from the one before (normal edges, in the net's edge graph).
+  static bool connected(const Network& net, const std::vector<uint32_t>& edges);
+
+  /// What was appended or rerouted since the last call.
+  struct Changes {
+    uint32_t first_new_vehicle = 0;
+    uint64_t first_new_route_edge = 0;
+    std::vector<uint32_t> new_routes;  // earlier trips whose route changed
+  };
+  bool changed() const;
+  Changes take_changes();
+
+ private:
+  Demand d_;
+  std::unordered_map<std::string, uint32_t> index_;  // vehicle ids, built at the first add
+  Changes changes_;
+};
+
+}  // namespace lpsim

@@ -1,0 +1,73 @@
+#include "engine/insertion_queues.hpp"
+
+#include <algorithm>
+
+namespace lpsim {
+
+InsertionQueues::InsertionQueues(const Network& net) : queue_(net.num_edges()) {
+  for (uint32_t e = 0; e < net.num_edges(); ++e) queue_[e].lanes = net.edge_num_lanes[e];
+}
+
+void InsertionQueues::push_back(uint32_t e, uint32_t entry) {
+  EdgeQueue& q = queue_[e];
+  if (q.head == q.entries.size()) {
+    q.entries.clear();
+    q.head = 0;
+    queued_edges_.insert(std::lower_bound(queued_edges_.begin(), queued_edges_.end(), e), e);
+  }
+  q.entries.push_back(entry);
+  ++waiting_;
+}
+
+void InsertionQueues::push_front(uint32_t e, uint32_t entry) {
+  EdgeQueue& q = queue_[e];
+  q.entries.insert(q.entries.begin() + q.head, entry);
+  if (q.head + 1 == q.entries.size())
+    queued_edges_.insert(std::lower_bound(queued_edges_.begin(), queued_edges_.end(), e), e);
+  ++waiting_;
+}
+
+// Insertion stops at the first vehicle that does not fit, and once each lane of the edge has taken a vehicle
+// at its start the next one placed there cannot fit (inserts_at_lane_start): the offer ends before it, with
+// the same result (on a congested day most queues are long, and the batch is a few entries per edge instead
+// of 16).
+const InsertBatch& InsertionQueues::offer(const std::vector<uint32_t>& resume_rp) {
+  edge_.clear();
+  begin_.assign(1, 0);
+  entry_.clear();
+  rp_.clear();
+  for (const uint32_t e : queued_edges_) {
+    const EdgeQueue& q = queue_[e];
+    const size_t end = std::min<size_t>(q.entries.size(), q.head + kMaxInsertPerEdge);
+    uint32_t lane_starts_left = q.lanes;
+    for (size_t i = q.head; i < end; ++i) {
+      const uint32_t entry = q.entries[i];
+      if (entry & kQueuedAtLaneStart) {
+        if (lane_starts_left == 0) break;
+        --lane_starts_left;
+      }
+      const uint32_t offered = entry & ~kQueuedAtLaneStart;  // the insertion knows only kInsertTeleported
+      entry_.push_back(offered);
+      rp_.push_back((offered & kInsertTeleported) ? resume_rp[offered & ~kInsertTeleported] : 0u);
+    }
+    edge_.push_back(e);
+    begin_.push_back(static_cast<uint32_t>(entry_.size()));
+  }
+  const size_t entries = entry_.size();
+  inserted_.assign(edge_.size(), 0);
+  lane_.resize(entries);
+  pos_.resize(entries);
+  speed_.resize(entries);
+  batch_ = InsertBatch{static_cast<uint32_t>(edge_.size()),
+                       edge_.data(),
+                       begin_.data(),
+                       entry_.data(),
+                       rp_.data(),
+                       inserted_.data(),
+                       lane_.data(),
+                       pos_.data(),
+                       speed_.data()};
+  return batch_;
+}
+
+}  // namespace lpsim

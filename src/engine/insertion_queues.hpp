@@ -1,0 +1,90 @@
+#pragma once
+// Vehicles waiting to be inserted: one first-in-first-out queue per edge, of departures and of teleported
+// vehicles re-entering. Each step the head of every non-empty queue is offered to the backend as one batch
+// (kernels/insert_vehicle.hpp), and what it inserted leaves the queues.
+#include <cstdint>
+#include <vector>
+
+#include "kernels/insert_vehicle.hpp"
+#include "net/network.hpp"
+
+namespace lpsim {
+
+/// Queue entry flag (host only, taken off before an entry is offered): the vehicle is placed at its lane's
+/// start (inserts_at_lane_start). With kInsertTeleported the entry says all the batch building needs, so that
+/// it reads no per-vehicle column.
+constexpr uint32_t kQueuedAtLaneStart = 0x40000000u;
+constexpr uint32_t kMaxVehicles = kQueuedAtLaneStart;  // vehicle indices below both flags
+
+/// The queue entry of vehicle v (its departPos kind `pos_kind`), departing or re-entering after a teleport.
+inline uint32_t queue_entry(uint32_t v, uint8_t pos_kind, bool teleported) {
+  return v | (teleported ? kInsertTeleported : 0u) |
+         (inserts_at_lane_start(pos_kind, teleported) ? kQueuedAtLaneStart : 0u);
+}
+
+class InsertionQueues {
+ public:
+  explicit InsertionQueues(const Network& net);
+
+  /// Whether vehicles can enter at edge e at all (it has car lanes).
+  bool has_lanes(uint32_t e) const { return queue_[e].lanes > 0; }
+  /// A departure joins the tail of edge e's queue.
+  void push_back(uint32_t e, uint32_t entry);
+  /// A teleported vehicle goes first: it has been on the road already.
+  void push_front(uint32_t e, uint32_t entry);
+  /// Vehicles queued on all edges.
+  uint64_t waiting() const { return waiting_; }
+
+  /// The batch of this step: up to kMaxInsertPerEdge heads of each queue, edges ascending, with the route
+  /// position each enters at (resume_rp[v] for a teleported vehicle, 0 for a departure). Its output arrays
+  /// are sized for the backend to fill.
+  const InsertBatch& offer(const std::vector<uint32_t>& resume_rp);
+  uint32_t offered_entries() const { return static_cast<uint32_t>(entry_.size()); }
+  /// After the backend filled the batch: calls inserted(i) for each inserted entry i of the batch, in batch
+  /// order, and removes those entries from their queues.
+  template <class Inserted>
+  void take_inserted(Inserted&& inserted);
+
+ private:
+  struct EdgeQueue {
+    std::vector<uint32_t> entries;  // those before head have been inserted
+    uint32_t head = 0;
+    uint32_t lanes = 0;  // the edge's car lanes (none: its departures are removed)
+  };
+  std::vector<EdgeQueue> queue_;        // per edge
+  std::vector<uint32_t> queued_edges_;  // edges with a non-empty queue, ascending
+  uint64_t waiting_ = 0;
+  // The batch (InsertBatch's arrays).
+  std::vector<uint32_t> edge_, begin_, entry_, rp_, inserted_;
+  std::vector<int32_t> lane_;
+  std::vector<float> pos_, speed_;
+  InsertBatch batch_{};
+  std::vector<uint32_t> still_;  // take_inserted's scratch
+};
+
+template <class Inserted>
+void InsertionQueues::take_inserted(Inserted&& inserted) {
+  still_.clear();
+  for (uint32_t slot = 0; slot < batch_.num_slots; ++slot) {
+    const uint32_t e = edge_[slot];
+    if (inserted_[slot] == 0) {  // as it was: still waiting (most queues, on a congested road)
+      still_.push_back(e);
+      continue;
+    }
+    EdgeQueue& q = queue_[e];
+    for (uint32_t i = begin_[slot]; i < begin_[slot] + inserted_[slot]; ++i) {
+      inserted(i);
+      ++q.head;
+      --waiting_;
+    }
+    if (q.head < q.entries.size()) {
+      still_.push_back(e);
+    } else {
+      q.entries.clear();
+      q.head = 0;
+    }
+  }
+  queued_edges_.swap(still_);
+}
+
+}  // namespace lpsim

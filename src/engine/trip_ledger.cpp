@@ -1,0 +1,69 @@
+#include "engine/trip_ledger.hpp"
+
+namespace lpsim {
+
+void TripLedger::resize(uint32_t n) {
+  status_.resize(n, kPending);
+  resume_rp_.resize(n, 0);
+  depart_time_.resize(n, 0);
+  depart_pos_.resize(n, 0);
+  depart_speed_.resize(n, 0);
+  depart_lane_.resize(n, -1);
+}
+
+void TripLedger::departed(uint32_t v, double now, double depart_due, const SlotInit& init) {
+  depart_delay_sum_ += now - depart_due;
+  depart_time_[v] = static_cast<float>(now);
+  depart_lane_[v] = init.lane;
+  depart_pos_[v] = init.pos;
+  depart_speed_[v] = init.speed;
+}
+
+void TripLedger::teleporting(const VehicleEnd& e, uint32_t rp) {
+  status_[e.vehicle] = kTeleporting;
+  resume_rp_[e.vehicle] = rp;
+  carried_[e.vehicle] = Carried{e.route_length, e.time_loss, e.waiting_steps, e.waiting_count};
+}
+
+void TripLedger::reentering(SlotInit& init) {
+  const auto c = carried_.find(init.vehicle);
+  if (c == carried_.end()) return;
+  init.route_length = c->second.route_length;
+  init.time_loss = c->second.time_loss;
+  init.waiting_steps = c->second.waiting_steps;
+  init.waiting_count = c->second.waiting_count;
+  carried_.erase(c);
+}
+
+void TripLedger::ended(const VehicleEnd& e, bool teleported, double now, double depart_due,
+                       double step_length, float speed_factor) {
+  const uint32_t v = e.vehicle;
+  status_[v] = kArrived;
+  TripRecord r;
+  r.vehicle = v;
+  r.depart = depart_time_[v];
+  r.depart_delay = depart_time_[v] - depart_due;
+  r.arrival = now;
+  r.depart_lane = static_cast<uint32_t>(depart_lane_[v]);
+  r.arrival_lane = static_cast<uint32_t>(e.lane);
+  r.depart_pos = depart_pos_[v];
+  r.depart_speed = depart_speed_[v];
+  r.arrival_pos = e.pos;
+  r.arrival_speed = teleported ? 0.0f : e.speed;
+  r.route_length = e.route_length;
+  r.waiting_time = static_cast<double>(e.waiting_steps) * step_length;
+  r.waiting_count = e.waiting_count;
+  r.time_loss = e.time_loss;
+  r.speed_factor = speed_factor;
+  r.teleported = teleported;
+  travel_time_sum_ += r.arrival - r.depart;
+  finished_.push_back(r);
+}
+
+std::vector<TripRecord> TripLedger::take_finished() {
+  std::vector<TripRecord> out;
+  out.swap(finished_);
+  return out;
+}
+
+}  // namespace lpsim

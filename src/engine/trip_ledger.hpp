@@ -1,0 +1,56 @@
+#pragma once
+// The host's account of every trip, on the road or off it: its status while it holds no slot (pending,
+// teleporting to re-enter, arrived or removed), where a teleported vehicle re-enters and the trip counters it
+// carries over the teleport, its departure, and the trip records of those that ended.
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+#include "engine/samples.hpp"
+#include "kernels/step_view.hpp"
+
+namespace lpsim {
+
+class TripLedger {
+ public:
+  /// Room for trips [0, n) (the trip table grows during a run); new trips are pending.
+  void resize(uint32_t n);
+
+  uint8_t status(uint32_t v) const { return status_[v]; }
+  void set_status(uint32_t v, uint8_t s) { status_[v] = s; }
+  uint32_t resume_route_pos(uint32_t v) const { return resume_rp_[v]; }
+  void set_resume_route_pos(uint32_t v, uint32_t rp) { resume_rp_[v] = rp; }
+  /// Route position each trip re-enters at after a teleport (read for the insertion batch).
+  const std::vector<uint32_t>& resume_route_positions() const { return resume_rp_; }
+
+  /// Vehicle v, due at `depart_due` (s), was inserted at time `now` where `init` says.
+  void departed(uint32_t v, double now, double depart_due, const SlotInit& init);
+  /// A teleporting vehicle waits to re-enter at route position `rp`, carrying the counters of `end`.
+  void teleporting(const VehicleEnd& end, uint32_t rp);
+  /// A teleported vehicle re-enters: `init` takes the counters it carried.
+  void reentering(SlotInit& init);
+
+  /// A trip ended at time `now`: its record joins those taken by take_finished().
+  void ended(const VehicleEnd& end, bool teleported, double now, double depart_due, double step_length,
+             float speed_factor);
+  std::vector<TripRecord> take_finished();
+
+  double depart_delay_sum() const { return depart_delay_sum_; }
+  double travel_time_sum() const { return travel_time_sum_; }
+
+ private:
+  std::vector<uint8_t> status_;
+  std::vector<uint32_t> resume_rp_;
+  struct Carried {
+    float route_length, time_loss;
+    uint32_t waiting_steps, waiting_count;
+  };
+  std::unordered_map<uint32_t, Carried> carried_;
+  // Departure records for tripinfo.
+  std::vector<float> depart_time_, depart_pos_, depart_speed_;
+  std::vector<int32_t> depart_lane_;
+  std::vector<TripRecord> finished_;
+  double depart_delay_sum_ = 0, travel_time_sum_ = 0;
+};
+
+}  // namespace lpsim
