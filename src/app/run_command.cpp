@@ -9,6 +9,7 @@
 
 #include "app/commands.hpp"
 #include "app/scenario_args.hpp"
+#include "app/simulation_options.hpp"
 #include "converters/fcd_writer.hpp"
 #include "converters/mean_data_writer.hpp"
 #include "converters/summary_writer.hpp"
@@ -67,12 +68,7 @@ int command_run(const std::vector<std::string>& args) {
   ConfigSpec config;
   Scenario sc = scenario_from_args(args, &config);
 
-  SimulationOptions opt;
-  opt.begin = config.begin;
-  opt.step_length = config.step_length;
-  opt.seed = static_cast<uint64_t>(config.seed);
-  opt.threads = config.threads > 0 ? config.threads : 1;
-  opt.time_to_teleport = config.time_to_teleport;
+  SimulationOptions opt = simulation_options(config);
   const DeviceChoice device = select_device(config.device);
   opt.gpu = device.gpu;
   if (config.device != ComputeDevice::Cpu)
