@@ -12,7 +12,7 @@ namespace lpsim::engine_test {
 namespace {
 
 RunResult run_checked_on_gpu(const Scenario& sc, const std::string& name) {
-  SimulationOptions options = options_of(sc.config, 1);
+  SimulationOptions options = simulation_options(sc.config);
   options.gpu = true;
   return run_checked(sc, name + " on the GPU", options, 1);
 }

@@ -22,7 +22,7 @@ class GpuSlotSortTest : public ::testing::Test {
 
   static void check(const std::string& name, const std::vector<std::string>& args) {
     const Scenario sc = load_sumo_scenario(name, args);
-    SimulationOptions cpu = options_of(sc.config, 1);
+    SimulationOptions cpu = simulation_options(sc.config);
     cpu.slot_sort_interval = 0;
     const Trace reference = run_trace(sc, cpu);
     ASSERT_GT(reference.trips.size(), 0u);

@@ -14,7 +14,7 @@ TEST(GpuTripTableTest, AddedTripsAndNewRoutesAsOnTheCpu) {
   if (!gpu.usable)
     GTEST_SKIP() << "no usable CUDA device (" << gpu.description << "): trip changes not checked";
   const Scenario sc = load_sumo_scenario("grid_tls");
-  SimulationOptions cpu = options_of(sc.config, 1);
+  SimulationOptions cpu = simulation_options(sc.config);
   SimulationOptions on_gpu = cpu;
   on_gpu.gpu = true;
   const TripChangesRun reference = run_with_trip_changes(sc, cpu);

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "app/scenario.hpp"
+#include "app/simulation_options.hpp"
 #include "converters/cli_options.hpp"
 #include "engine/simulation.hpp"
 #include "kernels/signal_state.hpp"
@@ -31,16 +32,6 @@ inline Scenario load_csv_scenario() {
   const std::string dir = scenarios_dir() + "/lpsim_csv_small/";
   return load_scenario(parse_cli_options({"--lpsim-nodes", dir + "nodes.csv", "--lpsim-edges",
                                           dir + "edges.csv", "--lpsim-od", dir + "od.csv"}));
-}
-
-inline SimulationOptions options_of(const ConfigSpec& c, int threads) {
-  SimulationOptions o;
-  o.begin = c.begin;
-  o.step_ms = std::llround(c.step_length * 1000.0);
-  o.seed = static_cast<uint64_t>(c.seed);
-  o.threads = threads;
-  o.time_to_teleport = c.time_to_teleport;
-  return o;
 }
 
 inline int64_t to_ms(double seconds) { return std::llround(seconds * 1000.0); }
@@ -399,7 +390,9 @@ inline RunResult run_checked(const Scenario& sc, const std::string& name, const 
 
 inline RunResult run_checked(const Scenario& sc, const std::string& name, int threads,
                              uint32_t lane_map_every, double max_time = 7200) {
-  return run_checked(sc, name, options_of(sc.config, threads), lane_map_every, max_time);
+  SimulationOptions options = simulation_options(sc.config);
+  options.threads = threads;
+  return run_checked(sc, name, options, lane_map_every, max_time);
 }
 
 inline void expect_all_arrived(const RunResult& r, const std::string& name) {

@@ -50,7 +50,7 @@ TEST(EngineInvariantsTest, LpsimCsvSmallEveryStep) {
 TEST(EngineInvariantsTest, SpeedWithinLimitOfEnteredLane) {
   for (const std::string name : {"grid_tls", "random_net", "flows"}) {
     const Scenario sc = load_sumo_scenario(name);
-    Simulation sim(sc.network, sc.demand, options_of(sc.config, 1));
+    Simulation sim(sc.network, sc.demand, simulation_options(sc.config));
     InvariantChecker checker(sc, sim, 50, true);
     checker.run_to_end(7200);
     checker.expect_no_failures(name + " (limit of the entered lane)");

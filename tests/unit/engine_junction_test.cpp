@@ -19,7 +19,7 @@ struct FlowStats {
 };
 
 FlowStats run_flow(const Scenario& sc, const std::string& prefix) {
-  Simulation sim(sc.network, sc.demand, options_of(sc.config, 1));
+  Simulation sim(sc.network, sc.demand, simulation_options(sc.config));
   FlowStats st;
   while (!sim.finished() && sim.time() < 3600) {
     sim.step();
@@ -57,7 +57,7 @@ TEST(EngineJunctionTest, MinorLinkIsCrossedOnlyFromWithinTheFoeVisibilityDistanc
   // foes (farther than 4.5 m from the line) plans to stop at the line, so it crosses only from closer, even
   // with no foe in sight.
   const Scenario sc = load_sumo_scenario("flows");
-  Simulation sim(sc.network, sc.demand, options_of(sc.config, 1));
+  Simulation sim(sc.network, sc.demand, simulation_options(sc.config));
   const Network& net = sc.network;
   std::vector<uint32_t> tracked;
   for (uint32_t v = 0; v < sc.demand.vehicle_id.size(); ++v)
@@ -88,7 +88,7 @@ TEST(EngineJunctionTest, InternalJunctionIsCrossedOnlyFromWithinTheFoeVisibility
   // the internal junction until it is within 4.5 m of it, as SUMO's do (not after a 'G' or yellow entry).
   const Scenario sc = load_sumo_scenario("grid_tls");
   const Network& net = sc.network;
-  Simulation sim(sc.network, sc.demand, options_of(sc.config, 1));
+  Simulation sim(sc.network, sc.demand, simulation_options(sc.config));
   std::vector<int32_t> entry(net.lane_id.size(), -1);  // first internal lane -> the connection entering it
   for (uint32_t c = 0; c < net.num_connections(); ++c) {
     const int32_t via = net.conn_via_lane[c];

@@ -13,6 +13,11 @@
 namespace lpsim::engine_test {
 namespace {
 
+SimulationOptions with_threads(SimulationOptions o, int threads) {
+  o.threads = threads;
+  return o;
+}
+
 const TripRecord* record_of(const TripChangesRun& run, uint32_t v) {
   for (const TripRecord& r : run.trips)
     if (r.vehicle == v) return &r;
@@ -21,7 +26,7 @@ const TripRecord* record_of(const TripChangesRun& run, uint32_t v) {
 
 TEST(EngineTripTableTest, AddedTripsAndNewRoutesAreDrivenToTheEnd) {
   const Scenario sc = load_sumo_scenario("grid_tls");
-  const TripChangesRun run = run_with_trip_changes(sc, options_of(sc.config, 1));
+  const TripChangesRun run = run_with_trip_changes(sc, simulation_options(sc.config));
   const Network& net = sc.network;
   EXPECT_EQ(run.result.failures, 0u);
   expect_all_arrived(run.result, "grid_tls with trip changes");
@@ -63,13 +68,14 @@ TEST(EngineTripTableTest, AddedTripsAndNewRoutesAreDrivenToTheEnd) {
 
 TEST(EngineTripTableTest, ThreadCountsGiveTheSameRun) {
   const Scenario sc = load_sumo_scenario("grid_tls");
-  expect_same_run(run_with_trip_changes(sc, options_of(sc.config, 1)),
-                  run_with_trip_changes(sc, options_of(sc.config, 2)), "1 vs 2 threads");
+  expect_same_run(run_with_trip_changes(sc, simulation_options(sc.config)),
+                  run_with_trip_changes(sc, with_threads(simulation_options(sc.config), 2)),
+                  "1 vs 2 threads");
 }
 
 TEST(EngineTripTableTest, RoutesThatDoNotLeadOnAreRefused) {
   const Scenario sc = load_sumo_scenario("grid_tls");
-  Simulation sim(sc.network, sc.demand, options_of(sc.config, 1));
+  Simulation sim(sc.network, sc.demand, simulation_options(sc.config));
   const Network& net = sc.network;
   while (sim.time() < 100) sim.step();
   std::vector<uint32_t> route;
@@ -101,7 +107,7 @@ TEST(EngineTripTableTest, RoutesThatDoNotLeadOnAreRefused) {
 
 TEST(EngineTripTableTest, AddedTripsThatCannotRunAreRefused) {
   const Scenario sc = load_sumo_scenario("grid_tls");
-  Simulation sim(sc.network, sc.demand, options_of(sc.config, 1));
+  Simulation sim(sc.network, sc.demand, simulation_options(sc.config));
   const Demand& d = sc.demand;
   NewTrip t;
   t.route.assign(d.route_edges.begin() + d.route_begin[0],

@@ -49,7 +49,7 @@ TEST(SlotPoolTest, ResetLeavesTheFirstSlotsInUse) {
 TEST(SlotPoolTest, SlotsAreRecycledAsVehiclesLeave) {
   for (const std::string name : {"grid_tls", "flows"}) {
     const Scenario sc = load_sumo_scenario(name);
-    Simulation sim(sc.network, sc.demand, options_of(sc.config, 1));
+    Simulation sim(sc.network, sc.demand, simulation_options(sc.config));
     uint64_t bound = sim.counts().running, peak_running = sim.counts().running, ends_before = 0;
     while (!sim.finished() && sim.time() < 7200) {
       const Simulation::Counts before = sim.counts();

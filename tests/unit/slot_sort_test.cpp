@@ -12,7 +12,7 @@ namespace lpsim::engine_test {
 namespace {
 
 Trace run(const Scenario& sc, uint32_t interval) {
-  SimulationOptions o = options_of(sc.config, 1);
+  SimulationOptions o = simulation_options(sc.config);
   o.slot_sort_interval = interval;
   return run_trace(sc, o);
 }

@@ -1,0 +1,171 @@
+#include "app/run.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+namespace lpsim {
+
+namespace {
+
+// Times are sums of step lengths in double: compare them with this slack.
+constexpr double kTimeSlack = 1e-9;
+
+const char* teleport_cause(TeleportCause cause) {
+  return cause == TeleportCause::Yield ? "yield" : cause == TeleportCause::WrongLane ? "wrong lane" : "jam";
+}
+
+}  // namespace
+
+Run::Run(Scenario scenario, const ConfigSpec& config, SimulationOptions options)
+    : scenario_(std::move(scenario)),
+      config_(config),
+      mean_data_(mean_data_outputs(scenario_, config.outputs)),
+      options_(counting_lanes(options, !mean_data_.empty())),
+      sim_(scenario_.network, std::move(scenario_.demand), options_) {
+  open_outputs();
+  write_step_outputs();
+}
+
+Run::~Run() = default;
+
+std::vector<Run::MeanDataOutput> Run::mean_data_outputs(const Scenario& scenario, const OutputSpec& outputs) {
+  std::vector<MeanDataSpec> specs = scenario.mean_data;
+  if (!outputs.edgedata.empty())
+    specs.push_back(MeanDataSpec{"edgedata", outputs.edgedata, false, -1, -1, -1, false, false, {}});
+  if (!outputs.lanedata.empty())
+    specs.push_back(MeanDataSpec{"lanedata", outputs.lanedata, true, -1, -1, -1, false, false, {}});
+  std::vector<MeanDataOutput> out(specs.size());
+  for (size_t k = 0; k < specs.size(); ++k) out[k].spec = std::move(specs[k]);
+  return out;
+}
+
+SimulationOptions Run::counting_lanes(SimulationOptions options, bool lane_counters) {
+  options.lane_counters = lane_counters;
+  return options;
+}
+
+void Run::open_outputs() {
+  const OutputSpec& out = config_.outputs;
+  if (!out.fcd.empty()) fcd_ = std::make_unique<FcdWriter>(out.fcd, scenario_.network, demand());
+  if (!out.tripinfo.empty()) {
+    std::vector<std::string> devices{"tripinfo"};
+    if (fcd_) devices.push_back("fcd");
+    tripinfo_ = std::make_unique<TripinfoWriter>(out.tripinfo, scenario_.network, demand(), devices);
+  }
+  if (!out.summary.empty()) summary_ = std::make_unique<SummaryWriter>(out.summary);
+  for (MeanDataOutput& m : mean_data_) {
+    m.writer = std::make_unique<MeanDataWriter>(m.spec, scenario_.network, demand());
+    m.interval_begin = m.spec.begin >= 0 ? m.spec.begin : sim_.time();
+    // Zero, not the counters now: vehicles inserted at the begin time belong to the first interval.
+    m.at_begin.resize(scenario_.network.num_lanes());
+  }
+  next_fcd_ = sim_.time();
+}
+
+void Run::step() {
+  if (closed_) throw std::logic_error("Run::step() after finish()");
+  sim_.step();
+  if (!config_.no_warnings) warn_teleports();
+  totals_.peak_running = std::max<uint64_t>(totals_.peak_running, sim_.counts().running);
+  write_step_outputs();
+  for (MeanDataOutput& m : mean_data_)
+    if (m.spec.period > 0 && sim_.time() + kTimeSlack >= m.interval_begin + m.spec.period)
+      close_interval(m, m.interval_begin + m.spec.period);
+}
+
+void Run::step_until(double t) {
+  while (!done() && sim_.time() + sim_.step_length() <= t + kTimeSlack) step();
+}
+
+bool Run::done() const {
+  if (config_.end >= 0) return sim_.time() + sim_.step_length() > config_.end - kTimeSlack;
+  return sim_.finished();
+}
+
+void Run::finish() {
+  if (closed_) return;
+  for (MeanDataOutput& m : mean_data_) {
+    close_interval(m, sim_.time());
+    m.writer->close();
+  }
+  if (fcd_) fcd_->close();
+  if (tripinfo_) tripinfo_->close();
+  if (summary_) summary_->close();
+  closed_ = true;
+}
+
+void Run::write_step_outputs() {
+  if (fcd_ && sim_.time() + kTimeSlack >= next_fcd_) {
+    sim_.sample_fcd(frame_);
+    fcd_->write(frame_);
+    next_fcd_ = config_.outputs.fcd_period > 0 ? next_fcd_ + config_.outputs.fcd_period : sim_.time();
+  }
+  for (const TripRecord& r : sim_.take_finished_trips()) {
+    ++totals_.trips;
+    totals_.duration += r.arrival - r.depart;
+    totals_.route_length += r.route_length;
+    totals_.waiting += r.waiting_time;
+    totals_.time_loss += r.time_loss;
+    totals_.depart_delay += r.depart_delay;
+    if (tripinfo_) tripinfo_->write(r);
+  }
+  if (summary_) summary_->write(sim_.summary_row());
+}
+
+// SUMO's warning for each vehicle that starts a teleport; the time is the end of the step in which its
+// clock ran out.
+void Run::warn_teleports() const {
+  for (const TeleportEvent& t : sim_.teleport_events())
+    std::fprintf(stderr, "Warning: Teleporting vehicle '%s'; waited too long (%s), lane='%s', time=%.2f.\n",
+                 demand().vehicle_id[t.vehicle].c_str(), teleport_cause(t.cause),
+                 scenario_.network.lane_id[t.lane].c_str(), sim_.time());
+}
+
+void Run::close_interval(MeanDataOutput& m, double until) {
+  if (until <= m.interval_begin) return;
+  LaneCounters d = counters_since(sim_.lane_counters(), m.at_begin);
+  MeanDataInterval iv{m.interval_begin, until, sim_.step_length(), &d};
+  m.writer->write(iv);
+  m.interval_begin = until;
+  m.at_begin = sim_.lane_counters();
+}
+
+void print_run_report(std::FILE* out, const Run& run, double wall, double load_seconds) {
+  const Simulation& sim = run.simulation();
+  const Simulation::Counts& c = sim.counts();
+  const Run::Totals& totals = run.totals();
+  std::fprintf(out, "Simulation ended at time: %.2f\n", sim.time());
+  std::fprintf(out, "Reason: %s\n",
+               sim.finished() ? "All vehicles have left the simulation."
+                              : "The final simulation step has been reached.");
+  std::fprintf(out, "Performance:\n Duration: %.3fs (load %.3fs)\n", wall, load_seconds);
+  std::fprintf(out, " Real time factor: %.6g\n", wall > 0 ? (sim.time() - run.options().begin) / wall : 0.0);
+  std::fprintf(out, " UPS: %.6f\n", wall > 0 ? static_cast<double>(c.vehicle_updates) / wall : 0.0);
+  std::fprintf(out, " Vehicle updates: %llu (peak running %llu)\n",
+               static_cast<unsigned long long>(c.vehicle_updates),
+               static_cast<unsigned long long>(totals.peak_running));
+  std::fprintf(out, " Threads: %d\n", run.options().threads);
+  std::fprintf(out,
+               "Vehicles:\n Inserted: %llu (Loaded: %llu)\n Running: %llu\n Waiting: %llu\n Arrived: %llu\n",
+               static_cast<unsigned long long>(c.inserted), static_cast<unsigned long long>(c.loaded),
+               static_cast<unsigned long long>(c.running), static_cast<unsigned long long>(c.waiting),
+               static_cast<unsigned long long>(c.arrived));
+  if (c.removed)
+    std::fprintf(out, " Removed (departure before begin or no car lane): %llu\n",
+                 static_cast<unsigned long long>(c.removed));
+  std::fprintf(out, "Teleports: %llu\n", static_cast<unsigned long long>(c.teleports));
+  if (totals.trips > 0) {
+    const double n = static_cast<double>(totals.trips);
+    std::fprintf(
+        out,
+        "Statistics (avg of %llu):\n RouteLength: %.2f\n Duration: %.2f\n WaitingTime: %.2f\n TimeLoss: "
+        "%.2f\n"
+        " DepartDelay: %.2f\n",
+        static_cast<unsigned long long>(totals.trips), totals.route_length / n, totals.duration / n,
+        totals.waiting / n, totals.time_loss / n, totals.depart_delay / n);
+  }
+}
+
+}  // namespace lpsim

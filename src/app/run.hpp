@@ -1,0 +1,101 @@
+#pragma once
+// One run of a scenario with its SUMO outputs, stepped by a driver: `lpsim run` steps it to the end, a
+// co-simulation or an assignment loop step it in chunks and read the Simulation between them. Whatever the
+// chunks, the outputs are those of one uninterrupted run.
+#include <cstdint>
+#include <cstdio>
+#include <memory>
+#include <vector>
+
+#include "app/scenario.hpp"
+#include "converters/fcd_writer.hpp"
+#include "converters/mean_data_writer.hpp"
+#include "converters/summary_writer.hpp"
+#include "converters/tripinfo_writer.hpp"
+#include "core/config_spec.hpp"
+#include "engine/simulation.hpp"
+
+namespace lpsim {
+
+class Run {
+ public:
+  /// Sums over the trips that ended (s, route length in m) and the most vehicles running at once: what the
+  /// final report averages and prints.
+  struct Totals {
+    uint64_t trips = 0;
+    double duration = 0, route_length = 0, waiting = 0, time_loss = 0, depart_delay = 0;
+    uint64_t peak_running = 0;
+  };
+
+  /// Builds the simulation of `scenario` at its begin time, opens the outputs `config` asks for (FCD,
+  /// tripinfo, summary, edgeData/laneData, and the scenario's own edgeData/laneData definitions) and writes
+  /// the state at the begin time. The Run owns the scenario; its demand becomes the simulation's trip table
+  /// (move a scenario in, so that a large demand is not copied). Run sets options.lane_counters itself: on
+  /// exactly when an edgeData/laneData output needs them (the engine skips their atomics otherwise).
+  Run(Scenario scenario, const ConfigSpec& config, SimulationOptions options);
+  /// Without finish(), the writers close their files but the open edgeData/laneData intervals are lost.
+  ~Run();
+  Run(const Run&) = delete;
+  Run& operator=(const Run&) = delete;
+
+  /// One step, whether or not done(), then its outputs, teleport warnings (unless --no-warnings) and
+  /// totals. std::logic_error after finish().
+  void step();
+  /// Steps while the next step would end at or before `t` and the run is not done(): never past t, and a
+  /// no-op when t is less than a step ahead.
+  void step_until(double t);
+  /// The end condition of `lpsim run`. With an end time: once one more step would end after it, so that, as
+  /// in SUMO, the outputs run to end - step (when the end lies a whole number of steps after the begin).
+  /// Without one: once the simulation is finished().
+  bool done() const;
+  /// Writes the open edgeData/laneData intervals (up to now) and closes every output. Later calls do
+  /// nothing. Write failures raise InputError.
+  void finish();
+
+  Simulation& simulation() { return sim_; }
+  const Simulation& simulation() const { return sim_; }
+  const Totals& totals() const { return totals_; }
+  const ConfigSpec& config() const { return config_; }
+  const Scenario& scenario() const { return scenario_; }
+  /// The options the simulation runs with (lane_counters as Run set it).
+  const SimulationOptions& options() const { return options_; }
+
+ private:
+  // One edgeData/laneData definition: its writer, its interval and the cumulative counters at the
+  // interval's start (the simulation's counters only ever grow; an interval is the difference).
+  struct MeanDataOutput {
+    MeanDataSpec spec;
+    std::unique_ptr<MeanDataWriter> writer;
+    double interval_begin = 0;
+    LaneCounters at_begin;
+  };
+
+  static std::vector<MeanDataOutput> mean_data_outputs(const Scenario& scenario, const OutputSpec& outputs);
+  static SimulationOptions counting_lanes(SimulationOptions options, bool lane_counters);
+  /// The trips the simulation runs, which may grow while it runs (the writers name their vehicles).
+  const Demand& demand() const { return sim_.demand(); }
+  void open_outputs();
+  void write_step_outputs();
+  void warn_teleports() const;
+  void close_interval(MeanDataOutput& m, double until);
+
+  Scenario scenario_;  // its demand moved into sim_
+  ConfigSpec config_;
+  std::vector<MeanDataOutput> mean_data_;  // before options_: they decide the lane counters
+  SimulationOptions options_;
+  Simulation sim_;
+  std::unique_ptr<FcdWriter> fcd_;
+  std::unique_ptr<TripinfoWriter> tripinfo_;
+  std::unique_ptr<SummaryWriter> summary_;
+  FcdFrame frame_;
+  double next_fcd_ = 0;
+  Totals totals_;
+  bool closed_ = false;
+};
+
+/// The SUMO-like report `lpsim run` prints at the end: end time and reason, performance (wall_seconds since
+/// the simulation was built, load_seconds for reading the scenario), vehicle counts, teleports and the trip
+/// averages.
+void print_run_report(std::FILE* out, const Run& run, double wall_seconds, double load_seconds);
+
+}  // namespace lpsim
