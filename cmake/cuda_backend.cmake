@@ -28,7 +28,7 @@ elseif(LPSIM_WITH_CUDA)
   enable_language(CUDA)
   find_package(CUDAToolkit REQUIRED)
   add_library(lpsim_cuda OBJECT ${LPSIM_CUDA_SOURCES})
-  target_include_directories(lpsim_cuda PUBLIC ${PROJECT_SOURCE_DIR}/src ${PROJECT_SOURCE_DIR})
+  target_link_libraries(lpsim_cuda PUBLIC lpsim_backends)
   # The project-wide add_compile_options are host-compiler flags nvcc rejects ("Unknown option '-Wall'"):
   # replace them on this target with their nvcc spelling.
   # --fmad=false: identical arithmetic to the CPU build (which uses -ffp-contract=off).

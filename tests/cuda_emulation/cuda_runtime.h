@@ -1,5 +1,5 @@
 #pragma once
-// Host emulation of the part of the CUDA runtime that kernels/cuda_step.cu uses, so that the host compiler
+// Host emulation of the part of the CUDA runtime that backends/cuda/cuda_stepper.cu uses, so that the host compiler
 // builds that file unchanged and the tests run the CUDA backend's own host logic (buffers, copies, launches,
 // compaction, merges, the slot sort, its growth) on a machine without a GPU. "Device" memory is host memory
 // filled with a poison byte when allocated (a read of what was never written shows up as a difference from

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "app/device_select.hpp"
 #include "backends/cuda/cuda_stepper.hpp"
-#include "backends/cuda/device_select.hpp"
 #include "core/error.hpp"
 #include "lpsim_cli.hpp"
 #include "temp_dir.hpp"

@@ -1,4 +1,4 @@
-#include "backends/cuda/device_select.hpp"
+#include "app/device_select.hpp"
 
 #include "backends/cuda/cuda_stepper.hpp"
 #include "core/error.hpp"

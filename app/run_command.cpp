@@ -6,10 +6,10 @@
 #include <cstdio>
 
 #include "app/commands.hpp"
+#include "app/device_select.hpp"
 #include "app/run.hpp"
 #include "app/scenario_args.hpp"
 #include "app/simulation_options.hpp"
-#include "backends/cuda/device_select.hpp"
 
 namespace lpsim {
 
