@@ -1026,6 +1026,17 @@ LPSIM_HD void apply_teleport_move(const VehicleView& veh, const TeleportMove& m,
   }
 }
 
+/// Empties slot k's caches keyed by route position (best lanes, the connection at the lane's end).
+LPSIM_HD void clear_route_caches(const VehicleView& veh, uint32_t k) {
+  for (uint32_t e = 0; e < kBestLaneEntries; ++e) {
+    veh.best_rp[k * kBestLaneEntries + e] = 0xFFFFFFFFu;
+    veh.best_mask[k * kBestLaneEntries + e] = 0;
+  }
+  veh.conn_lane[k] = -1;
+  veh.conn_rp[k] = 0;
+  veh.conn[k] = -1;
+}
+
 /// A vehicle takes a free slot after its insertion: its state starts from where it was placed, with no
 /// earlier footprint, and the trip counters it carries over.
 LPSIM_HD void activate_slot(const VehicleView& veh, const TripView& trips, const SlotInit& in) {
@@ -1055,13 +1066,7 @@ LPSIM_HD void activate_slot(const VehicleView& veh, const TripView& trips, const
   veh.lane_change_dir[k] = 0;
   veh.held_at_line[k] = 0;
   veh.limit_reason[k] = 0;
-  for (uint32_t e = 0; e < kBestLaneEntries; ++e) {
-    veh.best_rp[k * kBestLaneEntries + e] = 0xFFFFFFFFu;
-    veh.best_mask[k * kBestLaneEntries + e] = 0;
-  }
-  veh.conn_lane[k] = -1;
-  veh.conn_rp[k] = 0;
-  veh.conn[k] = -1;
+  clear_route_caches(veh, k);
 }
 
 /// A running vehicle takes a new route: the slot's copy of the trip's route fields follows it, and the caches
@@ -1072,13 +1077,7 @@ LPSIM_HD void set_slot_route(const VehicleView& veh, const SlotRoute& r) {
   veh.trip_route_begin[k] = r.route_begin;
   veh.trip_route_size[k] = r.route_size;
   veh.route_pos[k] = r.route_pos;
-  for (uint32_t e = 0; e < kBestLaneEntries; ++e) {
-    veh.best_rp[k * kBestLaneEntries + e] = 0xFFFFFFFFu;
-    veh.best_mask[k * kBestLaneEntries + e] = 0;
-  }
-  veh.conn_lane[k] = -1;
-  veh.conn_rp[k] = 0;
-  veh.conn[k] = -1;
+  clear_route_caches(veh, k);
 }
 
 }  // namespace lpsim

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "demand/demand_draws.hpp"
+#include "demand/departure.hpp"
 #include "demand/flat_index.hpp"
 #include "demand/flow_expansion.hpp"
 #include "demand/route_table.hpp"
@@ -129,13 +130,6 @@ class Builder {
   }
 
   // Position of SUMO lane `sumo_index` among the car lanes of `edge`, or -1.
-  int car_lane_position(uint32_t edge, int sumo_index) const {
-    const uint32_t first = net_.edge_first_lane[edge];
-    for (uint32_t k = 0; k < net_.edge_num_lanes[edge]; ++k)
-      if (net_.lane_index[first + k] == sumo_index) return static_cast<int>(k);
-    return -1;
-  }
-
   static bool is_car_class(const std::string& vclass) {
     return vclass.empty() || vclass == "passenger" || vclass == "private" || vclass == "taxi" ||
            vclass == "evehicle";
@@ -201,27 +195,11 @@ class Builder {
       d.speed_factor[v] = p.speed_factor;
       d.source[v] = p.from_flow ? DemandSource::Flow : spec_.vehicles[p.origin].source;
 
-      d.depart_lane_kind[v] = static_cast<uint8_t>(ds.lane);
-      d.depart_lane[v] = 0;
-      if (ds.lane == DepartLane::Given) {
-        const int position = car_lane_position(first_edge, ds.lane_index);
-        if (position < 0)
-          throw InputError(loc_of(p), "departLane " + std::to_string(ds.lane_index) + " of vehicle '" +
-                                          d.vehicle_id[v] + "' is not a car lane of its first edge '" +
-                                          net_.edge_id[first_edge] + "' (" +
-                                          std::to_string(net_.edge_num_lanes[first_edge]) + " car lanes)");
-        d.depart_lane[v] = static_cast<int8_t>(position);
-      }
-      d.depart_pos_kind[v] = static_cast<uint8_t>(ds.pos);
-      d.depart_pos[v] = static_cast<float>(ds.pos == DepartPos::Given && ds.pos_value < 0
-                                               ? ds.pos_value + net_.edge_length[first_edge]
-                                               : ds.pos_value);
-      d.depart_speed_kind[v] = static_cast<uint8_t>(ds.speed);
-      d.depart_speed[v] = static_cast<float>(ds.speed_value);
-      d.arrival_pos_kind[v] = static_cast<uint8_t>(ds.arrival);
-      d.arrival_pos[v] = static_cast<float>(ds.arrival == ArrivalPos::Given && ds.arrival_value < 0
-                                                ? ds.arrival_value + net_.edge_length[last_edge]
-                                                : ds.arrival_value);
+      if (!set_departure(d, v, ds, net_, first_edge, last_edge))
+        throw InputError(loc_of(p), "departLane " + std::to_string(ds.lane_index) + " of vehicle '" +
+                                        d.vehicle_id[v] + "' is not a car lane of its first edge '" +
+                                        net_.edge_id[first_edge] + "' (" +
+                                        std::to_string(net_.edge_num_lanes[first_edge]) + " car lanes)");
     }
     d.types = types_.take();
     d.unsupported = spec_.skipped;

@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "demand/departure.hpp"
+
 namespace lpsim {
 
 TripTable::TripTable(Demand demand) : d_(std::move(demand)) {
@@ -35,7 +37,16 @@ uint32_t TripTable::add(const NewTrip& t, const Network& net) {
   if (!connected(net, t.route)) refuse("its route is not connected");
   if (d_.size() >= 0x40000000u) refuse("too many vehicles");
 
+  const DepartSpec& ds = t.departure;
+  if (ds.lane == DepartLane::Given && car_lane_position(net, t.route.front(), ds.lane_index) < 0)
+    refuse("departLane " + std::to_string(ds.lane_index) + " is not a car lane of its first edge");
+
   const uint32_t v = d_.size();
+  for (auto* c : {&d_.depart_lane_kind, &d_.depart_pos_kind, &d_.depart_speed_kind, &d_.arrival_pos_kind})
+    c->push_back(0);
+  d_.depart_lane.push_back(0);
+  for (auto* c : {&d_.depart_pos, &d_.depart_speed, &d_.arrival_pos}) c->push_back(0);
+  set_departure(d_, v, ds, net, t.route.front(), t.route.back());
   index_.emplace(t.id, v);
   d_.vehicle_id.push_back(t.id);
   d_.vehicle_type.push_back(t.type);
@@ -45,14 +56,6 @@ uint32_t TripTable::add(const NewTrip& t, const Network& net) {
   d_.route_edges.insert(d_.route_edges.end(), t.route.begin(), t.route.end());
   d_.speed_factor.push_back(t.speed_factor);
   d_.source.push_back(DemandSource::Added);
-  d_.depart_lane_kind.push_back(static_cast<uint8_t>(t.depart_lane));
-  d_.depart_lane.push_back(t.depart_lane_index);
-  d_.depart_pos_kind.push_back(static_cast<uint8_t>(t.depart_pos));
-  d_.depart_pos.push_back(t.depart_pos_value);
-  d_.depart_speed_kind.push_back(static_cast<uint8_t>(t.depart_speed));
-  d_.depart_speed.push_back(t.depart_speed_value);
-  d_.arrival_pos_kind.push_back(static_cast<uint8_t>(t.arrival_pos));
-  d_.arrival_pos.push_back(t.arrival_pos_value);
   return v;
 }
 

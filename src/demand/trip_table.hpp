@@ -13,21 +13,15 @@
 
 namespace lpsim {
 
-/// A trip added during a run. The departure attributes are SUMO's (src/core/demand_spec.hpp).
+/// A trip added during a run.
 struct NewTrip {
   std::string id;
   uint32_t type = 0;            // index into the demand's vehicle types
   double depart = 0;            // s: due for insertion then (or at once, if that has passed)
   std::vector<uint32_t> route;  // edge indices, each reachable from the one before
   float speed_factor = 1.0f;
-  DepartLane depart_lane = DepartLane::Best;
-  int8_t depart_lane_index = 0;  // DepartLane::Given: rank among the first edge's car lanes
-  DepartPos depart_pos = DepartPos::Base;
-  float depart_pos_value = 0;
-  DepartSpeed depart_speed = DepartSpeed::Max;
-  float depart_speed_value = 0;
-  ArrivalPos arrival_pos = ArrivalPos::Max;
-  float arrival_pos_value = 0;
+  DepartSpec
+      departure;  // SUMO's departLane / departPos / departSpeed / arrivalPos (src/core/demand_spec.hpp)
 };
 
 class TripTable {
