@@ -545,266 +545,410 @@ LPSIM_HD bool swap_with_neighbour(const StepContext& s, VehicleRef r, int32_t la
   return my_rear > 0.0f && their_rear > 0.0f;
 }
 
-/// Plan pass for the vehicle in `slot`, `i` its position in this step's active list (where its plan goes).
-/// Every plan entry the commit pass reads is written here in every step.
-LPSIM_HD void plan_vehicle(StepContext& s, uint32_t i, uint32_t slot) {
-  const VehicleRef r{slot, s.veh.vehicle[slot]};
-  const uint32_t v = r.id;
-  PlanView& out = s.plan;
+/// The vehicle the plan pass works on, as it stands at the start of the step: read once, handed to each
+/// step of the plan.
+struct PlanInput {
+  VehicleRef r;
+  uint32_t i;  // its position in this step's active list (where its plan goes)
+  // By reference: the IDM functions left as calls take the parameters by address, and a PlanInput holding
+  // them by value would then live in memory as a whole, every field stored there too (seen with callgrind).
+  const IdmParams& p;
+  float length;
+  float speed_factor;
+  float max_speed;
+  float dt;
+  int32_t lane;
+  float pos;
+  float speed;
+  uint32_t rp;          // route position
+  uint32_t route_size;  // edges in the route
+  float v0;             // desired speed on the current lane
+  bool waiting;         // stopped in the last step (halt rules, deadlock breaking)
+};
+
+LPSIM_HD_INLINED PlanInput read_plan_input(const StepContext& s, VehicleRef r, uint32_t i, uint32_t type,
+                                           const IdmParams& p) {
+  const uint32_t slot = r.slot;
+  const int32_t lane = s.veh.lane[slot];
+  const float speed_factor = s.veh.trip_speed_factor[slot];
+  const float max_speed = s.types.max_speed[type];
+  return PlanInput{.r = r,
+                   .i = i,
+                   .p = p,
+                   .length = s.types.length[type],
+                   .speed_factor = speed_factor,
+                   .max_speed = max_speed,
+                   .dt = s.params.dt,
+                   .lane = lane,
+                   .pos = s.veh.pos[slot],
+                   .speed = s.veh.speed[slot],
+                   .rp = s.veh.route_pos[slot],
+                   .route_size = s.veh.trip_route_size[slot],
+                   .v0 = desired_speed(s.net.lane_speed[lane], speed_factor, max_speed),
+                   .waiting = s.veh.stopped_steps[slot] > 0};
+}
+
+/// Where the plan puts the vehicle at the end of the step.
+struct PlannedMove {
+  float speed;
+  int32_t lane;  // lane of the front
+  float pos;
+  int32_t prev;
+  int32_t prev2;
+  uint32_t rp;  // route position
+};
+
+/// The plan entries every vehicle gets, running or not: no lane-entry claims, no arrival.
+LPSIM_HD_INLINED void write_no_claims(PlanView& out, uint32_t i) {
   out.claim_lane0[i] = -1;
   out.claim_lane1[i] = -1;
   out.arrives[i] = 0;
   out.claim_prio[i] = 1;
-  if (s.veh.status[slot] != kRunning) return;
+}
+
+/// The move's plan entries (kept by the commit pass if every claim is won).
+LPSIM_HD_INLINED void write_planned_move(PlanView& out, uint32_t i, const PlannedMove& m) {
+  out.new_speed[i] = m.speed;
+  out.new_lane[i] = m.lane;
+  out.new_pos[i] = m.pos;
+  out.new_prev[i] = m.prev;
+  out.new_prev2[i] = m.prev2;
+  out.new_rp[i] = m.rp;
+}
+
+/// Stuck side by side at the lane end with a vehicle that needs this lane: swap, standing still. Returns
+/// true when the vehicle swaps; its whole plan is written then.
+LPSIM_HD_INLINED bool plan_swap_at_lane_end(StepContext& s, const PlanInput& in) {
   const NetView& net = s.net;
-  const uint32_t type = s.veh.trip_type[slot];
-  const IdmParams p = idm_of(s, type);
-  const float length = s.types.length[type];
-  const float sf = s.veh.trip_speed_factor[slot];
-  const float vmax = s.types.max_speed[type];
-  const float dt = s.params.dt;
-  const int32_t lane = s.veh.lane[slot];
-  const float pos = s.veh.pos[slot];
-  const float speed = s.veh.speed[slot];
-  const uint32_t rp = s.veh.route_pos[slot];
-  const uint32_t rlen = s.veh.trip_route_size[slot];
-  const float v0 = desired_speed(net.lane_speed[lane], sf, vmax);
-  const bool waiting = s.veh.stopped_steps[slot] > 0;
-
-  // Stuck side by side at the lane end with a vehicle that needs this lane: swap, standing still.
   // The same test both vehicles of a swap apply to each other (from the lane map): standing in the last cell.
-  if (encodes_as_standing(speed) & (cell_of(net, lane, pos) == lane_cells(net, lane) - 1)) {
-    int32_t to_cross = 0;
-    const int32_t target = mandatory_target(s, r, lane, &to_cross);
-    if (target >= 0 && swap_with_neighbour(s, r, lane, target)) {
-      s.veh.held_at_line[slot] = 0;
-      s.veh.limit_reason[slot] = kSwap;
-      out.new_speed[i] = 0.0f;
-      out.new_lane[i] = target;
-      out.new_pos[i] = pos;
-      out.new_prev[i] = -1;
-      out.new_prev2[i] = -1;
-      out.stop_lane[i] = target;
-      out.stop_pos[i] = pos;
-      out.new_rp[i] = rp;
-      out.first_rp[i] = rp;
-      return;
-    }
-  }
+  if (!(encodes_as_standing(in.speed) & (cell_of(net, in.lane, in.pos) == lane_cells(net, in.lane) - 1)))
+    return false;
+  int32_t to_cross = 0;
+  const int32_t target = mandatory_target(s, in.r, in.lane, &to_cross);
+  if (target < 0 || !swap_with_neighbour(s, in.r, in.lane, target)) return false;
+  s.veh.held_at_line[in.r.slot] = 0;
+  s.veh.limit_reason[in.r.slot] = kSwap;
+  PlanView& out = s.plan;
+  write_planned_move(out, in.i, PlannedMove{0.0f, target, in.pos, -1, -1, in.rp});
+  out.stop_lane[in.i] = target;
+  out.stop_pos[in.i] = in.pos;
+  out.first_rp[in.i] = in.rp;
+  return true;
+}
 
+/// The lanes beyond the current one that the path walk passed into (PathBounds::hops of them): the lanes
+/// the move may enter. Apart from PathBounds so that indexing the lanes does not keep the bounds in memory.
+struct PathAhead {
+  int32_t lane[kMaxPathHops];
+  uint32_t rp[kMaxPathHops];  // route position once the front is on lane[h]
+};
+
+/// What the path walk found ahead: the bounds on the next speed and move, and what set them.
+struct PathBounds {
+  float cand;             // speed bound, the free-road speed included
+  float hard_limit;       // the front must stay short of this distance (occupied cell / closed line)
+  uint8_t reason;         // StopReason
+  bool stop_at_own_line;  // the plan stops at the end of the lane the vehicle is on
+  bool has_leader;        // the walk ended at an occupied cell: the leader's gap and speed below
+  float leader_gap;
+  float leader_speed;
+  int32_t hops;  // lanes of the PathAhead passed into
+};
+
+/// Distance to a lane's end within which the link there is decided on (right of way, room behind it).
+/// Computed where a link decision comes up, which most plans (a leader ahead on the lane) never reach.
+LPSIM_HD_INLINED float decision_distance(const PlanInput& in) {
+  return stopping_distance(in.speed, in.p.decel, in.dt) + in.speed * in.dt + kDecisionMargin;
+}
+
+/// Connection by which the vehicle entered the junction-internal lane it is on from a normal lane (-1: none,
+/// or not on an internal lane).
+LPSIM_HD_INLINED int32_t entry_connection(const StepContext& s, const PlanInput& in) {
+  const NetView& net = s.net;
+  int32_t entry_conn = -1;
+  if (net.lane_internal[in.lane] && s.veh.prev[in.r.slot] >= 0 && !net.lane_internal[s.veh.prev[in.r.slot]]) {
+    const int32_t pl = s.veh.prev[in.r.slot];
+    for (uint32_t c = net.lane_conn_begin[pl]; c < net.lane_conn_begin[pl + 1]; ++c)
+      if (net.conn_via_lane[c] == in.lane) entry_conn = static_cast<int32_t>(c);
+  }
+  return entry_conn;
+}
+
+/// First occupied cell of path lane `lane`, which starts `lane_start` ahead of the front, within the walk's
+/// budget (-1: none). On the vehicle's own lane the search starts past its front cell.
+LPSIM_HD_INLINED int32_t first_occupied_ahead(const StepContext& s, const PlanInput& in, int32_t lane,
+                                              float lane_start, float budget) {
+  const int32_t cells = static_cast<int32_t>(lane_cells(s.net, lane));
+  const int32_t first = lane == in.lane ? static_cast<int32_t>(cell_of(s.net, lane, in.pos)) + 1 : 0;
+  int32_t last = static_cast<int32_t>(budget - lane_start);
+  if (last > cells - 1) last = cells - 1;
+  return first <= last ? first_occupied(s.map_now, s.net, lane, first, last) : -1;
+}
+
+/// Bounds speed and move behind the vehicle in cell `hit` of path lane `lane` (starting `lane_start` ahead).
+LPSIM_HD_INLINED void follow_leader_at(const StepContext& s, const PlanInput& in, int32_t lane,
+                                       float lane_start, int32_t hit, PathBounds& b, float* free_speed) {
+  const float gap = lane_start + static_cast<float>(hit);
+  const float vl = decode_cell_speed(s.map_now[s.net.lane_cell_begin[lane] + static_cast<uint32_t>(hit)]);
+  b.cand = lp_fminf(b.cand, follow_speed(in.p, in.speed, in.v0, gap, vl, s.params.max_emergency_decel, in.dt,
+                                         s.params.substeps, free_speed));
+  b.hard_limit = lp_fminf(b.hard_limit, gap - kClampEps);
+  b.reason = kLeader;
+  b.has_leader = true;
+  b.leader_gap = gap;
+  b.leader_speed = vl;
+}
+
+/// Bounds the speed to stop at a line `end_dist` ahead.
+LPSIM_HD_INLINED void stop_at(const StepContext& s, const PlanInput& in, float end_dist, PathBounds& b,
+                              float* free_speed) {
+  b.cand =
+      lp_fminf(b.cand, stop_speed(in.p, in.speed, in.v0, end_dist, in.dt, s.params.substeps, free_speed));
+}
+
+/// Why the vehicle stops at the end of the normal lane `end_dist` ahead, whose link `c` shows `st`: a
+/// StopReason, kFree when it may go on.
+LPSIM_HD_INLINED uint8_t link_stop_reason(const StepContext& s, const PlanInput& in, uint32_t c, char st,
+                                          float end_dist) {
+  if (signal_must_stop(st, end_dist, in.speed, in.p.decel, in.dt) || link_rule(st) == LinkRule::Closed)
+    return kSignal;
+  if (end_dist <= decision_distance(in)) {
+    const LinkRule rule = link_rule(st);
+    const bool needs_halt = rule == LinkRule::StopThenYield || rule == LinkRule::AllwayStop;
+    if (needs_halt && !(in.waiting && end_dist < 1.0f)) return kHaltRule;
+    const uint32_t to = s.net.conn_to_lane[c];
+    if (!room_at_start(s, static_cast<int32_t>(to), in.length + in.p.min_gap)) return kNoRoom;
+    // Links with an internal junction yield at it, inside the junction (SUMO's waiting position).
+    if (!has_internal_junction(s.net, c) &&
+        !may_enter(s, c, end_dist, in.speed, in.v0, in.p, in.length, in.waiting))
+      return kYield;
+    if (can_stop_before(end_dist, in.speed, in.p.decel, in.dt) &&
+        yielder_inside(s, c, in.speed > kHaltingSpeed ? end_dist / in.speed : 0.0f))
+      return kYield;
+  }
+  // Too far to see the foes of a link without priority: plan to stop at it while that is still possible.
+  // A link with an internal junction is entered freely; its foes are seen at the internal junction.
+  if (foes_unseen(st, end_dist) && !has_internal_junction(s.net, c) &&
+      can_stop_before(end_dist, in.speed, in.p.decel, in.dt))
+    return kYield;
+  return kFree;
+}
+
+/// Stop at the line of a link showing `st`, `end_dist` ahead, for the reason link_stop_reason gave.
+LPSIM_HD_INLINED void stop_at_link(const StepContext& s, const PlanInput& in, char st, float end_dist,
+                                   PathBounds& b, float* free_speed) {
+  stop_at(s, in, end_dist, b, free_speed);
+  if (signal_is_red(st) || link_rule(st) == LinkRule::Closed || signal_is_yellow(st))
+    b.hard_limit = lp_fminf(b.hard_limit, end_dist - kClampEps);  // never pass a closed line
+  // A yield decision taken in time is also a hard line (the vehicle could stop for it).
+  else if (can_stop_before(end_dist, in.speed, in.p.emergency_decel, in.dt))
+    b.hard_limit = lp_fminf(b.hard_limit, end_dist - kClampEps);
+}
+
+/// At the internal junction at the end of the internal lane `lane` (`end_dist` ahead), entered by link
+/// `entry_conn` (-1: not entered from a normal lane): wait for the prioritised foes of the link entered, or
+/// until they can be seen.
+LPSIM_HD_INLINED bool must_wait_at_internal_junction(const StepContext& s, const PlanInput& in,
+                                                     int32_t entry_conn, int32_t lane, float end_dist) {
+  return entry_conn >= 0 && s.net.conn_via_lane[entry_conn] == lane &&
+         has_internal_junction(s.net, static_cast<uint32_t>(entry_conn)) &&
+         ((unseen_at_internal_junction(s, static_cast<uint32_t>(entry_conn), end_dist) &&
+           can_stop_before(end_dist, in.speed, in.p.decel, in.dt)) ||
+          (end_dist <= decision_distance(in) && !may_enter(s, static_cast<uint32_t>(entry_conn), end_dist,
+                                                           in.speed, in.v0, in.p, in.length, in.waiting)));
+}
+
+/// The free-road speed joins the bounds found along the path. A free speed (never negative) cannot lower a
+/// candidate of 0 or less: not computed then.
+LPSIM_HD_INLINED void join_free_speed(const StepContext& s, const PlanInput& in, PathBounds& b,
+                                      float free_speed) {
+  if (b.cand > 0.0f) {
+    if (free_speed < 0.0f) free_speed = idm_free_speed(in.p, in.speed, in.v0, in.dt, s.params.substeps);
+    b.cand = lp_fminf(free_speed, b.cand);
+  }
+}
+
+/// Walk the path ahead: current lane, then the lanes the route leads through, up to the budget. Bounds the
+/// speed by the leader, a wrong lane's end, the links' signals and right of way, and internal junctions, and
+/// records in `path` the lanes passed into.
+LPSIM_HD_INLINED PathBounds walk_path_ahead(const StepContext& s, const PlanInput& in, float budget,
+                                            PathAhead& path) {
+  const NetView& net = s.net;
   // Speed bounds found along the path; the free-road speed joins them after the walk. It is computed with
   // the first IDM interaction on the path (one loop for both: see idm_interaction_speed), else on its own.
   // min is exact, so the result equals taking the free speed first: an approach limit skipped here because
   // v_lim >= cand is at least v_lim, and so could not have lowered the minimum either.
-  float cand = 1e30f;
+  PathBounds b{1e30f, 1e30f, kFree, false, false, 0.0f, 0.0f, 0};
   float free_speed = -1.0f;
-  const float budget = lp_fminf(out.lookahead[i] + p.min_gap, kMaxLookahead);
-  // Computed where a link decision comes up, which most plans (a leader ahead on the lane) never reach.
-  auto decision_dist = [&] { return stopping_distance(speed, p.decel, dt) + speed * dt + kDecisionMargin; };
-
-  // Walk the path ahead: current lane, then the lanes the route leads through, up to the budget.
-  int32_t path[kMaxPathHops];
-  uint32_t path_rp[kMaxPathHops];  // route position once the front is on path[h]
-  int32_t hops = 0;
-  float hard_limit = 1e30f;  // the front must stay short of this distance (occupied cell / closed line)
-  bool has_leader = false;
-  float leader_gap = 0.0f, leader_speed = 0.0f;
-  float dist_to_lane_end = net.lane_length[lane] - pos;
-  int32_t cur = lane;
-  float cur_start = -pos;
-  uint32_t cur_rp = rp;
-  bool last_edge_here = !net.lane_internal[lane] && rp + 1 >= rlen;
-  uint8_t reason = kFree;
-  bool stop_at_own_line = false;  // the plan stops at the end of the lane the vehicle is on
+  int32_t cur = in.lane;
+  float cur_start = -in.pos;
+  uint32_t cur_rp = in.rp;
   // Connection by which the path entered the junction-internal lane `cur` from a normal lane (-1: none).
-  int32_t entry_conn = -1;
-  if (net.lane_internal[lane] && s.veh.prev[slot] >= 0 && !net.lane_internal[s.veh.prev[slot]]) {
-    const int32_t pl = s.veh.prev[slot];
-    for (uint32_t c = net.lane_conn_begin[pl]; c < net.lane_conn_begin[pl + 1]; ++c)
-      if (net.conn_via_lane[c] == lane) entry_conn = static_cast<int32_t>(c);
-  }
+  int32_t entry_conn = entry_connection(s, in);
   for (;;) {
-    const int32_t cells = static_cast<int32_t>(lane_cells(net, cur));
-    const int32_t first = cur == lane ? static_cast<int32_t>(cell_of(net, cur, pos)) + 1 : 0;
-    int32_t last = static_cast<int32_t>(budget - cur_start);
-    if (last > cells - 1) last = cells - 1;
-    const int32_t hit = first <= last ? first_occupied(s.map_now, net, cur, first, last) : -1;
+    const int32_t hit = first_occupied_ahead(s, in, cur, cur_start, budget);
     if (hit >= 0) {
-      const float gap = cur_start + static_cast<float>(hit);
-      const float vl = decode_cell_speed(s.map_now[net.lane_cell_begin[cur] + static_cast<uint32_t>(hit)]);
-      cand = lp_fminf(cand, follow_speed(p, speed, v0, gap, vl, s.params.max_emergency_decel, dt,
-                                         s.params.substeps, &free_speed));
-      hard_limit = lp_fminf(hard_limit, gap - kClampEps);
-      reason = kLeader;
-      has_leader = true;
-      leader_gap = gap;
-      leader_speed = vl;
+      follow_leader_at(s, in, cur, cur_start, hit, b, &free_speed);
       break;
     }
     const float end_dist = cur_start + net.lane_length[cur];
-    if (end_dist > budget || hops == kMaxPathHops) break;
+    if (end_dist > budget || b.hops == kMaxPathHops) break;
     const bool normal = !net.lane_internal[cur];
-    if (normal && cur_rp + 1 >= rlen) break;  // the route ends on this lane: arrival, no boundary to pass
+    if (normal && cur_rp + 1 >= in.route_size)
+      break;  // the route ends on this lane: arrival, no boundary to pass
     // At the current lane's end through the slot's cache (filled by the approach pass where it published).
     const int32_t c =
-        hops > 0 ? choose_connection(s, r, cur, cur_rp) : current_lane_connection(s, r, cur, cur_rp);
+        b.hops > 0 ? choose_connection(s, in.r, cur, cur_rp) : current_lane_connection(s, in.r, cur, cur_rp);
     if (c < 0) {  // wrong lane for the route (or a dead end): the lane end is a wall until a lane change
-      cand = lp_fminf(cand, stop_speed(p, speed, v0, end_dist, dt, s.params.substeps, &free_speed));
-      hard_limit = lp_fminf(hard_limit, end_dist - kClampEps);
-      reason = kWrongLane;
-      stop_at_own_line = hops == 0;
+      stop_at(s, in, end_dist, b, &free_speed);
+      b.hard_limit = lp_fminf(b.hard_limit, end_dist - kClampEps);
+      b.reason = kWrongLane;
+      b.stop_at_own_line = b.hops == 0;
       break;
     }
     if (normal) {
       const char st = link_state_of(s, static_cast<uint32_t>(c));
-      bool stop = signal_must_stop(st, end_dist, speed, p.decel, dt) || link_rule(st) == LinkRule::Closed;
-      if (stop) reason = kSignal;
-      if (!stop && end_dist <= decision_dist()) {
-        const LinkRule rule = link_rule(st);
-        const bool needs_halt = rule == LinkRule::StopThenYield || rule == LinkRule::AllwayStop;
-        if (needs_halt && !(waiting && end_dist < 1.0f)) stop = true, reason = kHaltRule;
-        const uint32_t to = net.conn_to_lane[c];
-        if (!stop && !room_at_start(s, static_cast<int32_t>(to), length + p.min_gap)) {
-          stop = true;
-          reason = kNoRoom;
-        }
-        // Links with an internal junction yield at it, inside the junction (SUMO's waiting position).
-        if (!stop && !has_internal_junction(net, static_cast<uint32_t>(c)) &&
-            !may_enter(s, static_cast<uint32_t>(c), end_dist, speed, v0, p, length, waiting))
-          stop = true, reason = kYield;
-        if (!stop && can_stop_before(end_dist, speed, p.decel, dt) &&
-            yielder_inside(s, static_cast<uint32_t>(c), speed > kHaltingSpeed ? end_dist / speed : 0.0f))
-          stop = true, reason = kYield;
-      }
-      // Too far to see the foes of a link without priority: plan to stop at it while that is still possible.
-      // A link with an internal junction is entered freely; its foes are seen at the internal junction.
-      if (!stop && foes_unseen(st, end_dist) && !has_internal_junction(net, static_cast<uint32_t>(c)) &&
-          can_stop_before(end_dist, speed, p.decel, dt))
-        stop = true, reason = kYield;
-      if (stop) {
-        cand = lp_fminf(cand, stop_speed(p, speed, v0, end_dist, dt, s.params.substeps, &free_speed));
-        if (signal_is_red(st) || link_rule(st) == LinkRule::Closed || signal_is_yellow(st))
-          hard_limit = lp_fminf(hard_limit, end_dist - kClampEps);  // never pass a closed line
-        // A yield decision taken in time is also a hard line (the vehicle could stop for it).
-        else if (can_stop_before(end_dist, speed, p.emergency_decel, dt))
-          hard_limit = lp_fminf(hard_limit, end_dist - kClampEps);
-        stop_at_own_line = hops == 0;
+      const uint8_t reason = link_stop_reason(s, in, static_cast<uint32_t>(c), st, end_dist);
+      if (reason != kFree) {
+        stop_at_link(s, in, st, end_dist, b, &free_speed);
+        b.reason = reason;
+        b.stop_at_own_line = b.hops == 0;
         break;
       }
-    } else if (entry_conn >= 0 && net.conn_via_lane[entry_conn] == cur &&
-               has_internal_junction(net, static_cast<uint32_t>(entry_conn)) &&
-               ((unseen_at_internal_junction(s, static_cast<uint32_t>(entry_conn), end_dist) &&
-                 can_stop_before(end_dist, speed, p.decel, dt)) ||
-                (end_dist <= decision_dist() && !may_enter(s, static_cast<uint32_t>(entry_conn), end_dist,
-                                                           speed, v0, p, length, waiting)))) {
-      // At the internal junction: wait for the prioritised foes of the link entered, or until they can be
-      // seen.
-      cand = lp_fminf(cand, stop_speed(p, speed, v0, end_dist, dt, s.params.substeps, &free_speed));
-      if (can_stop_before(end_dist, speed, p.emergency_decel, dt))
-        hard_limit = lp_fminf(hard_limit, end_dist - kClampEps);
-      reason = kYield;
+    } else if (must_wait_at_internal_junction(s, in, entry_conn, cur, end_dist)) {
+      stop_at(s, in, end_dist, b, &free_speed);
+      if (can_stop_before(end_dist, in.speed, in.p.emergency_decel, in.dt))
+        b.hard_limit = lp_fminf(b.hard_limit, end_dist - kClampEps);
+      b.reason = kYield;
       break;
     }
     const int32_t via = net.conn_via_lane[c];
     const int32_t nxt = via >= 0 ? via : static_cast<int32_t>(net.conn_to_lane[c]);
-    const float v_lim = desired_speed(net.lane_speed[nxt], sf, vmax);
-    if (v_lim < cand) cand = lp_fminf(cand, approach_speed_limit(end_dist, v_lim, p.decel, dt));
-    path[hops] = nxt;
-    ++hops;
+    const float v_lim = desired_speed(net.lane_speed[nxt], in.speed_factor, in.max_speed);
+    if (v_lim < b.cand) b.cand = lp_fminf(b.cand, approach_speed_limit(end_dist, v_lim, in.p.decel, in.dt));
+    path.lane[b.hops] = nxt;
+    ++b.hops;
     if (!net.lane_internal[nxt]) ++cur_rp;
     entry_conn = normal && via >= 0 ? c : -1;
-    path_rp[hops - 1] = cur_rp;
+    path.rp[b.hops - 1] = cur_rp;
     cur = nxt;
     cur_start = end_dist;
   }
-  // A free speed (never negative) cannot lower a candidate of 0 or less: not computed then.
-  if (cand > 0.0f) {
-    if (free_speed < 0.0f) free_speed = idm_free_speed(p, speed, v0, dt, s.params.substeps);
-    cand = lp_fminf(free_speed, cand);
-  }
+  join_free_speed(s, in, b, free_speed);
+  return b;
+}
 
-  // A vehicle that stops at its own lane's end (red, full next lane, yielding, wrong lane) will not enter the
-  // junction now: foes need not yield to it (SUMO's approaching vehicles that will not pass).
-  s.veh.held_at_line[slot] = stop_at_own_line ? 1 : 0;
-  // Open a gap for a blocked lane changer waiting beside this lane ahead of us.
-  const uint64_t mr = s.merge_requests[lane];
-  if (!net.lane_internal[lane] && (mr >> 40) == (s.params.step & 0xFFFFFFu)) {
+/// Open a gap for a blocked lane changer waiting beside this lane ahead of us.
+LPSIM_HD_INLINED void open_gap_for_merge(const StepContext& s, const PlanInput& in, float budget,
+                                         PathBounds& b) {
+  const uint64_t mr = s.merge_requests[in.lane];
+  if (!s.net.lane_internal[in.lane] && (mr >> 40) == (s.params.step & 0xFFFFFFu)) {
     const float rear = merge_rear(mr);
     // Stop a minimum gap (plus room for the changer's lag check) short of the changer's rear. A vehicle
     // already closer than that drives on past it; the gap then opens behind it.
-    const float lag_reach = (0.25f + s.params.max_accel * dt) * dt + 0.5f;  // the changer's lag check
-    const float gap = rear - pos - lp_fmaxf(p.min_gap, lag_reach) - 1.5f;   // + cell rounding
+    const float lag_reach = (0.25f + s.params.max_accel * in.dt) * in.dt + 0.5f;  // the changer's lag check
+    const float gap = rear - in.pos - lp_fmaxf(in.p.min_gap, lag_reach) - 1.5f;   // + cell rounding
     if (gap > 0.0f && gap < budget) {
-      const float vs = stop_speed(p, speed, v0, gap, dt, s.params.substeps);
-      if (vs < cand) cand = vs, reason = kMergeGap;
+      const float vs = stop_speed(in.p, in.speed, in.v0, gap, in.dt, s.params.substeps);
+      if (vs < b.cand) b.cand = vs, b.reason = kMergeGap;
     }
   }
-  s.veh.limit_reason[slot] = reason;
-  float new_speed = finalize_speed(p, speed, cand, dt);
-  int32_t new_lane = lane;
-  bool change_claim = false;
+}
 
-  // Lane changes on normal lanes only, left on even steps and right on odd ones, so that no lane receives
-  // changers from both sides in one step.
-  if (!net.lane_internal[lane] && !last_edge_here) {
-    const bool left_step = (s.params.step & 1u) == 0;
-    const int32_t target = left_step ? net.lane_left[lane] : net.lane_right[lane];
-    if (target >= 0) {
-      const uint32_t good = current_best_mask(s, r);
-      const bool here_good = (lane_bit(net, static_cast<uint32_t>(lane)) & good) != 0;
-      const bool target_good = (lane_bit(net, static_cast<uint32_t>(target)) & good) != 0;
-      bool mandatory = false;
-      float urgency = 0.0f;
-      int32_t to_cross = 0;
-      if (!here_good && mandatory_target_in(net, lane, good, &to_cross) == target) {
-        mandatory = true;
-        urgency = mandatory_lc_urgency(dist_to_lane_end, to_cross, speed, lane_change_default_params());
-      }
-      const bool discretionary =
-          !mandatory && here_good && target_good && lc_attempt_allowed(s.params.seed, v, s.params.step, 0.5f);
-      if (mandatory || discretionary) {
-        const LaneChangeResult lc = try_lane_change(s, r, lane, target, mandatory, urgency, new_speed,
-                                                    leader_gap, leader_speed, has_leader);
-        if (lc.change) {
-          new_lane = target;
-          change_claim = lc.near_start;
-          new_speed = finalize_speed(p, speed, lp_fminf(cand, lc.speed_cap), dt);
-          hard_limit = lp_fminf(hard_limit, lc.leader_gap - kClampEps);
-          if (!lane_has_conn_to(net, target, route_edge(s, r, rp + 1))) {
-            const float end_dist = net.lane_length[target] - pos;
-            new_speed = lp_fminf(new_speed,
-                                 lp_fmaxf(0.0f, stop_speed(p, speed, v0, end_dist, dt, s.params.substeps)));
-            hard_limit = lp_fminf(hard_limit, end_dist - kClampEps);
-          }
-          hops = 0;  // the change step never crosses the lane end (checked in try_lane_change)
-        }
-      }
-    }
+/// A lane change to try this step: to `target` (-1: none), mandatory (toward the route's lanes) or not.
+struct LaneChangeAttempt {
+  int32_t target;
+  bool mandatory;
+  float urgency;
+};
+
+/// Lane changes on normal lanes only, left on even steps and right on odd ones, so that no lane receives
+/// changers from both sides in one step.
+LPSIM_HD_INLINED LaneChangeAttempt lane_change_attempt(const StepContext& s, const PlanInput& in) {
+  const NetView& net = s.net;
+  const LaneChangeAttempt none{-1, false, 0.0f};
+  const bool last_edge_here = in.rp + 1 >= in.route_size;
+  if (net.lane_internal[in.lane] || last_edge_here) return none;
+  const bool left_step = (s.params.step & 1u) == 0;
+  const int32_t target = left_step ? net.lane_left[in.lane] : net.lane_right[in.lane];
+  if (target < 0) return none;
+  const uint32_t good = current_best_mask(s, in.r);
+  const bool here_good = (lane_bit(net, static_cast<uint32_t>(in.lane)) & good) != 0;
+  const bool target_good = (lane_bit(net, static_cast<uint32_t>(target)) & good) != 0;
+  int32_t to_cross = 0;
+  if (!here_good && mandatory_target_in(net, in.lane, good, &to_cross) == target) {
+    const float dist_to_lane_end = net.lane_length[in.lane] - in.pos;
+    return LaneChangeAttempt{
+        target, true,
+        mandatory_lc_urgency(dist_to_lane_end, to_cross, in.speed, lane_change_default_params())};
   }
+  if (here_good && target_good && lc_attempt_allowed(s.params.seed, in.r.id, s.params.step, 0.5f))
+    return LaneChangeAttempt{target, false, 0.0f};
+  return none;
+}
 
-  // Move, clamped to the hard limit.
-  float advance = new_speed * dt;
-  if (advance > hard_limit) advance = lp_fmaxf(0.0f, hard_limit);
-  new_speed = advance / dt;
-  float npos = pos + advance;
-  int32_t nlane = new_lane, nprev = s.veh.prev[slot], nprev2 = s.veh.prev2[slot];
-  if (new_lane != lane) {
+/// The speed and lane the move starts from, with the limits on how far it may go.
+struct MovePlan {
+  float speed;
+  int32_t lane;       // the current lane, or the lane changed to
+  float hard_limit;   // the front must stay short of this distance
+  int32_t hops;       // path lanes the move may pass into
+  bool change_claim;  // the lane change claims the target lane's entry (the changer's rear is near its start)
+};
+
+/// Changes lanes where the attempt is safe and wanted, bounding speed and move on the target lane.
+LPSIM_HD_INLINED void plan_lane_change(const StepContext& s, const PlanInput& in, const PathBounds& b,
+                                       MovePlan& m) {
+  const LaneChangeAttempt attempt = lane_change_attempt(s, in);
+  if (attempt.target < 0) return;
+  const int32_t target = attempt.target;
+  const LaneChangeResult lc = try_lane_change(s, in.r, in.lane, target, attempt.mandatory, attempt.urgency,
+                                              m.speed, b.leader_gap, b.leader_speed, b.has_leader);
+  if (!lc.change) return;
+  m.lane = target;
+  m.change_claim = lc.near_start;
+  m.speed = finalize_speed(in.p, in.speed, lp_fminf(b.cand, lc.speed_cap), in.dt);
+  m.hard_limit = lp_fminf(m.hard_limit, lc.leader_gap - kClampEps);
+  if (!lane_has_conn_to(s.net, target, route_edge(s, in.r, in.rp + 1))) {
+    const float end_dist = s.net.lane_length[target] - in.pos;
+    m.speed = lp_fminf(m.speed,
+                       lp_fmaxf(0.0f, stop_speed(in.p, in.speed, in.v0, end_dist, in.dt, s.params.substeps)));
+    m.hard_limit = lp_fminf(m.hard_limit, end_dist - kClampEps);
+  }
+  m.hops = 0;  // the change step never crosses the lane end (checked in try_lane_change)
+}
+
+/// Move, clamped to the hard limit, into the path lanes ahead; claims the lanes whose start the front
+/// crosses (and a lane change's target near its start) and writes where to stop if a claim is lost.
+LPSIM_HD_INLINED PlannedMove move_clamped_to_hard_limit(StepContext& s, const PlanInput& in,
+                                                        const PathAhead& path, const MovePlan& m) {
+  const NetView& net = s.net;
+  PlanView& out = s.plan;
+  const uint32_t i = in.i;
+  const uint32_t v = in.r.id;
+  const float dt = in.dt;
+  float advance = m.speed * dt;
+  if (advance > m.hard_limit) advance = lp_fmaxf(0.0f, m.hard_limit);
+  float new_speed = advance / dt;
+  float npos = in.pos + advance;
+  int32_t nlane = m.lane, nprev = s.veh.prev[in.r.slot], nprev2 = s.veh.prev2[in.r.slot];
+  if (m.lane != in.lane) {
     nprev = -1;  // a lane change moves the whole body across
     nprev2 = -1;
   }
-  out.stop_lane[i] = new_lane;
+  out.stop_lane[i] = m.lane;
   out.stop_pos[i] = npos;
   int32_t claims = 0;
-  if (change_claim) {  // lowest priority; losing it means staying in the old lane at the same position
+  if (m.change_claim) {  // lowest priority; losing it means staying in the old lane at the same position
     out.claim_prio[i] = 0;
-    out.claim_lane0[i] = new_lane;
-    out.stop_lane[i] = lane;
+    out.claim_lane0[i] = m.lane;
+    out.stop_lane[i] = in.lane;
     out.stop_pos[i] = npos + kClampEps;
-    atomic_max_u64(&s.claims[new_lane], claim_key(s.params.step, 0, v));
+    atomic_max_u64(&s.claims[m.lane], claim_key(s.params.step, 0, v));
   }
-  uint32_t nrp = rp;
-  out.first_rp[i] = rp;
-  for (int32_t h = 0; h < hops && npos > net.lane_length[nlane]; ++h) {
+  uint32_t nrp = in.rp;
+  out.first_rp[i] = in.rp;
+  for (int32_t h = 0; h < m.hops && npos > net.lane_length[nlane]; ++h) {
     if (claims == 2) {  // at most two lane entries per step: stop at the end of the second lane
       npos = net.lane_length[nlane];
       break;
@@ -816,8 +960,8 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t i, uint32_t slot) {
     npos -= net.lane_length[nlane];
     nprev2 = nprev;
     nprev = nlane;
-    nlane = path[h];
-    nrp = path_rp[h];
+    nlane = path.lane[h];
+    nrp = path.rp[h];
     if (claims == 0)
       out.claim_lane0[i] = nlane, out.first_rp[i] = nrp;
     else
@@ -827,22 +971,47 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t i, uint32_t slot) {
   }
   if (npos > net.lane_length[nlane]) npos = net.lane_length[nlane];
   new_speed = lp_fminf(new_speed, advance / dt);
-  // Arrival: on the route's last edge, at its arrival position (default: the lane's end).
-  out.new_rp[i] = nrp;
-  if (!net.lane_internal[nlane] && nrp + 1 >= rlen) {
-    float arrival = net.lane_length[nlane];
-    if (s.trips.arrival_pos_kind[v] == 0) {  // ArrivalPos::Given; negative counts from the end
-      const float a = s.trips.arrival_pos[v];
-      arrival = a < 0.0f ? net.lane_length[nlane] + a : a;
-      if (arrival > net.lane_length[nlane]) arrival = net.lane_length[nlane];
-    }
-    if (npos >= arrival - kClampEps) out.arrives[i] = 1;
+  return PlannedMove{new_speed, nlane, npos, nprev, nprev2, nrp};
+}
+
+/// Arrival: on the route's last edge, at its arrival position (default: the lane's end).
+LPSIM_HD_INLINED bool reaches_arrival(const StepContext& s, const PlanInput& in, const PlannedMove& m) {
+  const NetView& net = s.net;
+  if (net.lane_internal[m.lane] || m.rp + 1 < in.route_size) return false;
+  const uint32_t v = in.r.id;
+  float arrival = net.lane_length[m.lane];
+  if (s.trips.arrival_pos_kind[v] == 0) {  // ArrivalPos::Given; negative counts from the end
+    const float a = s.trips.arrival_pos[v];
+    arrival = a < 0.0f ? net.lane_length[m.lane] + a : a;
+    if (arrival > net.lane_length[m.lane]) arrival = net.lane_length[m.lane];
   }
-  out.new_speed[i] = new_speed;
-  out.new_lane[i] = nlane;
-  out.new_pos[i] = npos;
-  out.new_prev[i] = nprev;
-  out.new_prev2[i] = nprev2;
+  return m.pos >= arrival - kClampEps;
+}
+
+/// Plan pass for the vehicle in `slot`, `i` its position in this step's active list (where its plan goes).
+/// Every plan entry the commit pass reads is written here in every step.
+LPSIM_HD void plan_vehicle(StepContext& s, uint32_t i, uint32_t slot) {
+  const VehicleRef r{slot, s.veh.vehicle[slot]};
+  write_no_claims(s.plan, i);
+  if (s.veh.status[slot] != kRunning) return;
+  const uint32_t type = s.veh.trip_type[slot];
+  const IdmParams p = idm_of(s, type);
+  const PlanInput in = read_plan_input(s, r, i, type, p);
+  if (plan_swap_at_lane_end(s, in)) return;
+  const float budget = lp_fminf(s.plan.lookahead[i] + in.p.min_gap, kMaxLookahead);
+  PathAhead path;
+  PathBounds bounds = walk_path_ahead(s, in, budget, path);
+  // A vehicle that stops at its own lane's end (red, full next lane, yielding, wrong lane) will not enter the
+  // junction now: foes need not yield to it (SUMO's approaching vehicles that will not pass).
+  s.veh.held_at_line[slot] = bounds.stop_at_own_line ? 1 : 0;
+  open_gap_for_merge(s, in, budget, bounds);
+  s.veh.limit_reason[slot] = bounds.reason;
+  MovePlan move{finalize_speed(in.p, in.speed, bounds.cand, in.dt), in.lane, bounds.hard_limit, bounds.hops,
+                false};
+  plan_lane_change(s, in, bounds, move);
+  const PlannedMove planned = move_clamped_to_hard_limit(s, in, path, move);
+  if (reaches_arrival(s, in, planned)) s.plan.arrives[i] = 1;
+  write_planned_move(s.plan, i, planned);
 }
 
 /// Clears the footprint a vehicle had one step ago from the buffer that is about to be written.
