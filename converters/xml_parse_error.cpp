@@ -172,7 +172,10 @@ XmlErrorReport describe_xml_error(const xmlError& e, const xmlParserCtxt& ctxt, 
                       : malformed(one_line(e.message));
       break;
     case XML_ERR_RESERVED_XML_NAME:
-      r.message = malformed("XML declaration not at the start of the file");
+      // Also raised for processing instructions named like "XmL", which libxml2 words its own way.
+      r.message = message.find("XML declaration") != std::string_view::npos
+                      ? malformed("XML declaration not at the start of the file")
+                      : malformed(one_line(e.message));
       break;
     default:
       r.message = malformed(one_line(e.message));
