@@ -34,7 +34,7 @@ class XmlStreamTest : public ::testing::Test {
   test::TempDir tmp_{"lpsim_xml"};
 };
 
-// A file of several parser chunks (64 KiB each): every element arrives in order with its depth, and an empty
+// A file of several parser chunks (256 KiB each): every element arrives in order with its depth, and an empty
 // element's End comes right after its Start, on its line.
 TEST_F(XmlStreamTest, EventsDepthsAndLinesAcrossChunks) {
   std::string text = "<?xml version=\"1.0\"?>\n<root>\n";
