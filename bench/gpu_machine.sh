@@ -2,7 +2,7 @@
 # Runs the GPU checks and benchmarks on a lent GPU machine that has CUDA but no package registry, from a
 # CUDA build made elsewhere and carried along (bench/prepare_gpu_build.sh makes it and lists what to carry):
 #   build-gpu/: cmake -DLPSIM_CUDA=ON -DCMAKE_CUDA_ARCHITECTURES=90, Ninja, Release;
-#   build-gpu/libs/: the shared libraries lpsim needs that such a machine may lack (zlib)
+#   build-gpu/libs/: the shared libraries lpsim needs that such a machine may lack (libxml2, its ICU and lzma, zlib)
 #                    and GNU time as gnu-time;  build-gpu/bayarea/lpsim_bayarea_tertiary: the base network.
 # The tests have the repository's absolute path compiled in: where the copy lies elsewhere, a link stands in.
 #

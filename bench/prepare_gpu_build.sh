@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Prepares build-gpu/ here (where nvcc compiles but no GPU runs) for a lent GPU machine, which has CUDA,
 # cmake and ninja but no package registry: the CUDA build of lpsim and of the GPU tests, the shared libraries
-# lpsim needs that such a machine may lack (zlib), GNU time as gnu-time, and
+# lpsim needs that such a machine may lack (libxml2 with its ICU and lzma, zlib; about 35 MiB, most of it
+# ICU's data), GNU time as gnu-time, and
 # the Bay Area base network the regional benchmark grows. Then pass the device tool
 #   carry: build-gpu/lpsim build-gpu/tests/lpsim_gpu_tests build-gpu/libs build-gpu/bayarea
 #          build-gpu/CMakeCache.txt build-gpu/COMMIT
@@ -22,9 +23,10 @@ git diff --quiet HEAD -- . ':!bench/work' || commit="$commit+changes"
 echo "$commit" >"$build/COMMIT"
 
 mkdir -p "$build/libs"
-# The C and C++ runtimes are on any machine with CUDA; zlib (gzip input and output) may not be.
+# The C and C++ runtimes are on any machine with CUDA; the XML reader's libraries and zlib (gzip input and
+# output) may not be.
 ldd "$build/lpsim" | awk '$2 == "=>" && $3 ~ /^\// {print $3}' |
-  grep -E '/libz\.so' | while read -r lib; do cp -L "$lib" "$build/libs/"; done
+  grep -E '/lib(xml2|icu[a-z]*|lzma|z)\.so' | while read -r lib; do cp -L "$lib" "$build/libs/"; done
 cp -L /usr/bin/time "$build/libs/gnu-time"
 
 network=../shared/lpsim_bayarea_tertiary

@@ -1,7 +1,8 @@
 #pragma once
-// Streaming, safe XML reading on top of libxml2's SAX2 push parser: never builds a document tree, reads
-// .xml and .xml.gz alike, and has entity substitution, DTD loading and network access switched off.
-// Every error it raises names file:line.
+// Streaming, safe XML reading on top of libxml2's SAX2 push parser, fed the file's bytes in chunks by
+// InputFile: it never builds a document tree nor holds the whole file, reads .xml and .xml.gz alike (in
+// UTF-8 or ISO-8859-1), and has entity substitution, DTD loading and network access switched off: entity
+// references other than the five predefined ones are refused. Every error it raises names file:line.
 #include <memory>
 #include <optional>
 #include <string>

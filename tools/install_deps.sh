@@ -5,7 +5,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake ninja-build pkg-config
-  libxml2-utils zlib1g-dev
+  libxml2-dev libxml2-utils zlib1g-dev
   libgtest-dev googletest
   sumo sumo-tools python3
 )

@@ -34,7 +34,7 @@ class XmlStreamTest : public ::testing::Test {
   test::TempDir tmp_{"lpsim_xml"};
 };
 
-// A file of several parser chunks (64 KiB each): every element arrives in order with its depth, and an empty
+// A file of several parser chunks (256 KiB each): every element arrives in order with its depth, and an empty
 // element's End comes right after its Start, on its line.
 TEST_F(XmlStreamTest, EventsDepthsAndLinesAcrossChunks) {
   std::string text = "<?xml version=\"1.0\"?>\n<root>\n";
@@ -125,6 +125,45 @@ TEST_F(XmlStreamTest, EntityReferencesAreRefusedInContentAndAttributes) {
   EXPECT_EQ(xs.name(), "a");
   EXPECT_EQ(xs.next(), XmlStream::Event::End);
   EXPECT_THROW(xs.next(), InputError);
+}
+
+// Entity declarations are dropped, never expanded nor loaded: nested ones ("billion laughs") and external
+// ones (general or parameter) end in the same refusal, at the line of the first reference.
+TEST_F(XmlStreamTest, DeclaredEntitiesAreNeitherExpandedNorLoaded) {
+  std::string laughs = "<?xml version=\"1.0\"?>\n<!DOCTYPE r [\n<!ENTITY l0 \"lol\">\n";
+  for (int i = 1; i <= 9; ++i) {
+    laughs += "<!ENTITY l" + std::to_string(i) + " \"";
+    for (int k = 0; k < 10; ++k) laughs += "&l" + std::to_string(i - 1) + ";";
+    laughs += "\">\n";
+  }
+  laughs += "]>\n<r>\n<a v=\"&l9;\"/>\n&l9;\n</r>\n";
+  const std::string in_laughs = error_reading(write("laughs.xml", laughs));
+  EXPECT_NE(in_laughs.find("laughs.xml:15: entity references are not supported"), std::string::npos)
+      << in_laughs;
+  const std::string external = error_reading(write(
+      "external.xml", "<!DOCTYPE r [\n<!ENTITY x SYSTEM \"file:///etc/hostname\">\n]>\n<r>\n&x;\n</r>\n"));
+  EXPECT_NE(external.find("external.xml:5: entity references are not supported"), std::string::npos)
+      << external;
+  const std::string parameter = error_reading(write(
+      "parameter.xml", "<!DOCTYPE r [\n<!ENTITY % p SYSTEM \"file:///etc/hostname\">\n%p;\n]>\n<r/>\n"));
+  EXPECT_NE(parameter.find("parameter.xml:3: entity references are not supported"), std::string::npos)
+      << parameter;
+}
+
+// A start tag cut by the end of the file is not handed out (with the attributes read so far): the error
+// comes right after the last complete element.
+TEST_F(XmlStreamTest, StartTagCutByTheEndOfTheFileIsNotHandedOut) {
+  XmlStream xs(write("cut.xml", "<r>\n<a v=\"1\"/>\n<b w=\"2\" x"));
+  EXPECT_EQ(xs.next(), XmlStream::Event::Start);
+  EXPECT_EQ(xs.next(), XmlStream::Event::Start);
+  EXPECT_EQ(xs.name(), "a");
+  EXPECT_EQ(xs.next(), XmlStream::Event::End);
+  try {
+    xs.next();
+    ADD_FAILURE() << "no error; last element " << xs.name();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("cut.xml:3: malformed XML"), std::string::npos) << e.what();
+  }
 }
 
 TEST_F(XmlStreamTest, MalformedXmlNamesTheLineWhereParsingStopped) {
