@@ -25,7 +25,18 @@
 namespace lpsim {
 
 /// The per-lane edgeData/laneData counter columns, in LaneCounters' order (src/engine/samples.hpp).
-constexpr int kNumLaneCounters = 9;
+enum LaneCounter : int {
+  kCountSampledSteps,
+  kCountTravelledMm,
+  kCountWaitingSteps,
+  kCountTimeLossMs,
+  kCountOccupiedMmSteps,
+  kCountEntered,
+  kCountLeft,
+  kCountArrived,
+  kCountDeparted,
+  kNumLaneCounters
+};
 
 /// The trip table as a backend reads it (pointers into the engine's host table, valid until it changes:
 /// Stepper::update_trips hands over the new ones).

@@ -134,8 +134,8 @@ class CpuStepper final : public Stepper {
     uint8_t* into = map_[map].data();
     const StepContext ctx = context(map_[1 - map].data(), into);
     InsertParams params = p;
-    params.cnt_departed = counter(8);
-    params.cnt_entered = counter(5);
+    params.cnt_departed = counter(kCountDeparted);
+    params.cnt_entered = counter(kCountEntered);
     for (uint32_t slot = 0; slot < batch.num_slots; ++slot)
       insert_queue_head(ctx, trips_.depart, params, into, batch, slot);
   }
@@ -202,7 +202,7 @@ class CpuStepper final : public Stepper {
   }
 
  private:
-  int64_t* counter(int k) {
+  int64_t* counter(LaneCounter k) {
     return counters_.empty() ? nullptr : counters_.data() + static_cast<size_t>(k) * setup_.net.num_lanes;
   }
 
@@ -222,14 +222,14 @@ class CpuStepper final : public Stepper {
     ctx.yielder_begin = setup_.yielder_begin;
     ctx.yielder = setup_.yielder;
     // Left null when no output wants them: the passes then skip their atomics.
-    ctx.cnt_sampled_steps = counter(0);
-    ctx.cnt_travelled_mm = counter(1);
-    ctx.cnt_waiting_steps = counter(2);
-    ctx.cnt_time_loss_ms = counter(3);
-    ctx.cnt_occupied_mm_steps = counter(4);
-    ctx.cnt_entered = counter(5);
-    ctx.cnt_left = counter(6);
-    ctx.cnt_arrived = counter(7);
+    ctx.cnt_sampled_steps = counter(kCountSampledSteps);
+    ctx.cnt_travelled_mm = counter(kCountTravelledMm);
+    ctx.cnt_waiting_steps = counter(kCountWaitingSteps);
+    ctx.cnt_time_loss_ms = counter(kCountTimeLossMs);
+    ctx.cnt_occupied_mm_steps = counter(kCountOccupiedMmSteps);
+    ctx.cnt_entered = counter(kCountEntered);
+    ctx.cnt_left = counter(kCountLeft);
+    ctx.cnt_arrived = counter(kCountArrived);
     return ctx;
   }
 

@@ -340,16 +340,16 @@ class CudaStepper final : public Stepper {
       counters_ = allocate<int64_t>(static_cast<size_t>(kNumLaneCounters) * nl);
       LPSIM_CUDA_CHECK(
           cudaMemset(counters_, 0, kNumLaneCounters * static_cast<size_t>(nl) * sizeof(int64_t)));
-      int64_t** columns[kNumLaneCounters - 1] = {&dev_.cnt_sampled_steps,
-                                                 &dev_.cnt_travelled_mm,
-                                                 &dev_.cnt_waiting_steps,
-                                                 &dev_.cnt_time_loss_ms,
-                                                 &dev_.cnt_occupied_mm_steps,
-                                                 &dev_.cnt_entered,
-                                                 &dev_.cnt_left,
-                                                 &dev_.cnt_arrived};
-      for (int k = 0; k < kNumLaneCounters - 1; ++k) *columns[k] = counters_ + static_cast<size_t>(k) * nl;
-      cnt_departed_ = counters_ + static_cast<size_t>(kNumLaneCounters - 1) * nl;
+      int64_t** columns[kCountDeparted] = {&dev_.cnt_sampled_steps,
+                                           &dev_.cnt_travelled_mm,
+                                           &dev_.cnt_waiting_steps,
+                                           &dev_.cnt_time_loss_ms,
+                                           &dev_.cnt_occupied_mm_steps,
+                                           &dev_.cnt_entered,
+                                           &dev_.cnt_left,
+                                           &dev_.cnt_arrived};
+      for (int k = 0; k < kCountDeparted; ++k) *columns[k] = counters_ + static_cast<size_t>(k) * nl;
+      cnt_departed_ = counters_ + static_cast<size_t>(kCountDeparted) * nl;
     }
 
     cells_ = setup.net.lane_cell_begin[nl];
