@@ -104,7 +104,11 @@ struct XmlStream::Impl {
     xmlCtxtUseOptions(ctxt, XML_PARSE_NONET | XML_PARSE_HUGE);
   }
   ~Impl() {
-    if (ctxt) xmlFreeParserCtxt(ctxt);
+    if (!ctxt) return;
+    // libxml2 makes a document of its own to hold a DTD's declarations (even with no tree callbacks set),
+    // which the parser context does not free.
+    if (ctxt->myDoc) xmlFreeDoc(ctxt->myDoc);
+    xmlFreeParserCtxt(ctxt);
   }
   Impl(const Impl&) = delete;
   Impl& operator=(const Impl&) = delete;
