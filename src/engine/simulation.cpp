@@ -356,16 +356,6 @@ void Simulation::set_route(uint32_t v, const std::vector<uint32_t>& edges) {
   trips_.set_route(v, edges);
 }
 
-// What the host reads of the backend's state, fetched at most once per state version and parts.
-const HostState& Simulation::state(StateParts parts) const {
-  const int k = parts == StateParts::Full ? 1 : 0;
-  if (fetched_version_[k] != version_) {
-    fetched_[k] = &stepper_->fetch(parts, slots_.size());
-    fetched_version_[k] = version_;
-  }
-  return *fetched_[k];
-}
-
 const LaneCounters& Simulation::lane_counters() const {
   if (opt_.lane_counters) {
     // Drained from the backend's counters: const, as the totals it reports do not change.

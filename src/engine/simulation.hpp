@@ -115,8 +115,8 @@ class Simulation {
   void start_inserted(uint32_t kept, uint32_t running);
   void sort_slots();
   void check_kept(uint32_t kept) const;
-  /// The backend's state, fetched at most once per step and parts.
-  const HostState& state(StateParts parts) const;
+  /// The backend's state (a device backend copies it at most once per change of its state).
+  const HostState& state(StateParts parts) const { return stepper_->fetch(parts, slots_.size()); }
   int32_t slot_of(uint32_t v) const;
   /// Test support: vehicle v's entry of a slot column, or `off_road` while it holds no slot.
   template <class T>
@@ -157,11 +157,9 @@ class Simulation {
 
   std::unique_ptr<Stepper> stepper_;  // last: made from the members above, gone before them
 
-  // What outputs and tests read, fetched from the backend (state()) and derived from it, per step.
-  // The state changes in step() and set_route(): each counts a new version.
+  // What outputs and tests derive from the backend's state, kept per version of it: the state changes in
+  // step() and set_route(), each counting a new version.
   uint64_t version_ = 0;
-  mutable const HostState* fetched_[2] = {nullptr, nullptr};
-  mutable uint64_t fetched_version_[2] = {~uint64_t{0}, ~uint64_t{0}};
   mutable std::vector<uint32_t> active_vehicles_;  // active(): their vehicles
   // The active list as vehicle << 32 | slot, ascending (active_by_vehicle()): outputs list vehicles in
   // vehicle order, whatever slots they hold.
