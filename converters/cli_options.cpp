@@ -1,6 +1,7 @@
 #include "converters/cli_options.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 #include "converters/sumocfg_reader.hpp"
@@ -10,13 +11,14 @@ namespace lpsim {
 
 namespace {
 
-enum class Kind { Path, PathList, Time, Bool, Integer, Device };
+enum class Kind { Path, PathList, Time, Bool, Integer, Number, Device };
 
 // A checked value, handed to the option's store function.
 struct Value {
   std::string text;
   std::vector<std::string> list;
   double seconds = 0;
+  double number = 0;
   long long integer = 0;
   bool flag = false;
   ComputeDevice device = ComputeDevice::Auto;
@@ -24,7 +26,7 @@ struct Value {
 
 // StepLength: LPSim's clock counts milliseconds; ThreadCount: a team beyond this is a typo, and would exhaust
 // the process limit before the run starts.
-enum class Check { None, NonNegative, StepLength, ThreadCount };
+enum class Check { None, NonNegative, Positive, StepLength, ThreadCount };
 constexpr double kMinStepLength = 0.001, kMaxStepLength = 86400;
 constexpr long long kMaxThreads = 1024;
 
@@ -57,10 +59,12 @@ const OptionDef kOptions[] = {
   {"threads", "", 0, Kind::Integer, Check::ThreadCount, false, [](ConfigSpec& c, Value&& v) { c.threads = static_cast<int>(v.integer); }},
   // Not a SUMO option: command line only, so a .sumocfg stays valid for SUMO.
   {"device", "", 0, Kind::Device, Check::None, true, [](ConfigSpec& c, Value&& v) { c.device = v.device; }},
+  {"max-lane-map-gb", "", 0, Kind::Number, Check::Positive, true, [](ConfigSpec& c, Value&& v) { c.max_lane_map_gb = v.number; }},
   {"fcd-output", "", 0, Kind::Path, Check::None, false, [](ConfigSpec& c, Value&& v) { c.outputs.fcd = std::move(v.text); }},
   {"device.fcd.period", "", 0, Kind::Time, Check::NonNegative, false, [](ConfigSpec& c, Value&& v) { c.outputs.fcd_period = v.seconds; }},
   {"tripinfo-output", "", 0, Kind::Path, Check::None, false, [](ConfigSpec& c, Value&& v) { c.outputs.tripinfo = std::move(v.text); }},
   {"summary-output", "summary", 0, Kind::Path, Check::None, false, [](ConfigSpec& c, Value&& v) { c.outputs.summary = std::move(v.text); }},
+  {"statistic-output", "statistics-output", 0, Kind::Path, Check::None, false, [](ConfigSpec& c, Value&& v) { c.outputs.statistic = std::move(v.text); }},
   {"edgedata-output", "", 0, Kind::Path, Check::None, false, [](ConfigSpec& c, Value&& v) { c.outputs.edgedata = std::move(v.text); }},
   {"lanedata-output", "", 0, Kind::Path, Check::None, false, [](ConfigSpec& c, Value&& v) { c.outputs.lanedata = std::move(v.text); }},
   {"lpsim-nodes", "", 0, Kind::Path, Check::None, false, [](ConfigSpec& c, Value&& v) { c.lpsim_nodes_csv = std::move(v.text); }},
@@ -134,6 +138,13 @@ Value convert(const OptionDef& def, std::string_view name, const std::string& va
       if (def.check == Check::ThreadCount && (*n < 0 || *n > kMaxThreads))
         bad_value(where, name, value, "expected a thread count from 0 to 1024");
       v.integer = *n;
+      break;
+    }
+    case Kind::Number: {
+      auto x = parse_double(value);
+      if (!x || !std::isfinite(*x)) bad_value(where, name, value, "expected a number");
+      if (def.check == Check::Positive && !(*x > 0)) bad_value(where, name, value, "expected a number > 0");
+      v.number = *x;
       break;
     }
     case Kind::Device:

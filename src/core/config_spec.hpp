@@ -6,7 +6,7 @@
 namespace lpsim {
 
 struct OutputSpec {
-  std::string fcd, tripinfo, summary, edgedata, lanedata;
+  std::string fcd, tripinfo, summary, edgedata, lanedata, statistic;
   double fcd_period = 0;  // 0: every step
 };
 
@@ -26,6 +26,9 @@ struct ConfigSpec {
   bool no_warnings = false;  // SUMO's --no-warnings: no teleport warnings on stderr
   bool ignore_route_errors = false;
   int threads = 0;  // 0: all hardware threads
+  // Not a SUMO option: the most lane map (one byte per metre of car lane) a network may ask for, in GiB, so
+  // that an absurd lane length is refused before it allocates.
+  double max_lane_map_gb = 16;
   // CPU until the GPU backend has been checked byte-identical on a GPU (tests/gpu); `--device auto` opts in.
   ComputeDevice device = ComputeDevice::Cpu;
   OutputSpec outputs;
