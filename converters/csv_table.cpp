@@ -52,6 +52,7 @@ class Splitter {
         continue;
       }
       // end of record: \n or \r\n
+      if (c == '\r' && (pos_ + 1 >= text_.size() || text_[pos_ + 1] != '\n')) lone_carriage_return();
       pos_ += c == '\r' ? 2 : 1;
       ++line_;
       return true;
@@ -59,12 +60,23 @@ class Splitter {
   }
 
  private:
+  // A lone CR is how old Mac editors end lines: read as one long line, the file would blame a wrong field.
+  [[noreturn]] void lone_carriage_return() const {
+    throw InputError(
+        SourceLoc{file_, line_},
+        "carriage return without a line feed: the file has CR-only line ends (convert them to LF "
+        "or CRLF)");
+  }
+
   void read_plain(std::string& store) {
     const size_t begin = pos_;
     while (pos_ < text_.size()) {
       const char c = text_[pos_];
       if (c == ',' || c == '\n') break;
-      if (c == '\r' && pos_ + 1 < text_.size() && text_[pos_ + 1] == '\n') break;
+      if (c == '\r') {
+        if (pos_ + 1 < text_.size() && text_[pos_ + 1] == '\n') break;
+        lone_carriage_return();
+      }
       if (c == '"')
         throw InputError(SourceLoc{file_, line_}, "quote inside an unquoted CSV field '" +
                                                       std::string(text_.substr(begin, pos_ - begin + 1)) +

@@ -10,7 +10,6 @@ TlLogicSpec read_tl_logic(XmlStream& xs) {
   tl.type = xs.get("type", "static");
   tl.offset = xs.number("offset", 0);
   const int depth = xs.depth();
-  size_t links = 0;
   for (;;) {
     auto ev = xs.next();
     if (ev == XmlStream::Event::Eof) xs.fail("unexpected end of file inside <tlLogic id=\"" + tl.id + "\">");
@@ -26,10 +25,7 @@ TlLogicSpec read_tl_logic(XmlStream& xs) {
     for (char c : ph.state)
       if (std::string_view("rRyYgGsuoO").find(c) == std::string_view::npos)
         xs.fail(std::string("unknown signal state '") + c + "' in phase state '" + ph.state + "'");
-    if (links == 0) links = ph.state.size();
-    if (ph.state.size() != links)
-      xs.fail("phase state '" + ph.state + "' has " + std::to_string(ph.state.size()) +
-              " links, earlier phases " + std::to_string(links));
+    ph.loc = xs.loc();
     tl.phases.push_back(std::move(ph));
   }
   if (tl.phases.empty()) throw InputError(tl.loc, "<tlLogic id=\"" + tl.id + "\">: no phases");

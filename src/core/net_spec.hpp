@@ -61,6 +61,7 @@ struct PhaseSpec {
   std::string state;
   double min_dur = -1, max_dur = -1;  // -1: not given
   std::string name;
+  SourceLoc loc;  // its own line: a phase whose state is too short is blamed there
 };
 
 struct TlLogicSpec {

@@ -1,6 +1,7 @@
 #include "demand/flow_expansion.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <string>
 
@@ -109,7 +110,17 @@ std::vector<double> flow_departures(const FlowSpec& f, uint64_t seed, double ste
     if (offset < 0) offset = (end - begin) / f.number;
     return periodic(begin, offset, f.number);
   }
-  if (offset <= 0) throw InputError(f.loc, "invalid period 0 in flow '" + f.id + "'");
+  if (offset <= 0) {
+    // The clock counts whole milliseconds: a shorter period would put every vehicle at one instant.
+    char given_rate[64];
+    if (has_period)
+      std::snprintf(given_rate, sizeof given_rate, "period %g s", f.period);
+    else
+      std::snprintf(given_rate, sizeof given_rate, "vehsPerHour %g (a period of %g s)", f.vehs_per_hour,
+                    3600.0 / f.vehs_per_hour);
+    throw InputError(
+        f.loc, "flow '" + f.id + "': " + given_rate + " is shorter than LPSim's time resolution of 1 ms");
+  }
   const int64_t count = (end - begin + offset - 1) / offset;  // ceil: vehicles strictly before end
   check_count(f, count);
   return periodic(begin, offset, count);

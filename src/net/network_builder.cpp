@@ -7,6 +7,7 @@
 #include <limits>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <unordered_set>
 
 #include "kernels/lane_map.hpp"
@@ -303,7 +304,16 @@ class Builder {
         it->second = &t;
     };
     for (const auto& t : spec_.tl_logics) take(t);
-    for (const auto& t : overrides_) take(t);
+    for (const auto& t : overrides_) {
+      // As SUMO: an add-file program replaces one of the network's, it cannot add a traffic light.
+      if (!chosen.count(t.id))
+        throw InputError(t.loc, "tlLogic '" + t.id + "' program '" + t.program_id +
+                                    "' names no traffic light of the network " + spec_.source);
+      take(t);
+    }
+    const std::unordered_map<std::string, size_t> links_used = links_used_by_connections();
+    std::unordered_set<const TlLogicSpec*> from_add_file;
+    for (const auto& t : overrides_) from_add_file.insert(&t);
 
     net_.signal_phase_begin.push_back(0);
     net_.phase_state_begin.push_back(0);
@@ -311,6 +321,7 @@ class Builder {
       const TlLogicSpec& t = *chosen[id];
       if (t.phases.empty())
         throw InputError(t.loc, "tlLogic '" + t.id + "' program '" + t.program_id + "' has no phases");
+      check_phase_sizes(t, links_used.count(t.id) ? links_used.at(t.id) : 0, from_add_file.count(&t) != 0);
       const size_t links = t.phases.front().state.size();
       if (links > static_cast<size_t>(std::numeric_limits<int16_t>::max()))
         throw InputError(t.loc,
@@ -322,10 +333,6 @@ class Builder {
       net_.signal_offset.push_back(static_cast<float>(t.offset));
       for (size_t p = 0; p < t.phases.size(); ++p) {
         const PhaseSpec& ph = t.phases[p];
-        if (ph.state.size() != links)
-          throw InputError(t.loc, "tlLogic '" + t.id + "' phase " + std::to_string(p) + " has state '" +
-                                      ph.state + "' of " + std::to_string(ph.state.size()) +
-                                      " links, phase 0 has " + std::to_string(links));
         net_.phase_duration.push_back(static_cast<float>(ph.duration));
         net_.phase_min_dur.push_back(static_cast<float>(ph.min_dur));
         net_.phase_max_dur.push_back(static_cast<float>(ph.max_dur));
@@ -333,6 +340,42 @@ class Builder {
         net_.phase_state_begin.push_back(static_cast<uint32_t>(net_.phase_state.size()));
       }
       net_.signal_phase_begin.push_back(static_cast<uint32_t>(net_.phase_duration.size()));
+    }
+  }
+
+  // Per traffic light id: the links its connections use (the highest linkIndex + 1).
+  std::unordered_map<std::string, size_t> links_used_by_connections() const {
+    std::unordered_map<std::string, size_t> used;
+    for (const ConnectionSpec& c : spec_.connections)
+      if (!c.tl.empty() && c.link_index >= 0) {
+        size_t& n = used[c.tl];
+        n = std::max(n, static_cast<size_t>(c.link_index) + 1);
+      }
+    return used;
+  }
+
+  // Every phase state has one signal per link: the size most phases have (on a tie the larger) is taken as
+  // meant, and the first phase of another size is blamed on its own line. An add-file program must also
+  // cover the links of the network's connections; were it short, the connection would be blamed instead, in
+  // the network file the user did not change.
+  static void check_phase_sizes(const TlLogicSpec& t, size_t links_used, bool from_add_file) {
+    std::unordered_map<size_t, size_t> phases_of_size;
+    size_t links = 0;
+    for (const PhaseSpec& ph : t.phases) {
+      const size_t n = ++phases_of_size[ph.state.size()];
+      const size_t best = phases_of_size[links];
+      if (n > best || (n == best && ph.state.size() > links)) links = ph.state.size();
+    }
+    const std::string program = "tlLogic '" + t.id + "' program '" + t.program_id + "' phase ";
+    for (size_t p = 0; p < t.phases.size(); ++p) {
+      const PhaseSpec& ph = t.phases[p];
+      const std::string what = program + std::to_string(p) + ": state '" + ph.state + "' has " +
+                               std::to_string(ph.state.size()) + " links";
+      if (ph.state.size() != links)
+        throw InputError(ph.loc, what + ", the program's other phases " + std::to_string(links));
+      if (from_add_file && links < links_used)
+        throw InputError(ph.loc, what + ", but the network's connections use " + std::to_string(links_used) +
+                                     " (linkIndex up to " + std::to_string(links_used - 1) + ")");
     }
   }
 
