@@ -55,6 +55,7 @@ void Run::open_outputs() {
     tripinfo_ = std::make_unique<TripinfoWriter>(out.tripinfo, scenario_.network, demand(), devices);
   }
   if (!out.summary.empty()) summary_ = std::make_unique<SummaryWriter>(out.summary);
+  if (!out.statistic.empty()) statistic_ = std::make_unique<StatisticWriter>(out.statistic);
   for (MeanDataOutput& m : mean_data_) {
     m.writer = std::make_unique<MeanDataWriter>(m.spec, scenario_.network, demand());
     m.interval_begin = m.spec.begin >= 0 ? m.spec.begin : sim_.time();
@@ -68,11 +69,20 @@ void Run::step() {
   if (closed_) throw std::logic_error("Run::step() after finish()");
   sim_.step();
   if (!config_.no_warnings) warn_teleports();
+  for (const TeleportEvent& t : sim_.teleport_events())
+    ++(t.cause == TeleportCause::Yield       ? totals_.teleports_yield
+       : t.cause == TeleportCause::WrongLane ? totals_.teleports_wrong_lane
+                                             : totals_.teleports_jam);
   totals_.peak_running = std::max<uint64_t>(totals_.peak_running, sim_.counts().running);
   write_step_outputs();
+  bool interval_closed = false;
   for (MeanDataOutput& m : mean_data_)
-    if (m.spec.period > 0 && sim_.time() + kTimeSlack >= m.interval_begin + m.spec.period)
+    if (m.spec.period > 0 && sim_.time() + kTimeSlack >= m.interval_begin + m.spec.period) {
       close_interval(m, m.interval_begin + m.spec.period);
+      interval_closed = true;
+    }
+  // At simulated times, not wall times: a gzip file's bytes then depend on the run alone.
+  if (interval_closed) flush_outputs();
 }
 
 void Run::step_until(double t) {
@@ -86,6 +96,10 @@ bool Run::done() const {
 
 void Run::finish() {
   if (closed_) return;
+  if (statistic_) {
+    statistic_->write(statistics());
+    statistic_->close();
+  }
   for (MeanDataOutput& m : mean_data_) {
     close_interval(m, sim_.time());
     m.writer->close();
@@ -109,6 +123,7 @@ void Run::write_step_outputs() {
     totals_.waiting += r.waiting_time;
     totals_.time_loss += r.time_loss;
     totals_.depart_delay += r.depart_delay;
+    if (r.arrival > r.depart) totals_.speed += r.route_length / (r.arrival - r.depart);
     if (tripinfo_) tripinfo_->write(r);
   }
   if (summary_) summary_->write(sim_.summary_row());
@@ -132,14 +147,45 @@ void Run::close_interval(MeanDataOutput& m, double until) {
   m.at_begin = sim_.lane_counters();
 }
 
-void print_run_report(std::FILE* out, const Run& run, double wall, double load_seconds) {
+void Run::flush_outputs() {
+  for (MeanDataOutput& m : mean_data_) m.writer->flush();
+  if (fcd_) fcd_->flush();
+  if (tripinfo_) tripinfo_->flush();
+  if (summary_) summary_->flush();
+}
+
+RunStatistics Run::statistics() const {
+  const Simulation::Counts& c = sim_.counts();
+  RunStatistics s;
+  s.loaded = c.loaded;
+  s.inserted = c.inserted;
+  s.running = c.running;
+  s.waiting = c.waiting;
+  s.teleports_jam = totals_.teleports_jam;
+  s.teleports_yield = totals_.teleports_yield;
+  s.teleports_wrong_lane = totals_.teleports_wrong_lane;
+  s.trips = totals_.trips;
+  s.route_length = totals_.route_length;
+  s.duration = totals_.duration;
+  s.waiting_time = totals_.waiting;
+  s.time_loss = totals_.time_loss;
+  s.depart_delay = totals_.depart_delay;
+  s.speed = totals_.speed;
+  return s;
+}
+
+void print_run_report(std::FILE* out, const Run& run, double wall, double load_seconds,
+                      const char* interrupted_by) {
   const Simulation& sim = run.simulation();
   const Simulation::Counts& c = sim.counts();
   const Run::Totals& totals = run.totals();
   std::fprintf(out, "Simulation ended at time: %.2f\n", sim.time());
-  std::fprintf(out, "Reason: %s\n",
-               sim.finished() ? "All vehicles have left the simulation."
-                              : "The final simulation step has been reached.");
+  if (interrupted_by != nullptr)
+    std::fprintf(out, "Reason: Interrupted by %s.\n", interrupted_by);
+  else
+    std::fprintf(out, "Reason: %s\n",
+                 sim.finished() ? "All vehicles have left the simulation."
+                                : "The final simulation step has been reached.");
   std::fprintf(out, "Performance:\n Duration: %.3fs (load %.3fs)\n", wall, load_seconds);
   std::fprintf(out, " Real time factor: %.6g\n", wall > 0 ? (sim.time() - run.options().begin) / wall : 0.0);
   std::fprintf(out, " UPS: %.6f\n", wall > 0 ? static_cast<double>(c.vehicle_updates) / wall : 0.0);

@@ -10,6 +10,7 @@
 #include "app/scenario.hpp"
 #include "converters/fcd_writer.hpp"
 #include "converters/mean_data_writer.hpp"
+#include "converters/statistic_writer.hpp"
 #include "converters/summary_writer.hpp"
 #include "converters/tripinfo_writer.hpp"
 #include "core/config_spec.hpp"
@@ -19,27 +20,32 @@ namespace lpsim {
 
 class Run {
  public:
-  /// Sums over the trips that ended (s, route length in m) and the most vehicles running at once: what the
-  /// final report averages and prints.
+  /// Sums over the trips that ended (s, route length in m), the most vehicles running at once and the
+  /// teleports by cause: what the final report and the statistic output print.
   struct Totals {
     uint64_t trips = 0;
     double duration = 0, route_length = 0, waiting = 0, time_loss = 0, depart_delay = 0;
+    double speed = 0;  // sum of each trip's route length / duration
     uint64_t peak_running = 0;
+    uint64_t teleports_jam = 0, teleports_yield = 0, teleports_wrong_lane = 0;
   };
 
   /// Builds the simulation of `scenario` at its begin time, opens the outputs `config` asks for (FCD,
-  /// tripinfo, summary, edgeData/laneData, and the scenario's own edgeData/laneData definitions) and writes
-  /// the state at the begin time. The Run owns the scenario; its demand becomes the simulation's trip table
-  /// (move a scenario in, so that a large demand is not copied). Run sets options.lane_counters itself: on
-  /// exactly when an edgeData/laneData output needs them (the engine skips their atomics otherwise).
+  /// tripinfo, summary, statistic, edgeData/laneData, and the scenario's own edgeData/laneData definitions)
+  /// and writes the state at the begin time. The Run owns the scenario; its demand becomes the simulation's
+  /// trip table (move a scenario in, so that a large demand is not copied). Run sets options.lane_counters
+  /// itself: on exactly when an edgeData/laneData output needs them (the engine skips their atomics
+  /// otherwise).
   Run(Scenario scenario, const ConfigSpec& config, SimulationOptions options);
-  /// Without finish(), the writers close their files but the open edgeData/laneData intervals are lost.
+  /// Without finish(), the writers close their files but the open edgeData/laneData intervals and the
+  /// statistics are lost.
   ~Run();
   Run(const Run&) = delete;
   Run& operator=(const Run&) = delete;
 
   /// One step, whether or not done(), then its outputs, teleport warnings (unless --no-warnings) and
-  /// totals. std::logic_error after finish().
+  /// totals. When an edgeData/laneData interval closes, every output is flushed to its file (so a killed
+  /// run keeps what was written up to there). std::logic_error after finish().
   void step();
   /// Steps while the next step would end at or before `t` and the run is not done(): never past t, and a
   /// no-op when t is less than a step ahead.
@@ -48,8 +54,9 @@ class Run {
   /// in SUMO, the outputs run to end - step (when the end lies a whole number of steps after the begin).
   /// Without one: once the simulation is finished().
   bool done() const;
-  /// Writes the open edgeData/laneData intervals (up to now) and closes every output. Later calls do
-  /// nothing. Write failures raise InputError.
+  /// Writes the open edgeData/laneData intervals (up to now) and the statistics, and closes every output.
+  /// Later calls do nothing. Write failures raise InputError. An interrupted run calls it too: its outputs
+  /// then end where it stopped, as SUMO's do.
   void finish();
 
   Simulation& simulation() { return sim_; }
@@ -78,6 +85,8 @@ class Run {
   void write_step_outputs();
   void warn_teleports() const;
   void close_interval(MeanDataOutput& m, double until);
+  void flush_outputs();
+  RunStatistics statistics() const;
 
   Scenario scenario_;  // its demand moved into sim_
   ConfigSpec config_;
@@ -87,6 +96,7 @@ class Run {
   std::unique_ptr<FcdWriter> fcd_;
   std::unique_ptr<TripinfoWriter> tripinfo_;
   std::unique_ptr<SummaryWriter> summary_;
+  std::unique_ptr<StatisticWriter> statistic_;
   FcdFrame frame_;
   double next_fcd_ = 0;
   Totals totals_;
@@ -95,7 +105,8 @@ class Run {
 
 /// The SUMO-like report `lpsim run` prints at the end: end time and reason, performance (wall_seconds since
 /// the simulation was built, load_seconds for reading the scenario), vehicle counts, teleports and the trip
-/// averages.
-void print_run_report(std::FILE* out, const Run& run, double wall_seconds, double load_seconds);
+/// averages. `interrupted_by` names the signal that stopped the run early, if one did (nullptr: none).
+void print_run_report(std::FILE* out, const Run& run, double wall_seconds, double load_seconds,
+                      const char* interrupted_by = nullptr);
 
 }  // namespace lpsim

@@ -1,39 +1,25 @@
-// `lpsim run`: load, simulate, write SUMO outputs, print a SUMO-like summary.
+// `lpsim run`: load, simulate, write SUMO outputs, print a SUMO-like summary. SIGINT, SIGTERM and SIGHUP
+// stop it at the end of the current step with every output closed well-formed (as SUMO does on Ctrl-C), one
+// line on stderr and exit status 128 + the signal.
 #include <unistd.h>
 
-#include <algorithm>
 #include <chrono>
 #include <cstdio>
 
 #include "app/commands.hpp"
 #include "app/device_select.hpp"
+#include "app/interrupt.hpp"
+#include "app/progress_log.hpp"
 #include "app/run.hpp"
 #include "app/scenario_args.hpp"
 #include "app/simulation_options.hpp"
 
 namespace lpsim {
 
-namespace {
-
-void print_progress(const Simulation& sim, double wall, double end) {
-  const auto& c = sim.counts();
-  const double ups = wall > 0 ? static_cast<double>(c.vehicle_updates) / wall : 0;
-  std::fprintf(stderr, "\rt=%.2f running %llu arrived %llu waiting %llu  %.3g veh-updates/s", sim.time(),
-               static_cast<unsigned long long>(c.running), static_cast<unsigned long long>(c.arrived),
-               static_cast<unsigned long long>(c.waiting), ups);
-  if (end > 0 && sim.time() > 0 && wall > 0) {
-    const double eta = wall / std::max(1e-9, sim.time()) * std::max(0.0, end - sim.time());
-    std::fprintf(stderr, "  ETA %.0f s", eta);
-  }
-  std::fprintf(stderr, "   ");
-  std::fflush(stderr);
-}
-
-}  // namespace
-
 int command_run(const std::vector<std::string>& args) {
   ConfigSpec config;
-  const Scenario sc = scenario_from_args(args, &config);
+  // Loading writes nothing, so a signal until the Run is built may end the process as usual.
+  Scenario sc = scenario_from_args(args, &config);
 
   SimulationOptions options = simulation_options(config);
   const DeviceChoice device = select_device(config.device);
@@ -44,23 +30,25 @@ int command_run(const std::vector<std::string>& args) {
   using Clock = std::chrono::steady_clock;
   const auto wall0 = Clock::now();
   const double load_seconds = sc.load_seconds;
+  // From here on a signal is recorded, not fatal: the Run's constructor creates the output files, and the
+  // loop below stops at the first step boundary after a signal, so that finish() closes them well-formed.
+  const InterruptGuard interrupt;
+  ProgressLog progress(stderr, isatty(fileno(stderr)) != 0, config.no_step_log, config.progress_interval,
+                       config.end);
   Run run(std::move(sc), config, options);
-  const bool tty = isatty(fileno(stderr)) != 0;
-  auto last_progress = Clock::now();
-  while (!run.done()) {
+  while (!run.done() && interrupt.received() == 0) {
     run.step();
-    if (!tty) continue;
-    const auto now = Clock::now();
-    if (now - last_progress > std::chrono::milliseconds(500)) {
-      last_progress = now;
-      print_progress(run.simulation(), std::chrono::duration<double>(now - wall0).count(), config.end);
-    }
+    progress.after_step(run.simulation());
   }
   run.finish();
   const double wall = std::chrono::duration<double>(Clock::now() - wall0).count();
-  if (tty) std::fprintf(stderr, "\n");
-  print_run_report(stdout, run, wall, load_seconds);
-  return 0;
+  progress.end_line();
+  const int signal = interrupt.received();
+  if (signal != 0)
+    std::fprintf(stderr, "lpsim: interrupted by %s at time %.2f; outputs closed\n", signal_name(signal),
+                 run.simulation().time());
+  print_run_report(stdout, run, wall, load_seconds, signal != 0 ? signal_name(signal) : nullptr);
+  return signal != 0 ? 128 + signal : 0;
 }
 
 }  // namespace lpsim

@@ -55,11 +55,13 @@ const OptionDef kOptions[] = {
   {"time-to-teleport", "", 0, Kind::Time, Check::None, false, [](ConfigSpec& c, Value&& v) { c.time_to_teleport = v.seconds; }},
   {"weights.minor-penalty", "", 0, Kind::Time, Check::NonNegative, false, [](ConfigSpec& c, Value&& v) { c.minor_penalty = v.seconds; }},
   {"no-warnings", "", 'W', Kind::Bool, Check::None, false, [](ConfigSpec& c, Value&& v) { c.no_warnings = v.flag; }},
+  {"no-step-log", "", 0, Kind::Bool, Check::None, false, [](ConfigSpec& c, Value&& v) { c.no_step_log = v.flag; }},
   {"ignore-route-errors", "", 0, Kind::Bool, Check::None, false, [](ConfigSpec& c, Value&& v) { c.ignore_route_errors = v.flag; }},
   {"threads", "", 0, Kind::Integer, Check::ThreadCount, false, [](ConfigSpec& c, Value&& v) { c.threads = static_cast<int>(v.integer); }},
   // Not a SUMO option: command line only, so a .sumocfg stays valid for SUMO.
   {"device", "", 0, Kind::Device, Check::None, true, [](ConfigSpec& c, Value&& v) { c.device = v.device; }},
   {"max-lane-map-gb", "", 0, Kind::Number, Check::Positive, true, [](ConfigSpec& c, Value&& v) { c.max_lane_map_gb = v.number; }},
+  {"progress-interval", "", 0, Kind::Number, Check::Positive, true, [](ConfigSpec& c, Value&& v) { c.progress_interval = v.number; }},
   {"fcd-output", "", 0, Kind::Path, Check::None, false, [](ConfigSpec& c, Value&& v) { c.outputs.fcd = std::move(v.text); }},
   {"device.fcd.period", "", 0, Kind::Time, Check::NonNegative, false, [](ConfigSpec& c, Value&& v) { c.outputs.fcd_period = v.seconds; }},
   {"tripinfo-output", "", 0, Kind::Path, Check::None, false, [](ConfigSpec& c, Value&& v) { c.outputs.tripinfo = std::move(v.text); }},

@@ -23,6 +23,9 @@ class FcdWriter {
   FcdWriter& operator=(const FcdWriter&) = delete;
 
   void write(const FcdFrame& frame);
+  /// Hands what was written so far to the file (OutputFile::flush). Called between records, so that a file
+  /// cut short by a later kill holds them all and lacks only its closing tag.
+  void flush() { out_.flush(); }
   /// Writes the closing tag and closes the file (InputError on failure); later calls do nothing.
   void close();
 

@@ -64,6 +64,15 @@ void OutputFile::flush_buffer() {
   if (!ok) throw InputError(SourceLoc{path_, 0}, "cannot write output file: " + system_reason());
 }
 
+void OutputFile::flush() {
+  if (!is_open()) return;
+  flush_buffer();
+  errno = 0;
+  const bool ok = gz_ != nullptr ? gzflush(static_cast<gzFile>(gz_), Z_SYNC_FLUSH) == Z_OK
+                                 : std::fflush(static_cast<std::FILE*>(plain_)) == 0;
+  if (!ok) throw InputError(SourceLoc{path_, 0}, "cannot write output file: " + system_reason());
+}
+
 void OutputFile::close() {
   if (!is_open()) return;
   std::string failure;

@@ -37,6 +37,11 @@ class OutputFile {
   void attr_fixed(std::string_view name, double v, int decimals = 2);
   void attr_int(std::string_view name, int64_t v);
 
+  /// Hands everything written so far to the operating system, so that the file holds it even if the
+  /// process is killed next (a gzip stream is flushed to a byte boundary: its data so far decompresses,
+  /// at a small cost in compression). For points a reader may want to recover, such as a closed
+  /// edgeData interval, not for every record: each call is a system call. InputError on failure.
+  void flush();
   /// Writes the buffer out and closes the file; write or close failures are an InputError naming it.
   /// Calling it again does nothing.
   void close();

@@ -19,6 +19,9 @@ class SummaryWriter {
   SummaryWriter& operator=(const SummaryWriter&) = delete;
 
   void write(const SummaryRow& row);
+  /// Hands what was written so far to the file (OutputFile::flush). Called between records, so that a file
+  /// cut short by a later kill holds them all and lacks only its closing tag.
+  void flush() { out_.flush(); }
   /// Writes the closing tag and closes the file (InputError on failure); later calls do nothing.
   void close();
 

@@ -24,6 +24,10 @@ struct ConfigSpec {
   double minor_penalty =
       1.5;                   // SUMO's --weights.minor-penalty: routing cost of a crossing on a minor link [s]
   bool no_warnings = false;  // SUMO's --no-warnings: no teleport warnings on stderr
+  bool no_step_log = false;  // SUMO's --no-step-log: no progress lines while running
+  // Not a SUMO option: when stderr is not a terminal, `lpsim run` prints a progress line every this many
+  // wall-clock seconds (on a terminal it redraws one line instead).
+  double progress_interval = 60;
   bool ignore_route_errors = false;
   int threads = 0;  // 0: all hardware threads
   // Not a SUMO option: the most lane map (one byte per metre of car lane) a network may ask for, in GiB, so
