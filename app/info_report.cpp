@@ -123,6 +123,7 @@ std::string describe_scenario(const Scenario& sc) {
   if (d.unroutable.size() > 10) out += fmt("  ... and %zu more\n", d.unroutable.size() - 10);
   std::string unsupported = unsupported_summary(d);
   out += unsupported.empty() ? "skipped unsupported elements: none\n" : unsupported + "\n";
+  for (const auto& line : sc.warnings) out += "not implemented: " + line + "\n";
   out += fmt("edgeData/laneData definitions: %zu\n", sc.mean_data.size());
   out += fmt("load time: %.3f s", sc.load_seconds);
   if (d.routing.seconds > 0)  // timings vary run to run, so they stay on this one line

@@ -1,5 +1,8 @@
 #pragma once
 // A loaded scenario: everything a run needs, built from a ConfigSpec (a .sumocfg and/or options).
+#include <string>
+#include <vector>
+
 #include "core/additional_spec.hpp"
 #include "core/config_spec.hpp"
 #include "demand/demand.hpp"
@@ -12,6 +15,8 @@ struct Scenario {
   Network network;
   Demand demand;
   std::vector<MeanDataSpec> mean_data;
+  // Settings loaded but not modelled (app/load_warnings.hpp), one warning line each; not kept in snapshots.
+  std::vector<std::string> warnings;
   double load_seconds = 0;
 };
 

@@ -39,6 +39,7 @@ Scenario scenario_from_args(const std::vector<std::string>& args, ConfigSpec* co
   Scenario sc = load_scenario(config);
   std::string unsupported = unsupported_summary(sc.demand);
   if (!unsupported.empty()) std::fprintf(stderr, "lpsim: warning: %s\n", unsupported.c_str());
+  for (const auto& line : sc.warnings) std::fprintf(stderr, "lpsim: warning: %s\n", line.c_str());
   if (!sc.demand.unroutable.empty())
     std::fprintf(stderr,
                  "lpsim: warning: %zu vehicles skipped (route outside the car lane map, or broken with "

@@ -1,5 +1,8 @@
 #include <chrono>
+#include <cstdint>
+#include <string>
 
+#include "app/load_warnings.hpp"
 #include "app/scenario.hpp"
 #include "converters/lpsim_csv_reader.hpp"
 #include "converters/net_reader.hpp"
@@ -30,7 +33,11 @@ Scenario load_scenario(const ConfigSpec& config) {
   for (const auto& f : config.route_files) read_sumo_routes(f, demand, additional);
   if (!config.lpsim_od_csv.empty()) read_lpsim_od_csv(config.lpsim_od_csv, net, demand);
 
-  sc.network = build_network(net, additional.tl_logics);
+  sc.warnings = unimplemented_settings(demand, net, additional);
+  NetworkLimits limits;
+  limits.max_lane_map_gib = config.max_lane_map_gb;
+  limits.max_lane_map_option = "--max-lane-map-gb";
+  sc.network = build_network(net, additional.tl_logics, limits);
   DemandOptions opt;
   opt.seed = static_cast<uint64_t>(config.seed);
   opt.ignore_route_errors = config.ignore_route_errors;
@@ -40,6 +47,12 @@ Scenario load_scenario(const ConfigSpec& config) {
   opt.step_length = config.step_length;
   opt.minor_penalty = config.minor_penalty;
   sc.demand = build_demand(demand, sc.network, opt);
+  if (const uint64_t n = sc.demand.raised_speed_factors; n > 0)
+    sc.warnings.push_back(
+        "departSpeed above the first edge's speed limit times the drawn speed factor: as "
+        "SUMO does, the speed factor was raised to match for " +
+        std::to_string(n) + (n == 1 ? " vehicle: '" : " vehicles, the first '") +
+        sc.demand.first_raised_speed_factor + "'");
   sc.mean_data = std::move(additional.mean_data);
   sc.load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return sc;

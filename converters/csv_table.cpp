@@ -6,6 +6,8 @@
 #include <limits>
 #include <sstream>
 
+#include "converters/id_text.hpp"
+
 namespace lpsim {
 
 namespace {
@@ -79,8 +81,7 @@ class Splitter {
       }
       if (c == '"')
         throw InputError(SourceLoc{file_, line_}, "quote inside an unquoted CSV field '" +
-                                                      std::string(text_.substr(begin, pos_ - begin + 1)) +
-                                                      "'");
+                                                      printable(text_.substr(begin, pos_ - begin + 1)) + "'");
       ++pos_;
     }
     store.append(text_.substr(begin, pos_ - begin));
@@ -190,8 +191,14 @@ size_t CsvTable::column(std::string_view name) const {
 std::string_view CsvTable::trimmed(size_t row, size_t col) const { return trim(field(row, col)); }
 
 void CsvTable::fail(size_t row, size_t col, const std::string& what) const {
-  throw InputError(loc(row),
-                   "column '" + header_[col] + "' value '" + std::string(field(row, col)) + "': " + what);
+  throw InputError(loc(row), "column '" + printable(header_[col]) + "' value '" + printable(field(row, col)) +
+                                 "': " + what);
+}
+
+std::string_view CsvTable::id(size_t row, size_t col) const {
+  const std::string_view text = trimmed(row, col);
+  if (const std::string problem = id_problem(text); !problem.empty()) fail(row, col, "the id " + problem);
+  return text;
 }
 
 std::optional<double> CsvTable::optional_number(size_t row, size_t col) const {

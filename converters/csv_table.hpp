@@ -41,6 +41,9 @@ class CsvTable {
   /// Where a data record starts (1-based line; the header is line 1 unless blank lines precede it).
   SourceLoc loc(size_t row) const { return SourceLoc{file_, row_line_[row]}; }
 
+  /// The trimmed field as an id: control characters or invalid UTF-8 (converters/id_text.hpp) are an
+  /// InputError naming the record's line, the column and the value.
+  std::string_view id(size_t row, size_t col) const;
   /// A finite number; empty, non-numeric, NaN or infinite fields are InputErrors.
   double number(size_t row, size_t col) const;
   /// As number(), but an empty field gives nullopt.
@@ -48,7 +51,8 @@ class CsvTable {
   /// A whole number (written as "12" or "12.0"); anything else is an InputError.
   int64_t integer(size_t row, size_t col) const;
 
-  /// Throws InputError at the record's line: "<file>:<line>: column '<name>' value '<field>': <what>".
+  /// Throws InputError at the record's line: "<file>:<line>: column '<name>' value '<field>': <what>", the
+  /// field's control characters and bytes outside UTF-8 written as \xNN.
   [[noreturn]] void fail(size_t row, size_t col, const std::string& what) const;
 
  private:

@@ -83,7 +83,7 @@ RawNodes read_nodes(const std::string& path) {
   n.loc.reserve(rows);
   n.index.reserve(rows);
   for (size_t r = 0; r < rows; ++r) {
-    std::string id(t.trimmed(r, c_id));
+    std::string id(t.id(r, c_id));
     if (id.empty()) t.fail(r, c_id, "empty node id");
     if (!n.index.emplace(id, static_cast<uint32_t>(n.id.size())).second) t.fail(r, c_id, "duplicate node id");
     n.id.push_back(std::move(id));
@@ -115,7 +115,7 @@ std::vector<RawEdge> read_edges(const std::string& path, const RawNodes& nodes) 
   };
   for (size_t r = 0; r < edges.size(); ++r) {
     RawEdge& e = edges[r];
-    e.id = std::string(t.trimmed(r, c_id));
+    e.id = std::string(t.id(r, c_id));
     if (e.id.empty()) t.fail(r, c_id, "empty edge id");
     if (!seen.insert(e.id).second) t.fail(r, c_id, "duplicate edge id");
     e.u = node_of(r, c_u);

@@ -12,10 +12,35 @@
 #include "converters/route_vtype.hpp"
 #include "converters/tl_logic_reader.hpp"
 #include "converters/xml_stream.hpp"
+#include "core/time_range.hpp"
 
 namespace lpsim {
 
 namespace {
+
+// A time attribute's value in seconds, or why it is not one: unparsable, negative, or beyond what the
+// engine's int64 millisecond clock holds (core/time_range.hpp).
+struct TimeValue {
+  double seconds = 0;
+  std::string problem;  // empty when the value is usable
+};
+
+TimeValue parse_time_value(std::string_view key, const std::string& text) {
+  TimeValue out;
+  auto t = parse_sumo_time(text);
+  const std::string quoted = "attribute '" + std::string(key) + "'";
+  if (!t)
+    out.problem = quoted + " is not a time: '" + text + "'";
+  else if (*t < 0)
+    out.problem = quoted + " is negative: '" + text + "'";
+  else if (!time_in_range(*t))
+    out.problem = quoted + " is beyond the largest time LPSim represents (" +
+                  std::to_string(static_cast<long long>(kMaxTimeSeconds)) +
+                  " s, milliseconds in 64 bits): '" + text + "'";
+  else
+    out.seconds = *t;
+  return out;
+}
 
 // Attributes of vehicle, trip and flow elements. They are copied once per element into buffers reused
 // across elements, so a million vehicles cost one attribute pass and no allocations here.
@@ -214,12 +239,9 @@ class RouteFileReader {
                    double fallback) const {
     const std::string* v = attrs_.get(key);
     if (!v) return fallback;
-    auto t = parse_sumo_time(*v);
-    if (!t)
-      fail(loc, element, id, "attribute '" + std::string(kKeyNames[key]) + "' is not a time: '" + *v + "'");
-    if (*t < 0)
-      fail(loc, element, id, "attribute '" + std::string(kKeyNames[key]) + "' is negative: '" + *v + "'");
-    return *t;
+    const TimeValue t = parse_time_value(kKeyNames[key], *v);
+    if (!t.problem.empty()) fail(loc, element, id, t.problem);
+    return t.seconds;
   }
 
   double positive_attr(Key key, const SourceLoc& loc, std::string_view element, std::string_view id) const {
@@ -379,6 +401,11 @@ class RouteFileReader {
     for (Key k : {kVehsPerHour, kPerHour})
       if (attrs_.present[k]) {
         f.vehs_per_hour = positive_attr(k, loc, element, id);
+        // Its period, 3600 / rate, is a time the engine must hold like any other.
+        if (!time_in_range(3600.0 / f.vehs_per_hour))
+          fail(loc, element, id,
+               "attribute '" + std::string(kKeyNames[k]) + "' is so small that its period (3600 s / " +
+                   "rate) lies beyond the largest time LPSim represents: '" + attrs_.value[k] + "'");
         ++rates;
       }
     if (attrs_.present[kProbability]) {
@@ -527,6 +554,23 @@ class RouteFileReader {
     demand_.vtype_dists.push_back(std::move(dist));
   }
 
+  // SUMO's meandata types: traffic measures ("", "traffic", "performance": the ones LPSim writes) or
+  // emission and noise models, which LPSim does not have; anything else SUMO refuses as well.
+  static void check_mean_data_type(const SourceLoc& loc, std::string_view element, const std::string& id,
+                                   const std::string& value) {
+    const std::string_view type = trim(value);
+    if (type.empty() || type == "traffic" || type == "performance") return;
+    for (std::string_view model : {"emissions", "hbefa", "harmonoise", "amitran"})
+      if (type == model)
+        fail(loc, element, id,
+             "type '" + value +
+                 "' is not supported: LPSim writes traffic measures only (no type, or 'traffic')");
+    fail(loc, element, id,
+         "unknown type '" + value +
+             "' (traffic, performance; emissions, hbefa, harmonoise and amitran are "
+             "SUMO's, not supported)");
+  }
+
   void read_mean_data(bool lane_level) {
     const std::string_view element = lane_level ? "laneData" : "edgeData";
     MeanDataSpec m;
@@ -534,6 +578,7 @@ class RouteFileReader {
     m.lane_level = lane_level;
     m.id = xs_.get("id", "");
     if (m.id.empty()) fail(m.loc, element, "", "missing or empty attribute 'id'");
+    if (auto type = xs_.attr("type")) check_mean_data_type(m.loc, element, m.id, *type);
     auto file = xs_.attr("file");
     if (!file || trim(*file).empty()) fail(m.loc, element, m.id, "missing attribute 'file'");
     std::filesystem::path out(std::string(trim(*file)));
@@ -541,10 +586,9 @@ class RouteFileReader {
     auto time = [&](const char* key, double fallback) {
       auto text = xs_.attr(key);
       if (!text) return fallback;
-      auto t = parse_sumo_time(*text);
-      if (!t || *t < 0)
-        fail(m.loc, element, m.id, std::string("attribute '") + key + "' is not a time: '" + *text + "'");
-      return *t;
+      const TimeValue t = parse_time_value(key, *text);
+      if (!t.problem.empty()) fail(m.loc, element, m.id, t.problem);
+      return t.seconds;
     };
     m.period = time(xs_.has("period") ? "period" : "freq", -1);
     if (m.period == 0) fail(m.loc, element, m.id, "period must be positive");
@@ -573,11 +617,9 @@ class RouteFileReader {
     auto bound = [&](const char* key) -> std::optional<double> {
       auto text = xs_.attr(key);
       if (!text) return std::nullopt;
-      auto t = parse_sumo_time(*text);
-      if (!t || *t < 0)
-        fail(loc, "interval", xs_.get("id", ""),
-             std::string("attribute '") + key + "' is not a time: '" + *text + "'");
-      return t;
+      const TimeValue t = parse_time_value(key, *text);
+      if (!t.problem.empty()) fail(loc, "interval", xs_.get("id", ""), t.problem);
+      return t.seconds;
     };
     auto saved_begin = interval_begin_, saved_end = interval_end_;
     interval_begin_ = bound("begin");

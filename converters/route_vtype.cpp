@@ -81,7 +81,7 @@ bool set_cf_field(const SourceLoc& loc, std::string_view element, VTypeSpec& t, 
   else if (key == "emergencyDecel")
     t.emergency_decel = num(Sign::Positive, kMaxAcceleration);
   else if (key == "tau")
-    t.tau = num(Sign::NonNegative, kMaxTau);
+    t.tau = num(Sign::Positive, kMaxTau);  // SUMO refuses 0 too: the time gap divides
   else if (key == "sigma") {
     t.sigma = num(Sign::NonNegative, kNoMax);
     if (t.sigma > 1)
@@ -102,6 +102,7 @@ void read_cf_element(XmlStream& xs, VTypeSpec& t) {
   const SourceLoc loc = xs.loc();
   const std::string element = xs.name();
   t.car_follow_model = element.substr(std::string_view("carFollowing-").size());
+  t.car_follow_model_given = true;
   for (const auto& [k, v] : collect_attrs(xs))
     if (!set_cf_field(loc, element, t, k, v)) t.params[k] = v;
 }
@@ -154,9 +155,12 @@ VTypeSpec read_vtype(XmlStream& xs, std::map<std::string, int64_t>& skipped, dou
       speed_dev = num(k, v, Sign::NonNegative, kNoMax);
     else if (k == "probability")
       probability = num(k, v, Sign::NonNegative, kNoMax);
-    else if (k == "carFollowModel")
+    else if (k == "carFollowModel") {
       t.car_follow_model = std::string(trim(v));
-    else if (k == "speedFactor") {
+      t.car_follow_model_given = true;
+    } else if (k == "laneChangeModel") {
+      t.lane_change_model = std::string(trim(v));
+    } else if (k == "speedFactor") {
       auto sf = parse_speed_factor(v);
       if (!sf || sf->mean <= 0 || sf->mean > kMaxSpeedFactor)
         xs.fail("attribute 'speedFactor' must be a positive number up to " +

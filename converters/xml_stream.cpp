@@ -7,6 +7,7 @@
 #include <cstring>
 #include <vector>
 
+#include "id_text.hpp"
 #include "input_file.hpp"
 #include "xml_parse_error.hpp"
 
@@ -18,6 +19,24 @@ std::string context_label(const XmlStream& xs) {
   std::string label = "<" + xs.name();
   if (auto id = xs.attr("id")) label += " id=\"" + *id + "\"";
   return label + ">";
+}
+
+// Attributes that hold an id or a list of ids, in any SUMO input LPSim reads (net, routes, add-files).
+constexpr std::string_view kIdAttributes[] = {"id",        "type",  "route",        "from",       "to",
+                                              "via",       "edges", "fromJunction", "toJunction", "fromTaz",
+                                              "toTaz",     "refId", "vTypes",       "routes",     "tl",
+                                              "programID", "lane",  "edge",         "incLanes",   "intLanes"};
+
+bool is_id_attribute(std::string_view name) {
+  for (std::string_view id : kIdAttributes)
+    if (name == id) return true;
+  return false;
+}
+
+bool has_control_character(std::string_view value) {
+  for (char c : value)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) return true;
+  return false;
 }
 
 // Bytes handed to the parser per xmlParseChunk call, after which the chunk's queued events are handed out.
@@ -185,11 +204,41 @@ struct XmlStream::Impl {
       im.attrs.push_back(Attr{im.dict_name(a[1], a[0]), begin, im.values.size() - begin});
     }
     q.attr_end = im.attrs.size();
+    im.check_ids(q, line);
     im.queue.push_back(q);
     im.open.push_back(q.name);
     im.root_seen = true;
     im.last_was_start = true;
     im.last_start_line = line;
+  }
+
+  // Ids with control characters break the outputs' XML and the one-line messages (converters/id_text.hpp).
+  // Literal tabs and newlines in a value are spaces by then (XML's attribute normalisation): only character
+  // references put control characters there, so one scan of a value without one is all it costs. Recorded
+  // before the element is queued: it is never handed out.
+  void check_ids(const Queued& q, int line) {
+    for (size_t i = q.attr_begin; i < q.attr_end; ++i) {
+      const std::string_view v = value(attrs[i]);
+      if (!has_control_character(v) || !is_id_attribute(attrs[i].name)) continue;
+      // Appended piecewise: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string temporaries.
+      std::string message = "<";
+      message += q.name;
+      for (size_t k = q.attr_begin; k < q.attr_end; ++k)
+        if (attrs[k].name == "id") {
+          message += " id=\"";
+          message += printable(value(attrs[k]));
+          message += '"';
+        }
+      message += ">: attribute '";
+      message += attrs[i].name;
+      message += "' ";
+      message += id_problem(v);
+      message += ": '";
+      message += printable(v);
+      message += "'";
+      record({std::move(message), line});
+      return;
+    }
   }
 
   static void on_end(void* self, const xmlChar*, const xmlChar*, const xmlChar*) {

@@ -18,6 +18,10 @@ struct VTypeSpec {
   bool speed_dev_given = false;
   std::string vclass = "passenger";
   std::string car_follow_model = "Krauss";
+  // Given in the file (attribute or <carFollowing-X>), not SUMO's default: only a model asked for by name
+  // earns the warning that LPSim follows IDM instead.
+  bool car_follow_model_given = false;
+  std::string lane_change_model;              // as given; empty: SUMO's default (LC2013)
   std::map<std::string, std::string> params;  // other attributes and car-following parameters (delta, ...)
   SourceLoc loc;
 };

@@ -50,6 +50,10 @@ struct Demand {
   };
   std::vector<Skipped> unroutable;             // trips without a path (kept only with ignore_route_errors)
   std::map<std::string, int64_t> unsupported;  // from DemandSpec::skipped
+  // Vehicles whose departSpeed needed a higher speed factor than drawn (demand/depart_speed.hpp), for a
+  // warning; not kept in snapshots.
+  uint64_t raised_speed_factors = 0;
+  std::string first_raised_speed_factor;
 
   /// Trip routing done while building: vehicles routed, distinct requests after deduplication, wall time.
   struct RoutingStats {

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "demand/demand_draws.hpp"
+#include "demand/depart_speed.hpp"
 #include "demand/departure.hpp"
 #include "demand/flat_index.hpp"
 #include "demand/flow_expansion.hpp"
@@ -200,6 +201,14 @@ class Builder {
                                         d.vehicle_id[v] + "' is not a car lane of its first edge '" +
                                         net_.edge_id[first_edge] + "' (" +
                                         std::to_string(net_.edge_num_lanes[first_edge]) + " car lanes)");
+      // As SUMO, which checks a departSpeed when it inserts: vehicles outside [begin, end] never depart.
+      const bool departs = p.depart >= opt_.begin && (opt_.end < 0 || p.depart <= opt_.end);
+      if (departs) {
+        d.speed_factor[v] = depart_speed_factor(types_.types(), p.type, p.speed_factor, ds, net_, first_edge,
+                                                d.vehicle_id[v], loc_of(p));
+        if (d.speed_factor[v] != p.speed_factor && d.raised_speed_factors++ == 0)
+          d.first_raised_speed_factor = d.vehicle_id[v];
+      }
     }
     d.types = types_.take();
     d.unsupported = spec_.skipped;

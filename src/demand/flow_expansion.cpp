@@ -47,7 +47,7 @@ std::vector<double> bernoulli(const FlowSpec& f, Millis begin, Millis end, int64
   const int64_t first_step = (begin + step - 1) / step;  // first step at or after begin
   int64_t last_step;                                     // exclusive
   if (end != kNoEnd) {
-    last_step = (end + step - 1) / step;  // steps strictly before end
+    last_step = end / step + (end % step != 0 ? 1 : 0);  // steps strictly before end, ceil without overflow
   } else {
     // Bounded by `number` only; refuse flows that would need absurdly many steps to reach it.
     const double expected_steps = static_cast<double>(number) / per_step;
@@ -95,7 +95,8 @@ std::vector<double> flow_departures(const FlowSpec& f, uint64_t seed, double ste
   if (has_end) {
     end = to_millis(f.end);
   } else if (!has_number || !has_rate) {
-    end = begin + kDefaultDuration;
+    // Capped below kNoEnd (which means "no end") for a begin near the largest time, where the sum overflows.
+    end = begin < kNoEnd - 1 - kDefaultDuration ? begin + kDefaultDuration : kNoEnd - 1;
   }
   if (end < begin) throw InputError(f.loc, "flow '" + f.id + "' ends before its begin");
 
@@ -121,7 +122,9 @@ std::vector<double> flow_departures(const FlowSpec& f, uint64_t seed, double ste
     throw InputError(
         f.loc, "flow '" + f.id + "': " + given_rate + " is shorter than LPSim's time resolution of 1 ms");
   }
-  const int64_t count = (end - begin + offset - 1) / offset;  // ceil: vehicles strictly before end
+  // ceil((end - begin) / offset): vehicles strictly before end, without the sum that overflows when the
+  // period is near the largest time.
+  const int64_t count = (end - begin) / offset + ((end - begin) % offset != 0 ? 1 : 0);
   check_count(f, count);
   return periodic(begin, offset, count);
 }

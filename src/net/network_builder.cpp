@@ -22,8 +22,8 @@ namespace {
 // 100k-edge / 1M-lane nets build in well under a second per pass.
 class Builder {
  public:
-  Builder(const NetSpec& spec, const std::vector<TlLogicSpec>& overrides)
-      : spec_(spec), overrides_(overrides) {}
+  Builder(const NetSpec& spec, const std::vector<TlLogicSpec>& overrides, const NetworkLimits& limits)
+      : spec_(spec), overrides_(overrides), limits_(limits) {}
 
   Network build() {
     add_junctions();
@@ -49,6 +49,7 @@ class Builder {
  private:
   const NetSpec& spec_;
   const std::vector<TlLogicSpec>& overrides_;
+  const NetworkLimits& limits_;
   Network net_;
 
   std::vector<uint32_t>
@@ -223,6 +224,23 @@ class Builder {
     }
   }
 
+  // The backends hold the lane map twice (the buffer read and the one written each step), a byte per cell.
+  void check_lane_map_budget(double cells, uint32_t longest) const {
+    if (limits_.max_lane_map_gib <= 0) return;
+    constexpr double kGib = 1024.0 * 1024.0 * 1024.0;
+    const double gib = 2 * cells / kGib;
+    if (gib <= limits_.max_lane_map_gib) return;
+    char what[256];
+    std::snprintf(
+        what, sizeof what,
+        "the lanes need %.2f GiB of lane map (%.0f cells, one per metre, in two buffers), more than "
+        "%s %g allows; the longest lane, '",
+        gib, cells, limits_.max_lane_map_option.c_str(), limits_.max_lane_map_gib);
+    char lane_len[64];
+    std::snprintf(lane_len, sizeof lane_len, "%.0f m", static_cast<double>(net_.lane_length[longest]));
+    throw InputError(lane_spec_[longest]->loc, what + net_.lane_id[longest] + "', is " + lane_len);
+  }
+
   // Cells: one per started metre, at least one per lane. Shapes: as given, else the edge's end junctions.
   void lay_out_lanes() {
     const uint32_t lanes = net_.num_lanes();
@@ -254,6 +272,7 @@ class Builder {
                                                      "longest lane, '" +
                                                      net_.lane_id[longest] + "', is " + lane_len);
     }
+    check_lane_map_budget(total, longest);
     uint64_t cells = 0;
     for (uint32_t l = 0; l < lanes; ++l) {
       net_.lane_cell_begin[l] = cells;
@@ -581,8 +600,9 @@ class Builder {
 
 }  // namespace
 
-Network build_network(const NetSpec& spec, const std::vector<TlLogicSpec>& tl_overrides) {
-  return Builder(spec, tl_overrides).build();
+Network build_network(const NetSpec& spec, const std::vector<TlLogicSpec>& tl_overrides,
+                      const NetworkLimits& limits) {
+  return Builder(spec, tl_overrides, limits).build();
 }
 
 }  // namespace lpsim

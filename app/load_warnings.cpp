@@ -1,0 +1,72 @@
+#include "app/load_warnings.hpp"
+
+#include <map>
+#include <string_view>
+
+namespace lpsim {
+
+namespace {
+
+// The models the step implements (docs/MODELS.md): IDM car following, and a lane changer that stands in for
+// SUMO's default LC2013 (mandatory changes towards the best lanes, MOBIL for speed).
+constexpr std::string_view kCarFollowModel = "IDM";
+constexpr std::string_view kLaneChangeModel = "LC2013";
+// A warning names this many ids and then how many more there are.
+constexpr size_t kIdsNamed = 5;
+
+std::string id_list(const std::vector<std::string>& ids) {
+  std::string out;
+  for (size_t i = 0; i < ids.size() && i < kIdsNamed; ++i) out += (i ? ", '" : "'") + ids[i] + "'";
+  if (ids.size() > kIdsNamed) out += " and " + std::to_string(ids.size() - kIdsNamed) + " more";
+  return out;
+}
+
+std::string plural(size_t n, const std::string& word) {
+  return std::to_string(n) + " " + word + (n == 1 ? "" : "s");
+}
+
+}  // namespace
+
+std::vector<std::string> unimplemented_settings(const DemandSpec& demand, const NetSpec& net,
+                                                const AdditionalSpec& additional) {
+  // model -> the vTypes asking for it, in file order.
+  std::map<std::string, std::vector<std::string>> car_follow, lane_change;
+  for (const VTypeSpec& t : demand.vtypes) {
+    if (t.car_follow_model_given && t.car_follow_model != kCarFollowModel)
+      car_follow[t.car_follow_model].push_back(t.id);
+    if (!t.lane_change_model.empty() && t.lane_change_model != kLaneChangeModel)
+      lane_change[t.lane_change_model].push_back(t.id);
+  }
+  std::vector<std::string> lines;
+  for (const auto& [model, ids] : car_follow)
+    lines.push_back("carFollowModel '" + model + "' is not implemented, IDM is used instead for " +
+                    plural(ids.size(), "vType") + ": " + id_list(ids));
+  for (const auto& [model, ids] : lane_change)
+    lines.push_back("laneChangeModel '" + model +
+                    "' is not implemented, LPSim's lane changing (in place of " +
+                    std::string(kLaneChangeModel) + ") is used instead for " + plural(ids.size(), "vType") +
+                    ": " + id_list(ids));
+
+  // The program each signal runs: the net's, replaced by an add-file's of the same id (network_builder).
+  std::map<std::string, std::string> type_of;
+  for (const TlLogicSpec& tl : net.tl_logics) type_of[tl.id] = tl.type;
+  for (const TlLogicSpec& tl : additional.tl_logics) type_of[tl.id] = tl.type;
+  std::map<std::string, size_t> count_by_type;
+  std::vector<std::string> not_static;
+  for (const auto& [id, type] : type_of)
+    if (type != "static") {
+      ++count_by_type[type];
+      not_static.push_back(id);
+    }
+  if (!not_static.empty()) {
+    std::string types;
+    for (const auto& [type, n] : count_by_type)
+      types += (types.empty() ? "" : ", ") + type + " (" + std::to_string(n) + ")";
+    lines.push_back("signal programs of type " + types +
+                    " are not implemented, these traffic lights run their phases as static programs: " +
+                    id_list(not_static));
+  }
+  return lines;
+}
+
+}  // namespace lpsim

@@ -1,0 +1,89 @@
+// Settings that load but are not modelled get one warning each, never silence: carFollowModel other than
+// IDM (one line per model naming its vTypes), laneChangeModel other than LC2013 (LPSim's lane changing
+// stands in for it), signal programs of a type other than static (run as static: one line with the count
+// and ids). An edgeData or laneData of an emission or noise type is refused: LPSim writes traffic measures.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "cli_scenario_fixture.hpp"
+
+namespace lpsim {
+namespace {
+
+using test::CliScenarioTest;
+using test::expect_input_error;
+using test::has_line;
+
+using CliModelWarningsTest = CliScenarioTest;
+
+TEST_F(CliModelWarningsTest, CarFollowModelsOtherThanIdmWarnOncePerModel) {
+  write_routes(
+      "cf.rou.xml",
+      "<vType id=\"k1\" carFollowModel=\"Krauss\"/>\n<vType id=\"k2\" carFollowModel=\"Krauss\"/>\n"
+      "<vType id=\"w\">\n<carFollowing-Wiedemann/>\n</vType>\n<vType id=\"i\" carFollowModel=\"IDM\"/>\n"
+      "<vType id=\"plain\"/>");
+  const auto r = info_with_routes("cf.rou.xml");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(
+      has_line(r,
+               "lpsim: warning: carFollowModel 'Krauss' is not implemented, IDM is used instead for 2 "
+               "vTypes: 'k1', 'k2'"))
+      << r.err;
+  EXPECT_TRUE(has_line(r,
+                       "lpsim: warning: carFollowModel 'Wiedemann' is not implemented, IDM is used instead "
+                       "for 1 vType: 'w'"))
+      << r.err;
+  EXPECT_EQ(test::stderr_lines(r.err).size(), 2u) << r.err;  // IDM and SUMO's default say nothing
+  EXPECT_NE(r.out.find("not implemented: carFollowModel 'Krauss'"), std::string::npos) << r.out;
+}
+
+TEST_F(CliModelWarningsTest, LaneChangeModelsOtherThanLc2013Warn) {
+  std::string types;
+  for (int i = 0; i < 7; ++i)
+    types += "<vType id=\"s" + std::to_string(i) + "\" laneChangeModel=\"SL2015\"/>\n";
+  write_routes("lc.rou.xml", types + "<vType id=\"d\" laneChangeModel=\"LC2013\"/>");
+  const auto r = info_with_routes("lc.rou.xml");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err,
+            "lpsim: warning: laneChangeModel 'SL2015' is not implemented, LPSim's lane changing (in place of "
+            "LC2013) is used instead for 7 vTypes: 's0', 's1', 's2', 's3', 's4' and 2 more\n");
+}
+
+TEST_F(CliModelWarningsTest, ActuatedSignalsRunAsStaticWarnOnce) {
+  write_grid_net_with("actuated.net.xml", "type=\"static\"", "type=\"actuated\"");
+  const auto r = run({"info", "-n", "actuated.net.xml"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(
+      r.err,
+      "lpsim: warning: signal programs of type actuated (1) are not implemented, these traffic lights run "
+      "their phases as static programs: 'A0'\n");
+  // An add-file program of the same id replaces the net's, and its type is the one that runs.
+  write("static.add.xml",
+        "<additional>\n<tlLogic id=\"A0\" programID=\"1\" type=\"static\" offset=\"0\">\n"
+        "<phase duration=\"40\" state=\"GGGG\"/>\n</tlLogic>\n</additional>\n");
+  const auto replaced = run({"info", "-n", "actuated.net.xml", "-a", "static.add.xml"});
+  EXPECT_EQ(replaced.err, "") << replaced.err;
+}
+
+TEST_F(CliModelWarningsTest, EmissionEdgeDataIsRefused) {
+  for (const char* type : {"emissions", "harmonoise", "amitran"}) {
+    SCOPED_TRACE(type);
+    write("data.add.xml",
+          std::string("<additional>\n<!-- test input -->\n<laneData id=\"d\" file=\"o.xml\" type=\"") + type +
+              "\"/>\n</additional>\n");
+    expect_input_error(run({"info", "-n", test::kGridTlsNet, "-a", "data.add.xml"}), "data.add.xml:3",
+                       {"<laneData id=\"d\">", std::string("type '") + type + "'", "traffic measures only"});
+  }
+  write("data.add.xml",
+        "<additional>\n<!-- test input -->\n<edgeData id=\"d\" file=\"o.xml\" type=\"bogus\"/>\n"
+        "</additional>\n");
+  expect_input_error(run({"info", "-n", test::kGridTlsNet, "-a", "data.add.xml"}), "data.add.xml:3",
+                     {"unknown type 'bogus'"});
+  write("data.add.xml",
+        "<additional>\n<edgeData id=\"d\" file=\"o.xml\" type=\"traffic\"/>\n</additional>\n");
+  EXPECT_EQ(run({"info", "-n", test::kGridTlsNet, "-a", "data.add.xml"}).exit_code, 0);
+}
+
+}  // namespace
+}  // namespace lpsim
