@@ -7,6 +7,7 @@
 
 #include "app/commands.hpp"
 #include "app/device_select.hpp"
+#include "app/output_paths.hpp"
 #include "app/run.hpp"
 #include "app/scenario_args.hpp"
 #include "app/simulation_options.hpp"
@@ -34,6 +35,7 @@ void print_progress(const Simulation& sim, double wall, double end) {
 int command_run(const std::vector<std::string>& args) {
   ConfigSpec config;
   const Scenario sc = scenario_from_args(args, &config);
+  refuse_overwrites(sc, CliCommand::Run);
 
   SimulationOptions options = simulation_options(config);
   const DeviceChoice device = select_device(config.device);
