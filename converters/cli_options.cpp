@@ -35,7 +35,8 @@ constexpr long long kMaxThreads = 1024;
 // Which commands use an option: a bit per CliCommand.
 constexpr unsigned kInfo = 1, kConvert = 2, kRun = 4;
 // Loading uses these (the demand is built with begin, end, step, seed, routing threads and penalties), so
-// every command takes them; what only a run uses (outputs, teleports, the device) is refused elsewhere.
+// every command takes them. Outputs, teleports and the device are `run`'s, -o is `convert`'s: given to
+// another command on its command line, they are refused rather than ignored.
 constexpr unsigned kLoad = kInfo | kConvert | kRun;
 
 unsigned command_bit(CliCommand c) {
@@ -198,9 +199,10 @@ void apply_foreign(ConfigSpec& config, const ForeignOption& option, std::string_
                    const std::string& value, const OptionSource& where) {
   if (is_sumo_default(option, value)) return;
   if (option.kind == ForeignOptionClass::Unsupported) {
-    throw InputError(where.loc, option_label(where, name) + " '" + value +
-                                    "': SUMO option not supported by LPSim (only its default '" +
-                                    std::string(option.sumo_default) + "' is accepted)");
+    std::string what = option_label(where, name) + " '" + value + "': SUMO option not supported by LPSim";
+    if (!option.sumo_default.empty())
+      what += " (only SUMO's default '" + std::string(option.sumo_default) + "')";
+    throw InputError(where.loc, what);
   }
   auto& inert = config.inert_options;
   if (std::find(inert.begin(), inert.end(), name) == inert.end()) inert.emplace_back(name);
