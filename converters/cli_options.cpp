@@ -117,7 +117,11 @@ std::string resolve(const std::string& path, const std::string& base_dir) {
 }
 
 std::string option_label(const OptionSource& where, std::string_view name) {
-  return where.command_line ? "--" + std::string(name) : "<" + std::string(name) + ">";
+  // Appended piecewise: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string temporaries.
+  std::string label = where.command_line ? "--" : "<";
+  label += name;
+  if (!where.command_line) label += '>';
+  return label;
 }
 
 [[noreturn]] void bad_value(const OptionSource& where, std::string_view name, const std::string& value,
