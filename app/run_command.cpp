@@ -9,6 +9,7 @@
 #include "app/commands.hpp"
 #include "app/device_select.hpp"
 #include "app/interrupt.hpp"
+#include "app/output_paths.hpp"
 #include "app/progress_log.hpp"
 #include "app/run.hpp"
 #include "app/scenario_args.hpp"
@@ -20,6 +21,7 @@ int command_run(const std::vector<std::string>& args) {
   ConfigSpec config;
   // Loading writes nothing, so a signal until the Run is built may end the process as usual.
   Scenario sc = scenario_from_args(args, &config);
+  refuse_overwrites(sc, CliCommand::Run);
 
   SimulationOptions options = simulation_options(config);
   const DeviceChoice device = select_device(config.device);

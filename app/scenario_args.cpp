@@ -4,7 +4,6 @@
 
 #include "app/info_report.hpp"
 #include "app/snapshot.hpp"
-#include "converters/cli_options.hpp"
 
 namespace lpsim {
 
@@ -14,16 +13,57 @@ bool ends_with(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
+// A snapshot holds network, demand and output definitions: input options beside it would be ignored.
+void refuse_inputs_beside_snapshot(const ConfigSpec& c, const std::string& snapshot) {
+  const char* given = !c.config_file.empty()        ? "-c (configuration-file)"
+                      : !c.net_file.empty()         ? "-n (net-file)"
+                      : !c.route_files.empty()      ? "-r (route-files)"
+                      : !c.additional_files.empty() ? "-a (additional-files)"
+                      : !c.lpsim_nodes_csv.empty()  ? "--lpsim-nodes"
+                      : !c.lpsim_edges_csv.empty()  ? "--lpsim-edges"
+                      : !c.lpsim_od_csv.empty()     ? "--lpsim-od"
+                                                    : nullptr;
+  if (given)
+    throw InputError(SourceLoc{"command line", 0},
+                     std::string(given) + " given beside the snapshot '" + snapshot +
+                         "', which already holds network and demand; give one or the other");
+}
+
+// The loader takes a SUMO network when there is one and then never reads LPSim's CSV network (the OD CSV is
+// read against either network, so it combines with both); a CSV network needs both of its files.
+void refuse_ignored_csv(const ConfigSpec& c) {
+  const bool csv_net = !c.lpsim_nodes_csv.empty() || !c.lpsim_edges_csv.empty();
+  if (csv_net && !c.net_file.empty())
+    throw InputError(std::string(!c.lpsim_nodes_csv.empty() ? "--lpsim-nodes" : "--lpsim-edges") +
+                     " given beside the SUMO network '" + c.net_file +
+                     "' (-n or the .sumocfg's net-file): a run takes one network");
+  if (csv_net && (c.lpsim_nodes_csv.empty() || c.lpsim_edges_csv.empty()))
+    throw InputError(std::string(c.lpsim_nodes_csv.empty() ? "--lpsim-edges" : "--lpsim-nodes") + " needs " +
+                     (c.lpsim_nodes_csv.empty() ? "--lpsim-nodes" : "--lpsim-edges") + " too");
+}
+
+void warn_inert(const ConfigSpec& c) {
+  if (c.inert_options.empty()) return;
+  std::string names;
+  for (const auto& n : c.inert_options) names += (names.empty() ? "" : ", ") + n;
+  std::fprintf(stderr, "lpsim: warning: ignoring SUMO options that cannot change LPSim's results: %s\n",
+               names.c_str());
+}
+
 }  // namespace
 
-Scenario scenario_from_args(const std::vector<std::string>& args, ConfigSpec* config_out) {
+Scenario scenario_from_args(const std::vector<std::string>& args, ConfigSpec* config_out,
+                            CliCommand command) {
   std::vector<std::string> positional;
-  ConfigSpec config = parse_cli_options(args, &positional);
+  ConfigSpec config = parse_cli_options(args, &positional, command);
   if (positional.size() > 1) throw InputError("expected at most one input file, got '" + positional[1] + "'");
   if (positional.size() == 1) {
     const std::string& file = positional[0];
     if (is_snapshot(file)) {
+      refuse_inputs_beside_snapshot(config, file);
+      warn_inert(config);
       Scenario sc = read_snapshot(file);
+      config.snapshot_file = file;
       sc.config = config;
       if (config_out) *config_out = config;
       return sc;
@@ -33,8 +73,10 @@ Scenario scenario_from_args(const std::vector<std::string>& args, ConfigSpec* co
     std::vector<std::string> with_cfg{"-c", file};
     for (const auto& a : args)
       if (a != file) with_cfg.push_back(a);
-    config = parse_cli_options(with_cfg, nullptr);
+    config = parse_cli_options(with_cfg, nullptr, command);
   }
+  refuse_ignored_csv(config);
+  warn_inert(config);
   if (config_out) *config_out = config;
   Scenario sc = load_scenario(config);
   std::string unsupported = unsupported_summary(sc.demand);

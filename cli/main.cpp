@@ -24,9 +24,17 @@ commands:
            [--edgedata-output f.xml] [--summary-output f.xml] [--device cpu|auto|gpu]
   version  print the version
 
-options follow SUMO's names: -c, -n/--net-file, -r/--route-files, -a/--additional-files, -b/--begin,
--e/--end, --step-length, --seed, --threads, --ignore-route-errors, --time-to-teleport, output options.
+options follow SUMO's names; `lpsim <command> --help` lists those a command takes.
 )";
+
+// `lpsim <command> ... -h|--help|-?` anywhere among the command's arguments, as SUMO takes it.
+bool asks_for_help(const std::vector<std::string>& args) {
+  for (const auto& a : args) {
+    if (a == "--") return false;
+    if (a == "-h" || a == "--help" || a == "-?") return true;
+  }
+  return false;
+}
 
 }  // namespace
 
@@ -38,6 +46,13 @@ int main(int argc, char** argv) {
   }
   const std::string command = args[0];
   args.erase(args.begin());
+  if (asks_for_help(args)) {
+    const std::string help = lpsim::command_help(command);
+    if (!help.empty()) {
+      std::fputs(help.c_str(), stdout);
+      return 0;
+    }
+  }
   try {
     if (command == "info") return lpsim::command_info(args);
     if (command == "convert") return lpsim::command_convert(args);

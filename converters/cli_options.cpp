@@ -1,9 +1,11 @@
 #include "converters/cli_options.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <filesystem>
 
+#include "converters/sumo_option_catalog.hpp"
 #include "converters/sumocfg_reader.hpp"
 #include "converters/xml_stream.hpp"
 
@@ -30,12 +32,33 @@ enum class Check { None, NonNegative, Positive, StepLength, ThreadCount };
 constexpr double kMinStepLength = 0.001, kMaxStepLength = 86400;
 constexpr long long kMaxThreads = 1024;
 
+// Which commands use an option: a bit per CliCommand.
+constexpr unsigned kInfo = 1, kConvert = 2, kRun = 4;
+// Loading uses these (the demand is built with begin, end, step, seed, routing threads and penalties), so
+// every command takes them. Outputs, teleports and the device are `run`'s, -o is `convert`'s: given to
+// another command on its command line, they are refused rather than ignored.
+constexpr unsigned kLoad = kInfo | kConvert | kRun;
+
+unsigned command_bit(CliCommand c) {
+  switch (c) {
+    case CliCommand::Info:
+      return kInfo;
+    case CliCommand::Convert:
+      return kConvert;
+    case CliCommand::Run:
+      return kRun;
+  }
+  return 0;
+}
+
 struct OptionDef {
   std::string_view name, synonym;  // long name and SUMO synonym (empty if none)
   char short_name;                 // 0 if none
   Kind kind;
   Check check;
   bool command_line_only;
+  unsigned commands;      // kInfo | kConvert | kRun: the commands that use it
+  std::string_view help;  // one line for --help
   void (*store)(ConfigSpec&, Value&&);
 };
 
@@ -43,36 +66,36 @@ constexpr std::string_view kConfigFile = "configuration-file";
 
 // clang-format off
 const OptionDef kOptions[] = {
-  {kConfigFile, "", 'c', Kind::Path, Check::None, true, [](ConfigSpec& c, Value&& v) { c.config_file = std::move(v.text); }},
-  {"net-file", "net", 'n', Kind::Path, Check::None, false, [](ConfigSpec& c, Value&& v) { c.net_file = std::move(v.text); }},
-  {"route-files", "routes", 'r', Kind::PathList, Check::None, false, [](ConfigSpec& c, Value&& v) { c.route_files = std::move(v.list); }},
-  {"additional-files", "additional", 'a', Kind::PathList, Check::None, false, [](ConfigSpec& c, Value&& v) { c.additional_files = std::move(v.list); }},
-  {"begin", "", 'b', Kind::Time, Check::None, false, [](ConfigSpec& c, Value&& v) { c.begin = v.seconds; }},
-  {"end", "", 'e', Kind::Time, Check::None, false, [](ConfigSpec& c, Value&& v) { c.end = v.seconds; }},
-  {"step-length", "", 0, Kind::Time, Check::StepLength, false, [](ConfigSpec& c, Value&& v) { c.step_length = v.seconds; }},
-  {"seed", "", 0, Kind::Integer, Check::None, false, [](ConfigSpec& c, Value&& v) { c.seed = v.integer; }},
+  {kConfigFile, "", 'c', Kind::Path, Check::None, true, kLoad, "a SUMO .sumocfg; the other options override it", [](ConfigSpec& c, Value&& v) { c.config_file = std::move(v.text); }},
+  {"net-file", "net", 'n', Kind::Path, Check::None, false, kLoad, "the SUMO network (.net.xml or .net.xml.gz)", [](ConfigSpec& c, Value&& v) { c.net_file = std::move(v.text); }},
+  {"route-files", "routes", 'r', Kind::PathList, Check::None, false, kLoad, "route files (comma-separated): vehicles, trips, flows, vTypes", [](ConfigSpec& c, Value&& v) { c.route_files = std::move(v.list); }},
+  {"additional-files", "additional", 'a', Kind::PathList, Check::None, false, kLoad, "add-files (comma-separated): vTypes, tlLogic, edgeData/laneData", [](ConfigSpec& c, Value&& v) { c.additional_files = std::move(v.list); }},
+  {"begin", "", 'b', Kind::Time, Check::None, false, kLoad, "begin time (s or h:m:s); earlier departures are dropped", [](ConfigSpec& c, Value&& v) { c.begin = v.seconds; }},
+  {"end", "", 'e', Kind::Time, Check::None, false, kLoad, "end time; -1 (default): until every vehicle has arrived", [](ConfigSpec& c, Value&& v) { c.end = v.seconds; }},
+  {"step-length", "", 0, Kind::Time, Check::StepLength, false, kLoad, "step length in s, a whole number of milliseconds (default 1)", [](ConfigSpec& c, Value&& v) { c.step_length = v.seconds; }},
+  {"seed", "", 0, Kind::Integer, Check::None, false, kLoad, "random seed (default 23423)", [](ConfigSpec& c, Value&& v) { c.seed = v.integer; }},
   // Negative disables teleporting, as in SUMO.
-  {"time-to-teleport", "", 0, Kind::Time, Check::None, false, [](ConfigSpec& c, Value&& v) { c.time_to_teleport = v.seconds; }},
-  {"weights.minor-penalty", "", 0, Kind::Time, Check::NonNegative, false, [](ConfigSpec& c, Value&& v) { c.minor_penalty = v.seconds; }},
-  {"no-warnings", "", 'W', Kind::Bool, Check::None, false, [](ConfigSpec& c, Value&& v) { c.no_warnings = v.flag; }},
-  {"no-step-log", "", 0, Kind::Bool, Check::None, false, [](ConfigSpec& c, Value&& v) { c.no_step_log = v.flag; }},
-  {"ignore-route-errors", "", 0, Kind::Bool, Check::None, false, [](ConfigSpec& c, Value&& v) { c.ignore_route_errors = v.flag; }},
-  {"threads", "", 0, Kind::Integer, Check::ThreadCount, false, [](ConfigSpec& c, Value&& v) { c.threads = static_cast<int>(v.integer); }},
+  {"time-to-teleport", "", 0, Kind::Time, Check::None, false, kRun, "waiting time before a blocked vehicle teleports; < 0: never (default 300)", [](ConfigSpec& c, Value&& v) { c.time_to_teleport = v.seconds; }},
+  {"weights.minor-penalty", "", 0, Kind::Time, Check::NonNegative, false, kLoad, "routing cost of a minor link, in s (default 1.5)", [](ConfigSpec& c, Value&& v) { c.minor_penalty = v.seconds; }},
+  {"no-warnings", "", 'W', Kind::Bool, Check::None, false, kRun, "no teleport warnings on stderr", [](ConfigSpec& c, Value&& v) { c.no_warnings = v.flag; }},
+  {"no-step-log", "", 0, Kind::Bool, Check::None, false, kRun, "no progress lines on stderr", [](ConfigSpec& c, Value&& v) { c.no_step_log = v.flag; }},
+  {"ignore-route-errors", "", 0, Kind::Bool, Check::None, false, kLoad, "skip vehicles with broken routes instead of refusing the input", [](ConfigSpec& c, Value&& v) { c.ignore_route_errors = v.flag; }},
+  {"threads", "", 0, Kind::Integer, Check::ThreadCount, false, kLoad, "threads for routing and stepping; 0: all for routing, 1 for stepping", [](ConfigSpec& c, Value&& v) { c.threads = static_cast<int>(v.integer); }},
   // Not a SUMO option: command line only, so a .sumocfg stays valid for SUMO.
-  {"device", "", 0, Kind::Device, Check::None, true, [](ConfigSpec& c, Value&& v) { c.device = v.device; }},
-  {"max-lane-map-gb", "", 0, Kind::Number, Check::Positive, true, [](ConfigSpec& c, Value&& v) { c.max_lane_map_gb = v.number; }},
-  {"progress-interval", "", 0, Kind::Number, Check::Positive, true, [](ConfigSpec& c, Value&& v) { c.progress_interval = v.number; }},
-  {"fcd-output", "", 0, Kind::Path, Check::None, false, [](ConfigSpec& c, Value&& v) { c.outputs.fcd = std::move(v.text); }},
-  {"device.fcd.period", "", 0, Kind::Time, Check::NonNegative, false, [](ConfigSpec& c, Value&& v) { c.outputs.fcd_period = v.seconds; }},
-  {"tripinfo-output", "", 0, Kind::Path, Check::None, false, [](ConfigSpec& c, Value&& v) { c.outputs.tripinfo = std::move(v.text); }},
-  {"summary-output", "summary", 0, Kind::Path, Check::None, false, [](ConfigSpec& c, Value&& v) { c.outputs.summary = std::move(v.text); }},
-  {"statistic-output", "statistics-output", 0, Kind::Path, Check::None, false, [](ConfigSpec& c, Value&& v) { c.outputs.statistic = std::move(v.text); }},
-  {"edgedata-output", "", 0, Kind::Path, Check::None, false, [](ConfigSpec& c, Value&& v) { c.outputs.edgedata = std::move(v.text); }},
-  {"lanedata-output", "", 0, Kind::Path, Check::None, false, [](ConfigSpec& c, Value&& v) { c.outputs.lanedata = std::move(v.text); }},
-  {"lpsim-nodes", "", 0, Kind::Path, Check::None, false, [](ConfigSpec& c, Value&& v) { c.lpsim_nodes_csv = std::move(v.text); }},
-  {"lpsim-edges", "", 0, Kind::Path, Check::None, false, [](ConfigSpec& c, Value&& v) { c.lpsim_edges_csv = std::move(v.text); }},
-  {"lpsim-od", "", 0, Kind::Path, Check::None, false, [](ConfigSpec& c, Value&& v) { c.lpsim_od_csv = std::move(v.text); }},
-  {"output", "", 'o', Kind::Path, Check::None, true, [](ConfigSpec& c, Value&& v) { c.output_file = std::move(v.text); }},
+  {"device", "", 0, Kind::Device, Check::None, true, kRun, "cpu (default), auto (a usable CUDA device, else the CPU) or gpu", [](ConfigSpec& c, Value&& v) { c.device = v.device; }},
+  {"max-lane-map-gb", "", 0, Kind::Number, Check::Positive, true, kLoad, "the most lane map (one byte per metre of lane) a network may need, GiB (default 16)", [](ConfigSpec& c, Value&& v) { c.max_lane_map_gb = v.number; }},
+  {"progress-interval", "", 0, Kind::Number, Check::Positive, true, kRun, "wall seconds between progress lines when stderr is not a terminal (default 60)", [](ConfigSpec& c, Value&& v) { c.progress_interval = v.number; }},
+  {"fcd-output", "", 0, Kind::Path, Check::None, false, kRun, "SUMO FCD output (.gz: compressed)", [](ConfigSpec& c, Value&& v) { c.outputs.fcd = std::move(v.text); }},
+  {"device.fcd.period", "", 0, Kind::Time, Check::NonNegative, false, kRun, "FCD sampling period in s; 0 (default): every step", [](ConfigSpec& c, Value&& v) { c.outputs.fcd_period = v.seconds; }},
+  {"tripinfo-output", "tripinfo", 0, Kind::Path, Check::None, false, kRun, "SUMO tripinfo output", [](ConfigSpec& c, Value&& v) { c.outputs.tripinfo = std::move(v.text); }},
+  {"summary-output", "summary", 0, Kind::Path, Check::None, false, kRun, "SUMO summary output", [](ConfigSpec& c, Value&& v) { c.outputs.summary = std::move(v.text); }},
+  {"statistic-output", "statistics-output", 0, Kind::Path, Check::None, false, kRun, "SUMO statistic output", [](ConfigSpec& c, Value&& v) { c.outputs.statistic = std::move(v.text); }},
+  {"edgedata-output", "", 0, Kind::Path, Check::None, false, kRun, "SUMO edgeData output, one interval for the whole run", [](ConfigSpec& c, Value&& v) { c.outputs.edgedata = std::move(v.text); }},
+  {"lanedata-output", "", 0, Kind::Path, Check::None, false, kRun, "SUMO laneData output, one interval for the whole run", [](ConfigSpec& c, Value&& v) { c.outputs.lanedata = std::move(v.text); }},
+  {"lpsim-nodes", "", 0, Kind::Path, Check::None, false, kLoad, "LPSim CSV nodes (with --lpsim-edges, instead of a SUMO network)", [](ConfigSpec& c, Value&& v) { c.lpsim_nodes_csv = std::move(v.text); }},
+  {"lpsim-edges", "", 0, Kind::Path, Check::None, false, kLoad, "LPSim CSV edges (with --lpsim-nodes)", [](ConfigSpec& c, Value&& v) { c.lpsim_edges_csv = std::move(v.text); }},
+  {"lpsim-od", "", 0, Kind::Path, Check::None, false, kLoad, "LPSim CSV origin-destination demand", [](ConfigSpec& c, Value&& v) { c.lpsim_od_csv = std::move(v.text); }},
+  {"output", "", 'o', Kind::Path, Check::None, true, kConvert, "the snapshot to write (.lpsim)", [](ConfigSpec& c, Value&& v) { c.output_file = std::move(v.text); }},
 };
 // clang-format on
 
@@ -95,10 +118,17 @@ std::string resolve(const std::string& path, const std::string& base_dir) {
   return (std::filesystem::path(base_dir) / p).lexically_normal().string();
 }
 
+std::string option_label(const OptionSource& where, std::string_view name) {
+  // Appended piecewise: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string temporaries.
+  std::string label = where.command_line ? "--" : "<";
+  label += name;
+  if (!where.command_line) label += '>';
+  return label;
+}
+
 [[noreturn]] void bad_value(const OptionSource& where, std::string_view name, const std::string& value,
                             const std::string& expected) {
-  std::string label = where.command_line ? "--" + std::string(name) : "<" + std::string(name) + ">";
-  throw InputError(where.loc, label + ": " + expected + ", got '" + value + "'");
+  throw InputError(where.loc, option_label(where, name) + ": " + expected + ", got '" + value + "'");
 }
 
 Value convert(const OptionDef& def, std::string_view name, const std::string& value,
@@ -125,6 +155,7 @@ Value convert(const OptionDef& def, std::string_view name, const std::string& va
       if (def.check == Check::NonNegative && *t < 0) bad_value(where, name, value, "expected a time >= 0");
       if (def.check == Check::StepLength && !(*t >= kMinStepLength && *t <= kMaxStepLength))
         bad_value(where, name, value, "expected a step length from 0.001 to 86400 s");
+      if (!time_in_range(*t)) bad_value(where, name, value, "expected a time within +-1e12 s");
       v.seconds = *t;
       break;
     }
@@ -168,14 +199,88 @@ bool looks_like_option(const std::string& arg) {
   return !parse_sumo_time(arg);  // "-1" is a value, not an option
 }
 
+// A SUMO option LPSim does not implement: as if absent at SUMO's default, else noted (inert) or refused.
+void apply_foreign(ConfigSpec& config, const ForeignOption& option, std::string_view name,
+                   const std::string& value, const OptionSource& where) {
+  if (is_sumo_default(option, value)) return;
+  if (option.kind == ForeignOptionClass::Unsupported) {
+    std::string what = option_label(where, name) + " '" + value + "': SUMO option not supported by LPSim";
+    if (!option.sumo_default.empty())
+      what += " (only SUMO's default '" + std::string(option.sumo_default) + "')";
+    throw InputError(where.loc, what);
+  }
+  auto& inert = config.inert_options;
+  if (std::find(inert.begin(), inert.end(), name) == inert.end()) inert.emplace_back(name);
+}
+
+// Seconds as the user would write them: "3600", "0.5" (the shortest text that reads back as t).
+std::string format_seconds(double t) {
+  char buf[64];
+  const auto result = std::to_chars(buf, buf + sizeof buf, t);
+  return std::string(buf, result.ptr);
+}
+
 }  // namespace
 
 bool apply_option(ConfigSpec& config, std::string_view name, const std::string& value,
                   const OptionSource& where) {
   const OptionDef* def = find_long(name);
-  if (!def || (def->command_line_only && !where.command_line)) return false;
-  def->store(config, convert(*def, name, value, where));
-  return true;
+  if (def && !(def->command_line_only && !where.command_line)) {
+    def->store(config, convert(*def, name, value, where));
+    return true;
+  }
+  if (const ForeignOption* f = def ? nullptr : find_foreign_option(name)) {
+    apply_foreign(config, *f, name, value, where);
+    return true;
+  }
+  return false;
+}
+
+void check_time_window(const ConfigSpec& config, const SourceLoc& where) {
+  if (config.end >= 0 && config.begin > config.end)
+    throw InputError(where, "end time " + format_seconds(config.end) + " is before begin time " +
+                                format_seconds(config.begin) + ": the end time must not be before the begin");
+}
+
+std::string describe_options(CliCommand command) {
+  const unsigned bit = command_bit(command);
+  std::vector<std::pair<std::string, std::string_view>> rows;
+  size_t width = 0;
+  for (const auto& d : kOptions) {
+    if (!(d.commands & bit)) continue;
+    std::string left = d.short_name ? std::string("-") + d.short_name + ", " : std::string("    ");
+    left += "--" + std::string(d.name);
+    switch (d.kind) {
+      case Kind::Path:
+        left += " FILE";
+        break;
+      case Kind::PathList:
+        left += " FILE[,FILE]";
+        break;
+      case Kind::Time:
+        left += " TIME";
+        break;
+      case Kind::Bool:
+        left += " [BOOL]";
+        break;
+      case Kind::Integer:
+        left += " INT";
+        break;
+      case Kind::Number:
+        left += " NUMBER";
+        break;
+      case Kind::Device:
+        left += " DEVICE";
+        break;
+    }
+    if (!d.synonym.empty()) left += " (or --" + std::string(d.synonym) + ")";
+    width = std::max(width, left.size());
+    rows.emplace_back(std::move(left), d.help);
+  }
+  std::string out;
+  for (const auto& [left, help] : rows)
+    out += "  " + left + std::string(width + 2 - left.size(), ' ') + std::string(help) + "\n";
+  return out;
 }
 
 std::optional<double> parse_sumo_time(std::string_view text) {
@@ -224,15 +329,18 @@ std::optional<bool> parse_sumo_bool(std::string_view text) {
   return std::nullopt;
 }
 
-ConfigSpec parse_cli_options(const std::vector<std::string>& args, std::vector<std::string>* positional) {
+ConfigSpec parse_cli_options(const std::vector<std::string>& args, std::vector<std::string>* positional,
+                             std::optional<CliCommand> command) {
   struct Given {
-    const OptionDef* def;
+    const OptionDef* def;          // LPSim's option, or
+    const ForeignOption* foreign;  // a SUMO option LPSim does not implement
     std::string value;
   };
   std::vector<Given> given;
   std::vector<std::string> rest;
   std::string config_file;
   const OptionSource where{SourceLoc{"command line", 0}, "", true};
+  bool time_given = false;
 
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& arg = args[i];
@@ -245,23 +353,28 @@ ConfigSpec parse_cli_options(const std::vector<std::string>& args, std::vector<s
       continue;
     }
     const OptionDef* def = nullptr;
+    const ForeignOption* foreign = nullptr;
     std::optional<std::string> inline_value;
     if (arg.rfind("--", 0) == 0) {
       std::string_view body = std::string_view(arg).substr(2);
       size_t eq = body.find('=');
       if (eq != std::string_view::npos) inline_value = std::string(body.substr(eq + 1));
       def = find_long(body.substr(0, eq));
+      if (!def) foreign = find_foreign_option(body.substr(0, eq));
     } else if (arg.size() == 2 || arg[2] == '=') {
       def = find_short(arg[1]);
+      if (!def) foreign = find_foreign_short(arg[1]);
       if (arg.size() > 2) inline_value = arg.substr(3);
     }
-    if (!def) throw InputError(where.loc, "unknown option '" + arg + "'");
-    const std::string shown = "--" + std::string(def->name);
+    if (!def && !foreign) throw InputError(where.loc, "unknown option '" + arg + "'");
+    const std::string shown = "--" + std::string(def ? def->name : foreign->name);
+    if (def && command && !(def->commands & command_bit(*command)))
+      throw InputError(where.loc, "option '" + arg + "' is not used by this command (see its --help)");
 
     std::string value;
     if (inline_value) {
       value = *inline_value;
-    } else if (def->kind == Kind::Bool) {
+    } else if (def ? def->kind == Kind::Bool : is_foreign_switch(*foreign)) {
       // A bare flag means true; a following true/false belongs to it.
       if (i + 1 < args.size() && parse_sumo_bool(args[i + 1])) {
         value = args[++i];
@@ -274,17 +387,25 @@ ConfigSpec parse_cli_options(const std::vector<std::string>& args, std::vector<s
       value = args[++i];
     }
 
-    if (def->name == kConfigFile) {
+    if (def && def->name == kConfigFile) {
       if (!config_file.empty()) throw InputError(where.loc, "option '" + arg + "' given more than once");
       if (value.empty()) throw InputError(where.loc, "option '" + arg + "' needs a file name");
       config_file = value;
     } else {
-      given.push_back({def, std::move(value)});
+      if (def && (def->name == "begin" || def->name == "end")) time_given = true;
+      given.push_back({def, foreign, std::move(value)});
     }
   }
 
-  ConfigSpec config = config_file.empty() ? ConfigSpec{} : read_sumocfg(config_file);
-  for (auto& g : given) g.def->store(config, convert(*g.def, g.def->name, g.value, where));
+  SourceLoc window_at{config_file, 0};  // where the .sumocfg sets the window, unless the command line does
+  ConfigSpec config = config_file.empty() ? ConfigSpec{} : read_sumocfg(config_file, &window_at);
+  for (auto& g : given) {
+    if (g.def)
+      g.def->store(config, convert(*g.def, g.def->name, g.value, where));
+    else
+      apply_foreign(config, *g.foreign, g.foreign->name, g.value, where);
+  }
+  check_time_window(config, time_given || config_file.empty() ? where.loc : window_at);
 
   if (positional) {
     *positional = std::move(rest);

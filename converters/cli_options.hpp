@@ -8,8 +8,12 @@
 
 #include "core/config_spec.hpp"
 #include "core/error.hpp"
+#include "core/time_range.hpp"
 
 namespace lpsim {
+
+/// The commands of `lpsim` that take options; each option says which of them use it.
+enum class CliCommand { Info, Convert, Run };
 
 /// Where an option's value came from: names it in errors and anchors relative paths.
 struct OptionSource {
@@ -19,8 +23,11 @@ struct OptionSource {
 };
 
 /// Applies option `name` (long name without dashes; SUMO's synonyms net, routes, additional accepted) with
-/// its text value to `config`. Returns false when LPSim does not know the name. Options that make sense
-/// only on the command line (configuration-file, output) are unknown when `where.command_line` is false.
+/// its text value to `config`. A SUMO option LPSim does not implement is refused with an InputError ("not
+/// supported by LPSim") when it could change the results, or noted in `config.inert_options` when it cannot;
+/// set to SUMO's default value it asks for nothing and is accepted as if absent. Returns false when neither
+/// LPSim nor SUMO knows the name. LPSim's own options (configuration-file, output, device,
+/// max-lane-map-gb) are unknown when `where.command_line` is false, so a .sumocfg stays valid for SUMO.
 /// A bad value raises InputError naming where, the option and the value.
 bool apply_option(ConfigSpec& config, std::string_view name, const std::string& value,
                   const OptionSource& where);
@@ -36,8 +43,18 @@ std::optional<bool> parse_sumo_bool(std::string_view text);
 /// `--name value`, `--name=value`, short forms -c -n -r -a -b -e -o, `--ignore-route-errors` alone or with
 /// true/false. A configuration file (-c) is read first; every other option overrides it wherever it appears.
 /// Arguments not starting with '-' (and all after "--") are positional: they go to `positional`, or raise
-/// InputError when `positional` is null. Unknown options and missing values raise InputError naming them.
+/// InputError when `positional` is null. Unknown options and missing values raise InputError naming them;
+/// with a `command`, so does an option that command does not use. SUMO's short and long names of the
+/// options LPSim does not implement are treated as apply_option says. Times beyond kMaxTimeSeconds and a
+/// begin after the end (when the end is >= 0) are refused, whether they come from the .sumocfg or not.
 ConfigSpec parse_cli_options(const std::vector<std::string>& args,
-                             std::vector<std::string>* positional = nullptr);
+                             std::vector<std::string>* positional = nullptr,
+                             std::optional<CliCommand> command = std::nullopt);
+
+/// Refuses a begin after the end (an end >= 0), as SUMO does; `where` is where the later of them was set.
+void check_time_window(const ConfigSpec& config, const SourceLoc& where);
+
+/// One line per option `command` takes ("  -e, --end TIME   description"), from the option table itself.
+std::string describe_options(CliCommand command);
 
 }  // namespace lpsim

@@ -19,7 +19,7 @@ namespace lpsim {
 namespace {
 
 // A time attribute's value in seconds, or why it is not one: unparsable, negative, or beyond what the
-// engine's int64 millisecond clock holds (core/time_range.hpp).
+// engine can represent (core/time_range.hpp).
 struct TimeValue {
   double seconds = 0;
   std::string problem;  // empty when the value is usable
@@ -34,9 +34,7 @@ TimeValue parse_time_value(std::string_view key, const std::string& text) {
   else if (*t < 0)
     out.problem = quoted + " is negative: '" + text + "'";
   else if (!time_in_range(*t))
-    out.problem = quoted + " is beyond the largest time LPSim represents (" +
-                  std::to_string(static_cast<long long>(kMaxTimeSeconds)) +
-                  " s, milliseconds in 64 bits): '" + text + "'";
+    out.problem = quoted + " is beyond the largest time LPSim accepts (1e12 s): '" + text + "'";
   else
     out.seconds = *t;
   return out;

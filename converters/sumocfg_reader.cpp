@@ -7,7 +7,7 @@
 
 namespace lpsim {
 
-ConfigSpec read_sumocfg(const std::string& path) {
+ConfigSpec read_sumocfg(const std::string& path, SourceLoc* time_window_at) {
   XmlStream xs(path);
   ConfigSpec config;
   config.config_file = path;
@@ -28,11 +28,15 @@ ConfigSpec read_sumocfg(const std::string& path) {
       continue;
     }
     // Options sit in sections (<input>, <time>, ...) but are recognised by name wherever they are; sections
-    // themselves carry no value attribute. Options LPSim does not use are ignored, as the header says.
+    // themselves carry no value attribute. SUMO refuses a name it does not know, and so does LPSim.
     auto value = xs.attr("value");
     if (!value) continue;
     where.loc = xs.loc();
-    apply_option(config, xs.name(), *value, where);
+    if (!apply_option(config, xs.name(), *value, where))
+      throw InputError(where.loc, "<" + xs.name() +
+                                      ">: unknown option (neither a SUMO option nor one LPSim reads "
+                                      "from a .sumocfg)");
+    if (time_window_at && (xs.name() == "begin" || xs.name() == "end")) *time_window_at = where.loc;
   }
   return config;
 }

@@ -5,8 +5,9 @@ counts and CPU time. Standard library only: run with /usr/bin/python3.
   tools/validate.py SCENARIO.sumocfg... [--lpsim build/lpsim] [--out DIR] [--end T] [--threads 2]
                     [--markdown FILE] [--seed S] [--candidate sumo --candidate-model Krauss]
 
-Each simulator runs in its own mirror of the cfg's folder (symbolic links; cwd = the mirrored cfg folder), so
-outputs the cfg or its add-files name relatively land under --out and the scenario folder stays untouched.
+Each simulator runs in its own mirror of the cfg's folder (copies, never links, through which an output named
+like a shipped file would overwrite it; cwd = the mirrored cfg folder), so outputs the cfg or its add-files
+name relatively land under --out and the scenario folder stays untouched.
 Prints a markdown table (one row per scenario) and writes DIR/results.json with all numbers. A candidate
 that is missing or fails is reported in its row; the other scenarios still run.
 """

@@ -14,7 +14,8 @@ struct OutputSpec {
 enum class ComputeDevice { Auto, Cpu, Gpu };
 
 struct ConfigSpec {
-  std::string config_file;  // the .sumocfg, if any
+  std::string config_file;    // the .sumocfg, if any
+  std::string snapshot_file;  // the snapshot (`lpsim convert`'s output) the scenario was read from, if any
   std::string net_file;
   std::vector<std::string> route_files, additional_files;
   std::string lpsim_nodes_csv, lpsim_edges_csv, lpsim_od_csv;  // original LPSim format
@@ -37,6 +38,9 @@ struct ConfigSpec {
   ComputeDevice device = ComputeDevice::Cpu;
   OutputSpec outputs;
   std::string output_file;  // -o/--output on the command line: LPSim's own result file
+  // SUMO options given that cannot change LPSim's results (verbose, log, gui-settings-file, ...), in the
+  // order first given, for the one warning that names them.
+  std::vector<std::string> inert_options;
 };
 
 }  // namespace lpsim

@@ -1,18 +1,17 @@
 #pragma once
-// The range of times the engine can represent. It keeps the clock and every departure as int64
-// milliseconds (Simulation::time_ms), so a time in seconds must stay below 2^63 ms; beyond it the
-// conversion overflows (a depart of 1e17 s came out negative and was inserted at once). SUMO keeps its
-// SUMOTime the same way and refuses the same times.
+// The range of times LPSim accepts, in one place for the command line, the .sumocfg and the route and
+// add-files. The engine keeps the clock and every departure as int64 milliseconds (Simulation::time_ms) but
+// compares times as doubles (the run's end, FCD periods, edgeData intervals), which hold every millisecond
+// exactly only up to 2^53 ms (9.007e12 s); beyond that a step no longer advances the clock as the run's end
+// test sees it (`-b 1e17` never ended) and a depart of 1e17 s overflowed the milliseconds outright.
 #include <cmath>
 
 namespace lpsim {
 
-/// The largest time, in seconds, whose millisecond count fits an int64 after the conversion's rounding:
-/// floor((2^63 - 1) / 1000) = 9223372036854775 is not a double (they are 2 apart there) and would round up
-/// past the range, so the even number below it.
-inline constexpr double kMaxTimeSeconds = 9223372036854774.0;
+/// The largest time magnitude accepted, in seconds (about 31,700 years): a round figure below 2^53 ms.
+inline constexpr double kMaxTimeSeconds = 1e12;
 
-/// True when `seconds` is finite and its millisecond count fits an int64 (negative times included).
+/// True when `seconds` is finite and within +-kMaxTimeSeconds.
 inline bool time_in_range(double seconds) {
   return std::isfinite(seconds) && std::fabs(seconds) <= kMaxTimeSeconds;
 }

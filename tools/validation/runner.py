@@ -3,6 +3,7 @@ the scenario folder, and times them (CPU of the child process via getrusage, and
 import os
 import resource
 import shlex
+import shutil
 import subprocess
 import time
 
@@ -30,20 +31,21 @@ class RunResult:
 
 
 def mirror_folder(source_dir, target_dir):
-    """Recreates source_dir as target_dir with symbolic links to every file. A simulator run from the mirror
-    reads the original inputs but writes the outputs that the cfg or add-files name relatively (detector and
-    edgeData files, logs) into the mirror: the scenario folders may be read-only and must stay clean. SUMO
-    resolves such names against the path it was given, not the link's target, so they land here."""
+    """Recreates source_dir as target_dir with a copy of every file. A simulator run from the mirror reads
+    copies of the inputs and writes the outputs that the cfg or add-files name relatively (detector and
+    edgeData files, logs) into the mirror: the scenario folders may be read-only and must stay clean.
+    Copies, not links: an output whose name is also a file the scenario ships (a detector file, say) would
+    be written through a link into the scenario folder, replacing that file."""
     source_dir = os.path.abspath(source_dir)
     for folder, subfolders, files in os.walk(source_dir):
         relative = os.path.relpath(folder, source_dir)
         destination = os.path.normpath(os.path.join(target_dir, relative))
         os.makedirs(destination, exist_ok=True)
         for name in files:
-            link = os.path.join(destination, name)
-            if os.path.lexists(link):
-                os.remove(link)
-            os.symlink(os.path.join(folder, name), link)
+            copy = os.path.join(destination, name)
+            if os.path.lexists(copy):
+                os.remove(copy)  # a link left by an older mirror must not be written through
+            shutil.copyfile(os.path.join(folder, name), copy)
         subfolders[:] = [s for s in subfolders if not s.startswith(".")]
     return target_dir
 

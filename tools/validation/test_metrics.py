@@ -266,17 +266,26 @@ class ParserTest(TempDirTest):
 
 
 class RunnerTest(TempDirTest):
-    def test_mirror_links_every_file_and_keeps_outputs_out_of_the_source(self):
+    def test_mirror_copies_every_file_and_keeps_outputs_out_of_the_source(self):
         self.write("scenario/a.sumocfg", "<configuration/>")
         self.write("scenario/sub/b.xml", "<b/>")
+        self.write("scenario/det.xml", "<shipped/>")
         mirror = runner.mirror_folder(os.path.join(self.tmp, "scenario"), os.path.join(self.tmp, "mirror"))
-        self.assertTrue(os.path.islink(os.path.join(mirror, "a.sumocfg")))
+        self.assertFalse(os.path.islink(os.path.join(mirror, "a.sumocfg")))
         with open(os.path.join(mirror, "sub", "b.xml")) as handle:
             self.assertEqual(handle.read().strip(), "<b/>")
         with open(os.path.join(mirror, "out.xml"), "w") as handle:
             handle.write("x")
         self.assertFalse(os.path.exists(os.path.join(self.tmp, "scenario", "out.xml")))
-        runner.mirror_folder(os.path.join(self.tmp, "scenario"), mirror)  # again: links are replaced
+        # An output named like a file the scenario ships is written over the mirror's copy, not the original.
+        with open(os.path.join(mirror, "det.xml"), "w") as handle:
+            handle.write("<written/>")
+        with open(os.path.join(self.tmp, "scenario", "det.xml")) as handle:
+            self.assertEqual(handle.read(), "<shipped/>")
+        os.remove(os.path.join(mirror, "a.sumocfg"))
+        os.symlink(os.path.join(self.tmp, "scenario", "a.sumocfg"), os.path.join(mirror, "a.sumocfg"))
+        runner.mirror_folder(os.path.join(self.tmp, "scenario"), mirror)  # again: an old link is replaced
+        self.assertFalse(os.path.islink(os.path.join(mirror, "a.sumocfg")))
 
     def test_failed_and_missing_executables_are_reported(self):
         failing = self.write("fail.py", "import sys\nprint('Error: net file broken')\nsys.exit(3)\n")

@@ -1,0 +1,55 @@
+// `lpsim <command> --help`: usage lines written here, the options listed from cli_options' own table.
+#include <string>
+
+#include "app/commands.hpp"
+#include "converters/cli_options.hpp"
+
+namespace lpsim {
+
+namespace {
+
+constexpr const char* kInfoUsage = R"(usage: lpsim info [options] [scenario.sumocfg | scenario.lpsim]
+load a scenario and report what it holds
+  lpsim info -c scenario.sumocfg | lpsim info -n net.xml -r routes.xml [-a add.xml]
+  lpsim info --lpsim-nodes nodes.csv --lpsim-edges edges.csv [--lpsim-od od.csv]
+  lpsim info scenario.lpsim (a snapshot written by convert)
+)";
+
+constexpr const char* kConvertUsage = R"(usage: lpsim convert [options] -o scenario.lpsim
+load a scenario and write a binary snapshot that later commands load much faster
+  lpsim convert -c scenario.sumocfg -o scenario.lpsim
+)";
+
+constexpr const char* kRunUsage = R"(usage: lpsim run [options] [scenario.sumocfg | scenario.lpsim]
+simulate and write SUMO outputs
+  lpsim run -c scenario.sumocfg [--end T] [--fcd-output f.xml] [--tripinfo-output f.xml]
+)";
+
+constexpr const char* kTrailer = R"(
+Options take SUMO's names and may also come from the .sumocfg (except -c, -o, --device and
+--max-lane-map-gb, which are LPSim's own). Other SUMO options: those that cannot change the results
+(verbose, log, gui-settings-file, ...) are ignored with a warning; those that could (scale, mesosim, ...)
+are refused unless set to SUMO's default. No output may be the same file as an input or another output.
+)";
+
+}  // namespace
+
+std::string command_help(const std::string& command) {
+  std::string usage;
+  CliCommand c;
+  if (command == "info") {
+    usage = kInfoUsage;
+    c = CliCommand::Info;
+  } else if (command == "convert") {
+    usage = kConvertUsage;
+    c = CliCommand::Convert;
+  } else if (command == "run") {
+    usage = kRunUsage;
+    c = CliCommand::Run;
+  } else {
+    return "";
+  }
+  return usage + "\noptions:\n" + describe_options(c) + kTrailer;
+}
+
+}  // namespace lpsim
