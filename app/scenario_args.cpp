@@ -27,6 +27,21 @@ void refuse_inputs_beside_snapshot(const ConfigSpec& c, const std::string& snaps
     throw InputError(SourceLoc{"command line", 0},
                      std::string(given) + " given beside the snapshot '" + snapshot +
                          "', which already holds network and demand; give one or the other");
+  // Options that act only while loading: the snapshot was loaded by `lpsim convert`, with its own.
+  const ConfigSpec defaults;
+  const char* load_only = c.ignore_route_errors != defaults.ignore_route_errors ? "--ignore-route-errors"
+                          : c.minor_penalty != defaults.minor_penalty           ? "--weights.minor-penalty"
+                          : c.max_lane_map_gb != defaults.max_lane_map_gb       ? "--max-lane-map-gb"
+                                                                                : nullptr;
+  if (load_only)
+    throw InputError(SourceLoc{"command line", 0}, std::string(load_only) + " given beside the snapshot '" +
+                                                       snapshot +
+                                                       "': it acts while loading; give it to lpsim convert");
+  if (c.seed != defaults.seed)
+    std::fprintf(stderr,
+                 "lpsim: warning: --seed beside the snapshot '%s' seeds the simulation's own draws only; the "
+                 "demand's (flows, distributions, speed factors) were drawn by lpsim convert\n",
+                 snapshot.c_str());
 }
 
 // The loader takes a SUMO network when there is one and then never reads LPSim's CSV network (the OD CSV is

@@ -127,6 +127,19 @@ TEST_F(CliConfigOptionsTest, InputOptionsBesideASnapshotAreRefused) {
   expect_error(run({"run", "s.lpsim", "-c", "s.sumocfg"}), "command line", {"-c", "snapshot"});
   expect_error(run({"info", "s.lpsim", "--lpsim-od", kCsvDir + "/od.csv"}), "command line", {"--lpsim-od"});
   EXPECT_EQ(run({"run", "s.lpsim", "--end", "5"}).exit_code, 0);
+  // Options that act only while loading were applied by convert.
+  expect_error(run({"run", "s.lpsim", "--ignore-route-errors"}), "command line",
+               {"--ignore-route-errors", "give it to lpsim convert"});
+  expect_error(run({"info", "s.lpsim", "--weights.minor-penalty", "3"}), "command line",
+               {"--weights.minor-penalty"});
+  expect_error(run({"run", "s.lpsim", "--max-lane-map-gb", "1"}), "command line", {"--max-lane-map-gb"});
+  // A seed still seeds the simulation's draws, but not the demand's: said, not hidden.
+  const auto seeded = run({"run", "s.lpsim", "--end", "5", "--seed", "7"});
+  EXPECT_EQ(seeded.exit_code, 0) << seeded.err;
+  EXPECT_NE(seeded.err.find(
+                "lpsim: warning: --seed beside the snapshot 's.lpsim' seeds the simulation's own draws only"),
+            std::string::npos)
+      << seeded.err;
 }
 
 TEST_F(CliConfigOptionsTest, CsvNetworkBesideASumoNetworkIsRefused) {
