@@ -26,6 +26,7 @@ Run::Run(Scenario scenario, const ConfigSpec& config, SimulationOptions options)
       sim_(scenario_.network, std::move(scenario_.demand), options_) {
   open_outputs();
   write_step_outputs();
+  close_due_intervals();
 }
 
 Run::~Run() = default;
@@ -75,9 +76,15 @@ void Run::step() {
                                              : totals_.teleports_jam);
   totals_.peak_running = std::max<uint64_t>(totals_.peak_running, sim_.counts().running);
   write_step_outputs();
+  close_due_intervals();
+}
+
+// An interval [b, b + period) holds SUMO's steps b .. b + period - step, whose states the simulation shows at
+// those same times: it closes once the state at its last step is counted, when end_time() reaches its end.
+void Run::close_due_intervals() {
   bool interval_closed = false;
   for (MeanDataOutput& m : mean_data_)
-    if (m.spec.period > 0 && sim_.time() + kTimeSlack >= m.interval_begin + m.spec.period) {
+    if (m.spec.period > 0 && end_time() + kTimeSlack >= m.interval_begin + m.spec.period) {
       close_interval(m, m.interval_begin + m.spec.period);
       interval_closed = true;
     }
@@ -101,7 +108,7 @@ void Run::finish() {
     statistic_->close();
   }
   for (MeanDataOutput& m : mean_data_) {
-    close_interval(m, sim_.time());
+    close_interval(m, end_time());
     m.writer->close();
   }
   if (fcd_) fcd_->close();
@@ -179,15 +186,17 @@ void print_run_report(std::FILE* out, const Run& run, double wall, double load_s
   const Simulation& sim = run.simulation();
   const Simulation::Counts& c = sim.counts();
   const Run::Totals& totals = run.totals();
-  std::fprintf(out, "Simulation ended at time: %.2f\n", sim.time());
+  std::fprintf(out, "Simulation ended at time: %.2f\n", run.end_time());
   if (interrupted_by != nullptr)
     std::fprintf(out, "Reason: Interrupted by %s.\n", interrupted_by);
   else
+    // As SUMO: with an end time the run goes on to it even after the last vehicle has left.
     std::fprintf(out, "Reason: %s\n",
-                 sim.finished() ? "All vehicles have left the simulation."
-                                : "The final simulation step has been reached.");
+                 run.config().end < 0 ? "All vehicles have left the simulation."
+                                      : "The final simulation step has been reached.");
   std::fprintf(out, "Performance:\n Duration: %.3fs (load %.3fs)\n", wall, load_seconds);
-  std::fprintf(out, " Real time factor: %.6g\n", wall > 0 ? (sim.time() - run.options().begin) / wall : 0.0);
+  std::fprintf(out, " Real time factor: %.6g\n",
+               wall > 0 ? (run.end_time() - run.options().begin) / wall : 0.0);
   std::fprintf(out, " UPS: %.6f\n", wall > 0 ? static_cast<double>(c.vehicle_updates) / wall : 0.0);
   std::fprintf(out, " Vehicle updates: %llu (peak running %llu)\n",
                static_cast<unsigned long long>(c.vehicle_updates),

@@ -51,13 +51,19 @@ class Run {
   /// no-op when t is less than a step ahead.
   void step_until(double t);
   /// The end condition of `lpsim run`. With an end time: once one more step would end after it, so that, as
-  /// in SUMO, the outputs run to end - step (when the end lies a whole number of steps after the begin).
+  /// in SUMO, the step samples run to end - step and edgeData intervals and end_time() to the end (when the
+  /// end lies a whole number of steps after the begin).
   /// Without one: once the simulation is finished().
   bool done() const;
-  /// Writes the open edgeData/laneData intervals (up to now) and the statistics, and closes every output.
-  /// Later calls do nothing. Write failures raise InputError. An interrupted run calls it too: its outputs
-  /// then end where it stopped, as SUMO's do.
+  /// Writes the open edgeData/laneData intervals (up to end_time()) and the statistics, and closes every
+  /// output. Later calls do nothing. Write failures raise InputError. An interrupted run calls it too: its
+  /// outputs then end where it stopped, as SUMO's do.
   void finish();
+
+  /// The time SUMO reports for the same run ("Simulation ended at time"): the end of the last step. The
+  /// simulation's clock shows when that step's state holds, as SUMO's outputs do (its state at time t is the
+  /// one after its step t), while SUMO's clock has already moved on by one step.
+  double end_time() const { return sim_.time() + sim_.step_length(); }
 
   Simulation& simulation() { return sim_; }
   const Simulation& simulation() const { return sim_; }
@@ -85,6 +91,7 @@ class Run {
   void write_step_outputs();
   void warn_teleports() const;
   void close_interval(MeanDataOutput& m, double until);
+  void close_due_intervals();
   void flush_outputs();
   RunStatistics statistics() const;
 

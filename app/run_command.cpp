@@ -48,7 +48,7 @@ int command_run(const std::vector<std::string>& args) {
   const int signal = interrupt.received();
   if (signal != 0)
     std::fprintf(stderr, "lpsim: interrupted by %s at time %.2f; outputs closed\n", signal_name(signal),
-                 run.simulation().time());
+                 run.end_time());
   print_run_report(stdout, run, wall, load_seconds, signal != 0 ? signal_name(signal) : nullptr);
   return signal != 0 ? 128 + signal : 0;
 }

@@ -177,7 +177,7 @@ TEST(DeviceCliTest, AutoPrintsTheChosenDeviceOnOneStderrLine) {
   EXPECT_EQ(r.exit_code, 0) << r.err;
   const DeviceChoice expected = select_device(ComputeDevice::Auto);
   EXPECT_EQ(r.err, "lpsim: device " + expected.description + "\n");
-  EXPECT_NE(r.out.find("Simulation ended at time: 59.00"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("Simulation ended at time: 60.00"), std::string::npos) << r.out;
 }
 
 TEST(DeviceCliTest, CpuPrintsNothingAboutTheDevice) {

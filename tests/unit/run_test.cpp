@@ -196,12 +196,12 @@ TEST(RunTest, FinishTwiceChangesNothing) {
     after_first.push_back(test::read_file(tmp.path() / name));
     EXPECT_TRUE(after_first.back().ends_with(closing_tag(name))) << name << " is not closed after finish()";
   }
-  // finish() wrote the open intervals up to the end of the run (149: the last step starts at end - step).
+  // finish() wrote the open intervals up to the end of the run (150, as SUMO: the end of the last step).
   const std::string periodic = test::read_file(tmp.path() / "edgedata_periodic.xml");
   const std::string whole = test::read_file(tmp.path() / "edgedata.xml");
   EXPECT_EQ(count_of(periodic, "<interval "), 3u) << periodic.substr(0, 2000);
-  EXPECT_NE(periodic.find("<interval begin=\"120.00\" end=\"149.00\""), std::string::npos);
-  EXPECT_NE(whole.find("<interval begin=\"0.00\" end=\"149.00\""), std::string::npos);
+  EXPECT_NE(periodic.find("<interval begin=\"120.00\" end=\"150.00\""), std::string::npos);
+  EXPECT_NE(whole.find("<interval begin=\"0.00\" end=\"150.00\""), std::string::npos);
   EXPECT_NO_THROW(g.run.finish());
   for (size_t k = 0; k < kOutputFiles.size(); ++k)
     EXPECT_TRUE(test::read_file(tmp.path() / kOutputFiles[k]) == after_first[k])
