@@ -14,12 +14,13 @@
 # 4. SUMO runs it once (OUT/sumo_tripinfo.xml, OUT/sumo_stats.xml) and the summary says whether it flows.
 #
 # Then:  lpsim run -c OUT/district.sumocfg --tripinfo-output OUT/lpsim_tripinfo.xml
-# Settings (environment): BBOX, PERIOD, SEED, MIN_DISTANCE, END (the configuration's end, s), CSV_DIR.
+# Settings (environment): BBOX, PERIOD, SEED, MIN_DISTANCE, END (the configuration's end, s), CSV_DIR, and
+# BAYAREA_NET (a bayarea.net.xml converted before: step 1 is skipped and the district cut from it).
 set -euo pipefail
 
 repo="$(cd "$(dirname "$0")/.." && pwd)"
 out="${1:-/work/bayarea_district}"
-csv_dir="${CSV_DIR:-$repo/../shared/lpsim_bayarea_tertiary}"
+csv_dir="$(realpath "${CSV_DIR:-$repo/../shared/lpsim_bayarea_tertiary}")"
 bbox="${BBOX:--122.45,37.75,-122.38,37.81}"
 period="${PERIOD:-1}"
 seed="${SEED:-42}"
@@ -28,15 +29,23 @@ end="${END:-10800}"
 export SUMO_HOME="${SUMO_HOME:-/usr/share/sumo}"
 
 mkdir -p "$out"
+
+whole_net="${BAYAREA_NET:-}"
+if [[ -n "$whole_net" ]]; then
+  whole_net="$(realpath "$whole_net")"
+fi
 cd "$out"
 
-echo "== 1. the whole network"
-python3 "$repo/tools/lpsim_csv_to_sumo.py" --nodes "$csv_dir/nodes.csv" --edges "$csv_dir/edges.csv" \
-  -o bayarea.net.xml
+if [[ -z "$whole_net" ]]; then
+  echo "== 1. the whole network"
+  python3 "$repo/tools/lpsim_csv_to_sumo.py" --nodes "$csv_dir/nodes.csv" --edges "$csv_dir/edges.csv" \
+    -o bayarea.net.xml
+  whole_net=bayarea.net.xml
+fi
 
 echo "== 2. the district $bbox"
 # The same turnaround and signal-timing options as the conversion, for the junctions the cut changes.
-netconvert -s bayarea.net.xml --keep-edges.in-geo-boundary "$bbox" --keep-edges.components 1 \
+netconvert -s "$whole_net" --keep-edges.in-geo-boundary "$bbox" --keep-edges.components 1 \
   --no-turnarounds.except-deadend --tls.green.time 30 --tls.yellow.time 3 \
   -o district.net.xml > district.netconvert.log 2>&1 || { cat district.netconvert.log; exit 1; }
 echo "district.net.xml: $(grep -c '<edge id="[^:]' district.net.xml) edges, $(grep -c '<tlLogic' district.net.xml) signals"
