@@ -7,6 +7,7 @@
 #include <memory>
 #include <vector>
 
+#include "app/jam_report.hpp"
 #include "app/scenario.hpp"
 #include "converters/fcd_writer.hpp"
 #include "converters/mean_data_writer.hpp"
@@ -97,6 +98,7 @@ class Run {
   std::unique_ptr<TripinfoWriter> tripinfo_;
   std::unique_ptr<SummaryWriter> summary_;
   std::unique_ptr<StatisticWriter> statistic_;
+  std::unique_ptr<JamRecorder> jam_;  // only with --jam-report: without it a step does no work for it
   FcdFrame frame_;
   double next_fcd_ = 0;
   Totals totals_;
