@@ -12,14 +12,24 @@ namespace {
 
 // SUMO's halting threshold, the one tripinfo's waiting time uses.
 constexpr float kStandingSpeed = 0.1f;
+// A chain goes on through vehicles crawling in the queue (below 10 km/h, bounded by a leader or by the room
+// on the next lane) up to what holds the queue's head; a faster vehicle ends it, as traffic that flows.
+constexpr float kQueueSpeed = 10.0f / 3.6f;
 constexpr double kTimeSlack = 1e-9;
 constexpr size_t kReasons = kSwap + 1;
 
-bool has_blocker(const JamVehicleState& s) {
-  return s.speed < kStandingSpeed && (s.reason == kLeader || s.reason == kNoRoom);
-}
+bool held_by_vehicle(const JamVehicleState& s) { return s.reason == kLeader || s.reason == kNoRoom; }
+
+bool has_blocker(const JamVehicleState& s) { return s.speed < kQueueSpeed && held_by_vehicle(s); }
 
 }  // namespace
+
+JamRecorder::Episode JamRecorder::started(double t) {
+  Episode e;
+  e.begin = t;
+  e.reason_steps.assign(kReasons, 0);
+  return e;
+}
 
 JamRecorder::JamRecorder(const std::string& path, double stop_time, const Network& net, const Simulation& sim)
     : net_(net), writer_(path, net, sim.demand(), stop_time), stop_time_(stop_time) {}
@@ -38,15 +48,17 @@ void JamRecorder::take_snapshot(const Simulation& sim) {
   if (order_index_.size() < vehicles) order_index_.resize(vehicles);
   for (size_t i = 0; i < frame_.vehicle.size(); ++i) {
     const uint32_t v = frame_.vehicle[i];
-    cur_[v] = Snapshot{step_, JamVehicleState{v, frame_.lane[i], frame_.pos[i], frame_.speed[i], 0}, -1};
-    // The reason only matters while it stands; reading it for every vehicle would cost a lookup each.
-    if (frame_.speed[i] < kStandingSpeed) cur_[v].state.reason = sim.limit_reason(v);
+    // Every vehicle's reason, as a moving vehicle may end a chain (the head of a slow queue).
+    cur_[v] = Snapshot{
+        step_, JamVehicleState{v, frame_.lane[i], frame_.pos[i], frame_.speed[i], sim.limit_reason(v)}, -1};
   }
 }
 
 void JamRecorder::find_blockers(const Simulation& sim) {
   bool any = false;
-  for (const uint32_t v : frame_.vehicle) any = any || has_blocker(cur_[v].state);
+  // Chains are read only from vehicles standing: without one, no blocker is needed.
+  for (const uint32_t v : frame_.vehicle)
+    any = any || (cur_[v].state.speed < kStandingSpeed && held_by_vehicle(cur_[v].state));
   if (!any) return;
   order_.clear();
   for (size_t i = 0; i < frame_.vehicle.size(); ++i)
@@ -99,16 +111,21 @@ JamRecord JamRecorder::record(uint32_t v, const Episode& e, double end, JamEnd h
   r.reason_seconds.resize(kReasons);
   for (size_t k = 0; k < kReasons && k < e.reason_steps.size(); ++k)
     r.reason_seconds[k] = static_cast<double>(e.reason_steps[k]) * dt;
-  // Follow the blockers until one is not blocked by another, or the chain comes back (a deadlock cycle).
+  // Follow the blockers until one is not blocked by another, or the chain comes back: a deadlock cycle when
+  // every vehicle in it stands (a ring of crawling vehicles still moves).
   std::unordered_map<uint32_t, int32_t> seen;  // vehicle -> its index in the chain
+  auto standing_from = [&](size_t k) {
+    return std::all_of(r.chain.begin() + static_cast<std::ptrdiff_t>(k), r.chain.end(),
+                       [](const JamVehicleState& c) { return c.speed < kStandingSpeed; });
+  };
   for (int64_t b = s != nullptr ? s->blocker : -1; b >= 0;) {
     const uint32_t bv = static_cast<uint32_t>(b);
     if (bv == v) {
-      r.cycle_from = JamRecord::kSelf;
+      if (r.where.speed < kStandingSpeed && standing_from(0)) r.cycle_from = JamRecord::kSelf;
       break;
     }
     if (const auto it = seen.find(bv); it != seen.end()) {
-      r.cycle_from = it->second;
+      if (standing_from(static_cast<size_t>(it->second))) r.cycle_from = it->second;
       break;
     }
     const Snapshot* bs = in(snap, step, bv);
@@ -129,6 +146,15 @@ void JamRecorder::count_last_step(Episode& e, uint32_t v) const {
   ++e.reason_steps[s->state.reason < kReasons ? s->state.reason : 0];
 }
 
+JamRecord JamRecorder::with_held(const Episode& e, JamRecord r) {
+  if (e.held_known) {
+    r.where = e.held.where;
+    r.chain = e.held.chain;
+    r.cycle_from = e.held.cycle_from;
+  }
+  return r;
+}
+
 void JamRecorder::after_step(const Simulation& sim) {
   take_snapshot(sim);
   find_blockers(sim);
@@ -137,7 +163,7 @@ void JamRecorder::after_step(const Simulation& sim) {
   // A teleport is recorded however long the vehicle stood, from the last step it was on the road.
   for (const TeleportEvent& te : sim.teleport_events()) {
     const auto it = standing_.find(te.vehicle);
-    Episode e = it != standing_.end() ? it->second : Episode{t, {}};
+    Episode e = it != standing_.end() ? it->second : started(t);
     count_last_step(e, te.vehicle);
     ended.emplace_back(te.vehicle,
                        record(te.vehicle, e, t, JamEnd::Teleported, te.cause, prev_, step_ - 1, te.lane, dt));
@@ -145,21 +171,27 @@ void JamRecorder::after_step(const Simulation& sim) {
   }
   for (auto it = standing_.begin(); it != standing_.end();) {
     count_last_step(it->second, it->first);
+    Episode& e = it->second;
     const Snapshot* s = in(cur_, step_, it->first);
     if (s != nullptr && s->state.speed < kStandingSpeed) {
+      // Standing now, the episode is at least t + dt - begin long: past the stop time, take what holds it.
+      if (!e.held_known && t + dt - e.begin + kTimeSlack >= stop_time_) {
+        e.held = record(it->first, e, t, JamEnd::RunEnded, TeleportCause::Jam, cur_, step_, 0, dt);
+        e.held_known = true;
+      }
       ++it;
       continue;
     }
-    if (t - it->second.begin + kTimeSlack >= stop_time_)
+    if (t - e.begin + kTimeSlack >= stop_time_)
       ended.emplace_back(it->first,
-                         record(it->first, it->second, t, s != nullptr ? JamEnd::Moved : JamEnd::LeftRoad,
-                                TeleportCause::Jam, prev_, step_ - 1, 0, dt));
+                         with_held(e, record(it->first, e, t, s != nullptr ? JamEnd::Moved : JamEnd::LeftRoad,
+                                             TeleportCause::Jam, prev_, step_ - 1, 0, dt)));
     it = standing_.erase(it);
   }
   for (const uint32_t v : frame_.vehicle) {
     const JamVehicleState& s = cur_[v].state;
     if (s.speed >= kStandingSpeed || standing_.count(v) != 0) continue;
-    standing_.emplace(v, Episode{t, std::vector<uint32_t>(kReasons, 0)});
+    standing_.emplace(v, started(t));
   }
   std::stable_sort(ended.begin(), ended.end(),
                    [](const auto& a, const auto& b) { return a.first < b.first; });
@@ -170,7 +202,8 @@ void JamRecorder::finish(const Simulation& sim) {
   const double t = sim.time();
   for (const auto& [v, e] : standing_)
     if (t - e.begin + kTimeSlack >= stop_time_)
-      writer_.write(record(v, e, t, JamEnd::RunEnded, TeleportCause::Jam, cur_, step_, 0, sim.step_length()));
+      writer_.write(with_held(
+          e, record(v, e, t, JamEnd::RunEnded, TeleportCause::Jam, cur_, step_, 0, sim.step_length())));
   standing_.clear();
   writer_.close();
 }

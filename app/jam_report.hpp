@@ -36,9 +36,16 @@ class JamRecorder {
   struct Episode {
     double begin = 0;
     std::vector<uint32_t> reason_steps;  // steps standing per StopReason
+    // Where it stood and what held it in the step its standing reached the stop time: the last standing
+    // step would show every queue at the moment it is released, its leader already moving.
+    bool held_known = false;
+    JamRecord held;
   };
 
+  static Episode started(double t);
   void take_snapshot(const Simulation& sim);
+  /// `r` with where the vehicle stood and what held it taken from the step it had stood the stop time.
+  static JamRecord with_held(const Episode& e, JamRecord r);
   void count_last_step(Episode& e, uint32_t v) const;
   void find_blockers(const Simulation& sim);
   /// The first vehicle ahead of the running vehicle `at` (index into order_): on its lane, else the first

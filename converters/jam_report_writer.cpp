@@ -40,12 +40,13 @@ JamReportWriter::JamReportWriter(const std::string& path, const Network& net, co
     : net_(net), demand_(demand), out_(path) {
   out_.text("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
   out_.text(
-      "<!-- LPSim jam report: every teleport and every vehicle standing (speed < 0.1 m/s) at least stopTime "
-      "s;\n"
-      "     reason: what bounded its speed in the last step it stood; blocker: the chain of vehicles ahead "
-      "of it\n"
-      "     (on its lane, else the first on the next lane of its route); deadlock: a chain that comes back. "
-      "-->\n");
+      "<!-- LPSim jam report: every teleport and every vehicle standing (speed < 0.1 m/s) at least\n"
+      "     stopTime s. lane, pos, reason (what bounded its speed) and blockers: as of the step it had "
+      "stood\n"
+      "     stopTime s (a teleport: its last step on the road); reasons: its standing seconds per reason;\n"
+      "     blocker: the chain of vehicles ahead (on its lane, else the first on the next lane of its "
+      "route)\n"
+      "     while they crawl below 10 km/h; deadlock: a chain of standing vehicles that comes back. -->\n");
   out_.text("<jamReport");
   out_.attr_fixed("stopTime", stop_time);
   out_.text(">\n");

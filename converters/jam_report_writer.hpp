@@ -24,8 +24,9 @@ struct JamVehicleState {
 /// How a standing episode ended.
 enum class JamEnd : uint8_t { Moved, Teleported, LeftRoad, RunEnded };
 
-/// One standing episode (or a teleport). `where` is the vehicle in the last step it stood; `chain` the
-/// vehicles that blocked it then, each blocking the one before (empty when its reason has no blocker);
+/// One standing episode (or a teleport). `where` is the vehicle in the step it had stood the stop time (a
+/// teleport: its last step on the road); `chain` the vehicles that blocked it then, each blocking the one
+/// before (empty when its reason has no blocker);
 /// `cycle_from` the index in `chain` where a deadlock cycle starts (the chain's last vehicle is blocked by
 /// chain[cycle_from], or by the vehicle itself when cycle_from is kSelf), or -1 when the chain ends at a
 /// vehicle that is not blocked by another.

@@ -16,6 +16,7 @@ import argparse
 import collections
 import gzip
 import re
+import signal
 import sys
 import xml.etree.ElementTree as ET
 
@@ -89,6 +90,15 @@ def sumo_teleports(path):
     return counts
 
 
+def root_cause(jam):
+    """What holds the chain at its end: the reason of its last vehicle (the vehicle itself when nothing blocks
+    it), "moving, ..." when that vehicle moves (a slow queue, not a blocked one), or "deadlock cycle"."""
+    if jam["deadlock"] is not None:
+        return "deadlock cycle"
+    root = jam["blockers"][-1] if jam["blockers"] else jam
+    return ("moving, " if float(root["speed"]) >= STANDING else "") + root["reason"]
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("jam_report")
@@ -100,8 +110,10 @@ def main():
 
     stop_time, jams = read_report(a.jam_report)
     lp_seconds, lp_episodes, lp_teleports = collections.Counter(), collections.Counter(), collections.Counter()
+    causes = collections.defaultdict(collections.Counter)  # place -> root cause -> standing seconds
     for j in jams:
         p = place(j["lane"], a.by)
+        causes[p][root_cause(j)] += float(j["duration"])
         if j["ended"] == "teleported":
             lp_teleports[p] += 1
         if float(j["duration"]) + 1e-9 >= stop_time:
@@ -122,10 +134,14 @@ def main():
           + (f", {sum(su_teleports.values())} teleports)" if a.sumo_log else ")"))
     places = sorted(set(lp_seconds) | set(lp_teleports), key=lambda p: (-lp_seconds[p], -lp_teleports[p], p))
     print(f"\n{'rank':>4}  {a.by:<32} {'LPSim veh-s':>11} {'episodes':>8} {'teleports':>9} "
-          f"{'SUMO veh-s':>10} {'episodes':>8}" + (f" {'teleports':>9}" if a.sumo_log else ""))
+          f"{'SUMO veh-s':>10} {'episodes':>8}" + (f" {'teleports':>9}" if a.sumo_log else "")
+          + "  LPSim's main root cause there (share of its veh-s)")
     for rank, p in enumerate(places[: a.top], 1):
+        main_cause, secs = causes[p].most_common(1)[0] if causes[p] else ("-", 0)
+        share = secs / sum(causes[p].values()) if secs else 0
         print(f"{rank:>4}  {p:<32} {lp_seconds[p]:>11.0f} {lp_episodes[p]:>8} {lp_teleports[p]:>9} "
-              f"{su_seconds[p]:>10.0f} {su_episodes[p]:>8}" + (f" {su_teleports[p]:>9}" if a.sumo_log else ""))
+              f"{su_seconds[p]:>10.0f} {su_episodes[p]:>8}" + (f" {su_teleports[p]:>9}" if a.sumo_log else "")
+              + f"  {main_cause} ({share:.0%})")
 
     # Causes. A record's reason is what bounded it in the last step it stood; its reasons attribute the
     # seconds per reason over the episode; a chain's root is its last blocker (or the vehicle itself).
@@ -138,14 +154,11 @@ def main():
             reason_seconds[name] += float(secs)
         if j["ended"] == "teleported":
             teleport_causes[j.get("teleport", "jam")] += 1
-        if j["deadlock"] is not None:
-            roots["deadlock cycle"] += 1
-        else:
-            roots[(j["blockers"][-1] if j["blockers"] else j)["reason"]] += 1
+        roots[root_cause(j)] += 1
     print("\nReasons (episodes by last reason; standing seconds by reason over all episodes):")
     for name in sorted(set(reason_count) | set(reason_seconds), key=lambda n: -reason_seconds[n]):
         print(f"  {name:<12} {reason_count[name]:>7} episodes {reason_seconds[name]:>10.0f} s")
-    print("Root causes (reason of the chain's last vehicle):")
+    print("Root causes (reason of the last vehicle of each chain, the vehicle itself when none blocks it):")
     for name, n in roots.most_common():
         print(f"  {name:<15} {n:>7}")
     print("Teleports by cause: " + (", ".join(f"{c} {n}" for c, n in teleport_causes.most_common()) or "none"))
@@ -164,4 +177,5 @@ def main():
 
 
 if __name__ == "__main__":
+    signal.signal(signal.SIGPIPE, signal.SIG_DFL)  # quiet when piped into head
     sys.exit(main())
