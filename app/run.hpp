@@ -32,7 +32,8 @@ class Run {
   };
 
   /// Builds the simulation of `scenario` at its begin time, opens the outputs `config` asks for (FCD,
-  /// tripinfo, summary, statistic, edgeData/laneData, and the scenario's own edgeData/laneData definitions)
+  /// tripinfo, summary, statistic, edgeData/laneData, and the scenario's own edgeData/laneData definitions;
+  /// LPSim's jam report with --jam-report)
   /// and writes the state at the begin time. The Run owns the scenario; its demand becomes the simulation's
   /// trip table (move a scenario in, so that a large demand is not copied). Run sets options.lane_counters
   /// itself: on exactly when an edgeData/laneData output needs them (the engine skips their atomics
