@@ -47,6 +47,7 @@ std::vector<NamedPath> outputs_of(const Scenario& sc, CliCommand command) {
   add("--statistic-output", c.outputs.statistic);
   add("--edgedata-output", c.outputs.edgedata);
   add("--lanedata-output", c.outputs.lanedata);
+  add("--jam-report", c.jam_report);
   for (const auto& m : sc.mean_data)
     if (!m.file.empty())
       out.push_back({std::string(m.lane_level ? "<laneData" : "<edgeData") + " id=\"" + m.id + "\"> file",

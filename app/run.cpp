@@ -57,6 +57,9 @@ void Run::open_outputs() {
   }
   if (!out.summary.empty()) summary_ = std::make_unique<SummaryWriter>(out.summary);
   if (!out.statistic.empty()) statistic_ = std::make_unique<StatisticWriter>(out.statistic);
+  if (!config_.jam_report.empty())
+    jam_ = std::make_unique<JamRecorder>(config_.jam_report, config_.jam_report_stop_time, scenario_.network,
+                                         sim_);
   for (MeanDataOutput& m : mean_data_) {
     m.writer = std::make_unique<MeanDataWriter>(m.spec, scenario_.network, demand());
     m.interval_begin = m.spec.begin >= 0 ? m.spec.begin : sim_.time();
@@ -75,6 +78,7 @@ void Run::step() {
        : t.cause == TeleportCause::WrongLane ? totals_.teleports_wrong_lane
                                              : totals_.teleports_jam);
   totals_.peak_running = std::max<uint64_t>(totals_.peak_running, sim_.counts().running);
+  if (jam_) jam_->after_step(sim_);
   write_step_outputs();
   close_due_intervals();
 }
@@ -114,6 +118,7 @@ void Run::finish() {
   if (fcd_) fcd_->close();
   if (tripinfo_) tripinfo_->close();
   if (summary_) summary_->close();
+  if (jam_) jam_->finish(sim_);
   closed_ = true;
 }
 
@@ -159,6 +164,7 @@ void Run::flush_outputs() {
   if (fcd_) fcd_->flush();
   if (tripinfo_) tripinfo_->flush();
   if (summary_) summary_->flush();
+  if (jam_) jam_->flush();
 }
 
 RunStatistics Run::statistics() const {

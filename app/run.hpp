@@ -7,6 +7,7 @@
 #include <memory>
 #include <vector>
 
+#include "app/jam_report.hpp"
 #include "app/scenario.hpp"
 #include "converters/fcd_writer.hpp"
 #include "converters/mean_data_writer.hpp"
@@ -31,7 +32,8 @@ class Run {
   };
 
   /// Builds the simulation of `scenario` at its begin time, opens the outputs `config` asks for (FCD,
-  /// tripinfo, summary, statistic, edgeData/laneData, and the scenario's own edgeData/laneData definitions)
+  /// tripinfo, summary, statistic, edgeData/laneData, and the scenario's own edgeData/laneData definitions;
+  /// LPSim's jam report with --jam-report)
   /// and writes the state at the begin time. The Run owns the scenario; its demand becomes the simulation's
   /// trip table (move a scenario in, so that a large demand is not copied). Run sets options.lane_counters
   /// itself: on exactly when an edgeData/laneData output needs them (the engine skips their atomics
@@ -104,6 +106,7 @@ class Run {
   std::unique_ptr<TripinfoWriter> tripinfo_;
   std::unique_ptr<SummaryWriter> summary_;
   std::unique_ptr<StatisticWriter> statistic_;
+  std::unique_ptr<JamRecorder> jam_;  // only with --jam-report: without it a step does no work for it
   FcdFrame frame_;
   double next_fcd_ = 0;
   Totals totals_;

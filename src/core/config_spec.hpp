@@ -29,6 +29,10 @@ struct ConfigSpec {
   // Not a SUMO option: when stderr is not a terminal, `lpsim run` prints a progress line every this many
   // wall-clock seconds (on a terminal it redraws one line instead).
   double progress_interval = 60;
+  // Not a SUMO option: `lpsim run --jam-report FILE` records every teleport and every vehicle standing at
+  // least jam_report_stop_time s, with what blocked it (app/jam_report.hpp); empty: no report, no work.
+  std::string jam_report;
+  double jam_report_stop_time = 60;
   bool ignore_route_errors = false;
   int threads = 0;  // 0: all hardware threads
   // Not a SUMO option: the most lane map (one byte per metre of car lane) a network may ask for, in GiB, so
