@@ -31,14 +31,18 @@ struct CliResult {
   std::string out, err;
 };
 
-/// Runs LPSIM_BINARY with `args` (each passed as one word) in `dir`, which receives stdout.txt and
-/// stderr.txt.
-inline CliResult run_lpsim(const std::filesystem::path& dir, const std::vector<std::string>& args) {
+/// Runs `program` (its words, e.g. {"python3", "tool.py"}) with `args` (each passed as one word) in `dir`,
+/// which receives stdout.txt and stderr.txt.
+inline CliResult run_program(const std::filesystem::path& dir, const std::vector<std::string>& program,
+                             const std::vector<std::string>& args) {
   // Appended piecewise: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string temporaries.
   std::string cmd = "cd ";
   cmd += shell_quote(dir.string());
-  cmd += " && ";
-  cmd += shell_quote(LPSIM_BINARY);
+  cmd += " &&";
+  for (const auto& word : program) {
+    cmd += ' ';
+    cmd += shell_quote(word);
+  }
   for (const auto& a : args) {
     cmd += ' ';
     cmd += shell_quote(a);
@@ -50,6 +54,24 @@ inline CliResult run_lpsim(const std::filesystem::path& dir, const std::vector<s
   r.out = read_file(dir / "stdout.txt");
   r.err = read_file(dir / "stderr.txt");
   return r;
+}
+
+/// Runs LPSIM_BINARY with `args` in `dir` (see run_program).
+inline CliResult run_lpsim(const std::filesystem::path& dir, const std::vector<std::string>& args) {
+  return run_program(dir, {LPSIM_BINARY}, args);
+}
+
+/// The lines of `text` (a stream's output), without their line ends.
+inline std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> lines;
+  size_t start = 0;
+  while (start < text.size()) {
+    size_t nl = text.find('\n', start);
+    if (nl == std::string::npos) nl = text.size();
+    lines.push_back(text.substr(start, nl - start));
+    start = nl + 1;
+  }
+  return lines;
 }
 
 }  // namespace lpsim::test

@@ -22,7 +22,6 @@ namespace fs = std::filesystem;
 using test::CliResult;
 using test::read_file;
 using test::run_lpsim;
-using test::shell_quote;
 using test::TempDir;
 
 const std::string kSmall = std::string(LPSIM_SCENARIOS_DIR) + "/lpsim_csv_small/";
@@ -34,23 +33,9 @@ bool have_netconvert() {
   return home && fs::exists(fs::path(home) / "bin" / "netconvert");
 }
 
-// Runs the converter in `dir` (stdout/stderr to tool_out.txt / tool_err.txt).
+// Runs the converter in `dir` (see test::run_program).
 CliResult run_tool(const fs::path& dir, const std::vector<std::string>& args) {
-  std::string cmd = "cd ";
-  cmd += shell_quote(dir.string());
-  cmd += " && python3 ";
-  cmd += shell_quote(kTool);
-  for (const auto& a : args) {
-    cmd += ' ';
-    cmd += shell_quote(a);
-  }
-  cmd += " > tool_out.txt 2> tool_err.txt";
-  const int status = std::system(cmd.c_str());
-  CliResult r;
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = read_file(dir / "tool_out.txt");
-  r.err = read_file(dir / "tool_err.txt");
-  return r;
+  return test::run_program(dir, {"python3", kTool}, args);
 }
 
 size_t count_matches(const std::string& text, const std::string& pattern) {

@@ -21,19 +21,8 @@ const std::string kGridNet = std::string(LPSIM_SCENARIOS_DIR) + "/grid_tls/grid_
 const std::string kCsvDir = std::string(LPSIM_SCENARIOS_DIR) + "/lpsim_csv_small";
 
 using test::CliResult;
+using test::lines_of;
 using test::read_file;
-
-std::vector<std::string> lines_of(const std::string& text) {
-  std::vector<std::string> lines;
-  size_t start = 0;
-  while (start < text.size()) {
-    size_t nl = text.find('\n', start);
-    if (nl == std::string::npos) nl = text.size();
-    lines.push_back(text.substr(start, nl - start));
-    start = nl + 1;
-  }
-  return lines;
-}
 
 class CliBadInputTest : public ::testing::Test {
  protected:

@@ -34,7 +34,7 @@ TEST_F(CliModelWarningsTest, CarFollowModelsOtherThanIdmWarnOncePerModel) {
                        "lpsim: warning: carFollowModel 'Wiedemann' is not implemented, IDM is used instead "
                        "for 1 vType: 'w'"))
       << r.err;
-  EXPECT_EQ(test::stderr_lines(r.err).size(), 2u) << r.err;  // IDM and SUMO's default say nothing
+  EXPECT_EQ(test::lines_of(r.err).size(), 2u) << r.err;  // IDM and SUMO's default say nothing
   EXPECT_NE(r.out.find("not implemented: carFollowModel 'Krauss'"), std::string::npos) << r.out;
 }
 

@@ -15,18 +15,6 @@ namespace lpsim::test {
 
 inline const std::string kGridTlsNet = std::string(LPSIM_SCENARIOS_DIR) + "/grid_tls/grid_tls.net.xml";
 
-inline std::vector<std::string> stderr_lines(const std::string& text) {
-  std::vector<std::string> lines;
-  size_t start = 0;
-  while (start < text.size()) {
-    size_t nl = text.find('\n', start);
-    if (nl == std::string::npos) nl = text.size();
-    lines.push_back(text.substr(start, nl - start));
-    start = nl + 1;
-  }
-  return lines;
-}
-
 class CliScenarioTest : public ::testing::Test {
  protected:
   void write(const std::string& name, const std::string& text) const { tmp_.write(name, text); }
@@ -55,7 +43,7 @@ class CliScenarioTest : public ::testing::Test {
 inline void expect_input_error(const CliResult& r, const std::string& where,
                                const std::vector<std::string>& parts) {
   EXPECT_EQ(r.exit_code, 2) << r.err;
-  const auto lines = stderr_lines(r.err);
+  const auto lines = lines_of(r.err);
   ASSERT_EQ(lines.size(), 1u) << r.err;
   const std::string prefix = "lpsim: error: " + where + ": ";
   EXPECT_EQ(lines[0].rfind(prefix, 0), 0u) << "expected prefix '" << prefix << "' in: " << lines[0];
@@ -65,7 +53,7 @@ inline void expect_input_error(const CliResult& r, const std::string& where,
 
 // True when stderr holds exactly the line `line`.
 inline bool has_line(const CliResult& r, const std::string& line) {
-  for (const auto& l : stderr_lines(r.err))
+  for (const auto& l : lines_of(r.err))
     if (l == line) return true;
   return false;
 }
