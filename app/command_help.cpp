@@ -27,9 +27,10 @@ simulate and write SUMO outputs
 
 constexpr const char* kTrailer = R"(
 Options take SUMO's names and may also come from the .sumocfg (except -c, -o, --device,
---max-lane-map-gb, --progress-interval and --jam-report, which are LPSim's own). Other SUMO options: those that cannot change the results
-(verbose, log, gui-settings-file, ...) are ignored with a warning; those that could (scale, mesosim, ...)
-are refused unless set to SUMO's default. No output may be the same file as an input or another output.
+--max-lane-map-gb, --progress-interval and --jam-report*, which are LPSim's own). Other SUMO options:
+those that cannot change the results (verbose, log, gui-settings-file, ...) are ignored with a warning;
+those that could (scale, mesosim, ...) are refused unless set to SUMO's default. No output may be the
+same file as an input or another output.
 )";
 
 }  // namespace
