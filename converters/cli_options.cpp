@@ -74,7 +74,7 @@ const OptionDef kOptions[] = {
   {"end", "", 'e', Kind::Time, Check::None, false, kLoad, "end time; -1 (default): until every vehicle has arrived", [](ConfigSpec& c, Value&& v) { c.end = v.seconds; }},
   {"step-length", "", 0, Kind::Time, Check::StepLength, false, kLoad, "step length in s, a whole number of milliseconds (default 1)", [](ConfigSpec& c, Value&& v) { c.step_length = v.seconds; }},
   // Loading applies it (the demand's vTypes carry the model), so every command takes it.
-  {"default.carfollowmodel", "", 0, Kind::Name, Check::None, false, kLoad, "car-following model of vTypes that name none: Krauss (default) or IDM; others run the IDM", [](ConfigSpec& c, Value&& v) { c.default_car_follow_model = std::move(v.text); }},
+  {"default.carfollowmodel", "", 0, Kind::Name, Check::None, false, kLoad, "car-following model of vTypes that name none: Krauss (default) or IDM; others run IDM", [](ConfigSpec& c, Value&& v) { c.default_car_follow_model = std::move(v.text); }},
   {"seed", "", 0, Kind::Integer, Check::None, false, kLoad, "random seed (default 23423)", [](ConfigSpec& c, Value&& v) { c.seed = v.integer; }},
   // Negative disables teleporting, as in SUMO.
   {"time-to-teleport", "", 0, Kind::Time, Check::None, false, kRun, "waiting time before a blocked vehicle teleports; < 0: never (default 300)", [](ConfigSpec& c, Value&& v) { c.time_to_teleport = v.seconds; }},
