@@ -29,7 +29,7 @@ while [[ $# -gt 0 ]]; do
     --lpsim-repeats) lpsim_repeats="$2"; shift 2 ;;
     --scenarios) scenarios="$2"; shift 2 ;;
     --lpsim) lpsim="$2"; shift 2 ;;
-    -h|--help) sed -n '2,14p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,13p' "$0"; exit 0 ;;
     *) echo "unknown option $1" >&2; exit 2 ;;
   esac
 done
