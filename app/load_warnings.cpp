@@ -7,9 +7,10 @@ namespace lpsim {
 
 namespace {
 
-// The models the step implements (docs/MODELS.md): IDM car following, and a lane changer that stands in for
-// SUMO's default LC2013 (mandatory changes towards the best lanes, MOBIL for speed).
-constexpr std::string_view kCarFollowModel = "IDM";
+// The models the step implements (docs/MODELS.md): IDM and Krauss car following (any other model runs the
+// IDM), and a lane changer that stands in for SUMO's default LC2013 (mandatory changes towards the best
+// lanes, MOBIL for speed).
+bool car_follow_implemented(const std::string& model) { return model == "IDM" || model == "Krauss"; }
 constexpr std::string_view kLaneChangeModel = "LC2013";
 // A warning names this many ids and then how many more there are.
 constexpr size_t kIdsNamed = 5;
@@ -28,12 +29,13 @@ std::string plural(size_t n, const std::string& word) {
 }  // namespace
 
 std::vector<std::string> unimplemented_settings(const DemandSpec& demand, const NetSpec& net,
-                                                const AdditionalSpec& additional) {
-  // model -> the vTypes asking for it, in file order.
+                                                const AdditionalSpec& additional,
+                                                const std::string& default_car_follow_model) {
+  // model -> the vTypes asking for it, in file order (a vType naming no model asks for the default).
   std::map<std::string, std::vector<std::string>> car_follow, lane_change;
   for (const VTypeSpec& t : demand.vtypes) {
-    if (t.car_follow_model_given && t.car_follow_model != kCarFollowModel)
-      car_follow[t.car_follow_model].push_back(t.id);
+    const std::string& model = t.car_follow_model_given ? t.car_follow_model : default_car_follow_model;
+    if (!car_follow_implemented(model)) car_follow[model].push_back(t.id);
     if (!t.lane_change_model.empty() && t.lane_change_model != kLaneChangeModel)
       lane_change[t.lane_change_model].push_back(t.id);
   }
@@ -41,6 +43,11 @@ std::vector<std::string> unimplemented_settings(const DemandSpec& demand, const 
   for (const auto& [model, ids] : car_follow)
     lines.push_back("carFollowModel '" + model + "' is not implemented, IDM is used instead for " +
                     plural(ids.size(), "vType") + ": " + id_list(ids));
+  // Vehicles without a vType run SUMO's DEFAULT_VEHTYPE, which takes the default model too.
+  if (!car_follow_implemented(default_car_follow_model) && car_follow.count(default_car_follow_model) == 0)
+    lines.push_back("carFollowModel '" + default_car_follow_model +
+                    "' (--default.carfollowmodel) is not implemented, IDM is used instead for vTypes that "
+                    "name no model");
   for (const auto& [model, ids] : lane_change)
     lines.push_back("laneChangeModel '" + model +
                     "' is not implemented, LPSim's lane changing (in place of " +

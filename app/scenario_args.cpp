@@ -32,7 +32,9 @@ void refuse_inputs_beside_snapshot(const ConfigSpec& c, const std::string& snaps
   const char* load_only = c.ignore_route_errors != defaults.ignore_route_errors ? "--ignore-route-errors"
                           : c.minor_penalty != defaults.minor_penalty           ? "--weights.minor-penalty"
                           : c.max_lane_map_gb != defaults.max_lane_map_gb       ? "--max-lane-map-gb"
-                                                                                : nullptr;
+                          : c.default_car_follow_model != defaults.default_car_follow_model
+                              ? "--default.carfollowmodel"
+                              : nullptr;
   if (load_only)
     throw InputError(SourceLoc{"command line", 0}, std::string(load_only) + " given beside the snapshot '" +
                                                        snapshot +

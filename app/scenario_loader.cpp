@@ -33,7 +33,7 @@ Scenario load_scenario(const ConfigSpec& config) {
   for (const auto& f : config.route_files) read_sumo_routes(f, demand, additional);
   if (!config.lpsim_od_csv.empty()) read_lpsim_od_csv(config.lpsim_od_csv, net, demand);
 
-  sc.warnings = unimplemented_settings(demand, net, additional);
+  sc.warnings = unimplemented_settings(demand, net, additional, config.default_car_follow_model);
   NetworkLimits limits;
   limits.max_lane_map_gib = config.max_lane_map_gb;
   limits.max_lane_map_option = "--max-lane-map-gb";
@@ -46,6 +46,7 @@ Scenario load_scenario(const ConfigSpec& config) {
   opt.end = config.end;
   opt.step_length = config.step_length;
   opt.minor_penalty = config.minor_penalty;
+  opt.default_car_follow_model = config.default_car_follow_model;
   sc.demand = build_demand(demand, sc.network, opt);
   if (const uint64_t n = sc.demand.raised_speed_factors; n > 0)
     sc.warnings.push_back(

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Engine benchmark: vehicle-updates per CPU-second and peak memory of `lpsim run --threads 2` against SUMO
-# (microscopic, IDM) and SUMO --mesosim on the same files in the same run.
+# (microscopic) and SUMO --mesosim on the same files in the same run; SUMO and LPSim both run the IDM
+# (--default.carfollowmodel IDM: binaries before Krauss was implemented refuse that option).
 #   scenario grid40: 40x40 signalised grid (netgenerate, 200 m, 2 lanes), 100k vehicles on explicit routes
 #                    (random walks of 10-40 edges, departures over 3600 s), simulated for --end seconds;
 #   scenario bologna: ../shared/scenarios/bologna_acosta (largest demand among the shared scenarios).
@@ -95,7 +96,7 @@ for sc in $scenarios; do
       case "$sim" in
         sumo) cmd=(sumo -c "$cfg" --default.carfollowmodel IDM --end "$end" --no-step-log --summary-output "$summary") ;;
         meso) cmd=(sumo -c "$cfg" --mesosim --end "$end" --no-step-log --summary-output "$summary") ;;
-        lpsim) cmd=("$lpsim" run -c "$cfg" --threads 2 --end "$end" --summary-output "$summary") ;;
+        lpsim) cmd=("$lpsim" run -c "$cfg" --default.carfollowmodel IDM --threads 2 --end "$end" --summary-output "$summary") ;;
       esac
       cmd+=("${extra[@]}")
       # SUMO's log file too (LPSim writes none).

@@ -13,7 +13,7 @@ namespace lpsim {
 
 namespace {
 
-enum class Kind { Path, PathList, Time, Bool, Integer, Number, Device };
+enum class Kind { Path, PathList, Time, Bool, Integer, Number, Device, Name };
 
 // A checked value, handed to the option's store function.
 struct Value {
@@ -73,6 +73,8 @@ const OptionDef kOptions[] = {
   {"begin", "", 'b', Kind::Time, Check::None, false, kLoad, "begin time (s or h:m:s); earlier departures are dropped", [](ConfigSpec& c, Value&& v) { c.begin = v.seconds; }},
   {"end", "", 'e', Kind::Time, Check::None, false, kLoad, "end time; -1 (default): until every vehicle has arrived", [](ConfigSpec& c, Value&& v) { c.end = v.seconds; }},
   {"step-length", "", 0, Kind::Time, Check::StepLength, false, kLoad, "step length in s, a whole number of milliseconds (default 1)", [](ConfigSpec& c, Value&& v) { c.step_length = v.seconds; }},
+  // Loading applies it (the demand's vTypes carry the model), so every command takes it.
+  {"default.carfollowmodel", "", 0, Kind::Name, Check::None, false, kLoad, "car-following model of vTypes that name none: Krauss (default) or IDM; others run IDM", [](ConfigSpec& c, Value&& v) { c.default_car_follow_model = std::move(v.text); }},
   {"seed", "", 0, Kind::Integer, Check::None, false, kLoad, "random seed (default 23423)", [](ConfigSpec& c, Value&& v) { c.seed = v.integer; }},
   // Negative disables teleporting, as in SUMO.
   {"time-to-teleport", "", 0, Kind::Time, Check::None, false, kRun, "waiting time before a blocked vehicle teleports; < 0: never (default 300)", [](ConfigSpec& c, Value&& v) { c.time_to_teleport = v.seconds; }},
@@ -182,6 +184,11 @@ Value convert(const OptionDef& def, std::string_view name, const std::string& va
       v.number = *x;
       break;
     }
+    case Kind::Name:
+      if (value.empty() || value.find_first_of(" \t\r\n,") != std::string::npos)
+        bad_value(where, name, value, "expected a model name");
+      v.text = value;
+      break;
     case Kind::Device:
       if (value == "auto")
         v.device = ComputeDevice::Auto;
@@ -273,6 +280,9 @@ std::string describe_options(CliCommand command) {
         break;
       case Kind::Device:
         left += " DEVICE";
+        break;
+      case Kind::Name:
+        left += " MODEL";
         break;
     }
     if (!d.synonym.empty()) left += " (or --" + std::string(d.synonym) + ")";

@@ -35,7 +35,6 @@ constexpr ForeignOption kForeign[] = {
   {"collision.mingap-factor", "-1", 0, Class::Unsupported},
   {"collision.stoptime", "0", 0, Class::Unsupported},
   {"default.action-step-length", "0", 0, Class::Unsupported},
-  {"default.carfollowmodel", "Krauss", 0, Class::Unsupported},
   {"default.emergencydecel", "default", 0, Class::Unsupported},
   {"default.speeddev", "-1", 0, Class::Unsupported},
   {"delay", "0", 'd', Class::Inert},

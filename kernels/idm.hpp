@@ -10,11 +10,17 @@
 // Position update assumed by the safety guarantee: semi-implicit Euler, x(t+dt) = x(t) + v(t+dt) * dt (SUMO's
 // default), with every vehicle choosing its next speed from the state at the start of the step.
 #include <math.h>
+#include <stdint.h>
 
 #include "kernels/hd.hpp"
 
 namespace lpsim {
 
+/// The car-following model of a vehicle type (the TypeView's model column; SUMO's carFollowModel).
+enum CarFollowModel : uint8_t { kCarFollowIdm = 0, kCarFollowKrauss = 1 };
+
+/// A vehicle type's car-following parameters. The IDM reads the first six; Krauss (krauss.hpp) reads accel,
+/// decel, emergency_decel, tau (its headway), min_gap and sigma; `model` says which (car_following.hpp).
 struct IdmParams {
   float accel;            // a: maximum acceleration [m/s^2]
   float decel;            // b: comfortable deceleration [m/s^2]
@@ -22,6 +28,8 @@ struct IdmParams {
   float tau;              // T: desired time headway [s]
   float min_gap;          // s0: jam distance kept to the leader at standstill [m]
   float delta;            // acceleration exponent (4 in SUMO)
+  float sigma = 0.0f;     // Krauss's driver imperfection (dawdling) in [0, 1]
+  uint8_t model = kCarFollowIdm;
 };
 
 /// SUMO's passenger-car defaults with IDM's delta 4.

@@ -4,8 +4,8 @@
 // functions of plain numbers; the engine gathers neighbours from its lane map. See docs/MODELS.md.
 #include <stdint.h>
 
+#include "kernels/car_following.hpp"
 #include "kernels/hd.hpp"
-#include "kernels/idm.hpp"
 #include "kernels/rng.hpp"
 
 namespace lpsim {
@@ -36,10 +36,11 @@ LPSIM_HD LcNeighbor lc_no_neighbor() {
   return LcNeighbor{false, 0.0f, 0.0f, 0.0f, IdmParams{0, 0, 0, 0, 0, 0}};
 }
 
-/// IDM acceleration of a vehicle given its leader (free road when there is none).
-LPSIM_HD float lc_accel_behind(const IdmParams& p, float speed, float v0, const LcNeighbor& leader) {
-  if (!leader.present) return idm_free_accel(p, speed, v0);
-  return idm_accel(p, speed, v0, leader.gap, leader.speed);
+/// Acceleration of a vehicle by its car-following model given its leader (free road when there is none).
+LPSIM_HD float lc_accel_behind(const IdmParams& p, float speed, float v0, const LcNeighbor& leader,
+                               float dt) {
+  if (!leader.present) return cf_free_accel(p, speed, v0, dt);
+  return cf_accel(p, speed, v0, leader.gap, leader.speed, dt);
 }
 
 /// The changer behind the target lane's leader stays safe: it can keep the safe-speed invariant (see
@@ -62,8 +63,9 @@ LPSIM_HD bool lc_lag_gap_safe(const IdmParams& self, float self_speed, const LcN
 }
 
 /// Gap acceptance. urgency in [0, 1] (0 = discretionary, 1 = must change now) scales the braking that the
-/// change may impose through IDM from lc.b_safe up to each vehicle's comfortable decel, so urgent changes
-/// accept smaller gaps; the kinematic checks are never relaxed, so no accepted change is unsafe.
+/// change may impose through the car-following model from lc.b_safe up to each vehicle's comfortable decel,
+/// so urgent changes accept smaller gaps; the kinematic checks are never relaxed, so no accepted change is
+/// unsafe.
 LPSIM_HD bool lc_gaps_acceptable(const IdmParams& self, float self_speed, float self_v0,
                                  const LcNeighbor& lead, const LcNeighbor& lag, float urgency,
                                  const LaneChangeParams& lc, float dt) {
@@ -72,11 +74,11 @@ LPSIM_HD bool lc_gaps_acceptable(const IdmParams& self, float self_speed, float 
     return false;
   if (lead.present) {
     const float b_self = lc.b_safe + u * lp_fmaxf(self.decel - lc.b_safe, 0.0f);
-    if (idm_accel(self, self_speed, self_v0, lead.gap, lead.speed) < -b_self) return false;
+    if (cf_accel(self, self_speed, self_v0, lead.gap, lead.speed, dt) < -b_self) return false;
   }
   if (lag.present) {
     const float b_lag = lc.b_safe + u * lp_fmaxf(lag.idm.decel - lc.b_safe, 0.0f);
-    if (idm_accel(lag.idm, lag.speed, lag.desired_speed, lag.gap, self_speed) < -b_lag) return false;
+    if (cf_accel(lag.idm, lag.speed, lag.desired_speed, lag.gap, self_speed, dt) < -b_lag) return false;
   }
   return true;
 }
@@ -116,23 +118,23 @@ LPSIM_HD bool discretionary_change_wanted(const IdmParams& self, float self_spee
                                           const LcNeighbor& target_lag, float bias,
                                           const LaneChangeParams& lc, float dt) {
   if (!lc_gaps_acceptable(self, self_speed, self_v0, target_lead, target_lag, 0.0f, lc, dt)) return false;
-  const float a_self_now = lc_accel_behind(self, self_speed, self_v0, cur_lead);
-  const float a_self_after = lc_accel_behind(self, self_speed, self_v0, target_lead);
+  const float a_self_now = lc_accel_behind(self, self_speed, self_v0, cur_lead, dt);
+  const float a_self_after = lc_accel_behind(self, self_speed, self_v0, target_lead, dt);
   float a_new_lag_now = 0.0f, a_new_lag_after = 0.0f;
   if (target_lag.present) {
     // Before the change the target follower sees the target leader beyond the changer's slot.
     LcNeighbor beyond = target_lead;
     beyond.gap = target_lead.gap + self_length + target_lag.gap;
-    a_new_lag_now = lc_accel_behind(target_lag.idm, target_lag.speed, target_lag.desired_speed, beyond);
+    a_new_lag_now = lc_accel_behind(target_lag.idm, target_lag.speed, target_lag.desired_speed, beyond, dt);
     a_new_lag_after =
-        idm_accel(target_lag.idm, target_lag.speed, target_lag.desired_speed, target_lag.gap, self_speed);
+        cf_accel(target_lag.idm, target_lag.speed, target_lag.desired_speed, target_lag.gap, self_speed, dt);
   }
   float a_old_lag_now = 0.0f, a_old_lag_after = 0.0f;
   if (old_lag.present) {
-    a_old_lag_now = idm_accel(old_lag.idm, old_lag.speed, old_lag.desired_speed, old_lag.gap, self_speed);
+    a_old_lag_now = cf_accel(old_lag.idm, old_lag.speed, old_lag.desired_speed, old_lag.gap, self_speed, dt);
     LcNeighbor beyond = cur_lead;
     beyond.gap = cur_lead.gap + self_length + old_lag.gap;
-    a_old_lag_after = lc_accel_behind(old_lag.idm, old_lag.speed, old_lag.desired_speed, beyond);
+    a_old_lag_after = lc_accel_behind(old_lag.idm, old_lag.speed, old_lag.desired_speed, beyond, dt);
   }
   const float gain = mobil_incentive(a_self_now, a_self_after, a_new_lag_now, a_new_lag_after, a_old_lag_now,
                                      a_old_lag_after, lc.politeness);

@@ -47,6 +47,8 @@ struct TypeView {
   const float* max_speed;
   const float* tau;
   const float* delta;
+  const float* sigma;    // Krauss's dawdling
+  const uint8_t* model;  // CarFollowModel (kernels/idm.hpp)
 };
 
 /// Per-vehicle static data, read-only.

@@ -12,7 +12,7 @@
 #include <stdint.h>
 
 #include "kernels/atomics.hpp"
-#include "kernels/idm.hpp"
+#include "kernels/car_following.hpp"
 #include "kernels/lane_change.hpp"
 #include "kernels/lane_map.hpp"
 #include "kernels/right_of_way.hpp"
@@ -64,7 +64,8 @@ constexpr float kClampEps = 0.001f;
 
 LPSIM_HD IdmParams idm_of(const StepContext& s, uint32_t type) {
   return IdmParams{s.types.accel[type], s.types.decel[type],   s.types.emergency_decel[type],
-                   s.types.tau[type],   s.types.min_gap[type], s.types.delta[type]};
+                   s.types.tau[type],   s.types.min_gap[type], s.types.delta[type],
+                   s.types.sigma[type], s.types.model[type]};
 }
 
 /// Edge k of the route of vehicle v (from the whole demand's columns: for a vehicle not on the road yet).
@@ -499,8 +500,8 @@ LPSIM_HD LaneChangeResult try_lane_change(const StepContext& s, VehicleRef me, i
   }
   if (!ok) return r;
   r.change = true;
-  r.speed_cap = lead.present ? follow_speed(p, speed, v0, lead.gap, lead.speed, s.params.max_emergency_decel,
-                                            dt, s.params.substeps)
+  r.speed_cap = lead.present ? cf_follow_speed(p, speed, v0, lead.gap, lead.speed,
+                                               s.params.max_emergency_decel, dt, s.params.substeps)
                              : 1e30f;
   r.leader_gap = lead.present ? lead.gap : 1e30f;
   return r;
@@ -690,8 +691,8 @@ LPSIM_HD_INLINED void follow_leader_at(const StepContext& s, const PlanInput& in
                                        float lane_start, int32_t hit, PathBounds& b, float* free_speed) {
   const float gap = lane_start + static_cast<float>(hit);
   const float vl = decode_cell_speed(s.map_now[s.net.lane_cell_begin[lane] + static_cast<uint32_t>(hit)]);
-  b.cand = lp_fminf(b.cand, follow_speed(in.p, in.speed, in.v0, gap, vl, s.params.max_emergency_decel, in.dt,
-                                         s.params.substeps, free_speed));
+  b.cand = lp_fminf(b.cand, cf_follow_speed(in.p, in.speed, in.v0, gap, vl, s.params.max_emergency_decel,
+                                            in.dt, s.params.substeps, free_speed));
   b.hard_limit = lp_fminf(b.hard_limit, gap - kClampEps);
   b.reason = kLeader;
   b.has_leader = true;
@@ -703,7 +704,7 @@ LPSIM_HD_INLINED void follow_leader_at(const StepContext& s, const PlanInput& in
 LPSIM_HD_INLINED void stop_at(const StepContext& s, const PlanInput& in, float end_dist, PathBounds& b,
                               float* free_speed) {
   b.cand =
-      lp_fminf(b.cand, stop_speed(in.p, in.speed, in.v0, end_dist, in.dt, s.params.substeps, free_speed));
+      lp_fminf(b.cand, cf_stop_speed(in.p, in.speed, in.v0, end_dist, in.dt, s.params.substeps, free_speed));
 }
 
 /// Why the vehicle stops at the end of the normal lane `end_dist` ahead, whose link `c` shows `st`: a
@@ -763,7 +764,7 @@ LPSIM_HD_INLINED bool must_wait_at_internal_junction(const StepContext& s, const
 LPSIM_HD_INLINED void join_free_speed(const StepContext& s, const PlanInput& in, PathBounds& b,
                                       float free_speed) {
   if (b.cand > 0.0f) {
-    if (free_speed < 0.0f) free_speed = idm_free_speed(in.p, in.speed, in.v0, in.dt, s.params.substeps);
+    if (free_speed < 0.0f) free_speed = cf_free_speed(in.p, in.speed, in.v0, in.dt, s.params.substeps);
     b.cand = lp_fminf(free_speed, b.cand);
   }
 }
@@ -849,7 +850,7 @@ LPSIM_HD_INLINED void open_gap_for_merge(const StepContext& s, const PlanInput& 
     const float lag_reach = (0.25f + s.params.max_accel * in.dt) * in.dt + 0.5f;  // the changer's lag check
     const float gap = rear - in.pos - lp_fmaxf(in.p.min_gap, lag_reach) - 1.5f;   // + cell rounding
     if (gap > 0.0f && gap < budget) {
-      const float vs = stop_speed(in.p, in.speed, in.v0, gap, in.dt, s.params.substeps);
+      const float vs = cf_stop_speed(in.p, in.speed, in.v0, gap, in.dt, s.params.substeps);
       if (vs < b.cand) b.cand = vs, b.reason = kMergeGap;
     }
   }
@@ -907,12 +908,13 @@ LPSIM_HD_INLINED void plan_lane_change(const StepContext& s, const PlanInput& in
   if (!lc.change) return;
   m.lane = target;
   m.change_claim = lc.near_start;
-  m.speed = finalize_speed(in.p, in.speed, lp_fminf(b.cand, lc.speed_cap), in.dt);
+  m.speed = cf_finalize_speed(in.p, in.speed, lp_fminf(b.cand, lc.speed_cap), in.dt, s.params.seed, in.r.id,
+                              s.params.step);
   m.hard_limit = lp_fminf(m.hard_limit, lc.leader_gap - kClampEps);
   if (!lane_has_conn_to(s.net, target, route_edge(s, in.r, in.rp + 1))) {
     const float end_dist = s.net.lane_length[target] - in.pos;
-    m.speed = lp_fminf(m.speed,
-                       lp_fmaxf(0.0f, stop_speed(in.p, in.speed, in.v0, end_dist, in.dt, s.params.substeps)));
+    m.speed = lp_fminf(
+        m.speed, lp_fmaxf(0.0f, cf_stop_speed(in.p, in.speed, in.v0, end_dist, in.dt, s.params.substeps)));
     m.hard_limit = lp_fminf(m.hard_limit, end_dist - kClampEps);
   }
   m.hops = 0;  // the change step never crosses the lane end (checked in try_lane_change)
@@ -1006,8 +1008,8 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t i, uint32_t slot) {
   s.veh.held_at_line[slot] = bounds.stop_at_own_line ? 1 : 0;
   open_gap_for_merge(s, in, budget, bounds);
   s.veh.limit_reason[slot] = bounds.reason;
-  MovePlan move{finalize_speed(in.p, in.speed, bounds.cand, in.dt), in.lane, bounds.hard_limit, bounds.hops,
-                false};
+  MovePlan move{cf_finalize_speed(in.p, in.speed, bounds.cand, in.dt, s.params.seed, r.id, s.params.step),
+                in.lane, bounds.hard_limit, bounds.hops, false};
   plan_lane_change(s, in, bounds, move);
   const PlannedMove planned = move_clamped_to_hard_limit(s, in, path, move);
   if (reaches_arrival(s, in, planned)) s.plan.arrives[i] = 1;

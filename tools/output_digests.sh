@@ -8,15 +8,17 @@
 #   diff before.txt after.txt
 #
 # The scenarios are copied to a scratch folder first (their add-files may name outputs of their own).
-# The summary's duration attribute (wall time) is masked. Options: --end T (default: each scenario's own).
+# The summary's duration attribute (wall time) is masked. Options: --end T (default: each scenario's own);
+# --model M: --default.carfollowmodel M for every run (default: LPSim's, Krauss; IDM gives the outputs of
+# commits before Krauss was implemented, when every vehicle ran the IDM).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 end_args=()
-if [[ "${1:-}" == --end ]]; then
-  end_args=(--end "$2")
+while [[ "${1:-}" == --end || "${1:-}" == --model ]]; do
+  if [[ $1 == --end ]]; then end_args+=(--end "$2"); else end_args+=(--default.carfollowmodel "$2"); fi
   shift 2
-fi
-lpsim=$(realpath "${1:?usage: tools/output_digests.sh [--end T] LPSIM [LPSIM_EMULATED]}")
+done
+lpsim=$(realpath "${1:?usage: tools/output_digests.sh [--end T] [--model M] LPSIM [LPSIM_EMULATED]}")
 emulated=${2:+$(realpath "$2")}
 shared=../shared
 work=$(mktemp -d /tmp/lpsim_digests.XXXXXX)

@@ -3,7 +3,8 @@
 counts and CPU time. Standard library only: run with /usr/bin/python3.
 
   tools/validate.py SCENARIO.sumocfg... [--lpsim build/lpsim] [--out DIR] [--end T] [--threads 2]
-                    [--markdown FILE] [--seed S] [--candidate sumo --candidate-model Krauss]
+                    [--markdown FILE] [--seed S] [--model IDM|Krauss]
+                    [--candidate sumo --candidate-model Krauss]
 
 Each simulator runs in its own mirror of the cfg's folder (copies, never links, through which an output named
 like a shipped file would overwrite it; cwd = the mirrored cfg folder), so outputs the cfg or its add-files
@@ -32,7 +33,9 @@ def parse_args(argv):
     parser.add_argument("--step-length", type=float, default=None, help="step length (default: the cfg's, else 1)")
     parser.add_argument("--seed", type=int, default=23423, help="random seed for both (default 23423, SUMO's)")
     parser.add_argument("--threads", type=int, default=2, help="LPSim threads (default 2)")
-    parser.add_argument("--model", default="IDM", help="SUMO default car-following model (default IDM)")
+    parser.add_argument("--model", default="IDM",
+                        help="default car-following model of SUMO and LPSim (--default.carfollowmodel): IDM "
+                             "(default) or Krauss")
     parser.add_argument("--markdown", default=None, help="also write the markdown table here")
     parser.add_argument("--timeout", type=float, default=3600, help="seconds per simulator run (default 3600)")
     parser.add_argument("--weighted-speed", action="store_true",
@@ -130,7 +133,7 @@ def run_scenario(cfg, name, args, env):
         candidate_label = "lpsim"
         lpsim = resolve_executable(args.lpsim)
         candidate_command = (lambda mirrored_cfg, files: runner.lpsim_command(
-            lpsim, mirrored_cfg, files, end, step_length, args.seed, args.threads))
+            lpsim, mirrored_cfg, files, end, step_length, args.seed, args.threads, args.model))
 
     entry = {"scenario": name, "cfg": os.path.abspath(cfg), "end": end, "cfg_end": config["end"],
              "step_length": step_length, "seed": args.seed, "cfg_outputs": config["outputs"]}

@@ -21,6 +21,8 @@ struct ConfigSpec {
   std::string lpsim_nodes_csv, lpsim_edges_csv, lpsim_od_csv;  // original LPSim format
   double begin = 0, end = -1, step_length = 1.0;               // end -1: until all vehicles arrived
   long long seed = 23423;
+  // SUMO's --default.carfollowmodel: the car-following model of every vType that names none.
+  std::string default_car_follow_model = "Krauss";
   double time_to_teleport = 300;
   double minor_penalty =
       1.5;                   // SUMO's --weights.minor-penalty: routing cost of a crossing on a minor link [s]

@@ -47,7 +47,7 @@ class Builder {
         net_(net),
         opt_(options),
         demand_(demand),
-        types_(spec),
+        types_(spec, options.default_car_follow_model),
         routes_(spec, net, options.ignore_route_errors, demand.route_edges),
         trips_(net, routes_) {}
 

@@ -1,4 +1,6 @@
 #pragma once
+#include <string>
+
 #include "core/demand_spec.hpp"
 #include "demand/demand.hpp"
 #include "net/network.hpp"
@@ -14,6 +16,8 @@ struct DemandOptions {
   double minor_penalty = kMinorLinkPenalty;  // s; routing cost of crossing on a link without priority
   // Kept for the engine: every vehicle is built whatever its depart; the engine decides what runs.
   double begin = 0, end = -1;
+  // SUMO's --default.carfollowmodel: the model of every vType that names none.
+  std::string default_car_follow_model = "Krauss";
 };
 
 /// Resolves types, distributions and routes, expands flows, routes trips (fastest free-flow path over lane

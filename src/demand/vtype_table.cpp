@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "demand/demand_draws.hpp"
+#include "kernels/idm.hpp"
 
 namespace lpsim {
 namespace {
@@ -23,7 +24,12 @@ double idm_delta(const VTypeSpec& spec) {
 
 }  // namespace
 
-VTypeTable::VTypeTable(const DemandSpec& spec) {
+uint8_t simulated_car_follow_model(std::string_view name) {
+  return name == "Krauss" ? kCarFollowKrauss : kCarFollowIdm;
+}
+
+VTypeTable::VTypeTable(const DemandSpec& spec, std::string default_model)
+    : default_model_(std::move(default_model)) {
   const size_t n = spec.vtypes.size() + 1;
   types_.id.reserve(n);
   for (const auto& t : spec.vtypes) {
@@ -75,7 +81,9 @@ uint32_t VTypeTable::add_type(const VTypeSpec& t) {
   types_.sigma.push_back(static_cast<float>(t.sigma));
   types_.delta.push_back(static_cast<float>(idm_delta(t)));
   types_.vclass.push_back(t.vclass);
-  types_.car_follow_model.push_back(t.car_follow_model);
+  const std::string& model = t.car_follow_model_given ? t.car_follow_model : default_model_;
+  types_.car_follow_model.push_back(model);
+  types_.model.push_back(simulated_car_follow_model(model));
   types_.index.emplace(t.id, index);
   return index;
 }

@@ -12,11 +12,16 @@ namespace lpsim {
 
 inline constexpr const char* kDefaultVTypeId = "DEFAULT_VEHTYPE";
 
+/// The CarFollowModel (kernels/idm.hpp) a vType whose carFollowModel is `name` runs: Krauss for "Krauss",
+/// the IDM for "IDM" and, as a stand-in (app/load_warnings warns), for every model LPSim does not implement.
+uint8_t simulated_car_follow_model(std::string_view name);
+
 class VTypeTable {
  public:
   /// Registers every vType (in spec order) and checks every distribution; InputError for duplicate ids,
-  /// unknown members, bad weights or a non-numeric IDM "delta".
-  explicit VTypeTable(const DemandSpec& spec);
+  /// unknown members, bad weights or a non-numeric IDM "delta". A vType that names no car-following model
+  /// gets `default_model` (SUMO's --default.carfollowmodel).
+  VTypeTable(const DemandSpec& spec, std::string default_model);
 
   /// Type index for a vehicle whose type attribute is `type_ref` (empty: DEFAULT_VEHTYPE, added on first
   /// use unless the spec defines it). A distribution id yields a member drawn for the vehicle's `stream`.
@@ -38,6 +43,7 @@ class VTypeTable {
   uint32_t add_type(const VTypeSpec& spec);
   uint32_t default_type();
 
+  std::string default_model_;
   VehicleTypes types_;
   std::unordered_map<std::string, uint32_t> dist_index_;
   std::vector<Distribution> dists_;

@@ -2,7 +2,8 @@
 // --jam-report.stop-time s, naming what bounded its speed and the chain of vehicles blocking it; a chain that
 // comes back is a <deadlock>. The real binary on two nets made with netconvert (commands below): a queue at a
 // light that never turns green, and a one-lane ring filled until nobody can move. A run's SUMO outputs are
-// the same bytes with and without the report.
+// the same bytes with and without the report. The ring runs the IDM (--default.carfollowmodel IDM), under
+// which it locks.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -218,8 +219,10 @@ TEST_F(CliJamReportTest, ShortStopsAreNotReported) {
 TEST_F(CliJamReportTest, AFullRingIsReportedAsADeadlockCycle) {
   tmp_.write("ring.net.xml", kRingNet);
   tmp_.write("ring.rou.xml", ring_routes());
+  // The IDM: its queues lock this ring; Krauss keeps it circulating (SUMO's default model, which the report
+  // is not about).
   const CliResult r = run({"run", "-n", "ring.net.xml", "-r", "ring.rou.xml", "--end", "400", "--jam-report",
-                           "jam.xml", "--time-to-teleport", "-1"});
+                           "jam.xml", "--time-to-teleport", "-1", "--default.carfollowmodel", "IDM"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string report = read_file(tmp_.path() / "jam.xml");
   const size_t at = report.find("<deadlock vehicles=\"");
@@ -246,8 +249,19 @@ TEST_F(CliJamReportTest, ATeleportIsRecordedWithItsCause) {
 TEST_F(CliJamReportTest, OutputsAreTheSameWithAndWithoutTheReport) {
   tmp_.write("ring.net.xml", kRingNet);
   tmp_.write("ring.rou.xml", ring_routes());
-  const std::vector<std::string> base{"run",   "-n",  "ring.net.xml",       "-r",  "ring.rou.xml",
-                                      "--end", "300", "--time-to-teleport", "100", "--no-warnings"};
+  // The IDM, whose queues lock the ring (see above): the report has stops to record.
+  const std::vector<std::string> base{"run",
+                                      "-n",
+                                      "ring.net.xml",
+                                      "-r",
+                                      "ring.rou.xml",
+                                      "--end",
+                                      "300",
+                                      "--time-to-teleport",
+                                      "100",
+                                      "--no-warnings",
+                                      "--default.carfollowmodel",
+                                      "IDM"};
   const std::vector<std::string> outputs_a{"--fcd-output", "a.fcd.xml",        "--tripinfo-output",
                                            "a.trip.xml",   "--summary-output", "a.sum.xml"};
   const std::vector<std::string> outputs_b{"--fcd-output",     "b.fcd.xml", "--tripinfo-output", "b.trip.xml",

@@ -1,7 +1,8 @@
 // Settings that load but are not modelled get one warning each, never silence: carFollowModel other than
-// IDM (one line per model naming its vTypes), laneChangeModel other than LC2013 (LPSim's lane changing
-// stands in for it), signal programs of a type other than static (run as static: one line with the count
-// and ids). An edgeData or laneData of an emission or noise type is refused: LPSim writes traffic measures.
+// IDM and Krauss (one line per model naming its vTypes, the default model included), laneChangeModel other
+// than LC2013 (LPSim's lane changing stands in for it), signal programs of a type other than static (run as
+// static: one line with the count and ids). An edgeData or laneData of an emission or noise type is refused:
+// LPSim writes traffic measures.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -17,25 +18,49 @@ using test::has_line;
 
 using CliModelWarningsTest = CliScenarioTest;
 
-TEST_F(CliModelWarningsTest, CarFollowModelsOtherThanIdmWarnOncePerModel) {
+TEST_F(CliModelWarningsTest, CarFollowModelsOtherThanIdmAndKraussWarnOncePerModel) {
   write_routes(
       "cf.rou.xml",
-      "<vType id=\"k1\" carFollowModel=\"Krauss\"/>\n<vType id=\"k2\" carFollowModel=\"Krauss\"/>\n"
+      "<vType id=\"k1\" carFollowModel=\"Krauss\"/>\n<vType id=\"w1\" carFollowModel=\"Wiedemann\"/>\n"
       "<vType id=\"w\">\n<carFollowing-Wiedemann/>\n</vType>\n<vType id=\"i\" carFollowModel=\"IDM\"/>\n"
-      "<vType id=\"plain\"/>");
+      "<vType id=\"e\" carFollowModel=\"EIDM\"/>\n<vType id=\"plain\"/>");
   const auto r = info_with_routes("cf.rou.xml");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_TRUE(
-      has_line(r,
-               "lpsim: warning: carFollowModel 'Krauss' is not implemented, IDM is used instead for 2 "
-               "vTypes: 'k1', 'k2'"))
-      << r.err;
   EXPECT_TRUE(has_line(r,
                        "lpsim: warning: carFollowModel 'Wiedemann' is not implemented, IDM is used instead "
-                       "for 1 vType: 'w'"))
+                       "for 2 vTypes: 'w1', 'w'"))
       << r.err;
-  EXPECT_EQ(test::lines_of(r.err).size(), 2u) << r.err;  // IDM and SUMO's default say nothing
-  EXPECT_NE(r.out.find("not implemented: carFollowModel 'Krauss'"), std::string::npos) << r.out;
+  EXPECT_TRUE(has_line(r,
+                       "lpsim: warning: carFollowModel 'EIDM' is not implemented, IDM is used instead for 1 "
+                       "vType: 'e'"))
+      << r.err;
+  EXPECT_EQ(test::lines_of(r.err).size(), 2u) << r.err;  // IDM, Krauss and SUMO's default say nothing
+  EXPECT_NE(r.out.find("not implemented: carFollowModel 'Wiedemann'"), std::string::npos) << r.out;
+}
+
+TEST_F(CliModelWarningsTest, DefaultCarFollowModelNamesTheVTypesThatTakeIt) {
+  write_routes("cf.rou.xml", "<vType id=\"k\" carFollowModel=\"Krauss\"/>\n<vType id=\"plain\"/>");
+  // Implemented defaults say nothing.
+  for (const char* model : {"Krauss", "IDM"}) {
+    const auto r =
+        run({"info", "-n", test::kGridTlsNet, "-r", "cf.rou.xml", "--default.carfollowmodel", model});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.err, "") << model;
+  }
+  // Another default: one warning naming it and the vTypes that name no model.
+  const auto r =
+      run({"info", "-n", test::kGridTlsNet, "-r", "cf.rou.xml", "--default.carfollowmodel", "W99"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err,
+            "lpsim: warning: carFollowModel 'W99' is not implemented, IDM is used instead for 1 vType: "
+            "'plain'\n");
+  // No vType at all: the default vType takes the default model.
+  write_routes("none.rou.xml", "");
+  const auto d =
+      run({"info", "-n", test::kGridTlsNet, "-r", "none.rou.xml", "--default.carfollowmodel", "W99"});
+  EXPECT_EQ(d.err,
+            "lpsim: warning: carFollowModel 'W99' (--default.carfollowmodel) is not implemented, IDM is used "
+            "instead for vTypes that name no model\n");
 }
 
 TEST_F(CliModelWarningsTest, LaneChangeModelsOtherThanLc2013Warn) {

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "kernels/idm.hpp"
 #include "net/network_builder.hpp"
 #include "unit/test_nets.hpp"
 
@@ -348,6 +349,7 @@ TEST_F(DemandBuilderTest, VTypesAreCopiedWithIdmDelta) {
   VTypeSpec car = vtype("car");
   car.length = 4.5;
   car.car_follow_model = "IDM";
+  car.car_follow_model_given = true;  // as the route reader marks a model the file names
   car.params["delta"] = "2.5";
   spec.vtypes = {car, vtype("unused")};
   VehicleSpec v = on_edges("v", 0, {"E0"});
@@ -364,6 +366,34 @@ TEST_F(DemandBuilderTest, VTypesAreCopiedWithIdmDelta) {
 
   spec.vtypes[0].params["delta"] = "fast";
   EXPECT_NE(error_of(spec, corridor).find("delta 'fast'"), std::string::npos);
+}
+
+TEST_F(DemandBuilderTest, CarFollowModelIsTheVTypesElseTheDefault) {
+  DemandSpec spec;
+  auto named = [](const std::string& id, const std::string& model) {
+    VTypeSpec t = vtype(id);
+    t.car_follow_model = model;
+    t.car_follow_model_given = true;
+    return t;
+  };
+  spec.vtypes = {named("idm", "IDM"), named("krauss", "Krauss"), named("eidm", "EIDM"), vtype("plain")};
+  VehicleSpec v = on_edges("v", 0, {"E0"});  // no type: DEFAULT_VEHTYPE, which names no model either
+  spec.vehicles = {v};
+  for (const std::string default_model : {"Krauss", "IDM", "W99"}) {
+    SCOPED_TRACE(default_model);
+    DemandOptions opt;
+    opt.default_car_follow_model = default_model;
+    const Demand d = build_demand(spec, corridor, opt);
+    ASSERT_EQ(d.types.size(), 5u);
+    const uint8_t default_runs = default_model == "Krauss" ? kCarFollowKrauss : kCarFollowIdm;
+    const std::vector<std::string> names{"IDM", "Krauss", "EIDM", default_model, default_model};
+    const std::vector<uint8_t> runs{kCarFollowIdm, kCarFollowKrauss, kCarFollowIdm, default_runs,
+                                    default_runs};
+    EXPECT_EQ(d.types.car_follow_model, names);
+    EXPECT_EQ(d.types.model, runs);
+  }
+  // SUMO's default without options: Krauss.
+  EXPECT_EQ(build_demand(spec, corridor, {}).types.model[3], kCarFollowKrauss);
 }
 
 // A flow of n vehicles of type/route distribution `dist`.

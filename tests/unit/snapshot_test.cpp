@@ -119,6 +119,7 @@ void expect_same_demand(const Demand& a, const Demand& b) {
   EXPECT_COLUMN(a, b, types.delta);
   EXPECT_COLUMN(a, b, types.vclass);
   EXPECT_COLUMN(a, b, types.car_follow_model);
+  EXPECT_COLUMN(a, b, types.model);
   EXPECT_COLUMN(a, b, types.index);
   EXPECT_COLUMN(a, b, vehicle_id);
   EXPECT_COLUMN(a, b, vehicle_type);

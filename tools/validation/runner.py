@@ -109,12 +109,14 @@ def sumo_command(sumo, cfg, files, model, end, step_length, seed, additional_fil
             + _time_options(end, step_length, seed) + list(extra))
 
 
-def lpsim_command(lpsim, cfg, files, end, step_length, seed, threads, extra=()):
+def lpsim_command(lpsim, cfg, files, end, step_length, seed, threads, model=None, extra=()):
     """LPSim's CLI mirrors SUMO's option names; it has no statistic-output, so the totals come from its
-    summary-output (cumulative counts in the last step) or its printed statistics."""
+    summary-output (cumulative counts in the last step) or its printed statistics. model: the default
+    car-following model, given to LPSim as to SUMO (None: LPSim's default, Krauss as SUMO's)."""
+    model_options = ["--default.carfollowmodel", model] if model else []
     return ([lpsim, "run", "-c", cfg, "--tripinfo-output", files["tripinfo"],
              "--edgedata-output", files["edgedata"], "--summary-output", files["summary"],
-             "--threads", str(threads)]
+             "--threads", str(threads)] + model_options
             + _time_options(end, step_length, seed) + list(extra))
 
 

@@ -306,8 +306,11 @@ class RunnerTest(TempDirTest):
         self.assertEqual(sumo[sumo.index("--step-length") + 1], "0.5")
         self.assertEqual(sumo[sumo.index("--end") + 1], "3600")
         self.assertEqual(sumo[sumo.index("--default.carfollowmodel") + 1], "IDM")
-        lpsim = runner.lpsim_command("/b/lpsim", "/m/c.sumocfg", files, None, 1.0, 7, 2)
+        lpsim = runner.lpsim_command("/b/lpsim", "/m/c.sumocfg", files, None, 1.0, 7, 2, "Krauss")
         self.assertEqual(lpsim[:4], ["/b/lpsim", "run", "-c", "/m/c.sumocfg"])
+        self.assertEqual(lpsim[lpsim.index("--default.carfollowmodel") + 1], "Krauss")
+        self.assertNotIn("--default.carfollowmodel", runner.lpsim_command("/b/lpsim", "/m/c.sumocfg", files,
+                                                                          None, 1.0, 7, 2))
         self.assertNotIn("--end", lpsim)
         self.assertEqual(lpsim[lpsim.index("--threads") + 1], "2")
         self.assertEqual(lpsim[lpsim.index("--edgedata-output") + 1], "/o/edgedata.xml")
