@@ -55,16 +55,27 @@ std::vector<std::string> unimplemented_settings(const DemandSpec& demand, const 
                     ": " + id_list(ids));
 
   // The program each signal runs: the net's, replaced by an add-file's of the same id (network_builder).
-  std::map<std::string, std::string> type_of;
-  for (const TlLogicSpec& tl : net.tl_logics) type_of[tl.id] = tl.type;
-  for (const TlLogicSpec& tl : additional.tl_logics) type_of[tl.id] = tl.type;
+  std::map<std::string, const TlLogicSpec*> program_of;
+  for (const TlLogicSpec& tl : net.tl_logics) program_of[tl.id] = &tl;
+  for (const TlLogicSpec& tl : additional.tl_logics) program_of[tl.id] = &tl;
   std::map<std::string, size_t> count_by_type;
   std::vector<std::string> not_static;
-  for (const auto& [id, type] : type_of)
-    if (type != "static") {
-      ++count_by_type[type];
+  std::vector<std::string> ignored_params;  // 'key' of 'id'
+  for (const auto& [id, tl] : program_of) {
+    if (tl->type == "actuated") {
+      for (const auto& [key, value] : tl->params)
+        if (key != "max-gap" && key != "detector-gap" && key != "passing-time")
+          ignored_params.push_back(key + "' of '" + id);
+    } else if (tl->type != "static") {
+      ++count_by_type[tl->type];
       not_static.push_back(id);
     }
+  }
+  if (!ignored_params.empty())
+    lines.push_back(
+        "actuated signal parameters other than max-gap, detector-gap and passing-time are not "
+        "implemented, SUMO's defaults are used instead of " +
+        id_list(ignored_params));
   if (!not_static.empty()) {
     std::string types;
     for (const auto& [type, n] : count_by_type)

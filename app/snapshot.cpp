@@ -127,6 +127,9 @@ void visit(IO& io, Network& n) {
   io.field(n.signal_id), io.field(n.signal_program), io.field(n.signal_actuated), io.field(n.signal_offset);
   io.field(n.signal_phase_begin), io.field(n.phase_duration), io.field(n.phase_min_dur);
   io.field(n.phase_max_dur), io.field(n.phase_state_begin), io.field(n.phase_state);
+  io.field(n.signal_max_gap), io.field(n.signal_detector_gap), io.field(n.signal_passing_time);
+  io.field(n.signal_det_begin), io.field(n.det_lane), io.field(n.det_pos), io.field(n.phase_det_begin);
+  io.field(n.phase_det);
   io.field(n.roundabout_edges);
   io.field(n.skipped_non_car_lanes), io.field(n.skipped_connections), io.field(n.net_offset);
   io.field(n.edge_succ_begin), io.field(n.edge_succ);

@@ -9,7 +9,7 @@
 
 namespace lpsim {
 
-inline constexpr uint32_t kSnapshotVersion = 2;  // 2: the vTypes' simulated car-following model
+inline constexpr uint32_t kSnapshotVersion = 3;  // 2: the vTypes' car-following model; 3: actuated loops
 
 void write_snapshot(const Scenario& scenario, const std::string& path);
 Scenario read_snapshot(const std::string& path);

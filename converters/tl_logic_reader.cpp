@@ -14,6 +14,10 @@ TlLogicSpec read_tl_logic(XmlStream& xs) {
     auto ev = xs.next();
     if (ev == XmlStream::Event::Eof) xs.fail("unexpected end of file inside <tlLogic id=\"" + tl.id + "\">");
     if (ev == XmlStream::Event::End && xs.depth() == depth) break;
+    if (ev == XmlStream::Event::Start && xs.name() == "param") {
+      tl.params.emplace_back(xs.required("key"), xs.get("value", ""));
+      continue;
+    }
     if (ev != XmlStream::Event::Start || xs.name() != "phase") continue;
     PhaseSpec ph;
     ph.duration = xs.required_number("duration");

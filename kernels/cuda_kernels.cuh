@@ -15,10 +15,10 @@ namespace lpsim {
 
 constexpr uint32_t kBlock = 128;
 
-__global__ void signals_kernel(SignalTable table, int64_t time_ms, char* link_state,
-                               int64_t* next_switch_ms) {
+__global__ void signals_kernel(SignalTable table, int64_t time_ms, SignalInputs in, char* link_state,
+                               int64_t* next_switch_ms, ActuatedState st) {
   const uint32_t s = blockIdx.x * blockDim.x + threadIdx.x;
-  if (s < table.num_signals) update_signal(table, s, time_ms, link_state, next_switch_ms);
+  if (s < table.num_signals) update_signal(table, s, time_ms, in, link_state, next_switch_ms, st);
 }
 
 // One thread per active vehicle, running one of the step's passes (the same functions the CPU backend loops

@@ -177,12 +177,52 @@ EOF
 EOF
 }
 
+# --- actuated_cross: one actuated traffic light (netconvert's default actuated program), a busy and a quiet
+# approach pair, so that the gap control decides how long each green lasts --
+make_actuated_cross() {
+  local d=$OUT/actuated_cross
+  rm -rf "$d" && mkdir -p "$d"
+  cat > "$TMP/cross.nod.xml" <<'EOF'
+<nodes>
+    <node id="C" x="0" y="0" type="traffic_light"/>
+    <node id="N" x="0" y="300"/>
+    <node id="S" x="0" y="-300"/>
+    <node id="E" x="300" y="0"/>
+    <node id="W" x="-300" y="0"/>
+</nodes>
+EOF
+  cat > "$TMP/cross.edg.xml" <<'EOF'
+<edges>
+    <edge id="NC" from="N" to="C" numLanes="1" speed="13.89"/>
+    <edge id="CS" from="C" to="S" numLanes="1" speed="13.89"/>
+    <edge id="SC" from="S" to="C" numLanes="1" speed="13.89"/>
+    <edge id="CN" from="C" to="N" numLanes="1" speed="13.89"/>
+    <edge id="EC" from="E" to="C" numLanes="1" speed="13.89"/>
+    <edge id="CW" from="C" to="W" numLanes="1" speed="13.89"/>
+    <edge id="WC" from="W" to="C" numLanes="1" speed="13.89"/>
+    <edge id="CE" from="C" to="E" numLanes="1" speed="13.89"/>
+</edges>
+EOF
+  netconvert -n "$TMP/cross.nod.xml" -e "$TMP/cross.edg.xml" --tls.default-type actuated --no-turnarounds \
+    -o "$d/actuated_cross.net.xml" > /dev/null
+  cat > "$d/actuated_cross.rou.xml" <<'EOF'
+<routes>
+    <flow id="ns" from="NC" to="CS" begin="0" end="1800" vehsPerHour="700"/>
+    <flow id="sn" from="SC" to="CN" begin="0" end="1800" vehsPerHour="500"/>
+    <flow id="ew" from="EC" to="CW" begin="0" end="1800" vehsPerHour="120"/>
+</routes>
+EOF
+  strip_generated_header "$d/actuated_cross.net.xml"
+  write_sumocfg "$d" actuated_cross actuated_cross.rou.xml
+}
+
 make_grid_tls
 make_random_net
 make_flows
 make_lpsim_csv_small
+make_actuated_cross
 
-for name in grid_tls random_net flows; do
+for name in grid_tls random_net flows actuated_cross; do
   "$PY" "$ROOT/tools/sumo_reference.py" "$OUT/$name/$name.sumocfg" > "$OUT/$name/sumo_reference.txt"
 done
 du -sh "$OUT"

@@ -98,8 +98,10 @@ class Stepper {
  public:
   virtual ~Stepper() = default;
 
-  /// Signal states at `time_ms` (a signal is rewritten only when its phase has ended).
-  virtual void update_signals(int64_t time_ms) = 0;
+  /// Signal states at `time_ms` (a fixed-time signal is rewritten only when its phase has ended). Actuated
+  /// signals read their loops from lane map `map_now`, the state at map_time_ms (dt_ms before time_ms, or
+  /// time_ms itself before the first step).
+  virtual void update_signals(int64_t time_ms, int64_t map_time_ms, int map_now) = 0;
   /// Begins a step over the current active list, reading lane map `map_now` (0 or 1), writing the other.
   virtual void start_step(const StepParams& params, int map_now) = 0;
   /// The passes (kernels/vehicle_step.hpp), each over the active list.

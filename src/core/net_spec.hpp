@@ -4,6 +4,7 @@
 // here; the builder maps them to dense indices.
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/error.hpp"
@@ -68,6 +69,7 @@ struct TlLogicSpec {
   std::string id, program_id, type = "static";  // static, actuated, delay_based, ...
   double offset = 0;
   std::vector<PhaseSpec> phases;
+  std::vector<std::pair<std::string, std::string>> params;  // <param key value>, in file order
   SourceLoc loc;
 };
 

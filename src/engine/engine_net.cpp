@@ -63,6 +63,56 @@ EngineNet::EngineNet(const Network& net) {
     offset_ms[s] = std::lround(static_cast<double>(net.signal_offset[s]) * 1000.0);
     link_begin[s + 1] = link_begin[s] + static_cast<uint32_t>(num_links[s]);
   }
+  build_actuated(net);
+}
+
+namespace {
+int32_t to_ms(double s) { return static_cast<int32_t>(std::lround(s * 1000.0)); }
+}  // namespace
+
+void EngineNet::build_actuated(const Network& net) {
+  const uint32_t ns = net.num_signals();
+  const size_t np = net.phase_duration.size();
+  detector_gap_ms.assign(ns, 0);
+  for (uint32_t s = 0; s < ns && s < net.signal_detector_gap.size(); ++s)
+    detector_gap_ms[s] = to_ms(net.signal_detector_gap[s]);
+  min_ms.resize(np);
+  max_ms.resize(np);
+  phase_green.resize(np);
+  for (size_t p = 0; p < np; ++p) {
+    // SUMO: a phase without minDur / maxDur lasts its duration.
+    min_ms[p] = net.phase_min_dur[p] >= 0 ? to_ms(net.phase_min_dur[p]) : durations_ms[p];
+    max_ms[p] = net.phase_max_dur[p] >= 0 ? to_ms(net.phase_max_dur[p]) : durations_ms[p];
+    const uint32_t b = net.phase_state_begin[p], e = net.phase_state_begin[p + 1];
+    bool green = false, yellow = false;
+    for (uint32_t k = b; k < e; ++k) {
+      green |= net.phase_state[k] == 'G' || net.phase_state[k] == 'g';
+      yellow |= net.phase_state[k] == 'y' || net.phase_state[k] == 'Y';
+    }
+    phase_green[p] = green && !yellow ? 1 : 0;
+  }
+  const bool placed = net.signal_det_begin.size() == ns + 1 && net.phase_det_begin.size() == np + 1 &&
+                      net.signal_actuated.size() == ns;
+  signal_actuated = placed ? net.signal_actuated : std::vector<uint8_t>(ns, 0);
+  signal_det_begin = placed ? net.signal_det_begin : std::vector<uint32_t>(ns + 1, 0);
+  phase_det_begin = placed ? net.phase_det_begin : std::vector<uint32_t>(np + 1, 0);
+  phase_det = placed ? net.phase_det : std::vector<uint32_t>{};
+  const size_t nd = placed ? net.det_lane.size() : 0;
+  det_cell.resize(nd);
+  det_last_cell.resize(nd);
+  det_offset.resize(nd);
+  det_max_gap_ms.resize(nd);
+  for (uint32_t s = 0; s < ns; ++s)
+    for (uint32_t d = signal_det_begin[s]; d < signal_det_begin[s + 1]; ++d) {
+      const uint32_t lane = net.det_lane[d];
+      const uint32_t cells = lane_cell_begin[lane + 1] - lane_cell_begin[lane];
+      const float pos = net.det_pos[d];
+      const uint32_t c = std::min(static_cast<uint32_t>(pos), cells - 1);
+      det_cell[d] = lane_cell_begin[lane] + c;
+      det_last_cell[d] = lane_cell_begin[lane] + cells - 1;
+      det_offset[d] = std::min(pos - static_cast<float>(c), 0.999f);
+      det_max_gap_ms[d] = s < net.signal_max_gap.size() ? to_ms(net.signal_max_gap[s]) : 3000;
+    }
 }
 
 NetView EngineNet::view(const Network& net) const {
@@ -94,11 +144,15 @@ NetView EngineNet::view(const Network& net) const {
 }
 
 SignalTable EngineNet::signal_table(const Network& net) const {
+  const ActuatedTable actuated{signal_actuated.data(), detector_gap_ms.data(), min_ms.data(),
+                               max_ms.data(),          phase_green.data(),     signal_det_begin.data(),
+                               phase_det_begin.data(), phase_det.data(),       det_cell.data(),
+                               det_last_cell.data(),   det_offset.data(),      det_max_gap_ms.data()};
   return SignalTable{net.num_signals(),      net.signal_phase_begin.data(),
                      durations_ms.data(),    net.phase_state_begin.data(),
                      net.phase_state.data(), num_links.data(),
                      cycle_ms.data(),        offset_ms.data(),
-                     link_begin.data()};
+                     link_begin.data(),      actuated};
 }
 
 }  // namespace lpsim

@@ -22,10 +22,20 @@ struct EngineNet {
   std::vector<int32_t> durations_ms, num_links;
   std::vector<int64_t> cycle_ms, offset_ms;
   std::vector<uint32_t> link_begin;
+  // Actuated signals (ActuatedTable).
+  std::vector<int32_t> detector_gap_ms, min_ms, max_ms, det_max_gap_ms;
+  std::vector<uint8_t> phase_green;
+  std::vector<uint8_t> signal_actuated;  // copies, or empty tables for a Network built without loops
+  std::vector<uint32_t> signal_det_begin, phase_det_begin, phase_det;
+  std::vector<uint32_t> det_cell, det_last_cell;
+  std::vector<float> det_offset;
 
   explicit EngineNet(const Network& net);
   NetView view(const Network& net) const;
   SignalTable signal_table(const Network& net) const;
+
+ private:
+  void build_actuated(const Network& net);
 };
 
 }  // namespace lpsim

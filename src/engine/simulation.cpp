@@ -93,7 +93,7 @@ Simulation::Simulation(const Network& net, Demand demand, const SimulationOption
   stepper_ = opt_.gpu ? make_cuda_stepper(setup) : make_cpu_stepper(setup);
 
   // The state at the begin time: its signals and its first insertions.
-  stepper_->update_signals(time_ms_);
+  stepper_->update_signals(time_ms_, time_ms_, cur_);
   enqueue_due(time_ms_);
   insert_waiting(cur_);
   check_kept(0);
@@ -145,7 +145,7 @@ void Simulation::step() {
   ++version_;
   Stepper& s = *stepper_;
   const StepParams params = step_params();
-  s.update_signals(params.signal_time_ms);
+  s.update_signals(params.signal_time_ms, time_ms_, cur_);
   s.start_step(params, cur_);
   s.clear_footprints();
   s.approach();

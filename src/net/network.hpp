@@ -71,13 +71,20 @@ struct Network {
 
   // --- signals: one program per traffic light (the one in force: add-files replace the net's) ---
   std::vector<std::string> signal_id, signal_program;
-  std::vector<uint8_t> signal_actuated;             // actuated programs run their static plan (documented)
-  std::vector<float> signal_offset;                 // s
+  std::vector<uint8_t> signal_actuated;  // type actuated: gap control (other types run static)
+  std::vector<float> signal_max_gap, signal_detector_gap, signal_passing_time;  // s, actuated params
+  std::vector<float> signal_offset;                                             // s
   std::vector<uint32_t> signal_phase_begin;         // phases [begin[s], begin[s+1]); size signals+1
   std::vector<float> phase_duration;                // s
   std::vector<float> phase_min_dur, phase_max_dur;  // -1 when not given
   std::vector<uint32_t> phase_state_begin;          // chars [begin[p], begin[p]+signal_links) in phase_state
   std::vector<char> phase_state;                    // r y g G s u o O per link index
+
+  // --- actuated signals' induction loops, placed as SUMO places them (actuated_detectors.cpp) ---
+  std::vector<uint32_t> signal_det_begin;            // loops [begin[s], begin[s+1]); size signals+1
+  std::vector<uint32_t> det_lane;                    // lane the loop lies on (upstream of short approaches)
+  std::vector<float> det_pos;                        // m from that lane's start
+  std::vector<uint32_t> phase_det_begin, phase_det;  // loops that may extend each phase; size phases+1
 
   // --- roundabouts (kept for priority rules) ---
   std::vector<std::vector<uint32_t>> roundabout_edges;

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <string>
 #include <string_view>
@@ -11,6 +12,7 @@
 #include <unordered_set>
 
 #include "kernels/lane_map.hpp"
+#include "net/actuated_detectors.hpp"
 #include "net/junction_foes.hpp"
 #include "net/junction_type.hpp"
 
@@ -34,6 +36,7 @@ class Builder {
     add_edge_successors();
     add_roundabouts();
     build_junction_foes(spec_, net_);
+    place_actuated_detectors(net_);
     net_.skipped_non_car_lanes = spec_.skipped_non_car_lanes;
     net_.net_offset = spec_.net_offset;
     return std::move(net_);
@@ -348,7 +351,8 @@ class Builder {
       net_.signal_index.emplace(t.id, net_.num_signals());
       net_.signal_id.push_back(t.id);
       net_.signal_program.push_back(t.program_id);
-      net_.signal_actuated.push_back(t.type == "actuated" || t.type == "delay_based" ? 1 : 0);
+      net_.signal_actuated.push_back(t.type == "actuated" ? 1 : 0);
+      add_actuated_params(t);
       net_.signal_offset.push_back(static_cast<float>(t.offset));
       for (size_t p = 0; p < t.phases.size(); ++p) {
         const PhaseSpec& ph = t.phases[p];
@@ -360,6 +364,28 @@ class Builder {
       }
       net_.signal_phase_begin.push_back(static_cast<uint32_t>(net_.phase_duration.size()));
     }
+  }
+
+  // SUMO 1.15's defaults for the parameters of an actuated program's gap control, unless it sets them.
+  void add_actuated_params(const TlLogicSpec& t) {
+    double max_gap = 3.0, detector_gap = 2.0, passing_time = 1.9;
+    for (const auto& [key, value] : t.params) {
+      double* target = key == "max-gap"        ? &max_gap
+                       : key == "detector-gap" ? &detector_gap
+                       : key == "passing-time" ? &passing_time
+                                               : nullptr;
+      if (target == nullptr) continue;  // named in a load warning (app/load_warnings)
+      char* end = nullptr;
+      const double v = std::strtod(value.c_str(), &end);
+      if (value.empty() || *end != '\0' || !std::isfinite(v) || v < 0 || (target == &passing_time && v == 0))
+        throw InputError(t.loc, "tlLogic '" + t.id + "' param '" + key + "': '" + value + "' is not a " +
+                                    (target == &passing_time ? "positive" : "non-negative") +
+                                    " number of seconds");
+      *target = v;
+    }
+    net_.signal_max_gap.push_back(static_cast<float>(max_gap));
+    net_.signal_detector_gap.push_back(static_cast<float>(detector_gap));
+    net_.signal_passing_time.push_back(static_cast<float>(passing_time));
   }
 
   // Per traffic light id: the links its connections use (the highest linkIndex + 1).

@@ -75,20 +75,44 @@ TEST_F(CliModelWarningsTest, LaneChangeModelsOtherThanLc2013Warn) {
             "LC2013) is used instead for 7 vTypes: 's0', 's1', 's2', 's3', 's4' and 2 more\n");
 }
 
-TEST_F(CliModelWarningsTest, ActuatedSignalsRunAsStaticWarnOnce) {
+TEST_F(CliModelWarningsTest, SignalTypesOtherThanStaticAndActuatedRunAsStaticWarnOnce) {
   write_grid_net_with("actuated.net.xml", "type=\"static\"", "type=\"actuated\"");
-  const auto r = run({"info", "-n", "actuated.net.xml"});
+  const auto actuated = run({"info", "-n", "actuated.net.xml"});
+  ASSERT_EQ(actuated.exit_code, 0) << actuated.err;
+  EXPECT_EQ(actuated.err, "");
+  write_grid_net_with("delay.net.xml", "type=\"static\"", "type=\"delay_based\"");
+  const auto r = run({"info", "-n", "delay.net.xml"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(
       r.err,
-      "lpsim: warning: signal programs of type actuated (1) are not implemented, these traffic lights run "
+      "lpsim: warning: signal programs of type delay_based (1) are not implemented, these traffic lights run "
       "their phases as static programs: 'A0'\n");
   // An add-file program of the same id replaces the net's, and its type is the one that runs.
   write("static.add.xml",
         "<additional>\n<tlLogic id=\"A0\" programID=\"1\" type=\"static\" offset=\"0\">\n"
         "<phase duration=\"40\" state=\"GGGG\"/>\n</tlLogic>\n</additional>\n");
-  const auto replaced = run({"info", "-n", "actuated.net.xml", "-a", "static.add.xml"});
+  const auto replaced = run({"info", "-n", "delay.net.xml", "-a", "static.add.xml"});
   EXPECT_EQ(replaced.err, "") << replaced.err;
+}
+
+TEST_F(CliModelWarningsTest, ActuatedParametersNotImplementedWarn) {
+  write_grid_net_with("actuated.net.xml", "type=\"static\"", "type=\"actuated\"");
+  write("params.add.xml",
+        "<additional>\n<tlLogic id=\"A0\" programID=\"1\" type=\"actuated\" offset=\"0\">\n"
+        "<param key=\"max-gap\" value=\"2.5\"/>\n<param key=\"jam-threshold\" value=\"10\"/>\n"
+        "<phase duration=\"40\" state=\"GGGG\" minDur=\"5\" maxDur=\"50\"/>\n</tlLogic>\n</additional>\n");
+  const auto r = run({"info", "-n", "actuated.net.xml", "-a", "params.add.xml"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(
+      r.err,
+      "lpsim: warning: actuated signal parameters other than max-gap, detector-gap and passing-time are "
+      "not implemented, SUMO's defaults are used instead of 'jam-threshold' of 'A0'\n");
+  write("bad.add.xml",
+        "<additional>\n<tlLogic id=\"A0\" programID=\"1\" type=\"actuated\" offset=\"0\">\n"
+        "<param key=\"max-gap\" value=\"soon\"/>\n"
+        "<phase duration=\"40\" state=\"GGGG\" minDur=\"5\" maxDur=\"50\"/>\n</tlLogic>\n</additional>\n");
+  expect_input_error(run({"info", "-n", "actuated.net.xml", "-a", "bad.add.xml"}), "bad.add.xml:2",
+                     {"tlLogic 'A0' param 'max-gap'", "'soon'"});
 }
 
 TEST_F(CliModelWarningsTest, EmissionEdgeDataIsRefused) {

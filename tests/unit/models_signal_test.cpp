@@ -71,6 +71,9 @@ struct ThreeSignals {
   std::vector<int64_t> cycle{90000, 7500, 0};
   std::vector<int64_t> offset{10000, 20000, 0};
   std::vector<uint32_t> link_begin{0, 9, 11, 12};
+  // Fixed-time programs only: no signal actuated, no loops.
+  std::vector<uint8_t> not_actuated{0, 0, 0};
+  std::vector<uint32_t> no_loops{0, 0, 0, 0};
   SignalTable table() const {
     return SignalTable{3,
                        phase_begin.data(),
@@ -80,7 +83,9 @@ struct ThreeSignals {
                        num_links.data(),
                        cycle.data(),
                        offset.data(),
-                       link_begin.data()};
+                       link_begin.data(),
+                       ActuatedTable{not_actuated.data(), nullptr, nullptr, nullptr, nullptr, no_loops.data(),
+                                     nullptr, nullptr, nullptr, nullptr, nullptr, nullptr}};
   }
   SignalProgramView program(uint32_t s) const {
     return SignalProgramView{durations.data() + phase_begin[s],
@@ -98,6 +103,11 @@ struct ThreeSignals {
   }
 };
 
+// A fixed-time signal reads neither the lane map nor the actuated state.
+void update_fixed(const SignalTable& t, uint32_t s, int64_t time, char* links, int64_t* next) {
+  update_signal(t, s, time, SignalInputs{nullptr, time, 0}, links, next, ActuatedState{});
+}
+
 TEST(ModelsSignal, StepUpdateEqualsThePureLookupAtEveryStep) {
   const ThreeSignals sig;
   const SignalTable t = sig.table();
@@ -107,7 +117,7 @@ TEST(ModelsSignal, StepUpdateEqualsThePureLookupAtEveryStep) {
     std::vector<int64_t> next(3, kSignalNeverSet);
     int64_t mismatches = 0, steps = 0;
     for (int64_t time = -3000; time < 400000; time += dt, ++steps) {
-      for (uint32_t s = 0; s < 3; ++s) update_signal(t, s, time, links.data(), next.data());
+      for (uint32_t s = 0; s < 3; ++s) update_fixed(t, s, time, links.data(), next.data());
       for (uint32_t s = 0; s < 3; ++s)
         for (int32_t k = 0; k < sig.num_links[s]; ++k)
           mismatches += links[sig.link_begin[s] + static_cast<uint32_t>(k)] != sig.expected(s, k, time);
@@ -121,24 +131,24 @@ TEST(ModelsSignal, StepUpdateRewritesASignalOnlyWhenItsPhaseEnds) {
   const SignalTable t = sig.table();
   std::vector<char> links(12, '?');
   std::vector<int64_t> next(3, kSignalNeverSet);
-  for (uint32_t s = 0; s < 3; ++s) update_signal(t, s, 0, links.data(), next.data());
+  for (uint32_t s = 0; s < 3; ++s) update_fixed(t, s, 0, links.data(), next.data());
   EXPECT_EQ(next[0], 7000);  // phase 2 of the grid's program ends at t = 7 s
   EXPECT_EQ(next[1], 2500);  // in-cycle (0 - 20 s) mod 7.5 s = 2.5 s: phase 0 ends at 5 s
   EXPECT_EQ(next[2], 0);     // no positive duration: set again at every call
   // Marks left in the output stay until the phase ends: nothing is rewritten before then.
   links[0] = 'X', links[9] = 'X', links[11] = 'X';
-  for (uint32_t s = 0; s < 3; ++s) update_signal(t, s, 2000, links.data(), next.data());
+  for (uint32_t s = 0; s < 3; ++s) update_fixed(t, s, 2000, links.data(), next.data());
   EXPECT_EQ(links[0], 'X');
   EXPECT_EQ(links[9], 'X');
   EXPECT_EQ(links[11], 'g');  // the zero-length program: rewritten every time
-  for (uint32_t s = 0; s < 3; ++s) update_signal(t, s, 2500, links.data(), next.data());
+  for (uint32_t s = 0; s < 3; ++s) update_fixed(t, s, 2500, links.data(), next.data());
   EXPECT_EQ(links[0], 'X');
   EXPECT_EQ(links[9], 'r');  // past the zero-length phase 1 straight to phase 2, "rG"
   EXPECT_EQ(links[10], 'G');
   EXPECT_EQ(next[1], 5000);
-  for (uint32_t s = 0; s < 3; ++s) update_signal(t, s, 6999, links.data(), next.data());
+  for (uint32_t s = 0; s < 3; ++s) update_fixed(t, s, 6999, links.data(), next.data());
   EXPECT_EQ(links[0], 'X');
-  for (uint32_t s = 0; s < 3; ++s) update_signal(t, s, 7000, links.data(), next.data());
+  for (uint32_t s = 0; s < 3; ++s) update_fixed(t, s, 7000, links.data(), next.data());
   EXPECT_EQ(links[0], 'r');  // yellow phase 3 of the grid's program: "rrryyyyrr"
   EXPECT_EQ(links[3], 'y');
   EXPECT_EQ(next[0], 10000);

@@ -91,6 +91,14 @@ void expect_same_network(const Network& a, const Network& b) {
   EXPECT_COLUMN(a, b, phase_max_dur);
   EXPECT_COLUMN(a, b, phase_state_begin);
   EXPECT_COLUMN(a, b, phase_state);
+  EXPECT_COLUMN(a, b, signal_max_gap);
+  EXPECT_COLUMN(a, b, signal_detector_gap);
+  EXPECT_COLUMN(a, b, signal_passing_time);
+  EXPECT_COLUMN(a, b, signal_det_begin);
+  EXPECT_COLUMN(a, b, det_lane);
+  EXPECT_COLUMN(a, b, det_pos);
+  EXPECT_COLUMN(a, b, phase_det_begin);
+  EXPECT_COLUMN(a, b, phase_det);
   EXPECT_COLUMN(a, b, roundabout_edges);
   EXPECT_COLUMN(a, b, skipped_non_car_lanes);
   EXPECT_COLUMN(a, b, skipped_connections);

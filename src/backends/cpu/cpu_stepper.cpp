@@ -41,6 +41,9 @@ class CpuStepper final : public Stepper {
     const uint32_t ns = setup.signals.num_signals;
     link_state_.assign(setup.signals.link_begin[ns], 'r');
     signal_next_switch_ms_.assign(ns, kSignalNeverSet);
+    actuated_phase_.assign(ns, 0);
+    actuated_start_ms_.assign(ns, 0);
+    det_last_ms_.assign(setup.signals.actuated.signal_det_begin[ns], kNeverDetected);
     approach_.assign(nl, LaneApproach{0xFFFFFFFFu, -1, 0, 0, 0, 0, 0});
     claims_.assign(nl, 0);
     merge_requests_.assign(nl, 0);
@@ -48,10 +51,12 @@ class CpuStepper final : public Stepper {
     trips_ = setup.trips;
   }
 
-  void update_signals(int64_t time_ms) override {
+  void update_signals(int64_t time_ms, int64_t map_time_ms, int map_now) override {
     const SignalTable& t = setup_.signals;
+    const SignalInputs in{map_[map_now].data(), map_time_ms, time_ms - map_time_ms};
+    const ActuatedState st{actuated_phase_.data(), actuated_start_ms_.data(), det_last_ms_.data()};
     for (uint32_t s = 0; s < t.num_signals; ++s)
-      update_signal(t, s, time_ms, link_state_.data(), signal_next_switch_ms_.data());
+      update_signal(t, s, time_ms, in, link_state_.data(), signal_next_switch_ms_.data(), st);
   }
 
   void start_step(const StepParams& params, int map_now) override {
@@ -255,6 +260,8 @@ class CpuStepper final : public Stepper {
   int state_map_ = 0;  // the lane map the state is in: the one the last step wrote
   std::vector<char> link_state_;
   std::vector<int64_t> signal_next_switch_ms_;  // per signal: when the phase link_state_ shows ends
+  std::vector<int32_t> actuated_phase_;         // ActuatedState
+  std::vector<int64_t> actuated_start_ms_, det_last_ms_;
   std::vector<LaneApproach> approach_;
   std::vector<uint64_t> claims_, merge_requests_;
   std::vector<int64_t> counters_;  // kNumLaneCounters columns of num_lanes; empty without lane counters

@@ -363,11 +363,12 @@ class CudaStepper final : public Stepper {
                            setup.trips.num_route_edges * sizeof(uint32_t));
   }
 
-  void update_signals(int64_t time_ms) override {
+  void update_signals(int64_t time_ms, int64_t map_time_ms, int map_now) override {
     timer_.mark(0);
     if (signals_.num_signals > 0) {
+      const SignalInputs in{map_[map_now], map_time_ms, time_ms - map_time_ms};
       LPSIM_LAUNCH(signals_kernel, blocks_for(signals_.num_signals), kBlock)
-      (signals_, time_ms, link_state_, signal_next_switch_ms_);
+      (signals_, time_ms, in, link_state_, signal_next_switch_ms_, actuated_state_);
       LPSIM_CUDA_CHECK_LAUNCH(signals_kernel);
     }
     timer_.mark(1);
@@ -802,6 +803,29 @@ class CudaStepper final : public Stepper {
     signals_.cycle_ms = upload(h.cycle_ms, ns);
     signals_.offset_ms = upload(h.offset_ms, ns);
     signals_.link_begin = dev_.net.signal_link_begin;
+    upload_actuated(h.actuated, ns, phases);
+  }
+
+  void upload_actuated(const ActuatedTable& h, uint32_t ns, uint32_t phases) {
+    const uint32_t loops = h.signal_det_begin[ns];
+    const uint32_t phase_loops = h.phase_det_begin[phases];
+    ActuatedTable& d = signals_.actuated;
+    d.actuated = upload(h.actuated, ns);
+    d.detector_gap_ms = upload(h.detector_gap_ms, ns);
+    d.min_ms = upload(h.min_ms, phases);
+    d.max_ms = upload(h.max_ms, phases);
+    d.green = upload(h.green, phases);
+    d.signal_det_begin = upload(h.signal_det_begin, static_cast<size_t>(ns) + 1);
+    d.phase_det_begin = upload(h.phase_det_begin, static_cast<size_t>(phases) + 1);
+    d.phase_det = upload(h.phase_det, phase_loops);
+    d.det_cell = upload(h.det_cell, loops);
+    d.det_last_cell = upload(h.det_last_cell, loops);
+    d.det_offset = upload(h.det_offset, loops);
+    d.det_max_gap_ms = upload(h.det_max_gap_ms, loops);
+    actuated_state_.phase = allocate<int32_t>(ns);
+    actuated_state_.phase_start_ms = allocate<int64_t>(ns);
+    const std::vector<int64_t> never(loops, kNeverDetected);
+    actuated_state_.det_last_ms = upload(never.data(), loops);
   }
 
   void upload_types(const TypeView& h, uint32_t nt) {
@@ -818,6 +842,7 @@ class CudaStepper final : public Stepper {
   SignalTable signals_{};
   char* link_state_ = nullptr;
   int64_t* signal_next_switch_ms_ = nullptr;
+  ActuatedState actuated_state_{};
   uint32_t num_links_ = 0, num_lanes_ = 0;
   uint64_t bytes_total_ = 0;  // fixed allocations (scratch arrays not included)
   DeviceBuffer plan_buffer_;
