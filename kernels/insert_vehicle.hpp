@@ -15,7 +15,7 @@ namespace lpsim {
 constexpr uint8_t kDepartLaneGiven = 0, kDepartLaneFirst = 1, kDepartLaneRandom = 2, kDepartLaneFree = 3,
                   kDepartLaneAllowed = 4, kDepartLaneBest = 5;
 constexpr uint8_t kDepartPosGiven = 0, kDepartPosBase = 1, kDepartPosRandom = 2, kDepartPosFree = 3,
-                  kDepartPosRandomFree = 4;
+                  kDepartPosRandomFree = 4, kDepartPosLast = 5, kDepartPosStop = 6;
 constexpr uint8_t kDepartSpeedGiven = 0, kDepartSpeedZero = 1, kDepartSpeedRandom = 2, kDepartSpeedMax = 3,
                   kDepartSpeedDesired = 4, kDepartSpeedLimit = 5, kDepartSpeedLast = 6, kDepartSpeedAvg = 7;
 
@@ -37,14 +37,16 @@ struct DepartView {
   const float* speed;
 };
 
-/// One step's queue heads, one slot per edge with waiting vehicles.
+/// One step's queue heads, one slot per edge with waiting vehicles. Entries are tried in queue order, and
+/// any of them may go in while one before it waits (as SUMO tries every pending vehicle): out_lane is -1
+/// for an entry not inserted.
 struct InsertBatch {
   uint32_t num_slots;
   const uint32_t* edge;       // [num_slots]
   const uint32_t* begin;      // [num_slots+1] into entry
   const uint32_t* entry;      // vehicle index, | kInsertTeleported
   const uint32_t* route_pos;  // [entries] route position it enters at (0 for a departure)
-  uint32_t* inserted;         // out [num_slots]: entries inserted from the slot's head
+  uint32_t* inserted;         // out [num_slots]: entries of the slot inserted
   int32_t* out_lane;          // out [entries]: where an inserted vehicle was placed
   float* out_pos;
   float* out_speed;
@@ -53,34 +55,12 @@ struct InsertBatch {
 struct InsertParams {
   float dt;  // s, as the config gives it
   uint64_t seed;
+  uint32_t step;              // steps done: SUMO draws a random depart lane anew at each try
   float max_emergency_decel;  // hardest any leader may brake
   float min_decel;            // softest braking of any type (how a follower is assumed to react)
   int64_t* cnt_departed;      // per lane; null: not counted
   int64_t* cnt_entered;
 };
-
-/// Whether a queued vehicle is placed at the start of its lane (teleported, or departPos base or free): its
-/// body then covers the lane's first cell, so that no second such vehicle fits on that lane in the same
-/// step. An edge takes at most one of them per lane and step, and the host offers none beyond that.
-LPSIM_HD bool inserts_at_lane_start(uint8_t pos_kind, bool teleported) {
-  return teleported ||
-         (pos_kind != kDepartPosGiven && pos_kind != kDepartPosRandom && pos_kind != kDepartPosRandomFree);
-}
-
-/// Where on lane l vehicle v's front would be placed (its departPos; teleported: at the lane start).
-LPSIM_HD float insert_pos(const NetView& net, const DepartView& d, uint64_t seed, uint32_t v, bool teleported,
-                          uint32_t l, float length) {
-  const float lane_len = net.lane_length[l];
-  const uint8_t pk = d.pos_kind[v];
-  if (inserts_at_lane_start(pk, teleported)) return lp_fminf(lane_len, length + 0.1f);
-  if (pk == kDepartPosGiven) {  // negative values were made absolute by the builder
-    const float given = d.pos[v];
-    return given < 0.0f ? 0.0f : (lane_len < given ? lane_len : given);
-  }
-  // random or random_free
-  return lp_fminf(lane_len, length + static_cast<float>(rng_uniform_double(seed, v, 1)) *
-                                         lp_fmaxf(0.0f, lane_len - length));
-}
 
 /// The cells a body `length` metres long with its front at `pos` covers on lane l: [rear, front].
 struct BodyCells {
@@ -91,124 +71,353 @@ LPSIM_HD BodyCells body_cells(const NetView& net, int32_t l, float pos, float le
                    static_cast<int32_t>(cell_of(net, l, pos))};
 }
 
-/// Tries to put vehicle v (entry flags included) on the road at the start of route edge `rp`, writing its
-/// footprint into `map` and where it was placed into the out_ values (the host then gives it a slot).
-/// Returns false, changing nothing, when no candidate lane has room.
-LPSIM_HD bool try_insert_vehicle(const StepContext& s, const DepartView& d, const InsertParams& p,
-                                 uint8_t* map, uint32_t entry, uint32_t rp, int32_t* out_lane, float* out_pos,
+/// What the insertion reads of one lane from the lane map: one scan, made when a departure is first tried
+/// there in a step and made again after a vehicle was placed on it.
+struct LaneScan {
+  float occupied;     // cells covered by bodies (metres)
+  uint32_t vehicles;  // runs of occupied cells
+  float speed_sum;    // their speeds
+  int32_t
+      last_rear;  // first occupied cell from the lane start: the rear of the most upstream vehicle; -1: none
+  int32_t last_front;  // the last cell of that vehicle
+  float last_speed;
+};
+
+LPSIM_HD LaneScan scan_lane(const uint8_t* map, const NetView& net, int32_t l) {
+  LaneScan r{0.0f, 0u, 0.0f, -1, -1, 0.0f};
+  const uint8_t* cells = map + net.lane_cell_begin[l];
+  const int32_t n = static_cast<int32_t>(lane_cells(net, l));
+  int32_t c = first_occupied(map, net, l, 0, n - 1);
+  while (c >= 0) {
+    int32_t e = c;
+    while (e + 1 < n && cells[e + 1] != 0) ++e;
+    const float v = decode_cell_speed(cells[c]);
+    if (r.last_rear < 0) {
+      r.last_rear = c;
+      r.last_front = e;
+      r.last_speed = v;
+    }
+    r.occupied += static_cast<float>(e - c + 1);
+    ++r.vehicles;
+    r.speed_sum += v;
+    c = e + 1 < n ? first_occupied(map, net, l, e + 1, n - 1) : -1;
+  }
+  return r;
+}
+
+/// SUMO's IDM secure gap (getSecureGap): the room, minGap not counted, a vehicle at `speed` keeps to a
+/// leader at leader_speed.
+LPSIM_HD float idm_secure_gap(const IdmParams& p, float speed, float leader_speed) {
+  return lp_fmaxf(0.0f, speed * p.tau + speed * (speed - leader_speed) / (2.0f * sqrtf(p.accel * p.decel)));
+}
+
+/// SUMO's IDM insertion speed behind a leader `gap` metres ahead (bumper to bumper): the wished speed where
+/// the gap, minGap not counted, is at least the IDM's desired one (idm_secure_gap); else the IDM's next
+/// speed, lowered again while the step after it would still brake by more than 1 m/s^2.
+LPSIM_HD float idm_insertion_speed(const IdmParams& p, float speed, float v0, float gap, float leader_speed,
+                                   float dt, int substeps) {
+  const float room = gap - p.min_gap;
+  for (int k = 0; k < 64; ++k) {
+    if (room >= idm_secure_gap(p, speed, leader_speed)) return speed;
+    const float s2 = idm_follow_speed(p, speed, v0, gap, leader_speed, dt, substeps);
+    const float s3 = idm_follow_speed(p, s2, v0, gap, leader_speed, dt, substeps);
+    if (s2 - s3 < 1.0f * dt) return s2;
+    speed = s2;
+  }
+  return speed;
+}
+
+/// A departure's speed as SUMO 1.15 chooses it on lane l (MSLane::getDepartSpeed), and whether the
+/// insertion may lower it to fit the traffic (patch) or must wait instead.
+struct DepartSpeedChoice {
+  float speed;
+  bool patch;
+};
+LPSIM_HD DepartSpeedChoice depart_speed(const StepContext& s, const DepartView& d, uint64_t seed, uint32_t v,
+                                        uint32_t step, uint32_t l, const LaneScan& sc) {
+  const uint32_t type = s.trips.type[v];
+  const float v0 = desired_speed(s.net.lane_speed[l], s.trips.speed_factor[v], s.types.max_speed[type]);
+  switch (d.speed_kind[v]) {
+    case kDepartSpeedGiven:
+      return {d.speed[v], false};
+    case kDepartSpeedRandom:
+      return {v0 * static_cast<float>(rng_uniform_double(seed, v, (uint64_t{step} << 8) | 2u)), true};
+    case kDepartSpeedMax:
+      return {v0, true};
+    case kDepartSpeedDesired:
+      return {v0, false};
+    case kDepartSpeedLimit:
+      return {s.trips.speed_factor[v] > 0.0f ? v0 / s.trips.speed_factor[v] : v0, false};
+    case kDepartSpeedLast:  // the last vehicle's speed; an empty lane: as max
+      return sc.last_rear < 0 ? DepartSpeedChoice{v0, true}
+                              : DepartSpeedChoice{lp_fminf(v0, sc.last_speed), false};
+    case kDepartSpeedAvg:  // the lane's mean speed; an empty lane: its limit
+      return sc.vehicles == 0
+                 ? DepartSpeedChoice{lp_fminf(v0, s.net.lane_speed[l]), true}
+                 : DepartSpeedChoice{lp_fminf(v0, sc.speed_sum / static_cast<float>(sc.vehicles)), false};
+    default:  // 0
+      return {0.0f, false};
+  }
+}
+
+/// SUMO's isInsertionSuccess on one lane, for a vehicle whose front would be at `pos`: the body's cells
+/// must be free; the leader ahead on the lane (at any distance) must leave at least minGap, and the speed
+/// must not exceed the IDM insertion speed behind it (lowered when patch, else the insertion fails); the
+/// follower behind must have its IDM secure gap to the new vehicle. The speed is then capped by the
+/// ballistic safe speed LPSim's step keeps to every leader. Returns the speed, or -1 for no.
+LPSIM_HD float insertion_check(const StepContext& s, const InsertParams& p, const uint8_t* map, uint32_t v,
+                               int32_t l, float pos, float speed, bool patch) {
+  const NetView& net = s.net;
+  const uint32_t type = s.trips.type[v];
+  const float length = s.types.length[type];
+  const IdmParams ip = idm_of(s, type);
+  const float v0 = desired_speed(net.lane_speed[l], s.trips.speed_factor[v], s.types.max_speed[type]);
+  const BodyCells body = body_cells(net, l, pos, length);
+  if (first_occupied(map, net, l, body.rear, body.front) >= 0) return -1.0f;
+  const int32_t cells = static_cast<int32_t>(lane_cells(net, l));
+  const int32_t ahead = body.front + 1 < cells ? first_occupied(map, net, l, body.front + 1, cells - 1) : -1;
+  if (ahead >= 0) {
+    // The map keeps the leader's rear to the metre and its speed to the quarter m/s below: SUMO's exact
+    // values lie on average half a cell and an eighth of a m/s above.
+    const float gap = static_cast<float>(ahead) + 0.5f - pos;
+    const float vl = decode_cell_speed(map[net.lane_cell_begin[l] + static_cast<uint32_t>(ahead)]) + 0.125f;
+    if (gap < ip.min_gap) return -1.0f;
+    // The insertion's context carries no step parameters: SUMO's IDM sub-steps for the step length.
+    const float ns = idm_insertion_speed(ip, speed, v0, gap, vl, p.dt, idm_default_substeps(p.dt));
+    if (ns < speed) {
+      if (!patch && speed > 0.0f) return -1.0f;
+      speed = ns;
+    }
+  }
+  if (body.rear > 0) {
+    const int32_t reach = body.rear - 1 - metres_as_cells(lookahead_distance(ip, net.lane_speed[l], p.dt));
+    const int32_t lag = last_occupied(map, net, l, reach > 0 ? reach : 0, body.rear - 1);
+    if (lag >= 0) {
+      // The follower's front: the middle of its front cell, as the leader's rear above.
+      const float gap = (pos - length) - (static_cast<float>(lag) + 0.5f) - ip.min_gap;
+      const float vf = decode_cell_speed(map[net.lane_cell_begin[l] + static_cast<uint32_t>(lag)]);
+      if (gap < 0.0f || gap < idm_secure_gap(ip, vf, speed)) return -1.0f;
+    }
+  }
+  return speed;
+}
+
+/// Front position of a body `length` long placed at the lane start (SUMO's base position).
+LPSIM_HD float base_pos(float lane_len, float length) { return lp_fminf(lane_len, length + 0.1f); }
+
+/// Tries departure v on lane l with SUMO's departPos rules (MSLane::insertVehicle): base, given and random
+/// at one position; last just behind the lane's most upstream vehicle, at the secure gap for the speed;
+/// free at the lane start, else in the first gap from upstream wide enough for the secure gaps to both
+/// neighbours (random_free: one random position first). Places it and returns true on success.
+LPSIM_HD bool try_depart_on_lane(const StepContext& s, const DepartView& d, const InsertParams& p,
+                                 uint8_t* map, uint32_t v, int32_t l, const LaneScan& sc, float* out_pos,
                                  float* out_speed) {
-  const uint32_t v = entry & ~kInsertTeleported;
-  const bool teleported = (entry & kInsertTeleported) != 0;
+  const NetView& net = s.net;
+  const uint32_t type = s.trips.type[v];
+  const float length = s.types.length[type], min_gap = s.types.min_gap[type];
+  const float lane_len = net.lane_length[l];
+  const uint64_t seed = p.seed ^ kDepartRngSalt;
+  const DepartSpeedChoice ds = depart_speed(s, d, seed, v, p.step, static_cast<uint32_t>(l), sc);
+  const uint8_t pk = d.pos_kind[v];
+  float pos = base_pos(lane_len, length);
+  float speed = -1.0f;
+  if (pk == kDepartPosGiven) {  // negative values were made absolute by the builder
+    pos = lp_fmaxf(length, lp_fminf(lane_len, d.pos[v]));
+    speed = insertion_check(s, p, map, v, l, pos, ds.speed, ds.patch);
+  } else if (pk == kDepartPosRandom || pk == kDepartPosRandomFree) {
+    pos = lp_fminf(lane_len,
+                   length + static_cast<float>(rng_uniform_double(seed, v, (uint64_t{p.step} << 8) | 1u)) *
+                                lp_fmaxf(0.0f, lane_len - length));
+    speed = insertion_check(s, p, map, v, l, pos, ds.speed, ds.patch);
+  } else if (pk == kDepartPosLast) {
+    if (sc.last_rear < 0) {
+      pos = lp_fmaxf(length, lane_len - 0.1f);
+    } else {
+      const IdmParams ip = idm_of(s, type);
+      const float need = idm_secure_gap(ip, ds.speed, sc.last_speed) + min_gap + 0.1f;
+      if (static_cast<float>(sc.last_rear) < need) return false;
+      pos = lp_fmaxf(base_pos(lane_len, length),
+                     lp_fminf(lane_len - 0.1f, static_cast<float>(sc.last_rear) - need));
+    }
+    speed = insertion_check(s, p, map, v, l, pos, ds.speed, ds.patch);
+  } else if (pk != kDepartPosFree) {  // base
+    speed = insertion_check(s, p, map, v, l, pos, ds.speed, ds.patch);
+  }
+  if (speed < 0.0f && (pk == kDepartPosFree || pk == kDepartPosRandomFree)) {
+    // SUMO's freeInsertion: at the lane start with an adaptable speed when the lane is empty or its
+    // front-most vehicle (as SUMO 1.15 looks at it) leaves the secure gap at its own speed; else gap by gap
+    // from upstream, where the follower's secure gap is taken to the new vehicle standing (its speed before
+    // it is inserted), as SUMO does.
+    const IdmParams ip = idm_of(s, type);
+    const uint8_t* cells = map + net.lane_cell_begin[l];
+    const int32_t n = static_cast<int32_t>(lane_cells(net, l));
+    pos = base_pos(lane_len, length);
+    bool at_start = sc.last_rear < 0;
+    if (!at_start) {
+      int32_t rear = last_occupied(map, net, l, 0, n - 1);
+      const float vl = decode_cell_speed(cells[rear]);
+      while (rear > 0 && cells[rear - 1] != 0) --rear;
+      at_start = static_cast<float>(rear) >= idm_secure_gap(ip, vl, vl) + min_gap;
+    }
+    if (at_start) speed = insertion_check(s, p, map, v, l, pos, ds.speed, true);
+    int32_t c = sc.last_rear;
+    while (speed < 0.0f && c >= 0) {
+      int32_t e = c;
+      while (e + 1 < n && cells[e + 1] != 0) ++e;
+      const float vf = decode_cell_speed(cells[c]);
+      const int32_t next = e + 1 < n ? first_occupied(map, net, l, e + 1, n - 1) : -1;
+      float sp = ds.speed, front_max = lane_len;
+      if (next >= 0) {
+        const float vl = decode_cell_speed(cells[next]);
+        sp = lp_fminf(vl, ds.speed);
+        front_max = static_cast<float>(next) - (idm_secure_gap(ip, sp, vl) + min_gap);
+      }
+      // The follower's front lies within its front cell: its middle, as for leaders.
+      const float back_min = static_cast<float>(e) + 0.5f + min_gap + idm_secure_gap(ip, vf, 0.0f) + length;
+      if (front_max > 0.0f && back_min + 0.1f < front_max && back_min + 0.1f <= lane_len) {
+        pos = back_min + 0.1f;
+        speed = insertion_check(s, p, map, v, l, pos, sp, true);
+      }
+      c = next;
+    }
+  }
+  if (speed < 0.0f) return false;
+  apply_footprint(map, net, Footprint{l, -1, -1, pos}, length, encode_cell_speed(speed));
+  *out_pos = pos;
+  *out_speed = speed;
+  return true;
+}
+
+/// SUMO's getFreeLane among the lanes of `mask` (bits by rank): the least occupied (lengths with minGap),
+/// unless some lane leaves more room than the others between `bound` and the front of its most upstream
+/// vehicle (an empty lane: its end), which is then taken. -1 when the mask is empty.
+LPSIM_HD int32_t free_lane(const NetView& net, uint32_t first, uint32_t nlanes, uint64_t mask,
+                           const LaneScan* scans, float min_gap, float bound) {
+  int32_t res = -1, by_gap = -1;
+  float least = 3.0e38f, largest = 0.0f;
+  for (uint32_t k = 0; k < nlanes; ++k) {
+    if (!((mask >> k) & 1u)) continue;
+    const LaneScan& sc = scans[k];
+    const float occ = sc.occupied + static_cast<float>(sc.vehicles) * min_gap;
+    if (occ < least) {
+      least = occ;
+      res = static_cast<int32_t>(first + k);
+    }
+    const float last = sc.last_rear < 0 ? net.lane_length[first + k] : static_cast<float>(sc.last_front + 1);
+    if (last - bound > largest) {
+      largest = last - bound;
+      by_gap = static_cast<int32_t>(first + k);
+    }
+  }
+  return by_gap >= 0 ? by_gap : res;
+}
+
+/// Lanes an edge's insertion looks at (SUMO's 64-bit masks); lanes beyond are not used for departures.
+constexpr uint32_t kMaxInsertLanes = 64;
+
+/// Tries to put a teleported vehicle back on the road at the start of route edge `rp`: best lanes first,
+/// then the others, at the lane start, standing. Returns false, changing nothing, when none has room.
+LPSIM_HD bool try_reenter(const StepContext& s, const InsertParams& p, uint8_t* map, uint32_t v, uint32_t rp,
+                          int32_t* out_lane, float* out_pos, float* out_speed) {
   const NetView& net = s.net;
   const uint32_t e = trip_route_edge(s, v, rp);
   const uint32_t first = net.edge_first_lane[e], nlanes = net.edge_num_lanes[e];
-  const uint32_t type = s.trips.type[v];
-  const float length = s.types.length[type], min_gap = s.types.min_gap[type];
-  const uint64_t seed = p.seed ^ kDepartRngSalt;
-
-  // Candidate lanes in the order they are tried.
-  uint32_t candidates[64];
-  uint32_t nc = 0;
-  const uint8_t kind = teleported ? kDepartLaneBest : d.lane_kind[v];
-  if (kind == kDepartLaneGiven) {  // the demand builder maps SUMO's index to the rank among car lanes
-    if (d.lane[v] >= 0 && static_cast<uint32_t>(d.lane[v]) < nlanes)
-      candidates[nc++] = first + static_cast<uint32_t>(d.lane[v]);
-  } else if (kind == kDepartLaneRandom) {
-    candidates[nc++] = first + static_cast<uint32_t>(rng_bits(seed, v, 0) % nlanes);
-  } else if (kind == kDepartLaneBest || kind == kDepartLaneFree) {
-    // Every candidate is a lane of the edge, and one whose body cells are taken is skipped: where no lane has
-    // room (most retries on a congested day) the answer is no without the route walk of the best lanes.
-    bool any_room = false;
-    for (uint32_t l = first; l < first + nlanes && !any_room; ++l) {
+  const float length = s.types.length[s.trips.type[v]];
+  const uint32_t best =
+      best_lanes(net, s.trips.route_edges + s.trips.route_begin[v], s.trips.route_length[v], rp).mask[0];
+  for (int pass = 0; pass < 2; ++pass) {
+    for (uint32_t l = first; l < first + nlanes; ++l) {
+      if (((lane_bit(net, l) & best) != 0) != (pass == 0)) continue;
       const int32_t li = static_cast<int32_t>(l);
-      const BodyCells body = body_cells(net, li, insert_pos(net, d, seed, v, teleported, l, length), length);
-      any_room = first_occupied(map, net, li, body.rear, body.front) < 0;
+      const float pos = base_pos(net.lane_length[l], length);
+      const float speed = insertion_check(s, p, map, v, li, pos, 0.0f, true);
+      if (speed < 0.0f) continue;
+      apply_footprint(map, net, Footprint{li, -1, -1, pos}, length, encode_cell_speed(speed));
+      if (p.cnt_entered != nullptr) atomic_add_i64(&p.cnt_entered[l], 1);
+      *out_lane = li;
+      *out_pos = pos;
+      *out_speed = speed;
+      return true;
     }
-    if (!any_room) return false;
-    // Best, as SUMO: only lanes that lead on along the route (wait for one otherwise). Free and teleported
-    // vehicles: those first, then the others.
-    const uint32_t best =
-        best_lanes(net, s.trips.route_edges + s.trips.route_begin[v], s.trips.route_length[v], rp).mask[0];
-    for (uint32_t l = first; l < first + nlanes && nc < 64; ++l)
-      if (lane_bit(net, l) & best) candidates[nc++] = l;
-    if (kind == kDepartLaneFree || teleported)
-      for (uint32_t l = first; l < first + nlanes && nc < 64; ++l)
-        if (!(lane_bit(net, l) & best)) candidates[nc++] = l;
-  } else {
-    candidates[nc++] = first;
-  }
-  if (nc == 0) candidates[nc++] = first;
-
-  const IdmParams ip = idm_of(s, type);
-  for (uint32_t k = 0; k < nc; ++k) {
-    const uint32_t l = candidates[k];
-    const int32_t li = static_cast<int32_t>(l);
-    const float pos = insert_pos(net, d, seed, v, teleported, l, length);
-    const float v0 = desired_speed(net.lane_speed[l], s.trips.speed_factor[v], s.types.max_speed[type]);
-    float speed = 0;
-    bool speed_given = false;
-    if (!teleported) {
-      const uint8_t sk = d.speed_kind[v];
-      if (sk == kDepartSpeedGiven) {
-        speed = d.speed[v];
-        speed_given = true;
-      } else if (sk == kDepartSpeedMax || sk == kDepartSpeedDesired || sk == kDepartSpeedLimit ||
-                 sk == kDepartSpeedAvg || sk == kDepartSpeedLast) {
-        speed = v0;
-      } else if (sk == kDepartSpeedRandom) {
-        speed = v0 * static_cast<float>(rng_uniform_double(seed, v, 2));
-      }
-    }
-    // Body cells must be free.
-    const BodyCells body = body_cells(net, li, pos, length);
-    if (first_occupied(map, net, li, body.rear, body.front) >= 0) continue;
-    // Leader ahead: the inserted vehicle must be able to follow it safely.
-    const int32_t cells = static_cast<int32_t>(lane_cells(net, li));
-    const int32_t look = body.front + 1 + metres_as_cells(lookahead_distance(ip, speed, p.dt) + min_gap);
-    const int32_t ahead = body.front + 1 < cells ? first_occupied(map, net, li, body.front + 1,
-                                                                  look < cells - 1 ? look : cells - 1)
-                                                 : -1;
-    if (ahead >= 0) {
-      const float gap = static_cast<float>(ahead) - pos;
-      const float vl = decode_cell_speed(map[net.lane_cell_begin[l] + static_cast<uint32_t>(ahead)]);
-      if (gap < min_gap) continue;
-      const float safe = safe_speed(gap, vl, p.max_emergency_decel, ip.decel, p.dt);
-      if (speed > safe) {
-        if (speed_given) continue;
-        speed = safe;
-      }
-    }
-    // Follower behind: it must be able to stay safe behind the new vehicle.
-    if (body.rear > 0) {
-      const int32_t reach = body.rear - 1 - metres_as_cells(lookahead_distance(ip, net.lane_speed[l], p.dt));
-      const int32_t lag = last_occupied(map, net, li, reach > 0 ? reach : 0, body.rear - 1);
-      if (lag >= 0) {
-        const float gap = (pos - length) - static_cast<float>(lag + 1);
-        const float vl = decode_cell_speed(map[net.lane_cell_begin[l] + static_cast<uint32_t>(lag)]) + 0.25f;
-        if (gap <= 0 || lp_fmaxf(0.0f, vl - p.min_decel * p.dt) >
-                            safe_speed(gap, speed, p.max_emergency_decel, p.min_decel, p.dt))
-          continue;
-      }
-    }
-    apply_footprint(map, net, Footprint{li, -1, -1, pos}, length, encode_cell_speed(speed));
-    int64_t* counter = teleported ? p.cnt_entered : p.cnt_departed;
-    if (counter != nullptr) atomic_add_i64(&counter[l], 1);
-    *out_lane = li;
-    *out_pos = pos;
-    *out_speed = speed;
-    return true;
   }
   return false;
 }
 
-/// Inserts the head of one slot's queue until a vehicle does not fit.
+/// One step's insertions on one edge, as SUMO's MSEdge::insertVehicle does them: every offered vehicle in
+/// queue order picks one lane by its departLane (given, first, random anew at each try, free or best: the
+/// least occupied of the lanes it may take) and is tried there only; a lane where a vehicle failed in this
+/// step takes no other departure in this step, and a vehicle whose lane has failed waits while later ones
+/// may still go in on other lanes. Teleported vehicles re-enter apart from that (SUMO's vehicle transfer).
 LPSIM_HD void insert_queue_head(const StepContext& s, const DepartView& d, const InsertParams& p,
                                 uint8_t* map, const InsertBatch& b, uint32_t slot) {
+  const NetView& net = s.net;
+  const uint32_t e = b.edge[slot];
+  const uint32_t first = net.edge_first_lane[e];
+  const uint32_t nlanes = net.edge_num_lanes[e] < kMaxInsertLanes ? net.edge_num_lanes[e] : kMaxInsertLanes;
+  const uint64_t all = nlanes >= 64 ? ~uint64_t{0} : (uint64_t{1} << nlanes) - 1u;
+  uint64_t failed = 0, scanned = 0;
+  LaneScan scans[kMaxInsertLanes];
+  const uint64_t seed = p.seed ^ kDepartRngSalt;
   uint32_t n = 0;
-  for (uint32_t i = b.begin[slot]; i < b.begin[slot + 1]; ++i, ++n)
-    if (!try_insert_vehicle(s, d, p, map, b.entry[i], b.route_pos[i], &b.out_lane[i], &b.out_pos[i],
-                            &b.out_speed[i]))
-      break;
+  for (uint32_t i = b.begin[slot]; i < b.begin[slot + 1]; ++i) {
+    b.out_lane[i] = -1;
+    const uint32_t entry = b.entry[i];
+    const uint32_t v = entry & ~kInsertTeleported;
+    if (entry & kInsertTeleported) {
+      if (try_reenter(s, p, map, v, b.route_pos[i], &b.out_lane[i], &b.out_pos[i], &b.out_speed[i])) {
+        ++n;
+        scanned = 0;
+      }
+      continue;
+    }
+    if ((failed & all) == all) continue;
+    const uint32_t type = s.trips.type[v];
+    const uint8_t kind = d.lane_kind[v];
+    uint64_t mask = 0;
+    int32_t lane = -1;
+    if (kind == kDepartLaneGiven) {
+      if (d.lane[v] >= 0 && static_cast<uint32_t>(d.lane[v]) < nlanes)
+        lane = static_cast<int32_t>(first + static_cast<uint32_t>(d.lane[v]));
+    } else if (kind == kDepartLaneRandom) {
+      lane = static_cast<int32_t>(first +
+                                  static_cast<uint32_t>(rng_bits(seed, v, uint64_t{p.step} << 8) % nlanes));
+    } else if (kind == kDepartLaneFree || kind == kDepartLaneAllowed) {
+      mask = all;
+    } else if (kind == kDepartLaneBest) {
+      const uint32_t best =
+          best_lanes(net, s.trips.route_edges + s.trips.route_begin[v], s.trips.route_length[v], 0).mask[0];
+      for (uint32_t k = 0; k < nlanes && k < 32; ++k)
+        if (lane_bit(net, first + k) & best) mask |= uint64_t{1} << k;
+      if (mask == 0) mask = all;
+    } else {
+      lane = static_cast<int32_t>(first);
+    }
+    if (mask != 0) {
+      for (uint32_t k = 0; k < nlanes; ++k)
+        if (((mask >> k) & 1u) && !((scanned >> k) & 1u)) {
+          scans[k] = scan_lane(map, net, static_cast<int32_t>(first + k));
+          scanned |= uint64_t{1} << k;
+        }
+      const uint8_t pk = d.pos_kind[v];
+      const float bound = pk == kDepartPosLast ? 0.0f : pk == kDepartPosGiven ? d.pos[v] : 3.0e38f;
+      lane = free_lane(net, first, nlanes, mask, scans, s.types.min_gap[type], bound);
+    }
+    if (lane < 0) continue;
+    const uint32_t k = static_cast<uint32_t>(lane) - first;
+    if ((failed >> k) & 1u) continue;
+    if (!((scanned >> k) & 1u)) {
+      scans[k] = scan_lane(map, net, lane);
+      scanned |= uint64_t{1} << k;
+    }
+    if (try_depart_on_lane(s, d, p, map, v, lane, scans[k], &b.out_pos[i], &b.out_speed[i])) {
+      b.out_lane[i] = lane;
+      if (p.cnt_departed != nullptr) atomic_add_i64(&p.cnt_departed[lane], 1);
+      scanned &= ~(uint64_t{1} << k);
+      ++n;
+    } else {
+      failed |= uint64_t{1} << k;
+    }
+  }
   b.inserted[slot] = n;
 }
 

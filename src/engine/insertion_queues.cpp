@@ -27,10 +27,8 @@ void InsertionQueues::push_front(uint32_t e, uint32_t entry) {
   ++waiting_;
 }
 
-// Insertion stops at the first vehicle that does not fit, and once each lane of the edge has taken a vehicle
-// at its start the next one placed there cannot fit (inserts_at_lane_start): the offer ends before it, with
-// the same result (on a congested day most queues are long, and the batch is a few entries per edge instead
-// of 16).
+// Up to kMaxInsertPerEdge entries of each queue, from its head: the insertion tries them in order, and as
+// SUMO any of them may go in while one before it waits.
 const InsertBatch& InsertionQueues::offer(const std::vector<uint32_t>& resume_rp) {
   edge_.clear();
   begin_.assign(1, 0);
@@ -39,14 +37,8 @@ const InsertBatch& InsertionQueues::offer(const std::vector<uint32_t>& resume_rp
   for (const uint32_t e : queued_edges_) {
     const EdgeQueue& q = queue_[e];
     const size_t end = std::min<size_t>(q.entries.size(), q.head + kMaxInsertPerEdge);
-    uint32_t lane_starts_left = q.lanes;
     for (size_t i = q.head; i < end; ++i) {
-      const uint32_t entry = q.entries[i];
-      if (entry & kQueuedAtLaneStart) {
-        if (lane_starts_left == 0) break;
-        --lane_starts_left;
-      }
-      const uint32_t offered = entry & ~kQueuedAtLaneStart;  // the insertion knows only kInsertTeleported
+      const uint32_t offered = q.entries[i];
       entry_.push_back(offered);
       rp_.push_back((offered & kInsertTeleported) ? resume_rp[offered & ~kInsertTeleported] : 0u);
     }

@@ -10,17 +10,11 @@
 
 namespace lpsim {
 
-/// Queue entry flag (host only, taken off before an entry is offered): the vehicle is placed at its lane's
-/// start (inserts_at_lane_start). With kInsertTeleported the entry says all the batch building needs, so that
-/// it reads no per-vehicle column.
-constexpr uint32_t kQueuedAtLaneStart = 0x40000000u;
-constexpr uint32_t kMaxVehicles = kQueuedAtLaneStart;  // vehicle indices below both flags
+/// Vehicle indices stay below this bit (kInsertTeleported is the one above it).
+constexpr uint32_t kMaxVehicles = 0x40000000u;
 
-/// The queue entry of vehicle v (its departPos kind `pos_kind`), departing or re-entering after a teleport.
-inline uint32_t queue_entry(uint32_t v, uint8_t pos_kind, bool teleported) {
-  return v | (teleported ? kInsertTeleported : 0u) |
-         (inserts_at_lane_start(pos_kind, teleported) ? kQueuedAtLaneStart : 0u);
-}
+/// The queue entry of vehicle v, departing or re-entering after a teleport.
+inline uint32_t queue_entry(uint32_t v, bool teleported) { return v | (teleported ? kInsertTeleported : 0u); }
 
 class InsertionQueues {
  public:
@@ -72,11 +66,21 @@ void InsertionQueues::take_inserted(Inserted&& inserted) {
       continue;
     }
     EdgeQueue& q = queue_[e];
-    for (uint32_t i = begin_[slot]; i < begin_[slot] + inserted_[slot]; ++i) {
+    // The offered entries that stay move up behind the inserted ones, keeping their order, and the head
+    // passes the inserted ones.
+    const uint32_t offered = begin_[slot + 1] - begin_[slot];
+    size_t keep = q.head + offered;
+    for (uint32_t k = offered; k-- > 0;) {
+      const uint32_t i = begin_[slot] + k;
+      if (lane_[i] >= 0) continue;
+      q.entries[--keep] = q.entries[q.head + k];
+    }
+    for (uint32_t i = begin_[slot]; i < begin_[slot + 1]; ++i) {
+      if (lane_[i] < 0) continue;
       inserted(i);
-      ++q.head;
       --waiting_;
     }
+    q.head = static_cast<uint32_t>(keep);
     if (q.head < q.entries.size()) {
       still_.push_back(e);
     } else {

@@ -23,7 +23,9 @@ static_assert(kDepartLaneGiven == uint8_t(DepartLane::Given) &&
               kDepartLaneFree == uint8_t(DepartLane::Free) && kDepartLaneBest == uint8_t(DepartLane::Best));
 static_assert(kDepartPosGiven == uint8_t(DepartPos::Given) &&
               kDepartPosRandom == uint8_t(DepartPos::Random) &&
-              kDepartPosRandomFree == uint8_t(DepartPos::RandomFree));
+              kDepartPosRandomFree == uint8_t(DepartPos::RandomFree) &&
+              kDepartPosFree == uint8_t(DepartPos::Free) && kDepartPosLast == uint8_t(DepartPos::Last) &&
+              kDepartPosStop == uint8_t(DepartPos::Stop));
 static_assert(kDepartSpeedGiven == uint8_t(DepartSpeed::Given) &&
               kDepartSpeedZero == uint8_t(DepartSpeed::Zero) &&
               kDepartSpeedRandom == uint8_t(DepartSpeed::Random) &&
@@ -210,7 +212,7 @@ void Simulation::handle_vehicle_ends(std::vector<VehicleEnd>& ends) {
     moves_.push_back(TeleportMove{v, e.slot, 0});
     ledger_.teleporting(e, e.route_pos + 1);
     const uint32_t edge = d.route_edges[d.route_begin[v] + e.route_pos + 1];
-    queues_.push_front(edge, queue_entry(v, d.depart_pos_kind[v], true));
+    queues_.push_front(edge, queue_entry(v, true));
   }
 }
 
@@ -239,14 +241,19 @@ void Simulation::enqueue(uint32_t v) {
     ++counts_.removed;
     return;
   }
-  queues_.push_back(d.route_edges[d.route_begin[v]], queue_entry(v, d.depart_pos_kind[v], false));
+  queues_.push_back(d.route_edges[d.route_begin[v]], queue_entry(v, false));
 }
 
 void Simulation::insert_waiting(int map_index) {
   const InsertBatch& batch = queues_.offer(ledger_.resume_route_positions());
   // The step length as a float in the one way the insertion checks have always used it.
-  const InsertParams params{
-      static_cast<float>(step_length()), opt_.seed, max_emergency_decel_, min_decel_, nullptr, nullptr};
+  const InsertParams params{static_cast<float>(step_length()),
+                            opt_.seed,
+                            static_cast<uint32_t>(step_),
+                            max_emergency_decel_,
+                            min_decel_,
+                            nullptr,
+                            nullptr};
   if (queues_.offered_entries() > 0) stepper_->insert(batch, queues_.offered_entries(), params, map_index);
 
   // Advance the queues past the inserted heads, give each inserted vehicle a slot and record the

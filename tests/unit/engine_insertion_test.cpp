@@ -1,6 +1,6 @@
-// Insertion through the whole engine: a queue is inserted from its head until a vehicle does not fit, a
-// lane's start takes one vehicle per step, and vehicles with a departure position of their own still go in
-// behind those (the host offers a queue's head only as far as it can fit, inserts_at_lane_start).
+// Insertion through the whole engine: every queued vehicle is tried on the lane its departLane picks (the
+// least occupied for free), one that cannot go in does not hold up those behind it, and departPos free finds
+// the first wide enough gap from upstream, as SUMO 1.15 does on the same queue.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -45,25 +45,33 @@ struct QueueOnTwoLanes {
   }
 };
 
-TEST(EngineInsertionTest, ALaneStartTakesOneVehiclePerStepAndGivenPositionsGoInBehind) {
+// SUMO 1.15 on the same queue (netconvert corridor, all six departing at 0 with departLane free) inserts all
+// six at once: b0 E0_0 5.10, b1 E0_1 5.10, g50 E0_0 50, g80 E0_1 80, b2 E0_0 12.70 (departPos free: the first
+// gap from upstream with the secure gaps to both neighbours), g30 E0_1 30. Each vehicle takes the least
+// occupied lane, and a vehicle that cannot go in does not hold up those behind it.
+TEST(EngineInsertionTest, EveryQueuedVehicleIsTriedOnTheLeastOccupiedLaneAsSumo) {
   const QueueOnTwoLanes s;
   SimulationOptions opt;
   opt.threads = 1;
   Simulation sim(s.net, s.demand, opt);  // inserts what is due at the begin time
-  // One base vehicle per lane at the lane start, then both given positions; the third vehicle at a lane
-  // start does not fit, and the queue stops there (g30 behind it waits although its place is free).
-  for (const char* id : {"b0", "b1", "g50", "g80"}) EXPECT_EQ(sim.status(s.index(id)), kRunning) << id;
-  EXPECT_NE(sim.lane(s.index("b0")), sim.lane(s.index("b1")));
+  for (const char* id : {"b0", "b1", "g50", "g80", "b2", "g30"})
+    EXPECT_EQ(sim.status(s.index(id)), kRunning) << id;
+  const int32_t lane0 = sim.lane(s.index("b0"));
+  const int32_t lane1 = sim.lane(s.index("b1"));
+  EXPECT_NE(lane0, lane1);
+  EXPECT_EQ(sim.lane(s.index("g50")), lane0);
+  EXPECT_EQ(sim.lane(s.index("g80")), lane1);
+  EXPECT_EQ(sim.lane(s.index("b2")), lane0);
+  EXPECT_EQ(sim.lane(s.index("g30")), lane1);
   EXPECT_NEAR(sim.pos(s.index("b0")), 5.1f, 1e-4f);
   EXPECT_NEAR(sim.pos(s.index("g50")), 50.0f, 1e-4f);
   EXPECT_NEAR(sim.pos(s.index("g80")), 80.0f, 1e-4f);
-  EXPECT_NE(sim.status(s.index("b2")), kRunning);
-  EXPECT_NE(sim.status(s.index("g30")), kRunning);
-  EXPECT_EQ(sim.counts().running, 4u);
-  EXPECT_EQ(sim.counts().waiting, 2u);
+  EXPECT_NEAR(sim.pos(s.index("b2")), 12.7f, 0.5f);  // the follower's front known to the metre
+  EXPECT_NEAR(sim.pos(s.index("g30")), 30.0f, 1e-4f);
+  EXPECT_EQ(sim.counts().running, 6u);
+  EXPECT_EQ(sim.counts().waiting, 0u);
   EXPECT_EQ(sim.check_lane_map(), "");
 
-  // Once the lane starts are clear again, the rest go in, in queue order, and every trip ends.
   while (!sim.finished() && sim.time() < 300) {
     sim.step();
     EXPECT_EQ(sim.check_lane_map(), "") << "t=" << sim.time();
