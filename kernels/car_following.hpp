@@ -69,4 +69,19 @@ LPSIM_HD float cf_accel(const IdmParams& p, float speed, float v0, float gap, fl
   return idm_accel(p, speed, v0, gap, leader_speed);
 }
 
+/// Room (minGap not counted) a vehicle at `speed` keeps to a leader at leader_speed when inserted: the
+/// secure gap of its model (the leader's type is not in the lane map: Krauss assumes its own decel).
+LPSIM_HD float cf_secure_gap(const IdmParams& p, float speed, float leader_speed, float dt) {
+  if (is_krauss(p)) return krauss_secure_gap(p, speed, leader_speed, p.decel, dt);
+  return idm_secure_gap(p, speed, leader_speed);
+}
+
+/// Fastest speed at which a vehicle may be inserted `gap` metres (bumper to bumper) behind a leader at
+/// leader_speed, wishing `speed`: its model's insertion speed, never above `speed`.
+LPSIM_HD float cf_insertion_speed(const IdmParams& p, float speed, float v0, float gap, float leader_speed,
+                                  float dt, int substeps) {
+  if (is_krauss(p)) return lp_fminf(speed, krauss_insertion_speed(p, gap, leader_speed, p.decel, dt));
+  return idm_insertion_speed(p, speed, v0, gap, leader_speed, dt, substeps);
+}
+
 }  // namespace lpsim

@@ -318,4 +318,26 @@ LPSIM_HD float finalize_speed(const IdmParams& p, float speed, float candidate, 
   return lp_fminf(lp_fmaxf(candidate, slowest), fastest);
 }
 
+/// SUMO's IDM secure gap (getSecureGap): the room, minGap not counted, a vehicle at `speed` keeps to a
+/// leader at leader_speed.
+LPSIM_HD float idm_secure_gap(const IdmParams& p, float speed, float leader_speed) {
+  return lp_fmaxf(0.0f, speed * p.tau + speed * (speed - leader_speed) / (2.0f * sqrtf(p.accel * p.decel)));
+}
+
+/// SUMO's IDM insertion speed behind a leader `gap` metres ahead (bumper to bumper): the wished speed where
+/// the gap, minGap not counted, is at least the IDM's desired one (idm_secure_gap); else the IDM's next
+/// speed, lowered again while the step after it would still brake by more than 1 m/s^2.
+LPSIM_HD float idm_insertion_speed(const IdmParams& p, float speed, float v0, float gap, float leader_speed,
+                                   float dt, int substeps) {
+  const float room = gap - p.min_gap;
+  for (int k = 0; k < 64; ++k) {
+    if (room >= idm_secure_gap(p, speed, leader_speed)) return speed;
+    const float s2 = idm_follow_speed(p, speed, v0, gap, leader_speed, dt, substeps);
+    const float s3 = idm_follow_speed(p, s2, v0, gap, leader_speed, dt, substeps);
+    if (s2 - s3 < 1.0f * dt) return s2;
+    speed = s2;
+  }
+  return speed;
+}
+
 }  // namespace lpsim

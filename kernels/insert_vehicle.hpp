@@ -105,28 +105,6 @@ LPSIM_HD LaneScan scan_lane(const uint8_t* map, const NetView& net, int32_t l) {
   return r;
 }
 
-/// SUMO's IDM secure gap (getSecureGap): the room, minGap not counted, a vehicle at `speed` keeps to a
-/// leader at leader_speed.
-LPSIM_HD float idm_secure_gap(const IdmParams& p, float speed, float leader_speed) {
-  return lp_fmaxf(0.0f, speed * p.tau + speed * (speed - leader_speed) / (2.0f * sqrtf(p.accel * p.decel)));
-}
-
-/// SUMO's IDM insertion speed behind a leader `gap` metres ahead (bumper to bumper): the wished speed where
-/// the gap, minGap not counted, is at least the IDM's desired one (idm_secure_gap); else the IDM's next
-/// speed, lowered again while the step after it would still brake by more than 1 m/s^2.
-LPSIM_HD float idm_insertion_speed(const IdmParams& p, float speed, float v0, float gap, float leader_speed,
-                                   float dt, int substeps) {
-  const float room = gap - p.min_gap;
-  for (int k = 0; k < 64; ++k) {
-    if (room >= idm_secure_gap(p, speed, leader_speed)) return speed;
-    const float s2 = idm_follow_speed(p, speed, v0, gap, leader_speed, dt, substeps);
-    const float s3 = idm_follow_speed(p, s2, v0, gap, leader_speed, dt, substeps);
-    if (s2 - s3 < 1.0f * dt) return s2;
-    speed = s2;
-  }
-  return speed;
-}
-
 /// A departure's speed as SUMO 1.15 chooses it on lane l (MSLane::getDepartSpeed), and whether the
 /// insertion may lower it to fit the traffic (patch) or must wait instead.
 struct DepartSpeedChoice {
@@ -162,9 +140,9 @@ LPSIM_HD DepartSpeedChoice depart_speed(const StepContext& s, const DepartView& 
 
 /// SUMO's isInsertionSuccess on one lane, for a vehicle whose front would be at `pos`: the body's cells
 /// must be free; the leader ahead on the lane (at any distance) must leave at least minGap, and the speed
-/// must not exceed the IDM insertion speed behind it (lowered when patch, else the insertion fails); the
-/// follower behind must have its IDM secure gap to the new vehicle. The speed is then capped by the
-/// ballistic safe speed LPSim's step keeps to every leader. Returns the speed, or -1 for no.
+/// must not exceed the insertion speed of its car-following model behind it (lowered when patch, else the
+/// insertion fails); the follower behind must have its secure gap to the new vehicle. The speed is then
+/// capped by the ballistic safe speed LPSim's step keeps to every leader. Returns the speed, or -1 for no.
 LPSIM_HD float insertion_check(const StepContext& s, const InsertParams& p, const uint8_t* map, uint32_t v,
                                int32_t l, float pos, float speed, bool patch) {
   const NetView& net = s.net;
@@ -182,8 +160,9 @@ LPSIM_HD float insertion_check(const StepContext& s, const InsertParams& p, cons
     const float gap = static_cast<float>(ahead) + 0.5f - pos;
     const float vl = decode_cell_speed(map[net.lane_cell_begin[l] + static_cast<uint32_t>(ahead)]) + 0.125f;
     if (gap < ip.min_gap) return -1.0f;
-    // The insertion's context carries no step parameters: SUMO's IDM sub-steps for the step length.
-    const float ns = idm_insertion_speed(ip, speed, v0, gap, vl, p.dt, idm_default_substeps(p.dt));
+    // The insertion's context carries no step parameters: SUMO's IDM sub-steps for the step length (the
+    // IDM's insertion speed; Krauss has no sub-steps).
+    const float ns = cf_insertion_speed(ip, speed, v0, gap, vl, p.dt, idm_default_substeps(p.dt));
     if (ns < speed) {
       if (!patch && speed > 0.0f) return -1.0f;
       speed = ns;
@@ -196,7 +175,7 @@ LPSIM_HD float insertion_check(const StepContext& s, const InsertParams& p, cons
       // The follower's front: the middle of its front cell, as the leader's rear above.
       const float gap = (pos - length) - (static_cast<float>(lag) + 0.5f) - ip.min_gap;
       const float vf = decode_cell_speed(map[net.lane_cell_begin[l] + static_cast<uint32_t>(lag)]);
-      if (gap < 0.0f || gap < idm_secure_gap(ip, vf, speed)) return -1.0f;
+      if (gap < 0.0f || gap < cf_secure_gap(ip, vf, speed, p.dt)) return -1.0f;
     }
   }
   return speed;
@@ -234,7 +213,7 @@ LPSIM_HD bool try_depart_on_lane(const StepContext& s, const DepartView& d, cons
       pos = lp_fmaxf(length, lane_len - 0.1f);
     } else {
       const IdmParams ip = idm_of(s, type);
-      const float need = idm_secure_gap(ip, ds.speed, sc.last_speed) + min_gap + 0.1f;
+      const float need = cf_secure_gap(ip, ds.speed, sc.last_speed, p.dt) + min_gap + 0.1f;
       if (static_cast<float>(sc.last_rear) < need) return false;
       pos = lp_fmaxf(base_pos(lane_len, length),
                      lp_fminf(lane_len - 0.1f, static_cast<float>(sc.last_rear) - need));
@@ -257,7 +236,7 @@ LPSIM_HD bool try_depart_on_lane(const StepContext& s, const DepartView& d, cons
       int32_t rear = last_occupied(map, net, l, 0, n - 1);
       const float vl = decode_cell_speed(cells[rear]);
       while (rear > 0 && cells[rear - 1] != 0) --rear;
-      at_start = static_cast<float>(rear) >= idm_secure_gap(ip, vl, vl) + min_gap;
+      at_start = static_cast<float>(rear) >= cf_secure_gap(ip, vl, vl, p.dt) + min_gap;
     }
     if (at_start) speed = insertion_check(s, p, map, v, l, pos, ds.speed, true);
     int32_t c = sc.last_rear;
@@ -270,10 +249,11 @@ LPSIM_HD bool try_depart_on_lane(const StepContext& s, const DepartView& d, cons
       if (next >= 0) {
         const float vl = decode_cell_speed(cells[next]);
         sp = lp_fminf(vl, ds.speed);
-        front_max = static_cast<float>(next) - (idm_secure_gap(ip, sp, vl) + min_gap);
+        front_max = static_cast<float>(next) - (cf_secure_gap(ip, sp, vl, p.dt) + min_gap);
       }
       // The follower's front lies within its front cell: its middle, as for leaders.
-      const float back_min = static_cast<float>(e) + 0.5f + min_gap + idm_secure_gap(ip, vf, 0.0f) + length;
+      const float back_min =
+          static_cast<float>(e) + 0.5f + min_gap + cf_secure_gap(ip, vf, 0.0f, p.dt) + length;
       if (front_max > 0.0f && back_min + 0.1f < front_max && back_min + 0.1f <= lane_len) {
         pos = back_min + 0.1f;
         speed = insertion_check(s, p, map, v, l, pos, sp, true);

@@ -131,4 +131,29 @@ LPSIM_HD float krauss_finalize_speed(const IdmParams& p, float speed, float cand
   return lp_fmaxf(v_min, krauss_dawdle(v_max, p.accel, p.sigma, u, dt));
 }
 
+/// Distance to stop from `speed` braking at decel each step (Euler) after a reaction of `headway` seconds
+/// at that speed: SUMO's brakeGap (brakeGapEuler).
+LPSIM_HD float krauss_brake_gap(float speed, float decel, float headway, float dt) {
+  return stopping_distance(speed, decel, dt) + speed * headway;
+}
+
+/// SUMO's secure gap for Krauss (MSCFModel::getSecureGap): the room, minGap not counted, a vehicle at
+/// `speed` needs to a leader at leader_speed, which is assumed to brake at max(decel, leader_decel).
+LPSIM_HD float krauss_secure_gap(const IdmParams& p, float speed, float leader_speed, float leader_decel,
+                                 float dt) {
+  return lp_fmaxf(0.0f, krauss_brake_gap(speed, p.decel, p.tau, dt) -
+                            krauss_brake_gap(leader_speed, lp_fmaxf(p.decel, leader_decel), 0.0f, dt));
+}
+
+/// SUMO's insertion speed for Krauss (insertionFollowSpeed: maximumSafeFollowSpeed on insertion, without
+/// the emergency-braking correction): the fastest speed from which the vehicle stops behind a leader
+/// `gap` metres ahead (bumper to bumper) braking as in krauss_safe_follow_speed.
+LPSIM_HD float krauss_insertion_speed(const IdmParams& p, float gap, float leader_speed, float leader_decel,
+                                      float dt) {
+  const float gap2pred = gap - p.min_gap;
+  if (gap2pred < 0.0f) return 0.0f;
+  const float leader_room = stopping_distance(leader_speed, lp_fmaxf(p.decel, leader_decel), dt);
+  return krauss_safe_stop_speed(gap2pred + leader_room, p.decel, p.tau, dt);
+}
+
 }  // namespace lpsim
