@@ -30,7 +30,7 @@ constexpr uint32_t kInsertTeleported = 0x80000000u;
 /// Per-vehicle depart attributes (read-only).
 struct DepartView {
   const uint8_t* lane_kind;
-  const int8_t* lane;  // DepartLane::Given: rank among the edge's car lanes
+  const int8_t* lane;  // DepartLane::Given: rank among the edge's lanes
   const uint8_t* pos_kind;
   const float* pos;
   const uint8_t* speed_kind;
@@ -106,38 +106,53 @@ LPSIM_HD bool try_insert_vehicle(const StepContext& s, const DepartView& d, cons
   const float length = s.types.length[type], min_gap = s.types.min_gap[type];
   const uint64_t seed = p.seed ^ kDepartRngSalt;
 
-  // Candidate lanes in the order they are tried.
+  // Candidate lanes in the order they are tried: only lanes the vehicle's class may use, as SUMO inserts.
+  const uint32_t vclass = s.types.vclass[type];
   uint32_t candidates[64];
   uint32_t nc = 0;
   const uint8_t kind = teleported ? kDepartLaneBest : d.lane_kind[v];
-  if (kind == kDepartLaneGiven) {  // the demand builder maps SUMO's index to the rank among car lanes
-    if (d.lane[v] >= 0 && static_cast<uint32_t>(d.lane[v]) < nlanes)
+  if (kind == kDepartLaneGiven) {  // the demand builder maps SUMO's index to the rank among the edge's lanes
+    if (d.lane[v] >= 0 && static_cast<uint32_t>(d.lane[v]) < nlanes &&
+        lane_allows(net, first + static_cast<uint32_t>(d.lane[v]), vclass))
       candidates[nc++] = first + static_cast<uint32_t>(d.lane[v]);
   } else if (kind == kDepartLaneRandom) {
-    candidates[nc++] = first + static_cast<uint32_t>(rng_bits(seed, v, 0) % nlanes);
+    // The draw picks among the allowed lanes (all of them on most edges: then the k-th lane as before).
+    uint32_t allowed = 0;
+    for (uint32_t l = first; l < first + nlanes; ++l) allowed += lane_allows(net, l, vclass) ? 1u : 0u;
+    if (allowed > 0) {
+      uint32_t k = static_cast<uint32_t>(rng_bits(seed, v, 0) % allowed);
+      for (uint32_t l = first; l < first + nlanes; ++l)
+        if (lane_allows(net, l, vclass) && k-- == 0) {
+          candidates[nc++] = l;
+          break;
+        }
+    }
   } else if (kind == kDepartLaneBest || kind == kDepartLaneFree) {
     // Every candidate is a lane of the edge, and one whose body cells are taken is skipped: where no lane has
     // room (most retries on a congested day) the answer is no without the route walk of the best lanes.
     bool any_room = false;
     for (uint32_t l = first; l < first + nlanes && !any_room; ++l) {
+      if (!lane_allows(net, l, vclass)) continue;
       const int32_t li = static_cast<int32_t>(l);
       const BodyCells body = body_cells(net, li, insert_pos(net, d, seed, v, teleported, l, length), length);
       any_room = first_occupied(map, net, li, body.rear, body.front) < 0;
     }
     if (!any_room) return false;
     // Best, as SUMO: only lanes that lead on along the route (wait for one otherwise). Free and teleported
-    // vehicles: those first, then the others.
+    // vehicles: those first, then the others. (Best lanes are lanes the class may use.)
     const uint32_t best =
-        best_lanes(net, s.trips.route_edges + s.trips.route_begin[v], s.trips.route_length[v], rp).mask[0];
+        best_lanes(net, s.trips.route_edges + s.trips.route_begin[v], s.trips.route_length[v], rp, vclass)
+            .mask[0];
     for (uint32_t l = first; l < first + nlanes && nc < 64; ++l)
       if (lane_bit(net, l) & best) candidates[nc++] = l;
     if (kind == kDepartLaneFree || teleported)
       for (uint32_t l = first; l < first + nlanes && nc < 64; ++l)
-        if (!(lane_bit(net, l) & best)) candidates[nc++] = l;
-  } else {
-    candidates[nc++] = first;
+        if (!(lane_bit(net, l) & best) && lane_allows(net, l, vclass)) candidates[nc++] = l;
   }
-  if (nc == 0) candidates[nc++] = first;
+  if (nc == 0)  // first (and the fallback of the others): the first lane the class may use
+    for (uint32_t l = first; l < first + nlanes && nc == 0; ++l)
+      if (lane_allows(net, l, vclass)) candidates[nc++] = l;
+  if (nc == 0) return false;  // no lane of this edge admits the class (routes are checked: not expected)
 
   const IdmParams ip = idm_of(s, type);
   for (uint32_t k = 0; k < nc; ++k) {

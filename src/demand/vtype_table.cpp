@@ -3,6 +3,7 @@
 #include <charconv>
 #include <cmath>
 
+#include "core/vclass.hpp"
 #include "demand/demand_draws.hpp"
 
 namespace lpsim {
@@ -75,6 +76,7 @@ uint32_t VTypeTable::add_type(const VTypeSpec& t) {
   types_.sigma.push_back(static_cast<float>(t.sigma));
   types_.delta.push_back(static_cast<float>(idm_delta(t)));
   types_.vclass.push_back(t.vclass);
+  types_.vclass_mask.push_back(vehicle_vclass_mask(t.vclass));
   types_.car_follow_model.push_back(t.car_follow_model);
   types_.index.emplace(t.id, index);
   return index;
