@@ -402,7 +402,9 @@ LPSIM_HD int32_t mandatory_target_in(const NetView& net, int32_t lane, uint32_t 
 LPSIM_HD int32_t mandatory_target(const StepContext& s, VehicleRef r, int32_t lane, int32_t* lanes_to_cross) {
   const uint32_t rp = s.veh.route_pos[r.slot];
   if (s.net.lane_internal[lane] || rp + 1 >= s.veh.trip_route_size[r.slot]) return -1;
-  return mandatory_target_in(s.net, lane, current_best_mask(s, r), lanes_to_cross);
+  const int32_t target = mandatory_target_in(s.net, lane, current_best_mask(s, r), lanes_to_cross);
+  // A lane its class may not use between it and its best lanes leaves it where it is (as in SUMO).
+  return target >= 0 && lane_allows(s.net, static_cast<uint32_t>(target), vclass_of(s, r)) ? target : -1;
 }
 
 // A merge request: step, the side the changer comes from (1: from the left of the target lane), its rear
