@@ -63,11 +63,12 @@ std::string describe_scenario(const Scenario& sc) {
   }
   out += fmt("edges: %llu normal, %llu internal\n", static_cast<unsigned long long>(normal_edges),
              static_cast<unsigned long long>(internal_edges));
-  out += fmt(
-      "lanes: %llu car lanes on normal edges (%.3f lane-km), %llu internal; skipped non-car lanes: %lld\n",
-      static_cast<unsigned long long>(normal_lanes), net.lane_km(),
-      static_cast<unsigned long long>(internal_lanes), static_cast<long long>(net.skipped_non_car_lanes));
-  out += fmt("connections: %u (skipped, touching non-car lanes: %lld)\n", net.num_connections(),
+  out +=
+      fmt("lanes: %llu vehicle lanes on normal edges (%.3f lane-km), %llu internal; skipped lanes (no road "
+          "vehicle): %lld\n",
+          static_cast<unsigned long long>(normal_lanes), net.lane_km(),
+          static_cast<unsigned long long>(internal_lanes), static_cast<long long>(net.skipped_non_car_lanes));
+  out += fmt("connections: %u (skipped, touching skipped lanes: %lld)\n", net.num_connections(),
              static_cast<long long>(net.skipped_connections));
   uint64_t actuated = 0;
   for (auto a : net.signal_actuated) actuated += a;

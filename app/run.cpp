@@ -214,7 +214,7 @@ void print_run_report(std::FILE* out, const Run& run, double wall, double load_s
                static_cast<unsigned long long>(c.running), static_cast<unsigned long long>(c.waiting),
                static_cast<unsigned long long>(c.arrived));
   if (c.removed)
-    std::fprintf(out, " Removed (departure before begin or no car lane): %llu\n",
+    std::fprintf(out, " Removed (departure before begin or no lane for its class): %llu\n",
                  static_cast<unsigned long long>(c.removed));
   std::fprintf(out, "Teleports: %llu\n", static_cast<unsigned long long>(c.teleports));
   if (totals.trips > 0) {

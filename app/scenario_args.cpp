@@ -101,7 +101,7 @@ Scenario scenario_from_args(const std::vector<std::string>& args, ConfigSpec* co
   for (const auto& line : sc.warnings) std::fprintf(stderr, "lpsim: warning: %s\n", line.c_str());
   if (!sc.demand.unroutable.empty())
     std::fprintf(stderr,
-                 "lpsim: warning: %zu vehicles skipped (route outside the car lane map, or broken with "
+                 "lpsim: warning: %zu vehicles skipped (route outside the road lane map, or broken with "
                  "--ignore-route-errors); `lpsim info` lists them\n",
                  sc.demand.unroutable.size());
   return sc;

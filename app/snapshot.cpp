@@ -132,7 +132,8 @@ void visit(IO& io, Network& n) {
   io.field(n.phase_det);
   io.field(n.roundabout_edges);
   io.field(n.skipped_non_car_lanes), io.field(n.skipped_connections), io.field(n.net_offset);
-  io.field(n.edge_succ_begin), io.field(n.edge_succ);
+  io.field(n.edge_succ_begin), io.field(n.edge_succ), io.field(n.edge_succ_permissions);
+  io.field(n.lane_permissions), io.field(n.edge_permissions);
 }
 
 template <class IO>
@@ -141,6 +142,7 @@ void visit(IO& io, VehicleTypes& t) {
   io.field(t.emergency_decel), io.field(t.max_speed), io.field(t.speed_factor), io.field(t.speed_dev);
   io.field(t.tau), io.field(t.sigma), io.field(t.delta), io.field(t.vclass), io.field(t.car_follow_model);
   io.field(t.model);
+  io.field(t.vclass_mask);
 }
 
 template <class IO>

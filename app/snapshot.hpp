@@ -9,7 +9,7 @@
 
 namespace lpsim {
 
-inline constexpr uint32_t kSnapshotVersion = 3;  // 2: the vTypes' car-following model; 3: actuated loops
+inline constexpr uint32_t kSnapshotVersion = 4;  // 2: car-following model; 3: actuated loops; 4: vClasses
 
 void write_snapshot(const Scenario& scenario, const std::string& path);
 Scenario read_snapshot(const std::string& path);

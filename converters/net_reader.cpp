@@ -8,7 +8,6 @@
 
 #include "converters/route_attributes.hpp"  // split_ids
 #include "converters/tl_logic_reader.hpp"
-#include "converters/vclass.hpp"
 #include "converters/xml_stream.hpp"
 
 namespace lpsim {
@@ -272,9 +271,9 @@ class NetParser {
     l.allow = a.text(kLaneAllow);
     l.disallow = a.text(kLaneDisallow);
     // Crossings and walking areas belong to pedestrians whatever their lists say.
-    l.passenger_allowed = function != EdgeFunction::Crossing && function != EdgeFunction::WalkingArea &&
-                          passenger_allowed(l.allow, l.disallow);
-    if (!l.passenger_allowed) ++net_.skipped_non_car_lanes;
+    const bool pedestrian_area = function == EdgeFunction::Crossing || function == EdgeFunction::WalkingArea;
+    l.permissions = pedestrian_area ? kVClassPedestrian : lane_permissions(l.allow, l.disallow);
+    if (!vehicle_lane(l.permissions)) ++net_.skipped_non_car_lanes;
     if (auto shape = a.value(kLaneShape)) l.shape = parse_shape(xs_, "shape", *shape);
     return l;
   }

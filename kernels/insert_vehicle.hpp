@@ -30,7 +30,7 @@ constexpr uint32_t kInsertTeleported = 0x80000000u;
 /// Per-vehicle depart attributes (read-only).
 struct DepartView {
   const uint8_t* lane_kind;
-  const int8_t* lane;  // DepartLane::Given: rank among the edge's car lanes
+  const int8_t* lane;  // DepartLane::Given: rank among the edge's lanes
   const uint8_t* pos_kind;
   const float* pos;
   const uint8_t* speed_kind;
@@ -296,18 +296,21 @@ LPSIM_HD int32_t free_lane(const NetView& net, uint32_t first, uint32_t nlanes, 
 constexpr uint32_t kMaxInsertLanes = 64;
 
 /// Tries to put a teleported vehicle back on the road at the start of route edge `rp`: best lanes first,
-/// then the others, at the lane start, standing. Returns false, changing nothing, when none has room.
+/// then the others its class may use, at the lane start, standing. Returns false, changing nothing, when none has room.
 LPSIM_HD bool try_reenter(const StepContext& s, const InsertParams& p, uint8_t* map, uint32_t v, uint32_t rp,
                           int32_t* out_lane, float* out_pos, float* out_speed) {
   const NetView& net = s.net;
   const uint32_t e = trip_route_edge(s, v, rp);
   const uint32_t first = net.edge_first_lane[e], nlanes = net.edge_num_lanes[e];
-  const float length = s.types.length[s.trips.type[v]];
+  const uint32_t type = s.trips.type[v];
+  const float length = s.types.length[type];
+  const uint32_t vclass = s.types.vclass[type];
   const uint32_t best =
-      best_lanes(net, s.trips.route_edges + s.trips.route_begin[v], s.trips.route_length[v], rp).mask[0];
+      best_lanes(net, s.trips.route_edges + s.trips.route_begin[v], s.trips.route_length[v], rp, vclass)
+          .mask[0];
   for (int pass = 0; pass < 2; ++pass) {
     for (uint32_t l = first; l < first + nlanes; ++l) {
-      if (((lane_bit(net, l) & best) != 0) != (pass == 0)) continue;
+      if (((lane_bit(net, l) & best) != 0) != (pass == 0) || !lane_allows(net, l, vclass)) continue;
       const int32_t li = static_cast<int32_t>(l);
       const float pos = base_pos(net.lane_length[l], length);
       const float speed = insertion_check(s, p, map, v, li, pos, 0.0f, true);
@@ -353,24 +356,36 @@ LPSIM_HD void insert_queue_head(const StepContext& s, const DepartView& d, const
     if ((failed & all) == all) continue;
     const uint32_t type = s.trips.type[v];
     const uint8_t kind = d.lane_kind[v];
+    // Only lanes the vehicle's class may use, as SUMO inserts (all of them on most edges).
+    const uint32_t vclass = s.types.vclass[type];
+    uint64_t allowed = 0;
+    uint32_t num_allowed = 0;
+    for (uint32_t k = 0; k < nlanes; ++k)
+      if (lane_allows(net, first + k, vclass)) allowed |= uint64_t{1} << k, ++num_allowed;
+    if (allowed == 0) continue;  // routes are checked per class: not expected
     uint64_t mask = 0;
     int32_t lane = -1;
     if (kind == kDepartLaneGiven) {
-      if (d.lane[v] >= 0 && static_cast<uint32_t>(d.lane[v]) < nlanes)
+      if (d.lane[v] >= 0 && static_cast<uint32_t>(d.lane[v]) < nlanes && ((allowed >> d.lane[v]) & 1u))
         lane = static_cast<int32_t>(first + static_cast<uint32_t>(d.lane[v]));
     } else if (kind == kDepartLaneRandom) {
-      lane = static_cast<int32_t>(first +
-                                  static_cast<uint32_t>(rng_bits(seed, v, uint64_t{p.step} << 8) % nlanes));
+      // The draw picks the k-th allowed lane (the k-th lane where every lane is allowed).
+      uint32_t pick = static_cast<uint32_t>(rng_bits(seed, v, uint64_t{p.step} << 8) % num_allowed);
+      for (uint32_t k = 0; k < nlanes && lane < 0; ++k)
+        if (((allowed >> k) & 1u) && pick-- == 0) lane = static_cast<int32_t>(first + k);
     } else if (kind == kDepartLaneFree || kind == kDepartLaneAllowed) {
-      mask = all;
+      mask = allowed;
     } else if (kind == kDepartLaneBest) {
       const uint32_t best =
-          best_lanes(net, s.trips.route_edges + s.trips.route_begin[v], s.trips.route_length[v], 0).mask[0];
+          best_lanes(net, s.trips.route_edges + s.trips.route_begin[v], s.trips.route_length[v], 0, vclass)
+              .mask[0];
       for (uint32_t k = 0; k < nlanes && k < 32; ++k)
         if (lane_bit(net, first + k) & best) mask |= uint64_t{1} << k;
-      if (mask == 0) mask = all;
-    } else {
-      lane = static_cast<int32_t>(first);
+      mask &= allowed;
+      if (mask == 0) mask = allowed;
+    } else {  // first: the first lane the class may use
+      for (uint32_t k = 0; k < nlanes && lane < 0; ++k)
+        if ((allowed >> k) & 1u) lane = static_cast<int32_t>(first + k);
     }
     if (mask != 0) {
       for (uint32_t k = 0; k < nlanes; ++k)

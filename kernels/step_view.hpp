@@ -16,9 +16,9 @@ struct NetView {
   const float* lane_speed;          // m/s
   const uint32_t* lane_edge;
   const uint8_t* lane_internal;     // 1: junction-internal lane
-  const int32_t* lane_left;         // car lane to the left on the same edge (index+1), -1 if none
-  const int32_t* lane_right;        // car lane to the right on the same edge, -1 if none
-  const uint8_t* lane_rank;         // rank among the edge's car lanes (0: rightmost), 255 from there on
+  const int32_t* lane_left;         // lane to the left on the same edge (index+1), -1 if none
+  const int32_t* lane_right;        // lane to the right on the same edge, -1 if none
+  const uint8_t* lane_rank;         // rank among the edge's vehicle lanes (0: rightmost), 255 from there on
   const uint32_t* lane_conn_begin;  // [num_lanes+1] outgoing connections
   const uint32_t* edge_first_lane;
   const uint8_t* edge_num_lanes;
@@ -35,6 +35,7 @@ struct NetView {
   // connection (up to where the two paths cross, plus clearance).
   const uint16_t* conn_foe_block_cells;
   const uint32_t* signal_link_begin;  // [num_signals+1] offset of each signal's links in link_state
+  const uint32_t* lane_permissions;   // vClass mask of each lane (src/core/vclass.hpp)
 };
 
 /// Vehicle types, read-only.
@@ -47,8 +48,9 @@ struct TypeView {
   const float* max_speed;
   const float* tau;
   const float* delta;
-  const float* sigma;    // Krauss's dawdling
-  const uint8_t* model;  // CarFollowModel (kernels/idm.hpp)
+  const float* sigma;      // Krauss's dawdling
+  const uint8_t* model;    // CarFollowModel (kernels/idm.hpp)
+  const uint32_t* vclass;  // vClass mask: the type may use lanes whose permissions share a bit with it
 };
 
 /// Per-vehicle static data, read-only.

@@ -78,9 +78,26 @@ LPSIM_HD uint32_t route_edge(const StepContext& s, VehicleRef r, uint32_t k) {
   return s.trips.route_edges[s.veh.trip_route_begin[r.slot] + k];
 }
 
-LPSIM_HD bool lane_has_conn_to(const NetView& net, int32_t lane, uint32_t edge) {
+/// Whether vClass mask `vclass` may use lane l.
+LPSIM_HD bool lane_allows(const NetView& net, uint32_t l, uint32_t vclass) {
+  return (net.lane_permissions[l] & vclass) != 0;
+}
+
+/// Whether vClass mask `vclass` may take connection c: its via lane and its target lane allow it.
+LPSIM_HD bool conn_allows(const NetView& net, uint32_t c, uint32_t vclass) {
+  const int32_t via = net.conn_via_lane[c];
+  return lane_allows(net, net.conn_to_lane[c], vclass) &&
+         (via < 0 || lane_allows(net, static_cast<uint32_t>(via), vclass));
+}
+
+/// vClass mask of the vehicle in slot r.slot.
+LPSIM_HD uint32_t vclass_of(const StepContext& s, VehicleRef r) {
+  return s.types.vclass[s.veh.trip_type[r.slot]];
+}
+
+LPSIM_HD bool lane_has_conn_to(const NetView& net, int32_t lane, uint32_t edge, uint32_t vclass) {
   for (uint32_t c = net.lane_conn_begin[lane]; c < net.lane_conn_begin[lane + 1]; ++c)
-    if (net.conn_to_edge[c] == edge) return true;
+    if (net.conn_to_edge[c] == edge && conn_allows(net, c, vclass)) return true;
   return false;
 }
 
@@ -90,9 +107,10 @@ LPSIM_HD bool lane_has_conn_to(const NetView& net, int32_t lane, uint32_t edge) 
 constexpr uint32_t kBestLaneEdges = 8;
 constexpr float kBestLaneDistance = 600.0f;
 
-/// Bit k set: lane k (rank among the edge's car lanes) of the route's edge rp+level can follow the route for
-/// the next edges in view without a lane change (SUMO's "best lanes", limited to kBestLaneEdges). Where no
-/// lane can, the lanes that at least reach the next edge. Edges with more than 32 lanes see their first 32.
+/// Bit k set: lane k (rank among the edge's lanes) of the route's edge rp+level can follow the route for
+/// the next edges in view without a lane change (SUMO's "best lanes", limited to kBestLaneEdges), using
+/// only lanes and connections that vClass mask `vclass` may use. Where no lane can, the lanes that at least
+/// reach the next edge. Edges with more than 32 lanes see their first 32.
 struct BestLanes {
   uint32_t mask[kBestLaneEdges];
   uint32_t levels;  // edges in view (1 = only the current edge)
@@ -103,7 +121,16 @@ LPSIM_HD uint32_t lane_bit(const NetView& net, uint32_t lane) {
   return rank < 32 ? (1u << rank) : 0u;
 }
 
-LPSIM_HD BestLanes best_lanes(const NetView& net, const uint32_t* route, uint32_t len, uint32_t rp) {
+LPSIM_HD uint32_t allowed_lane_bits(const NetView& net, uint32_t e, uint32_t vclass) {
+  const uint32_t first = net.edge_first_lane[e];
+  uint32_t bits = 0;
+  for (uint32_t k = 0; k < net.edge_num_lanes[e] && k < 32; ++k)
+    if (lane_allows(net, first + k, vclass)) bits |= 1u << k;
+  return bits;
+}
+
+LPSIM_HD BestLanes best_lanes(const NetView& net, const uint32_t* route, uint32_t len, uint32_t rp,
+                              uint32_t vclass) {
   BestLanes b{};
   // The current edge and always the next one; further edges while they start within the distance.
   float dist = 0.0f;
@@ -113,17 +140,16 @@ LPSIM_HD BestLanes best_lanes(const NetView& net, const uint32_t* route, uint32_
     ++n;
   }
   b.levels = n;
-  const uint32_t last = route[rp + n - 1];
-  const uint32_t last_lanes = net.edge_num_lanes[last];
-  b.mask[n - 1] = last_lanes >= 32 ? 0xFFFFFFFFu : ((1u << last_lanes) - 1u);
+  b.mask[n - 1] = allowed_lane_bits(net, route[rp + n - 1], vclass);
   for (int32_t i = static_cast<int32_t>(n) - 2; i >= 0; --i) {
     const uint32_t e = route[rp + static_cast<uint32_t>(i)];
     const uint32_t next = route[rp + static_cast<uint32_t>(i) + 1];
     const uint32_t first = net.edge_first_lane[e];
     uint32_t keep = 0, reach = 0;
     for (uint32_t k = 0; k < net.edge_num_lanes[e] && k < 32; ++k) {
+      if (!lane_allows(net, first + k, vclass)) continue;
       for (uint32_t c = net.lane_conn_begin[first + k]; c < net.lane_conn_begin[first + k + 1]; ++c) {
-        if (net.conn_to_edge[c] != next) continue;
+        if (net.conn_to_edge[c] != next || !conn_allows(net, c, vclass)) continue;
         reach |= 1u << k;
         if (lane_bit(net, net.conn_to_lane[c]) & b.mask[i + 1]) keep |= 1u << k;
       }
@@ -141,7 +167,7 @@ LPSIM_HD uint32_t best_mask_at(const StepContext& s, VehicleRef r, uint32_t rp) 
   const uint32_t entry = r.slot * kBestLaneEntries + (rp & (kBestLaneEntries - 1u));
   if (s.veh.best_rp[entry] != rp) {
     s.veh.best_mask[entry] = best_lanes(s.net, s.trips.route_edges + s.veh.trip_route_begin[r.slot],
-                                        s.veh.trip_route_size[r.slot], rp)
+                                        s.veh.trip_route_size[r.slot], rp, vclass_of(s, r))
                                  .mask[0];
     s.veh.best_rp[entry] = rp;
   }
@@ -157,19 +183,22 @@ LPSIM_HD uint32_t current_best_mask(const StepContext& s, VehicleRef r) {
 // into edges of a few metres or less).
 constexpr float kMinLaneChangeEdge = 15.0f;
 
-/// A connection from `lane` to edge `next` onto a lane that continues to edge `after`, or -1.
-LPSIM_HD int32_t conn_through(const NetView& net, int32_t lane, uint32_t next, uint32_t after) {
+/// A connection from `lane` to edge `next` onto a lane that continues to edge `after`, or -1 (for vClass
+/// mask `vclass`).
+LPSIM_HD int32_t conn_through(const NetView& net, int32_t lane, uint32_t next, uint32_t after,
+                              uint32_t vclass) {
   for (uint32_t c = net.lane_conn_begin[lane]; c < net.lane_conn_begin[lane + 1]; ++c)
-    if (net.conn_to_edge[c] == next &&
-        lane_has_conn_to(net, static_cast<int32_t>(net.conn_to_lane[c]), after))
+    if (net.conn_to_edge[c] == next && conn_allows(net, c, vclass) &&
+        lane_has_conn_to(net, static_cast<int32_t>(net.conn_to_lane[c]), after, vclass))
       return static_cast<int32_t>(c);
   return -1;
 }
 
 /// The connection a vehicle takes at the end of `lane` to reach the route's next edge (index rp+1); prefers
-/// a target lane among the next edge's best lanes. -1: this lane does not lead there, or only onto lanes of
-/// a short next edge that have no connection to the edge after it (a trap: the vehicle waits here, where it
-/// can still change lanes, as SUMO's vehicles stop where their lane's continuation ends).
+/// a target lane among the next edge's best lanes. Only connections its vClass may take. -1: this lane
+/// does not lead there, or only onto lanes of a short next edge that have no connection to the edge after
+/// it (a trap: the vehicle waits here, where it can still change lanes, as SUMO's vehicles stop where their
+/// lane's continuation ends).
 LPSIM_HD int32_t choose_connection(const StepContext& s, VehicleRef r, int32_t lane, uint32_t rp) {
   const NetView& net = s.net;
   const uint32_t len = s.veh.trip_route_size[r.slot];
@@ -185,20 +214,22 @@ LPSIM_HD int32_t choose_connection(const StepContext& s, VehicleRef r, int32_t l
   if (rp + 1 >= len) return -1;
   const uint32_t next = route_edge(s, r, rp + 1);
   const uint32_t best = best_mask_at(s, r, rp + 1);
+  const uint32_t vclass = vclass_of(s, r);
   for (uint32_t c = net.lane_conn_begin[lane]; c < net.lane_conn_begin[lane + 1]; ++c) {
-    if (net.conn_to_edge[c] != next) continue;
+    if (net.conn_to_edge[c] != next || !conn_allows(net, c, vclass)) continue;
     if (first < 0) first = static_cast<int32_t>(c);
     if (lane_bit(net, net.conn_to_lane[c]) & best) return static_cast<int32_t>(c);
   }
   if (first >= 0 && rp + 2 < len && net.lane_length[net.edge_first_lane[next]] < kMinLaneChangeEdge) {
     const uint32_t after = route_edge(s, r, rp + 2);
-    const int32_t through = conn_through(net, lane, next, after);
+    const int32_t through = conn_through(net, lane, next, after, vclass);
     if (through >= 0) return through;
     // A trap only if another lane of this edge avoids it; else there is nothing better to wait for.
     const uint32_t edge = net.lane_edge[lane];
     const uint32_t l0 = net.edge_first_lane[edge];
     for (uint32_t l = l0; l < l0 + net.edge_num_lanes[edge]; ++l)
-      if (conn_through(net, static_cast<int32_t>(l), next, after) >= 0) return -1;
+      if (lane_allows(net, l, vclass) && conn_through(net, static_cast<int32_t>(l), next, after, vclass) >= 0)
+        return -1;
   }
   return first;
 }
@@ -372,7 +403,9 @@ LPSIM_HD int32_t mandatory_target_in(const NetView& net, int32_t lane, uint32_t 
 LPSIM_HD int32_t mandatory_target(const StepContext& s, VehicleRef r, int32_t lane, int32_t* lanes_to_cross) {
   const uint32_t rp = s.veh.route_pos[r.slot];
   if (s.net.lane_internal[lane] || rp + 1 >= s.veh.trip_route_size[r.slot]) return -1;
-  return mandatory_target_in(s.net, lane, current_best_mask(s, r), lanes_to_cross);
+  const int32_t target = mandatory_target_in(s.net, lane, current_best_mask(s, r), lanes_to_cross);
+  // A lane its class may not use between it and its best lanes leaves it where it is (as in SUMO).
+  return target >= 0 && lane_allows(s.net, static_cast<uint32_t>(target), vclass_of(s, r)) ? target : -1;
 }
 
 // A merge request: step, the side the changer comes from (1: from the left of the target lane), its rear
@@ -872,7 +905,8 @@ LPSIM_HD_INLINED LaneChangeAttempt lane_change_attempt(const StepContext& s, con
   if (net.lane_internal[in.lane] || last_edge_here) return none;
   const bool left_step = (s.params.step & 1u) == 0;
   const int32_t target = left_step ? net.lane_left[in.lane] : net.lane_right[in.lane];
-  if (target < 0) return none;
+  // Never onto a lane the vehicle's class may not use (a car beside a bus lane).
+  if (target < 0 || !lane_allows(net, static_cast<uint32_t>(target), vclass_of(s, in.r))) return none;
   const uint32_t good = current_best_mask(s, in.r);
   const bool here_good = (lane_bit(net, static_cast<uint32_t>(in.lane)) & good) != 0;
   const bool target_good = (lane_bit(net, static_cast<uint32_t>(target)) & good) != 0;
@@ -911,7 +945,7 @@ LPSIM_HD_INLINED void plan_lane_change(const StepContext& s, const PlanInput& in
   m.speed = cf_finalize_speed(in.p, in.speed, lp_fminf(b.cand, lc.speed_cap), in.dt, s.params.seed, in.r.id,
                               s.params.step);
   m.hard_limit = lp_fminf(m.hard_limit, lc.leader_gap - kClampEps);
-  if (!lane_has_conn_to(s.net, target, route_edge(s, in.r, in.rp + 1))) {
+  if (!lane_has_conn_to(s.net, target, route_edge(s, in.r, in.rp + 1), vclass_of(s, in.r))) {
     const float end_dist = s.net.lane_length[target] - in.pos;
     m.speed = lp_fminf(
         m.speed, lp_fmaxf(0.0f, cf_stop_speed(in.p, in.speed, in.v0, end_dist, in.dt, s.params.substeps)));

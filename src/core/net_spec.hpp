@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "core/vclass.hpp"
 
 namespace lpsim {
 
@@ -18,10 +19,10 @@ struct Point {
 struct LaneSpec {
   std::string id;
   int index = 0;
-  double speed = 13.89;           // m/s
-  double length = 0;              // m
-  std::string allow, disallow;    // SUMO vClass lists, as written
-  bool passenger_allowed = true;  // resolved by the reader from allow/disallow
+  double speed = 13.89;                 // m/s
+  double length = 0;                    // m
+  std::string allow, disallow;          // SUMO vClass lists, as written
+  uint32_t permissions = kAllVClasses;  // vClass mask resolved by the reader from allow/disallow
   std::vector<Point> shape;
   SourceLoc loc;
 };
@@ -85,7 +86,7 @@ struct NetSpec {
   std::vector<TlLogicSpec> tl_logics;
   std::vector<RoundaboutSpec> roundabouts;
   Point net_offset;                   // <location netOffset>
-  int64_t skipped_non_car_lanes = 0;  // lanes a passenger car may not use
+  int64_t skipped_non_car_lanes = 0;  // lanes no vehicle may use (sidewalks, crossings, walking areas)
 };
 
 }  // namespace lpsim

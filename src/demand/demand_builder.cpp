@@ -85,8 +85,8 @@ class Builder {
     } else if (v.edge_ref_count > 0) {
       slot = routes_.interned_route(v.edge_ref_begin, v.edge_ref_count, "vehicle", v.id, v.loc);
     } else {
-      slot =
-          trips_.add({v.from, v.to, v.from_junction, v.to_junction, v.via}, kind_name(v.source), v.id, v.loc);
+      slot = trips_.add({v.from, v.to, v.from_junction, v.to_junction, v.via},
+                        types_.types().vclass_mask[type], kind_name(v.source), v.id, v.loc);
     }
     pending_.push_back({v.depart, type, slot, types_.speed_factor(type, opt_.seed, stream), i, false});
     ids_.push_back(v.id);
@@ -98,9 +98,14 @@ class Builder {
     // One route for the whole flow unless it names a route (a distribution draws per vehicle).
     uint32_t shared_slot = 0;
     if (flow.route.empty()) {
+      // The flow's one route is routed for the class of its first vehicle's type (a vTypeDistribution of
+      // mixed classes gets that class's route for all; class_problem then skips or refuses the others).
+      const std::string first_id = flow.id + ".0";
+      const uint32_t first_type =
+          types_.resolve(flow.type, first_id, opt_.seed, draw_stream(first_id), flow.loc);
       shared_slot = flow.edges.empty()
                         ? trips_.add({flow.from, flow.to, flow.from_junction, flow.to_junction, flow.via},
-                                     "flow", flow.id, flow.loc)
+                                     types_.types().vclass_mask[first_type], "flow", flow.id, flow.loc)
                         : routes_.inline_route(flow.edges, "flow '" + flow.id + "'", flow.loc);
     }
     std::string id;
@@ -130,10 +135,36 @@ class Builder {
         throw InputError(loc_of(pending_[k]), "duplicate vehicle id '" + ids_[k] + "'");
   }
 
-  // Position of SUMO lane `sumo_index` among the car lanes of `edge`, or -1.
-  static bool is_car_class(const std::string& vclass) {
-    return vclass.empty() || vclass == "passenger" || vclass == "private" || vclass == "taxi" ||
-           vclass == "evehicle";
+  // Why vehicle k's class (its type's vClass mask) cannot drive its resolved route, in SUMO's words, or ""
+  // when it can: an edge none of whose lanes admits the class, two consecutive edges joined only by moves
+  // the class may not make (a connection between bus lanes, for a car), or a given departLane that the
+  // class may not use.
+  std::string class_problem(uint32_t k) const {
+    const PendingVehicle& p = pending_[k];
+    const RouteSlot& slot = routes_.slot(p.slot);
+    const uint32_t mask = types_.types().vclass_mask[p.type];
+    const uint32_t* edges = demand_.route_edges.data() + slot.begin;
+    auto who = [&]() { return "vehicle '" + ids_[k] + "' (vClass " + types_.types().vclass[p.type] + ")"; };
+    for (uint32_t i = 0; i < slot.length; ++i) {
+      if ((net_.edge_permissions[edges[i]] & mask) == 0)
+        return i == 0
+                   ? who() + " is not allowed to depart on any lane of edge '" + net_.edge_id[edges[0]] + "'"
+                   : who() + " is not allowed on edge '" + net_.edge_id[edges[i]] + "' of its route";
+      if (i > 0 && !net_.connected(edges[i - 1], edges[i], mask))
+        return who() + " has no valid route: no connection between edge '" + net_.edge_id[edges[i - 1]] +
+               "' and edge '" + net_.edge_id[edges[i]] + "' that its class may use";
+    }
+    const DepartSpec& ds = depart_of(p);
+    if (ds.lane == DepartLane::Given) {
+      const int position = car_lane_position(net_, edges[0], ds.lane_index);
+      if (position >= 0 &&
+          (net_.lane_permissions[net_.edge_first_lane[edges[0]] + static_cast<uint32_t>(position)] & mask) ==
+              0)
+        return "invalid departLane " + std::to_string(ds.lane_index) + " for " + who() + ": lane '" +
+               net_.lane_id[net_.edge_first_lane[edges[0]] + static_cast<uint32_t>(position)] +
+               "' does not allow its class";
+    }
+    return "";
   }
 
   void assemble() {
@@ -143,16 +174,25 @@ class Builder {
     by_depart.reserve(pending_.size());
     for (uint32_t k = 0; k < pending_.size(); ++k) {
       const RouteSlot& slot = routes_.slot(pending_[k].slot);
+      std::string reason;
       if (slot.problem >= 0) {
-        std::string reason = routes_.problem(slot.problem);
+        reason = routes_.problem(slot.problem);
         if (routes_.problem_outside_car_map(slot.problem)) {
-          // Cars must find car lanes on their route; other classes (buses on bus lanes, trams) are
-          // outside what the car lane map simulates and are skipped with the reason.
-          const std::string& vclass = types_.types().vclass[pending_[k].type];
-          if (is_car_class(vclass) && !routes_.ignore_route_errors())
+          // The route uses an edge without road lanes (a footpath, a railway). A road vehicle cannot drive
+          // it in SUMO either: an error. Trains, trams on their own tracks and ships are outside the road
+          // traffic LPSim simulates: skipped with the reason.
+          const uint32_t type = pending_[k].type;
+          if (road_vclass(types_.types().vclass_mask[type]) && !routes_.ignore_route_errors())
             throw InputError(loc_of(pending_[k]), reason + " (vehicle '" + ids_[k] + "')");
-          reason = "vClass " + vclass + ": " + reason;
+          reason = "vClass " + types_.types().vclass[type] + ": " + reason;
         }
+      } else {
+        reason = class_problem(k);
+        // As SUMO: a vehicle whose class cannot drive its route is an error, or skipped with the reason
+        // when route errors are ignored.
+        if (!reason.empty() && !routes_.ignore_route_errors()) throw InputError(loc_of(pending_[k]), reason);
+      }
+      if (!reason.empty()) {
         // Shared named routes keep a vehicle-free reason; name the vehicle here.
         if (reason.find("'" + ids_[k] + "'") == std::string::npos) reason += " of vehicle '" + ids_[k] + "'";
         demand_.unroutable.push_back({ids_[k], reason, loc_of(pending_[k])});
@@ -198,9 +238,9 @@ class Builder {
 
       if (!set_departure(d, v, ds, net_, first_edge, last_edge))
         throw InputError(loc_of(p), "departLane " + std::to_string(ds.lane_index) + " of vehicle '" +
-                                        d.vehicle_id[v] + "' is not a car lane of its first edge '" +
+                                        d.vehicle_id[v] + "' is not a lane of its first edge '" +
                                         net_.edge_id[first_edge] + "' (" +
-                                        std::to_string(net_.edge_num_lanes[first_edge]) + " car lanes)");
+                                        std::to_string(net_.edge_num_lanes[first_edge]) + " vehicle lanes)");
       // As SUMO, which checks a departSpeed when it inserts: vehicles outside [begin, end] never depart.
       const bool departs = p.depart >= opt_.begin && (opt_.end < 0 || p.depart <= opt_.end);
       if (departs) {

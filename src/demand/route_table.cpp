@@ -15,7 +15,7 @@ EdgeLookup::EdgeLookup(const Network& net) : net_(net), index_(net.num_edges()) 
 }
 
 namespace {
-constexpr const char* kNoCarLane = "has no lane a passenger car may use";
+constexpr const char* kNoCarLane = "has no lane a road vehicle may use";
 constexpr uint32_t kNotDrivable = 0xFFFFFFFFu;
 }  // namespace
 

@@ -16,11 +16,11 @@ uint64_t hash_request(const RouteRequest& r) {
   mix(r.origins);
   mix(r.destinations);
   mix(r.via);
-  return h;
+  return rng_mix64(h ^ r.vclass);
 }
 
 bool same_request(const RouteRequest& a, const RouteRequest& b) {
-  return a.origins == b.origins && a.destinations == b.destinations && a.via == b.via;
+  return a.origins == b.origins && a.destinations == b.destinations && a.via == b.via && a.vclass == b.vclass;
 }
 
 std::string endpoint_name(const std::string& edge, const std::string& junction) {
@@ -75,18 +75,19 @@ bool TripBatch::endpoint(const std::string& edge, const std::string& junction, b
   out.assign(edges.begin() + begin[j], edges.begin() + begin[j + 1]);
   if (out.empty()) {
     reason = "junction '" + junction + "' has no edge " + (leaving ? "leaving" : "entering") +
-             " it that a passenger car may use";
+             " it that a vehicle may use";
     return false;
   }
   return true;
 }
 
-uint32_t TripBatch::add(const TripEnds& ends, std::string_view kind, std::string_view id,
+uint32_t TripBatch::add(const TripEnds& ends, uint32_t vclass, std::string_view kind, std::string_view id,
                         const SourceLoc& loc) {
   const std::string who = std::string(kind) + " '" + std::string(id) + "'";
   if ((ends.from.empty() && ends.from_junction.empty()) || (ends.to.empty() && ends.to_junction.empty()))
     return routes_.add_broken(loc, who + " has neither a route nor both trip endpoints");
   RouteRequest request;
+  request.vclass = vclass;
   std::string reason;
   if (!endpoint(ends.from, ends.from_junction, true, request.origins, reason) ||
       !endpoint(ends.to, ends.to_junction, false, request.destinations, reason))
@@ -106,10 +107,13 @@ uint32_t TripBatch::add(const TripEnds& ends, std::string_view kind, std::string
   }
 
   const bool packed = request.origins.size() == 1 && request.destinations.size() == 1 && request.via.empty();
+  // Packed keys of one vClass are exact; another class's may collide and is told apart by the comparison.
   const uint64_t key =
-      packed ? (uint64_t{request.origins[0]} << 32 | request.destinations[0]) : hash_request(request);
+      packed ? (uint64_t{request.origins[0]} << 32 | request.destinations[0]) ^ rng_mix64(request.vclass)
+             : hash_request(request);
   const auto next = static_cast<uint32_t>(requests_.size());
   const uint32_t known = index_.find_or_insert(key, next, [&](uint32_t r) {
+    if (requests_[r].vclass != request.vclass) return false;
     return packed_[r] ? packed : !packed && same_request(requests_[r], request);
   });
   if (known != next) return pending_[known].slot;

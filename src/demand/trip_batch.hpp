@@ -27,9 +27,11 @@ class TripBatch {
  public:
   TripBatch(const Network& net, RouteTable& routes);
 
-  /// Slot the trip `id` (a "trip" or "flow", says `kind`) will use; filled by route_all(). Bad endpoints
-  /// throw InputError at `loc` naming the id (or give a broken slot when route errors are ignored).
-  uint32_t add(const TripEnds& ends, std::string_view kind, std::string_view id, const SourceLoc& loc);
+  /// Slot the trip `id` (a "trip" or "flow", says `kind`) of vClass mask `vclass` will use; filled by
+  /// route_all() with a path that class may drive. Bad endpoints throw InputError at `loc` naming the id
+  /// (or give a broken slot when route errors are ignored).
+  uint32_t add(const TripEnds& ends, uint32_t vclass, std::string_view kind, std::string_view id,
+               const SourceLoc& loc);
 
   /// Routes every pending request in one Router::route_all call and fills their slots. A request without
   /// a path: InputError "no route from X to Y for trip T" at the first trip's location, or a broken slot.

@@ -16,9 +16,11 @@ bool TripTable::changed() const {
          !changes_.new_routes.empty();
 }
 
-bool TripTable::connected(const Network& net, const std::vector<uint32_t>& edges) {
-  for (size_t i = 0; i + 1 < edges.size(); ++i)
-    if (!net.connected(edges[i], edges[i + 1])) return false;
+bool TripTable::connected(const Network& net, const std::vector<uint32_t>& edges, uint32_t vclass) {
+  for (size_t i = 0; i < edges.size(); ++i) {
+    if ((net.edge_permissions[edges[i]] & vclass) == 0) return false;
+    if (i + 1 < edges.size() && !net.connected(edges[i], edges[i + 1], vclass)) return false;
+  }
   return true;
 }
 
@@ -33,13 +35,14 @@ uint32_t TripTable::add(const NewTrip& t, const Network& net) {
   if (t.route.empty()) refuse("empty route");
   for (const uint32_t e : t.route)
     if (e >= net.num_edges() || net.edge_is_internal[e]) refuse("no normal edge " + std::to_string(e));
-  if (net.edge_num_lanes[t.route.front()] == 0) refuse("its first edge has no car lane");
-  if (!connected(net, t.route)) refuse("its route is not connected");
+  if (net.edge_num_lanes[t.route.front()] == 0) refuse("its first edge has no vehicle lane");
+  if (!connected(net, t.route, d_.types.vclass_mask[t.type]))
+    refuse("its route is not connected for its vClass " + d_.types.vclass[t.type]);
   if (d_.size() >= 0x40000000u) refuse("too many vehicles");
 
   const DepartSpec& ds = t.departure;
   if (ds.lane == DepartLane::Given && car_lane_position(net, t.route.front(), ds.lane_index) < 0)
-    refuse("departLane " + std::to_string(ds.lane_index) + " is not a car lane of its first edge");
+    refuse("departLane " + std::to_string(ds.lane_index) + " is not a vehicle lane of its first edge");
 
   const uint32_t v = d_.size();
   for (auto* c : {&d_.depart_lane_kind, &d_.depart_pos_kind, &d_.depart_speed_kind, &d_.arrival_pos_kind})

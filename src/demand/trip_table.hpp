@@ -38,7 +38,9 @@ class TripTable {
   /// The caller checks that they are connected and lead on from where the vehicle is.
   void set_route(uint32_t v, const std::vector<uint32_t>& edges);
   /// Whether each edge of `edges` is reachable from the one before (normal edges, in the net's edge graph).
-  static bool connected(const Network& net, const std::vector<uint32_t>& edges);
+  /// Whether a vehicle of class mask `vclass` can drive `edges` (each allows it, each move too).
+  static bool connected(const Network& net, const std::vector<uint32_t>& edges,
+                        uint32_t vclass = kAllVClasses);
 
   /// What was appended or rerouted since the last call.
   struct Changes {

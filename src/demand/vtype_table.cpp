@@ -3,6 +3,7 @@
 #include <charconv>
 #include <cmath>
 
+#include "core/vclass.hpp"
 #include "demand/demand_draws.hpp"
 #include "kernels/idm.hpp"
 
@@ -84,6 +85,7 @@ uint32_t VTypeTable::add_type(const VTypeSpec& t) {
   const std::string& model = t.car_follow_model_given ? t.car_follow_model : default_model_;
   types_.car_follow_model.push_back(model);
   types_.model.push_back(simulated_car_follow_model(model));
+  types_.vclass_mask.push_back(vehicle_vclass_mask(t.vclass));
   types_.index.emplace(t.id, index);
   return index;
 }

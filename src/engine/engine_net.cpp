@@ -140,6 +140,7 @@ NetView EngineNet::view(const Network& net) const {
   v.conn_foe = conn_foe.data();
   v.conn_foe_block_cells = foe_block_cells.data();
   v.signal_link_begin = link_begin.data();
+  v.lane_permissions = net.lane_permissions.data();
   return v;
 }
 

@@ -81,9 +81,9 @@ Simulation::Simulation(const Network& net, Demand demand, const SimulationOption
   StepperSetup setup;
   setup.net = engine_net_.view(net_);
   setup.signals = engine_net_.signal_table(net_);
-  setup.types =
-      TypeView{t.length.data(),    t.min_gap.data(), t.accel.data(), t.decel.data(), t.emergency_decel.data(),
-               t.max_speed.data(), t.tau.data(),     t.delta.data(), t.sigma.data(), t.model.data()};
+  setup.types = TypeView{t.length.data(),    t.min_gap.data(), t.accel.data(), t.decel.data(),
+                         t.emergency_decel.data(), t.max_speed.data(), t.tau.data(), t.delta.data(),
+                         t.sigma.data(),    t.model.data(),   t.vclass_mask.data()};
   setup.num_types = t.size();
   setup.num_edges = net.num_edges();
   setup.num_connections = net.num_connections();
@@ -325,7 +325,8 @@ void Simulation::set_route(uint32_t v, const std::vector<uint32_t>& edges) {
   if (edges.empty()) refuse("it is empty");
   for (const uint32_t e : edges)
     if (e >= net_.num_edges() || net_.edge_is_internal[e]) refuse("no normal edge " + std::to_string(e));
-  if (!TripTable::connected(net_, edges)) refuse("it is not connected");
+  if (!TripTable::connected(net_, edges, d.types.vclass_mask[d.vehicle_type[v]]))
+    refuse("it is not connected for the vehicle's vClass");
   const uint32_t* old = d.route_edges.data() + d.route_begin[v];
   auto must_start_at = [&](uint32_t rp, const char* where) {
     if (edges.front() != old[rp])

@@ -5,10 +5,10 @@
 
 namespace lpsim {
 
-bool Network::connected(uint32_t from_edge, uint32_t to_edge) const {
-  auto first = edge_succ.begin() + edge_succ_begin[from_edge];
-  auto last = edge_succ.begin() + edge_succ_begin[from_edge + 1];
-  return std::find(first, last, to_edge) != last;
+bool Network::connected(uint32_t from_edge, uint32_t to_edge, uint32_t vclass) const {
+  for (uint32_t i = edge_succ_begin[from_edge]; i < edge_succ_begin[from_edge + 1]; ++i)
+    if (edge_succ[i] == to_edge) return (edge_succ_permissions[i] & vclass) != 0;
+  return false;
 }
 
 double Network::lane_km() const {

@@ -1,6 +1,7 @@
 #pragma once
 // The network as the engine sees it: dense tables in structure-of-arrays form, built once from a NetSpec
-// by network_builder. Only lanes a passenger car may use are present. Every lane (normal and internal
+// by network_builder. Every lane some vehicle may use is present (sidewalks, crossings and walking areas are
+// not); each carries the vClasses allowed on it (core/vclass.hpp). Every lane (normal and internal
 // junction lanes) owns a contiguous run of 1-metre cells in one lane map; no padding between lanes.
 //
 // Index conventions: edges, lanes, connections, junctions and signals are numbered densely from 0 in the
@@ -33,19 +34,21 @@ struct Network {
   // --- edges (normal and internal) ---
   std::vector<std::string> edge_id;
   std::vector<uint32_t> edge_first_lane;  // lanes of an edge are contiguous, ordered by SUMO index
-  std::vector<uint8_t> edge_num_lanes;    // car lanes only; 0 if the edge has none
+  std::vector<uint8_t> edge_num_lanes;    // vehicle lanes only; 0 if the edge has none
   std::vector<int32_t> edge_from_junction, edge_to_junction;  // kNone for internal edges
   std::vector<uint8_t> edge_is_internal;
-  std::vector<float> edge_length;  // m (length of its first car lane)
-  std::vector<float> edge_speed;   // m/s, max over its car lanes (as SUMO's edge speed)
+  std::vector<float> edge_length;          // m (length of its first lane)
+  std::vector<float> edge_speed;           // m/s, max over its lanes (as SUMO's edge speed)
+  std::vector<uint32_t> edge_permissions;  // vClasses some lane of the edge allows (union of its lanes')
   std::vector<int32_t> edge_priority;
 
-  // --- lanes (car lanes only) ---
+  // --- lanes (vehicle lanes only) ---
   std::vector<std::string> lane_id;
   std::vector<uint32_t> lane_edge;
   std::vector<uint8_t> lane_index;         // SUMO lane index within its edge
   std::vector<float> lane_length;          // m
   std::vector<float> lane_speed;           // m/s
+  std::vector<uint32_t> lane_permissions;  // vClass mask of the lane (core/vclass.hpp)
   std::vector<uint64_t> lane_cell_begin;   // first cell in the lane map; size lanes+1 (last = total cells)
   std::vector<uint32_t> lane_conn_begin;   // outgoing connections [begin[l], begin[l+1]); size lanes+1
   std::vector<uint32_t> lane_shape_begin;  // points [begin[l], begin[l+1]) in shape_x/shape_y; size lanes+1
@@ -104,12 +107,15 @@ struct Network {
   uint32_t num_signals() const { return static_cast<uint32_t>(signal_id.size()); }
   uint64_t num_cells() const { return lane_cell_begin.empty() ? 0 : lane_cell_begin.back(); }
 
-  /// Edges a vehicle may drive next from `edge` (some car lane of `edge` connects to some car lane of it).
+  /// Edges a vehicle may drive next from `edge` (some lane of `edge` connects to some lane of it).
   /// CSR built by the builder: successors [edge_succ_begin[e], edge_succ_begin[e+1]) in edge_succ.
-  std::vector<uint32_t> edge_succ_begin, edge_succ;
-  bool connected(uint32_t from_edge, uint32_t to_edge) const;
+  /// edge_succ_permissions: per entry, the vClasses that can make that move (allowed on a from-lane, on
+  /// every internal lane crossed and on the to-lane).
+  std::vector<uint32_t> edge_succ_begin, edge_succ, edge_succ_permissions;
+  /// Whether a vehicle of class mask `vclass` can drive from `from_edge` onto `to_edge` (any class: default).
+  bool connected(uint32_t from_edge, uint32_t to_edge, uint32_t vclass = kAllVClasses) const;
 
-  /// Lane-km of normal (non-internal) car lanes.
+  /// Lane-km of normal (non-internal) vehicle lanes.
   double lane_km() const;
   /// Length of the shape segment from point i-1 to point i of shape_x/shape_y [m], in double precision.
   double shape_segment_length(uint32_t i) const;

@@ -58,12 +58,12 @@ class Builder {
   std::vector<uint32_t>
       spec_lane_offset_;  // per spec edge: first slot in spec_lane_car_ (and the total last)
   std::vector<uint8_t> spec_lanes_by_position_;       // per spec edge: 1 when lane k has index k for every k
-  std::vector<int32_t> spec_lane_car_;                // per spec lane: car lane index or kNone
+  std::vector<int32_t> spec_lane_car_;                // per spec lane: its lane index or kNone if dropped
   std::vector<uint32_t> edge_spec_;                   // per network edge: index of its EdgeSpec
   std::vector<const LaneSpec*> lane_spec_;            // per car lane: its LaneSpec
   std::vector<int32_t> internal_junction_;            // per network edge: junction an internal edge lies in
   std::unordered_set<std::string> pedestrian_edges_;  // crossings and walking areas, dropped entirely
-  std::unordered_set<std::string> non_car_lanes_;     // lane ids dropped for cars (for via checks)
+  std::unordered_set<std::string> non_car_lanes_;     // lane ids dropped (pedestrian only; for via checks)
 
   void add_junctions() {
     const auto n = spec_.junctions.size();
@@ -154,6 +154,7 @@ class Builder {
     net_.edge_num_lanes.reserve(edges.size());
     net_.edge_length.reserve(edges.size());
     net_.edge_speed.reserve(edges.size());
+    net_.edge_permissions.reserve(edges.size());
     net_.lane_index_by_id.reserve(spec_lanes);
     net_.lane_id.reserve(spec_lanes);
     lane_spec_.reserve(spec_lanes);
@@ -161,6 +162,7 @@ class Builder {
     net_.lane_index.reserve(spec_lanes);
     net_.lane_length.reserve(spec_lanes);
     net_.lane_speed.reserve(spec_lanes);
+    net_.lane_permissions.reserve(spec_lanes);
 
     uint32_t offset = 0;
     std::vector<uint32_t> order;
@@ -192,7 +194,7 @@ class Builder {
 
       order.clear();
       for (uint32_t k = 0; k < e.lanes.size(); ++k) {
-        if (e.lanes[k].passenger_allowed)
+        if (vehicle_lane(e.lanes[k].permissions))
           order.push_back(k);
         else
           non_car_lanes_.insert(e.lanes[k].id);
@@ -201,10 +203,11 @@ class Builder {
                        [&](uint32_t a, uint32_t b) { return e.lanes[a].index < e.lanes[b].index; });
       if (order.size() > std::numeric_limits<uint8_t>::max())
         throw InputError(e.loc,
-                         "edge '" + e.id + "' has " + std::to_string(order.size()) + " car lanes (max 255)");
+                         "edge '" + e.id + "' has " + std::to_string(order.size()) + " lanes (max 255)");
       net_.edge_first_lane.push_back(static_cast<uint32_t>(net_.lane_id.size()));
       net_.edge_num_lanes.push_back(static_cast<uint8_t>(order.size()));
       float speed = 0;
+      uint32_t edge_classes = 0;
       for (uint32_t k : order) {
         const LaneSpec& l = e.lanes[k];
         if (l.index < 0 || l.index > std::numeric_limits<uint8_t>::max())
@@ -220,10 +223,13 @@ class Builder {
         net_.lane_index.push_back(static_cast<uint8_t>(l.index));
         net_.lane_length.push_back(static_cast<float>(l.length));
         net_.lane_speed.push_back(static_cast<float>(l.speed));
+        net_.lane_permissions.push_back(l.permissions);
+        edge_classes |= l.permissions;
         speed = std::max(speed, static_cast<float>(l.speed));
       }
       net_.edge_length.push_back(order.empty() ? 0.f : static_cast<float>(e.lanes[order.front()].length));
       net_.edge_speed.push_back(speed);
+      net_.edge_permissions.push_back(edge_classes);
     }
   }
 
@@ -576,12 +582,14 @@ class Builder {
   }
 
   // Normal edges reachable from each normal edge by one connection, following chains of internal lanes
-  // when a connection leads onto an internal edge instead of naming the normal edge beyond it.
+  // when a connection leads onto an internal edge instead of naming the normal edge beyond it; with each,
+  // the vClasses allowed along some such path (on its from-lane, via lanes and to-lane).
   void add_edge_successors() {
     const uint32_t edges = net_.num_edges();
+    const auto& perm = net_.lane_permissions;
     net_.edge_succ_begin.assign(edges + 1, 0);
-    std::vector<uint32_t> found, stack;
-    std::vector<uint32_t> lane_mark(net_.num_lanes(), 0);
+    std::vector<std::pair<uint32_t, uint32_t>> found, stack;  // (edge, classes), (lane, classes)
+    std::vector<uint32_t> lane_mark(net_.num_lanes(), 0), lane_reach(net_.num_lanes(), 0);
     uint32_t mark = 0;
     for (uint32_t e = 0; e < edges; ++e) {
       net_.edge_succ_begin[e] = static_cast<uint32_t>(net_.edge_succ.size());
@@ -591,23 +599,34 @@ class Builder {
       // Start from the edge's own lanes (normal lanes are never reached again: connections from internal
       // lanes that lead to a normal edge end the walk).
       const uint32_t l0 = net_.edge_first_lane[e], l1 = l0 + net_.edge_num_lanes[e];
-      for (uint32_t l = l0; l < l1; ++l) stack.push_back(l);
+      for (uint32_t l = l0; l < l1; ++l) stack.emplace_back(l, perm[l]);
       while (!stack.empty()) {
-        const uint32_t l = stack.back();
+        const auto [l, classes] = stack.back();
         stack.pop_back();
         for (uint32_t c = net_.lane_conn_begin[l]; c < net_.lane_conn_begin[l + 1]; ++c) {
-          const uint32_t t = net_.conn_to_edge[c];
+          const uint32_t t = net_.conn_to_edge[c], tl = net_.conn_to_lane[c];
+          const int32_t via = net_.conn_via_lane[c];
+          const uint32_t along = classes & perm[tl] & (via == kNone ? kAllVClasses : perm[via]);
+          if (along == 0) continue;
           if (!net_.edge_is_internal[t]) {
-            found.push_back(t);
-          } else if (lane_mark[net_.conn_to_lane[c]] != mark) {
-            lane_mark[net_.conn_to_lane[c]] = mark;
-            stack.push_back(net_.conn_to_lane[c]);
+            found.emplace_back(t, along);
+          } else {
+            if (lane_mark[tl] != mark) lane_mark[tl] = mark, lane_reach[tl] = 0;
+            if ((along & ~lane_reach[tl]) == 0) continue;  // nothing new to carry on
+            lane_reach[tl] |= along;
+            stack.emplace_back(tl, along);
           }
         }
       }
       std::sort(found.begin(), found.end());
-      found.erase(std::unique(found.begin(), found.end()), found.end());
-      net_.edge_succ.insert(net_.edge_succ.end(), found.begin(), found.end());
+      for (size_t i = 0; i < found.size(); ++i) {
+        if (i > 0 && found[i].first == found[i - 1].first) {
+          net_.edge_succ_permissions.back() |= found[i].second;
+          continue;
+        }
+        net_.edge_succ.push_back(found[i].first);
+        net_.edge_succ_permissions.push_back(found[i].second);
+      }
     }
     net_.edge_succ_begin[edges] = static_cast<uint32_t>(net_.edge_succ.size());
   }

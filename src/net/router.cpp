@@ -15,9 +15,10 @@ namespace {
 // (depart and arrival positions are ignored), plus the junction crossings between them (see Router). For
 // a single destination this ranks paths exactly as leaving the last edge out would, as SUMO's router does;
 // with several destinations a long destination edge counts against itself.
-// Edges without car lanes or with speed 0 are impassable; internal edges are never part of a route
-// because edge_succ links normal edges only, and internal edges given as origin, destination or via yield
-// no path.
+// Edges without a lane the request's vClass may use, moves between edges it may not make (see
+// Network::edge_succ_permissions) and edges with speed 0 are impassable; internal edges are never part of a
+// route because edge_succ links normal edges only, and internal edges given as origin, destination or via
+// yield no path.
 //
 // Ties: the heap pops the smallest (cost, edge index), and an edge keeps the predecessor that first
 // reached its final cost, so among equal-cost paths the one through earlier-settled edges wins. The
@@ -54,7 +55,8 @@ class Search {
     heap_.clear();
     for (uint32_t s : seeds) {
       const double c = cost_[s];
-      if (!std::isfinite(c) || net_.edge_is_internal[s]) continue;
+      if (!std::isfinite(c) || net_.edge_is_internal[s] || (net_.edge_permissions[s] & vclass_) == 0)
+        continue;
       if (seen_[s] != version_ || c < dist_[s]) {
         seen_[s] = version_;
         dist_[s] = c;
@@ -73,7 +75,8 @@ class Search {
       for (uint32_t i = net_.edge_succ_begin[e]; i < net_.edge_succ_begin[e + 1]; ++i) {
         const uint32_t s = net_.edge_succ[i];
         const double c = step_cost_[i];
-        if (!std::isfinite(c) || settled_[s] == version_) continue;
+        if (!std::isfinite(c) || settled_[s] == version_ || (net_.edge_succ_permissions[i] & vclass_) == 0)
+          continue;
         const double d = top.dist + c;
         if (seen_[s] != version_ || d < dist_[s]) {
           seen_[s] = version_;
@@ -84,6 +87,9 @@ class Search {
       }
     }
   }
+
+  /// The vClass mask the following searches route for.
+  void set_vclass(uint32_t vclass) { vclass_ = vclass; }
 
   /// Starts a new search: all per-edge tags become stale.
   void next_version() {
@@ -162,12 +168,14 @@ class Search {
   std::vector<int32_t> pred_;
   std::vector<uint32_t> seen_, settled_, target_, target_slot_;
   uint32_t version_ = 1;
+  uint32_t vclass_ = kAllVClasses;
   std::vector<HeapItem> heap_;
   std::vector<std::pair<uint32_t, uint32_t>> pairs_;
   std::vector<char> answered_;
 };
 
 std::vector<uint32_t> route_one(Search& search, const RouteRequest& r) {
+  search.set_vclass(r.vclass);
   std::vector<uint32_t> path;
   std::vector<uint32_t> sources = r.origins;
   for (uint32_t v : r.via) {
@@ -254,7 +262,7 @@ std::vector<std::vector<uint32_t>> Router::route_all(const std::vector<RouteRequ
           throw std::out_of_range("route request " + std::to_string(i) + " names edge index " +
                                   std::to_string(e) + " of " + std::to_string(edges));
 
-  // Work items: one per distinct origin set (requests without via sharing their origins, e.g. trips between
+  // Work items: one per distinct origin set and vClass (requests without via sharing them, e.g. trips between
   // junctions or zones, share one one-to-many search), and one per request with via. A search settles edges
   // in the same order whatever it stops on, so sharing gives each request the path its own search would.
   // Items depend only on the requests, never on the thread count.
@@ -267,6 +275,7 @@ std::vector<std::vector<uint32_t>> Router::route_all(const std::vector<RouteRequ
       singles.push_back(i);
   }
   std::sort(by_origins.begin(), by_origins.end(), [&](uint32_t a, uint32_t b) {
+    if (requests[a].vclass != requests[b].vclass) return requests[a].vclass < requests[b].vclass;
     const auto& oa = requests[a].origins;
     const auto& ob = requests[b].origins;
     return oa != ob ? oa < ob : a < b;
@@ -279,7 +288,9 @@ std::vector<std::vector<uint32_t>> Router::route_all(const std::vector<RouteRequ
   std::vector<Item> items;
   for (uint32_t i = 0; i < by_origins.size();) {
     uint32_t j = i;
-    while (j < by_origins.size() && requests[by_origins[j]].origins == requests[by_origins[i]].origins) ++j;
+    while (j < by_origins.size() && requests[by_origins[j]].origins == requests[by_origins[i]].origins &&
+           requests[by_origins[j]].vclass == requests[by_origins[i]].vclass)
+      ++j;
     items.push_back({i, j, kSingle});
     i = j;
   }
@@ -298,6 +309,7 @@ std::vector<std::vector<uint32_t>> Router::route_all(const std::vector<RouteRequ
       }
       group.clear();
       for (uint32_t i = it.first; i < it.last; ++i) group.push_back(by_origins[i]);
+      search.set_vclass(requests[group.front()].vclass);
       search.one_to_many(requests[group.front()].origins, group, requests, out);
     }
   };

@@ -7,9 +7,11 @@
 namespace lpsim {
 
 /// One routing request: from any of `origins` to any of `destinations` (edge indices; a trip has one of
-/// each, an OD pair between junctions several), passing `via` edges in order.
+/// each, an OD pair between junctions several), passing `via` edges in order, for a vehicle of class mask
+/// `vclass` (core/vclass.hpp): only edges and moves some lane of which that class may use.
 struct RouteRequest {
   std::vector<uint32_t> origins, destinations, via;
+  uint32_t vclass = kAllVClasses;
 };
 
 /// SUMO's default time penalty (--weights.minor-penalty) for crossing a junction on a link without

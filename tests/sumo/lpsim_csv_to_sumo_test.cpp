@@ -92,7 +92,7 @@ TEST_F(LpsimCsvToSumoTest, SmallCsvNetworkBecomesANetThatSumoAndLpsimLoadAlike) 
   for (const std::string key : {"junctions:", "signal programs:"})
     EXPECT_EQ(info_line(from_net.out, key), info_line(from_csv.out, key));
   // Same car lanes and lane-km (the CSV lengths); the internal lanes are netconvert's alone.
-  const std::string lanes = "lanes: 14 car lanes on normal edges (2.475 lane-km), ";
+  const std::string lanes = "lanes: 14 vehicle lanes on normal edges (2.475 lane-km), ";
   EXPECT_EQ(info_line(from_csv.out, "lanes:").rfind(lanes, 0), 0u) << from_csv.out;
   EXPECT_EQ(info_line(from_net.out, "lanes:").rfind(lanes, 0), 0u) << from_net.out;
 }

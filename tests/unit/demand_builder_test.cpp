@@ -522,7 +522,7 @@ TEST_F(DemandBuilderTest, DepartAttributesAreCopiedAndNegativePositionsCountFrom
   EXPECT_EQ(d.arrival_pos_kind[1], static_cast<uint8_t>(ArrivalPos::Random));
 }
 
-TEST_F(DemandBuilderTest, DepartLaneIsMappedAmongCarLanes) {
+TEST_F(DemandBuilderTest, DepartLaneIsMappedAmongLanesAndCheckedForTheClass) {
   Network cross = build_network(test::make_signal_spec(/*bus_lane=*/true));
   DemandSpec spec;
   VehicleSpec v = on_edges("v", 0, {"WtoC", "CtoE"}, 12);
@@ -530,8 +530,8 @@ TEST_F(DemandBuilderTest, DepartLaneIsMappedAmongCarLanes) {
   v.depart_spec.lane_index = 1;  // SUMO index of the car lane next to the bus lane
   spec.vehicles = {v};
   Demand d = build_demand(spec, cross, {});
-  EXPECT_EQ(d.depart_lane[0], 0);
-  spec.vehicles[0].depart_spec.lane_index = 0;  // the bus lane
+  EXPECT_EQ(d.depart_lane[0], 1);               // the bus lane is kept, at rank 0
+  spec.vehicles[0].depart_spec.lane_index = 0;  // the bus lane: not for a passenger car
   const std::string msg = error_of(spec, cross);
   EXPECT_NE(msg.find("test.rou.xml:12"), std::string::npos) << msg;
   EXPECT_NE(msg.find("'v'"), std::string::npos) << msg;

@@ -6,7 +6,7 @@
 #include <regex>
 #include <string>
 
-#include "converters/vclass.hpp"
+#include "core/vclass.hpp"
 #include "temp_dir.hpp"
 
 namespace lpsim {
@@ -124,22 +124,34 @@ const EdgeSpec& edge(const NetSpec& net, const std::string& id) {
   throw std::runtime_error("no edge " + id);
 }
 
-TEST(VClassTest, PassengerPermissionFollowsSumo) {
-  EXPECT_TRUE(passenger_allowed("", ""));
-  EXPECT_TRUE(passenger_allowed("  ", ""));
-  EXPECT_TRUE(passenger_allowed("bus passenger", ""));
-  EXPECT_TRUE(passenger_allowed("all", ""));
-  EXPECT_FALSE(passenger_allowed("bus taxi", ""));
-  EXPECT_FALSE(passenger_allowed("passengers", ""));  // whole names only
-  EXPECT_FALSE(passenger_allowed("private", ""));     // SVC_PRIVATE is its own class
-  EXPECT_TRUE(passenger_allowed("", "pedestrian bicycle private"));
-  EXPECT_FALSE(passenger_allowed("", "pedestrian passenger"));
-  EXPECT_FALSE(passenger_allowed("", "all"));
+TEST(VClassTest, LanePermissionsFollowSumo) {
+  const uint32_t passenger = kVClassPassenger, bus = vclass_name_bit("bus"), taxi = vclass_name_bit("taxi");
+  EXPECT_EQ(lane_permissions("", ""), kAllVClasses);
+  EXPECT_EQ(lane_permissions("  ", ""), kAllVClasses);
+  EXPECT_EQ(lane_permissions("bus passenger", ""), bus | passenger);
+  EXPECT_EQ(lane_permissions("all", ""), kAllVClasses);
+  EXPECT_EQ(lane_permissions("bus taxi", ""), bus | taxi);
+  EXPECT_EQ(lane_permissions("passengers", ""), 0u);                       // whole names only
+  EXPECT_EQ(lane_permissions("private", ""), vclass_name_bit("private"));  // SVC_PRIVATE is its own class
+  EXPECT_EQ(lane_permissions("", "pedestrian bicycle") & passenger, passenger);
+  EXPECT_EQ(lane_permissions("", "pedestrian bicycle") & vclass_name_bit("bicycle"), 0u);
+  EXPECT_EQ(lane_permissions("", "all"), 0u);
   // Both given: SUMO uses allow and ignores disallow.
-  EXPECT_TRUE(passenger_allowed("passenger", "passenger"));
-  EXPECT_FALSE(passenger_allowed("bus", "bicycle"));
-  EXPECT_TRUE(vclass_list_names_passenger("\tall\n"));
-  EXPECT_FALSE(vclass_list_names_passenger(""));
+  EXPECT_EQ(lane_permissions("passenger", "passenger"), passenger);
+  EXPECT_EQ(lane_permissions("bus", "bicycle"), bus);
+  EXPECT_EQ(vclass_list_mask("\tall\n"), kAllVClasses);
+  EXPECT_EQ(vclass_list_mask("custom1 custom2 rail_fast"),
+            vclass_name_bit("custom1") | vclass_name_bit("custom2") | vclass_name_bit("rail_fast"));
+  // A vType's class: "ignoring" may use every lane; an unknown or empty class is a passenger car.
+  EXPECT_EQ(vehicle_vclass_mask("ignoring"), kAllVClasses);
+  EXPECT_EQ(vehicle_vclass_mask("bus"), bus);
+  EXPECT_EQ(vehicle_vclass_mask(""), passenger);
+  // Kept lanes: every lane some vehicle may use; sidewalks and closed lanes are dropped.
+  EXPECT_FALSE(vehicle_lane(lane_permissions("pedestrian", "")));
+  EXPECT_FALSE(vehicle_lane(lane_permissions("", "all")));
+  EXPECT_TRUE(vehicle_lane(lane_permissions("bicycle", "")));
+  EXPECT_FALSE(vehicle_lane(lane_permissions("tram rail", "")));  // tracks: no road vehicle
+  EXPECT_TRUE(vehicle_lane(lane_permissions("tram passenger", "")));
 }
 
 TEST_F(NetReaderTest, ReadsEveryElementOfAHandWrittenNet) {
@@ -165,13 +177,13 @@ TEST_F(NetReaderTest, ReadsEveryElementOfAHandWrittenNet) {
   EXPECT_EQ(e0.loc.line, line_of(kNet, "<edge id=\"E0\""));
   ASSERT_EQ(e0.lanes.size(), 3u);
   EXPECT_EQ(e0.lanes[0].id, "E0_0");
-  EXPECT_FALSE(e0.lanes[0].passenger_allowed);  // sidewalk
+  EXPECT_EQ(e0.lanes[0].permissions, kVClassPedestrian);  // sidewalk
   EXPECT_DOUBLE_EQ(e0.lanes[0].speed, 2.78);
   EXPECT_EQ(e0.lanes[1].allow, "bus");
-  EXPECT_FALSE(e0.lanes[1].passenger_allowed);  // bus lane
+  EXPECT_EQ(e0.lanes[1].permissions, vclass_name_bit("bus"));  // bus lane
   const LaneSpec& car = e0.lanes[2];
   EXPECT_EQ(car.index, 2);
-  EXPECT_TRUE(car.passenger_allowed);
+  EXPECT_EQ(car.permissions, kAllVClasses & ~(kVClassPedestrian | vclass_name_bit("bicycle")));
   EXPECT_EQ(car.disallow, "pedestrian bicycle");
   EXPECT_DOUBLE_EQ(car.speed, 13.89);
   EXPECT_DOUBLE_EQ(car.length, 98.4);
@@ -187,11 +199,11 @@ TEST_F(NetReaderTest, ReadsEveryElementOfAHandWrittenNet) {
   EXPECT_EQ(e2.lanes[1].id, "E2_1");
   EXPECT_EQ(e2.lanes[0].index, 0);
   EXPECT_EQ(e2.lanes[1].index, 1);
-  EXPECT_FALSE(e2.lanes[0].passenger_allowed);
-  EXPECT_FALSE(e2.lanes[1].passenger_allowed);
+  EXPECT_EQ(e2.lanes[0].permissions, 0u);
+  EXPECT_EQ(e2.lanes[1].permissions, vclass_name_bit("private"));
 
-  // walking area, crossing, sidewalk, bus lane, E2's two lanes
-  EXPECT_EQ(net.skipped_non_car_lanes, 6);
+  // walking area, crossing, sidewalk, E2's closed lane (the bus lane and the private lane are kept)
+  EXPECT_EQ(net.skipped_non_car_lanes, 4);
   size_t lanes = 0;
   for (const auto& e : net.edges) lanes += e.lanes.size();
   EXPECT_EQ(lanes, 9u);  // every lane is kept

@@ -184,19 +184,23 @@ TEST(NetworkBuilder, InternalJunctionFromIntLanesWhenIdDoesNotTell) {
   EXPECT_EQ(net.conn_junction[net.lane_conn_begin[l]], static_cast<int32_t>(net.junction_index.at("K1")));
 }
 
-TEST(NetworkBuilder, BusLaneAndItsConnectionsAreDropped) {
+TEST(NetworkBuilder, BusLaneIsKeptWithItsPermissions) {
   Network net = build_network(test::make_signal_spec(/*bus_lane=*/true));
   EXPECT_EQ(net.num_edges(), 8u);
-  EXPECT_EQ(net.num_lanes(), 8u);  // the bus lane is gone
-  EXPECT_EQ(net.skipped_non_car_lanes, 1);
+  EXPECT_EQ(net.num_lanes(), 9u);  // the bus lane is kept
+  EXPECT_EQ(net.skipped_non_car_lanes, 0);
   const uint32_t w = net.edge_index.at("WtoC");
-  EXPECT_EQ(net.edge_num_lanes[w], 1);
-  EXPECT_EQ(net.lane_index[net.edge_first_lane[w]], 1);  // SUMO index kept
-  EXPECT_EQ(net.lane_index_by_id.count("WtoC_0"), 0u);
-  // Bus lane had 3 connections (N, E, S); the car lanes 4 x 3 = 12.
-  EXPECT_EQ(net.skipped_connections, 3);
-  EXPECT_EQ(net.num_connections(), 12u);
-  EXPECT_TRUE(net.connected(w, net.edge_index.at("CtoE")));
+  EXPECT_EQ(net.edge_num_lanes[w], 2);
+  const uint32_t bus = net.edge_first_lane[w];
+  EXPECT_EQ(net.lane_id[bus], "WtoC_0");
+  EXPECT_EQ(net.lane_permissions[bus], vclass_name_bit("bus"));
+  EXPECT_EQ(net.lane_permissions[bus + 1], kAllVClasses);
+  EXPECT_EQ(net.edge_permissions[w], kAllVClasses);
+  // Bus lane has 3 connections (N, E, S); the other lanes 4 x 3 = 12.
+  EXPECT_EQ(net.skipped_connections, 0);
+  EXPECT_EQ(net.num_connections(), 15u);
+  EXPECT_TRUE(net.connected(w, net.edge_index.at("CtoE"), kVClassPassenger));
+  EXPECT_TRUE(net.connected(w, net.edge_index.at("CtoE"), vclass_name_bit("bus")));
 }
 
 TEST(NetworkBuilder, SignalProgramAndLinks) {
@@ -314,7 +318,7 @@ TEST(NetworkBuilder, PedestrianEdgesAreSkipped) {
   cross.function = EdgeFunction::Crossing;
   LaneSpec cl;
   cl.id = ":C_c0_0";
-  cl.passenger_allowed = false;
+  cl.permissions = kVClassPedestrian;
   cross.lanes.push_back(cl);
   s.edges.insert(s.edges.begin(), cross);
   ConnectionSpec c;

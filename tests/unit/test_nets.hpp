@@ -276,12 +276,11 @@ inline NetSpec make_signal_spec(bool bus_lane = false, bool with_internal = fals
       if (e.id == "WtoC") {
         LaneSpec bus = e.lanes[0];
         bus.allow = "bus";
-        bus.passenger_allowed = false;
+        bus.permissions = vclass_list_mask("bus");
         e.lanes[0].index = 1;
         e.lanes[0].id = lane_of(e.id, 1);
         e.lanes.insert(e.lanes.begin(), bus);
       }
-    s.skipped_non_car_lanes = 1;
   }
   connect_all(s, with_internal, 6, false, {"C"});
   s.tl_logics.push_back(make_cross_program(s, "0"));

@@ -104,9 +104,9 @@ void copy_to_host(T* dst, const T* src, size_t n) {
 
 // The stepper lists the columns of these views by hand: a column added to one of them must be added here.
 // (The slot and plan columns are walked through their column lists.)
-static_assert(sizeof(NetView) == 22 * sizeof(void*) + sizeof(void*),
+static_assert(sizeof(NetView) == 23 * sizeof(void*) + sizeof(void*),
               "NetView changed: update upload_network");
-static_assert(sizeof(TypeView) == 10 * sizeof(void*) && sizeof(TripView) == 7 * sizeof(void*),
+static_assert(sizeof(TypeView) == 11 * sizeof(void*) && sizeof(TripView) == 7 * sizeof(void*),
               "TypeView or TripView changed: update upload_types and DeviceTrips");
 static_assert(sizeof(StepContext) == sizeof(NetView) + sizeof(TypeView) + sizeof(TripView) +
                                          sizeof(VehicleView) + sizeof(PlanView) + sizeof(StepParams) +
@@ -774,6 +774,7 @@ class CudaStepper final : public Stepper {
     d.conn_foe_begin = upload(h.conn_foe_begin, static_cast<size_t>(nc) + 1);
     d.conn_foe = upload(h.conn_foe, h.conn_foe_begin[nc]);
     d.conn_foe_block_cells = upload(h.conn_foe_block_cells, h.conn_foe_begin[nc]);
+    d.lane_permissions = upload(h.lane_permissions, nl);
   }
 
   void upload_signals(const SignalTable& h) {
@@ -832,7 +833,7 @@ class CudaStepper final : public Stepper {
     dev_.types = TypeView{upload(h.length, nt), upload(h.min_gap, nt),         upload(h.accel, nt),
                           upload(h.decel, nt),  upload(h.emergency_decel, nt), upload(h.max_speed, nt),
                           upload(h.tau, nt),    upload(h.delta, nt),           upload(h.sigma, nt),
-                          upload(h.model, nt)};
+                          upload(h.model, nt),  upload(h.vclass, nt)};
   }
 
   std::vector<DeviceBuffer> buffers_;  // every fixed allocation, freed in the stepper's destructor
