@@ -296,7 +296,8 @@ LPSIM_HD int32_t free_lane(const NetView& net, uint32_t first, uint32_t nlanes, 
 constexpr uint32_t kMaxInsertLanes = 64;
 
 /// Tries to put a teleported vehicle back on the road at the start of route edge `rp`: best lanes first,
-/// then the others its class may use, at the lane start, standing. Returns false, changing nothing, when none has room.
+/// then the others its class may use, at the lane start, standing. Returns false, changing nothing, when none
+/// has room.
 LPSIM_HD bool try_reenter(const StepContext& s, const InsertParams& p, uint8_t* map, uint32_t v, uint32_t rp,
                           int32_t* out_lane, float* out_pos, float* out_speed) {
   const NetView& net = s.net;

@@ -16,7 +16,7 @@ struct VehicleTypes {
   std::vector<float> length, min_gap, accel, decel, emergency_decel, max_speed;
   std::vector<float> speed_factor, speed_dev, tau, sigma, delta;  // delta: IDM acceleration exponent
   std::vector<std::string> vclass, car_follow_model;  // car_follow_model: the vType's, or the default's
-  std::vector<uint8_t> model;          // CarFollowModel simulated (kernels/idm.hpp): IDM or Krauss
+  std::vector<uint8_t> model;         // CarFollowModel simulated (kernels/idm.hpp): IDM or Krauss
   std::vector<uint32_t> vclass_mask;  // the lanes a type may use: core/vehicle_vclass_mask of its vclass
   std::unordered_map<std::string, uint32_t> index;
 
