@@ -7,6 +7,8 @@
 #include <set>
 #include <vector>
 
+#include "core/vclass.hpp"
+
 namespace lpsim {
 
 namespace {
@@ -29,6 +31,16 @@ struct Incoming {
   std::vector<uint32_t> from;
 };
 
+// Lanes of an edge that some class other than pedestrians and bicycles may use (SUMO's "motorized" lanes).
+uint32_t motorized_lanes(const Network& net, uint32_t edge) {
+  const uint32_t first = net.edge_first_lane[edge];
+  const uint32_t not_motorized = vclass_name_bit("pedestrian") | vclass_name_bit("bicycle");
+  uint32_t n = 0;
+  for (uint32_t l = first; l < first + net.edge_num_lanes[edge]; ++l)
+    if (l >= net.lane_permissions.size() || (net.lane_permissions[l] & ~not_motorized) != 0) ++n;
+  return n;
+}
+
 SignalLinks links_of(const Network& net, const std::vector<uint32_t>& conns, size_t num_links) {
   SignalLinks l{std::vector<std::vector<uint32_t>>(num_links), std::vector<bool>(num_links, true),
                 std::vector<bool>(num_links, false)};
@@ -39,7 +51,7 @@ SignalLinks links_of(const Network& net, const std::vector<uint32_t>& conns, siz
     const uint32_t from = net.conn_from_lane[c];
     if (std::find(l.lanes[i].begin(), l.lanes[i].end(), from) == l.lanes[i].end()) l.lanes[i].push_back(from);
     if (net.conn_dir[c] != 't') l.turnaround[i] = false;
-    if (net.edge_num_lanes[net.lane_edge[from]] == 1) l.one_lane[i] = true;
+    if (motorized_lanes(net, net.lane_edge[from]) == 1) l.one_lane[i] = true;
   }
   for (auto& v : l.lanes) std::sort(v.begin(), v.end());
   return l;
