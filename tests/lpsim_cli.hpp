@@ -19,6 +19,14 @@ inline std::string read_file(const std::filesystem::path& p) {
   return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
+/// Whether SUMO's program `name` (sumo, netconvert, ...) can be run: on the PATH or in $SUMO_HOME/bin. Tests
+/// that need it skip without it.
+inline bool have_sumo_tool(const std::string& name) {
+  if (std::system(("command -v " + name + " > /dev/null 2>&1").c_str()) == 0) return true;
+  const char* home = std::getenv("SUMO_HOME");
+  return home != nullptr && std::filesystem::exists(std::filesystem::path(home) / "bin" / name);
+}
+
 /// `s` quoted for the shell, whatever it contains.
 inline std::string shell_quote(const std::string& s) {
   std::string q = "'";

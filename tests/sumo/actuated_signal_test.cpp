@@ -45,7 +45,7 @@ TripMeans trip_means(const std::string& tripinfo) {
 class ActuatedSignalTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    if (std::system("command -v sumo > /dev/null 2>&1") != 0) GTEST_SKIP() << "sumo not found";
+    if (!test::have_sumo_tool("sumo")) GTEST_SKIP() << "sumo not found";
   }
   TripMeans run_sumo() {
     const fs::path out = dir_.path() / "sumo_tripinfo.xml";

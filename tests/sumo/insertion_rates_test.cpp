@@ -12,7 +12,6 @@
 #include <gtest/gtest.h>
 
 #include <array>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -30,12 +29,6 @@ using test::read_file;
 using test::run_lpsim;
 using test::TempDir;
 
-bool have_netconvert() {
-  if (std::system("command -v netconvert > /dev/null 2>&1") == 0) return true;
-  const char* home = std::getenv("SUMO_HOME");
-  return home && fs::exists(fs::path(home) / "bin" / "netconvert");
-}
-
 void write(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
 
 struct Setting {
@@ -49,7 +42,7 @@ struct Setting {
 class InsertionRatesTest : public ::testing::TestWithParam<Setting> {
  protected:
   void SetUp() override {
-    if (!have_netconvert()) GTEST_SKIP() << "netconvert not found (SUMO not installed)";
+    if (!test::have_sumo_tool("netconvert")) GTEST_SKIP() << "netconvert not found (SUMO not installed)";
   }
 };
 

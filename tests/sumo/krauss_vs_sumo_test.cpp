@@ -26,10 +26,6 @@ using test::run_lpsim;
 using test::run_program;
 using test::TempDir;
 
-bool have(const char* program) {
-  return std::system((std::string("command -v ") + program + " > /dev/null 2>&1").c_str()) == 0;
-}
-
 constexpr const char* kNodes = R"(<nodes>
   <node id="A" x="0" y="0"/>
   <node id="B" x="1000" y="0"/>
@@ -77,7 +73,8 @@ std::map<std::pair<std::string, int>, std::pair<double, double>> read_fcd(const 
 class KraussVsSumoTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    if (!have("netconvert") || !have("sumo")) GTEST_SKIP() << "netconvert or sumo not found";
+    if (!test::have_sumo_tool("netconvert") || !test::have_sumo_tool("sumo"))
+      GTEST_SKIP() << "netconvert or sumo not found";
     tmp_.write("n.nod.xml", kNodes);
     tmp_.write("n.edg.xml", kEdges);
     tmp_.write("r.rou.xml", kRoutes);

@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <cstdlib>
 #include <filesystem>
 #include <iterator>
 #include <regex>
@@ -26,12 +25,6 @@ using test::TempDir;
 
 const std::string kSmall = std::string(LPSIM_SCENARIOS_DIR) + "/lpsim_csv_small/";
 const std::string kTool = std::string(LPSIM_SOURCE_DIR) + "/tools/lpsim_csv_to_sumo.py";
-
-bool have_netconvert() {
-  if (std::system("command -v netconvert > /dev/null 2>&1") == 0) return true;
-  const char* home = std::getenv("SUMO_HOME");
-  return home && fs::exists(fs::path(home) / "bin" / "netconvert");
-}
 
 // Runs the converter in `dir` (see test::run_program).
 CliResult run_tool(const fs::path& dir, const std::vector<std::string>& args) {
@@ -56,7 +49,7 @@ std::string info_line(const std::string& info, const std::string& key) {
 class LpsimCsvToSumoTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    if (!have_netconvert()) GTEST_SKIP() << "netconvert not found (SUMO not installed)";
+    if (!test::have_sumo_tool("netconvert")) GTEST_SKIP() << "netconvert not found (SUMO not installed)";
   }
   TempDir dir_{"lpsim_csv_to_sumo"};
 };

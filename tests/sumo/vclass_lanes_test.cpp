@@ -29,10 +29,6 @@ using test::read_file;
 using test::run_lpsim;
 using test::TempDir;
 
-bool have(const char* tool) {
-  return std::system((std::string("command -v ") + tool + " > /dev/null 2>&1").c_str()) == 0;
-}
-
 const char* kNodes = R"(<nodes>
   <node id="n0" x="0" y="0" type="priority"/>
   <node id="n1" x="300" y="0" type="priority"/>
@@ -91,7 +87,7 @@ std::map<std::string, size_t> fcd_lanes(const std::string& fcd, const std::strin
 class VClassLanesTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    if (!have("netconvert")) GTEST_SKIP() << "netconvert not found (SUMO not installed)";
+    if (!test::have_sumo_tool("netconvert")) GTEST_SKIP() << "netconvert not found (SUMO not installed)";
     dir_.write("n.nod.xml", kNodes);
     dir_.write("n.edg.xml", kEdges);
     dir_.write("n.con.xml", kConnections);
@@ -145,7 +141,7 @@ TEST_F(VClassLanesTest, ClassesUseTheirLanesAndArriveAsInSumo) {
   // "ignoring" vehicles drive the bus-only connection too.
   EXPECT_GT(fcd_lanes(fcd, "ignb").count("busway_0"), 0u);
 
-  if (!have("sumo")) GTEST_SKIP() << "sumo not found: LPSim checked alone";
+  if (!test::have_sumo_tool("sumo")) GTEST_SKIP() << "sumo not found: LPSim checked alone";
   const std::string cmd = "cd '" + dir_.path().string() + "' && sumo -c " + cfg +
                           " --tripinfo-output sumo_trips.xml --fcd-output sumo_fcd.xml --no-step-log"
                           " > sumo.txt 2>&1";
