@@ -123,6 +123,7 @@ void visit(IO& io, Network& n) {
   io.field(n.conn_from_lane), io.field(n.conn_to_lane), io.field(n.conn_via_lane), io.field(n.conn_to_edge);
   io.field(n.conn_signal), io.field(n.conn_link_index), io.field(n.conn_state), io.field(n.conn_dir);
   io.field(n.conn_junction), io.field(n.conn_foe_begin), io.field(n.conn_foe);
+  io.field(n.conn_keep_clear);
   io.field(n.junction_id), io.field(n.junction_type), io.field(n.junction_x), io.field(n.junction_y);
   io.field(n.signal_id), io.field(n.signal_program), io.field(n.signal_actuated), io.field(n.signal_offset);
   io.field(n.signal_phase_begin), io.field(n.phase_duration), io.field(n.phase_min_dur);

@@ -126,6 +126,14 @@ long long integer(const XmlStream& xs, const char* key, const std::string* v, lo
   return *i;
 }
 
+// A SUMO boolean attribute: true/false, 1/0, yes/no, on/off, x/- (SUMO's spellings).
+bool flag(const XmlStream& xs, const char* key, const std::string* v, bool fallback) {
+  if (!v) return fallback;
+  if (*v == "1" || *v == "true" || *v == "True" || *v == "yes" || *v == "on" || *v == "x") return true;
+  if (*v == "0" || *v == "false" || *v == "False" || *v == "no" || *v == "off" || *v == "-") return false;
+  xs.fail(std::string("attribute '") + key + "' is not a boolean: '" + *v + "'");
+}
+
 EdgeFunction parse_function(const XmlStream& xs, const std::string* f) {
   if (!f || *f == "normal") return EdgeFunction::Normal;
   if (*f == "internal") return EdgeFunction::Internal;
@@ -337,10 +345,11 @@ class NetParser {
     kConnTl,
     kConnLink,
     kConnDir,
-    kConnState
+    kConnState,
+    kConnKeepClear
   };
-  AttrCapture<9> connection_attrs_{
-      {"from", "to", "fromLane", "toLane", "via", "tl", "linkIndex", "dir", "state"}};
+  AttrCapture<10> connection_attrs_{
+      {"from", "to", "fromLane", "toLane", "via", "tl", "linkIndex", "dir", "state", "keepClear"}};
 
   void read_connection() {
     const auto& a = connection_attrs_;
@@ -359,6 +368,7 @@ class NetParser {
     c.link_index = static_cast<int>(link);
     c.dir = parse_dir(xs_, a.value(kConnDir));
     c.state = parse_state(xs_, a.value(kConnState));
+    c.keep_clear = flag(xs_, "keepClear", a.value(kConnKeepClear), true);
     net_.connections.push_back(std::move(c));
   }
 

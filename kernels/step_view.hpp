@@ -34,6 +34,7 @@ struct NetView {
   // Per conn_foe entry: cells of the foe's via lane, from its start, within which a vehicle still blocks the
   // connection (up to where the two paths cross, plus clearance).
   const uint16_t* conn_foe_block_cells;
+  const uint8_t* conn_keep_clear;     // 1: entered only with room to leave the junction (Network's doc)
   const uint32_t* signal_link_begin;  // [num_signals+1] offset of each signal's links in link_state
   const uint32_t* lane_permissions;   // vClass mask of each lane (src/core/vclass.hpp)
 };

@@ -13,6 +13,7 @@
 
 #include "kernels/atomics.hpp"
 #include "kernels/car_following.hpp"
+#include "kernels/junction_space.hpp"
 #include "kernels/lane_change.hpp"
 #include "kernels/lane_map.hpp"
 #include "kernels/right_of_way.hpp"
@@ -358,20 +359,34 @@ LPSIM_HD bool may_enter(const StepContext& s, uint32_t c, float dist, float spee
   return true;
 }
 
-// A vehicle in the next lane's first metres slower than this is a queue that blocks the junction exit.
-constexpr float kJamSpeed = 2.0f;
+// Normal-lane metres after a link over which the junction-blocking rule looks for room, in vehicle lengths
+// (SUMO's CRLL_LOOK_AHEAD).
+constexpr float kRoomLookAheadLengths = 5.0f;
 
-/// A lane has room at its start for a vehicle of `need` metres (body plus gap): no standing or crawling
-/// vehicle there (a moving one is followed like any leader). Keeps vehicles out of junctions they cannot
-/// leave.
-LPSIM_HD bool room_at_start(const StepContext& s, int32_t lane, float need) {
-  const int32_t cells = static_cast<int32_t>(lane_cells(s.net, lane));
-  const int32_t need_cells = metres_as_cells(need);
-  const int32_t last = need_cells < cells ? need_cells : cells - 1;
-  const uint8_t* c = s.map_now + s.net.lane_cell_begin[lane];
-  for (int32_t k = 0; k <= last; ++k)
-    if (c[k] != 0 && decode_cell_speed(c[k]) < kJamSpeed) return false;
-  return true;
+/// The first connection from `lane` to route edge `next` that the vehicle's class may take, or -1: the way
+/// on that the junction-blocking rule looks along (the lane actually taken is chosen when it gets there).
+LPSIM_HD int32_t conn_onto(const NetView& net, int32_t lane, uint32_t next, uint32_t vclass) {
+  for (uint32_t c = net.lane_conn_begin[lane]; c < net.lane_conn_begin[lane + 1]; ++c)
+    if (net.conn_to_edge[c] == next && conn_allows(net, c, vclass)) return static_cast<int32_t>(c);
+  return -1;
+}
+
+/// Link c, `dist` ahead, lets a vehicle arriving there go on (SUMO's MSLink::opened, as the
+/// junction-blocking rule asks it of the links after the first): not closed, no halt required, and a
+/// link without priority free of foes at the vehicle's arrival.
+LPSIM_HD bool link_lets_through(const StepContext& s, uint32_t c, float dist, float speed, float v0,
+                                const IdmParams& p, float length) {
+  const char st = link_state_of(s, c);
+  if (signal_is_yellow(st)) return false;
+  switch (link_rule(st)) {
+    case LinkRule::Priority:
+      return true;
+    case LinkRule::Yield:
+    case LinkRule::RightBeforeLeft:
+      return may_enter(s, c, dist, speed, v0, p, length, false);
+    default:
+      return false;
+  }
 }
 
 /// Fastest next speed from which braking at `decel` (Euler steps) gets down to v_lim by the time the front
@@ -740,18 +755,125 @@ LPSIM_HD_INLINED void stop_at(const StepContext& s, const PlanInput& in, float e
       lp_fminf(b.cand, cf_stop_speed(in.p, in.speed, in.v0, end_dist, in.dt, s.params.substeps, free_speed));
 }
 
+/// The route's way after a link, as the junction-blocking rule looks along it: the normal lanes reached
+/// (each through the internal lanes of the link before it) and the link at each one's end.
+struct RoomPath {
+  int32_t n;
+  int32_t entry[kMaxPathHops];  // link into lane[k] (its internal lanes come first)
+  int32_t lane[kMaxPathHops];
+  int32_t exit[kMaxPathHops];  // link at lane[k]'s end on the route, -1: the route ends there (or a dead end)
+  float internal[kMaxPathHops];  // length of entry[k]'s internal lanes
+};
+
+/// Normal lane behind a link's internal lanes.
+LPSIM_HD int32_t lane_after_link(const NetView& net, uint32_t c) {
+  int32_t lane = net.conn_via_lane[c] >= 0 ? net.conn_via_lane[c] : static_cast<int32_t>(net.conn_to_lane[c]);
+  while (lane >= 0 && net.lane_internal[lane]) lane = lane_after_internal(net, lane);
+  return lane;
+}
+
+/// The way after link c (at the end of the lane with route position rp), as far as the vehicle's own
+/// look-ahead and that of a vehicle on its last lane reach.
+LPSIM_HD RoomPath room_path_after(const StepContext& s, const PlanInput& in, uint32_t c, uint32_t rp) {
+  const NetView& net = s.net;
+  const uint32_t vclass = vclass_of(s, in.r);
+  RoomPath p{};
+  float normal = 0.0f, internal = 0.0f;
+  int32_t link = static_cast<int32_t>(c);
+  while (p.n < kMaxPathHops && link >= 0) {
+    const int32_t lane = lane_after_link(net, static_cast<uint32_t>(link));
+    if (lane < 0) break;
+    float inside = 0.0f;
+    for (int32_t l = net.conn_via_lane[link]; l >= 0 && net.lane_internal[l]; l = lane_after_internal(net, l))
+      inside += net.lane_length[l];
+    ++rp;
+    const int32_t next =
+        rp + 1 < in.route_size ? conn_onto(net, lane, route_edge(s, in.r, rp + 1), vclass) : -1;
+    p.entry[p.n] = link;
+    p.lane[p.n] = lane;
+    p.exit[p.n] = next;
+    p.internal[p.n] = inside;
+    ++p.n;
+    normal += net.lane_length[lane];
+    internal += inside;
+    if (normal > 2.0f * lp_fmaxf(kRoomLookAheadLengths * in.length, in.length + internal)) break;
+    link = next;
+  }
+  return p;
+}
+
+/// A vehicle on path lane k will have to wait at a link it looks ahead to (SUMO's "have to wait on next
+/// link"): one without priority, or a yellow or red signal, within the look-ahead of kRoomLookAheadLengths
+/// vehicle lengths of normal lane after its own (our route stands in for its route).
+LPSIM_HD bool waits_ahead(const StepContext& s, const RoomPath& p, int32_t k, float length) {
+  float normal = 0.0f, internal = 0.0f;
+  for (int32_t j = k; j < p.n; ++j) {
+    if (p.exit[j] < 0) return false;
+    const char st = link_state_of(s, static_cast<uint32_t>(p.exit[j]));
+    if (link_rule(st) != LinkRule::Priority || signal_is_yellow(st)) return true;
+    if (j + 1 >= p.n) return false;
+    normal += s.net.lane_length[p.lane[j + 1]];
+    internal += p.internal[j + 1];
+    if (normal > lp_fmaxf(kRoomLookAheadLengths * length, length + internal)) break;
+  }
+  return false;
+}
+
+/// SUMO's junction-blocking rule (MSVehicle::checkRewindLinkLanes) for link c at the end of the lane the
+/// vehicle reaches `end_dist` ahead with route position `rp`: a link with foes is not entered when the room
+/// after it is less than the vehicle's length and gap, the room being what the lanes after the link hold
+/// (the internal lanes' vehicles count against it, each normal lane gives what it holds before a standing
+/// vehicle) up to the first lane whose last vehicle stands or will have to wait, or the first link that
+/// does not let the vehicle through. When nothing stops within the look-ahead (kRoomLookAheadLengths
+/// vehicle lengths of normal lane), the vehicle enters and follows whoever is ahead.
+LPSIM_HD bool junction_exit_blocked(const StepContext& s, const PlanInput& in, uint32_t c, uint32_t rp,
+                                    float end_dist) {
+  const NetView& net = s.net;
+  if (!net.conn_keep_clear[c]) return false;
+  const RoomPath p = room_path_after(s, in, c, rp);
+  const float gap = in.p.min_gap, need = in.length + gap;
+  float space = 0.0f, seen_internal = 0.0f, seen_normal = 0.0f, dist = end_dist;
+  for (int32_t k = 0; k < p.n; ++k) {
+    // Inside a junction the vehicles there count against the room; a link without foes lets its internal
+    // lanes' free metres count as well.
+    const bool keep_clear = net.conn_keep_clear[p.entry[k]] != 0;
+    for (int32_t l = net.conn_via_lane[p.entry[k]]; l >= 0 && net.lane_internal[l];
+         l = lane_after_internal(net, l)) {
+      const LaneRoom r = room_on_lane(s.map_now, net, l, gap, !keep_clear);
+      space += keep_clear ? r.space - net.lane_length[l] : r.space;
+      if (r.standing) return space < need;
+    }
+    seen_internal += p.internal[k];
+    dist += p.internal[k];
+    const int32_t lane = p.lane[k];
+    const LaneRoom r = room_on_lane(s.map_now, net, lane, gap, true);
+    // An empty lane shorter than the vehicle cannot hold it (SUMO adds its length only when longer).
+    if (!r.empty || net.lane_length[lane] > in.length) space += r.space;
+    if (r.standing) return space < need;
+    // A last vehicle that is slow (SUMO: slower than its decel per second) or will have to wait further on
+    // ends the room with this lane, as a standing one does.
+    if (!r.empty && (r.last_speed < in.p.decel || waits_ahead(s, p, k, in.length))) return space < need;
+    seen_normal += net.lane_length[lane];
+    dist += net.lane_length[lane];
+    if (seen_normal > lp_fmaxf(kRoomLookAheadLengths * in.length, in.length + seen_internal)) return false;
+    if (p.exit[k] < 0) return false;
+    if (!link_lets_through(s, static_cast<uint32_t>(p.exit[k]), dist, in.speed, in.v0, in.p, in.length))
+      return space < need;
+  }
+  return false;
+}
+
 /// Why the vehicle stops at the end of the normal lane `end_dist` ahead, whose link `c` shows `st`: a
 /// StopReason, kFree when it may go on.
 LPSIM_HD_INLINED uint8_t link_stop_reason(const StepContext& s, const PlanInput& in, uint32_t c, char st,
-                                          float end_dist) {
+                                          uint32_t rp, float end_dist) {
   if (signal_must_stop(st, end_dist, in.speed, in.p.decel, in.dt) || link_rule(st) == LinkRule::Closed)
     return kSignal;
   if (end_dist <= decision_distance(in)) {
     const LinkRule rule = link_rule(st);
     const bool needs_halt = rule == LinkRule::StopThenYield || rule == LinkRule::AllwayStop;
     if (needs_halt && !(in.waiting && end_dist < 1.0f)) return kHaltRule;
-    const uint32_t to = s.net.conn_to_lane[c];
-    if (!room_at_start(s, static_cast<int32_t>(to), in.length + in.p.min_gap)) return kNoRoom;
+    if (junction_exit_blocked(s, in, c, rp, end_dist)) return kNoRoom;
     // Links with an internal junction yield at it, inside the junction (SUMO's waiting position).
     if (!has_internal_junction(s.net, c) &&
         !may_enter(s, c, end_dist, in.speed, in.v0, in.p, in.length, in.waiting))
@@ -842,7 +964,7 @@ LPSIM_HD_INLINED PathBounds walk_path_ahead(const StepContext& s, const PlanInpu
     }
     if (normal) {
       const char st = link_state_of(s, static_cast<uint32_t>(c));
-      const uint8_t reason = link_stop_reason(s, in, static_cast<uint32_t>(c), st, end_dist);
+      const uint8_t reason = link_stop_reason(s, in, static_cast<uint32_t>(c), st, cur_rp, end_dist);
       if (reason != kFree) {
         stop_at_link(s, in, st, end_dist, b, &free_speed);
         b.reason = reason;

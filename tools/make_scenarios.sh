@@ -216,13 +216,57 @@ EOF
   write_sumocfg "$d" actuated_cross actuated_cross.rou.xml
 }
 
+# --- keep_clear: a priority junction with a 6 m edge behind it on the main road, whose queue (from a
+# traffic light further on) spills back over the junction; a minor side road crosses there. SUMO's drivers
+# do not enter the junction while the room behind it cannot hold them, so the side road keeps flowing --
+make_keep_clear() {
+  local d=$OUT/keep_clear
+  rm -rf "$d" && mkdir -p "$d"
+  cat > "$TMP/keep.nod.xml" <<'EOF'
+<nodes>
+    <node id="W" x="-300" y="0"/>
+    <node id="J1" x="0" y="0" type="priority"/>
+    <node id="J2" x="10" y="0" type="priority"/>
+    <node id="J3" x="200" y="0" type="traffic_light"/>
+    <node id="E" x="500" y="0"/>
+    <node id="N1" x="0" y="300"/>
+    <node id="S1" x="0" y="-300"/>
+    <node id="N3" x="200" y="300"/>
+    <node id="S3" x="200" y="-300"/>
+</nodes>
+EOF
+  cat > "$TMP/keep.edg.xml" <<'EOF'
+<edges>
+    <edge id="WJ1" from="W" to="J1" numLanes="1" speed="13.89" priority="3"/>
+    <edge id="J1J2" from="J1" to="J2" numLanes="1" speed="13.89" priority="3"/>
+    <edge id="J2J3" from="J2" to="J3" numLanes="1" speed="13.89" priority="3"/>
+    <edge id="J3E" from="J3" to="E" numLanes="1" speed="13.89" priority="3"/>
+    <edge id="N1J1" from="N1" to="J1" numLanes="1" speed="13.89" priority="1"/>
+    <edge id="J1S1" from="J1" to="S1" numLanes="1" speed="13.89" priority="1"/>
+    <edge id="N3J3" from="N3" to="J3" numLanes="1" speed="13.89" priority="1"/>
+    <edge id="J3S3" from="J3" to="S3" numLanes="1" speed="13.89" priority="1"/>
+</edges>
+EOF
+  netconvert -n "$TMP/keep.nod.xml" -e "$TMP/keep.edg.xml" --no-turnarounds -o "$d/keep_clear.net.xml" > /dev/null
+  cat > "$d/keep_clear.rou.xml" <<'EOF'
+<routes>
+    <flow id="main" from="WJ1" to="J3E" begin="0" end="1800" vehsPerHour="1000"/>
+    <flow id="side" from="N1J1" to="J1S1" begin="0" end="1800" vehsPerHour="300"/>
+    <flow id="cross" from="N3J3" to="J3S3" begin="0" end="1800" vehsPerHour="200"/>
+</routes>
+EOF
+  strip_generated_header "$d/keep_clear.net.xml"
+  write_sumocfg "$d" keep_clear keep_clear.rou.xml
+}
+
 make_grid_tls
 make_random_net
 make_flows
 make_lpsim_csv_small
 make_actuated_cross
+make_keep_clear
 
-for name in grid_tls random_net flows actuated_cross; do
+for name in grid_tls random_net flows actuated_cross keep_clear; do
   "$PY" "$ROOT/tools/sumo_reference.py" "$OUT/$name/$name.sumocfg" > "$OUT/$name/sumo_reference.txt"
 done
 du -sh "$OUT"

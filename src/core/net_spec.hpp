@@ -55,6 +55,7 @@ struct ConnectionSpec {
   int link_index = -1;
   char dir = 's';    // s,t,l,r,L,R; 'T' also stands for SUMO's "invalid"
   char state = 'M';  // M,m,=,o,O,s,w,Z,...
+  bool keep_clear = true;  // keepClear: vehicles do not enter the junction while they could not leave it
   SourceLoc loc;
 };
 

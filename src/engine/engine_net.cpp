@@ -139,6 +139,7 @@ NetView EngineNet::view(const Network& net) const {
   v.conn_foe_begin = conn_foe_begin.data();
   v.conn_foe = conn_foe.data();
   v.conn_foe_block_cells = foe_block_cells.data();
+  v.conn_keep_clear = net.conn_keep_clear.data();
   v.signal_link_begin = link_begin.data();
   v.lane_permissions = net.lane_permissions.data();
   return v;

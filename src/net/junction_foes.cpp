@@ -110,6 +110,8 @@ void build_junction_foes(const NetSpec& spec, Network& net) {
       const uint32_t c = conns[i];
       const int32_t k = link_of[c];
       if (k < 0 || static_cast<size_t>(k) >= links) continue;
+      const std::string& foes = js.foes[static_cast<size_t>(k)];
+      if (foes.find('1') == std::string::npos) net.conn_keep_clear[c] = 0;  // no foe: nobody to block
       const std::string& bits = js.response[static_cast<size_t>(k)];
       const size_t n = bits.size();
       foe_start[c] = static_cast<uint32_t>(foe_flat.size());

@@ -9,7 +9,8 @@ namespace lpsim {
 /// index is the position of its internal lane in the junction's intLanes (the second internal lane for
 /// links with an internal junction); in nets without internal lanes it is the connection's rank at the
 /// junction (incoming lanes in incLanes order, each lane's links in file order).
-/// Connections without a response row yield to nobody.
+/// Connections without a response row yield to nobody. Clears conn_keep_clear of connections whose row
+/// names no foes.
 void build_junction_foes(const NetSpec& spec, Network& net);
 
 }  // namespace lpsim

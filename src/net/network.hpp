@@ -66,6 +66,10 @@ struct Network {
   // Right of way: the connections each connection must yield to (from the junction's <request> rows),
   // CSR [conn_foe_begin[c], conn_foe_begin[c+1]) in conn_foe. Filled by build_junction_foes.
   std::vector<uint32_t> conn_foe_begin, conn_foe;
+  // 1: a vehicle enters the link only when it could leave the junction (SUMO's MSVehicle::keepClear: the
+  // connection's keepClear, a link with foes in its junction's <request> row, not from a roundabout edge).
+  // Junctions without request rows (nets from CSV) keep every link's keepClear.
+  std::vector<uint8_t> conn_keep_clear;
 
   // --- junctions ---
   std::vector<std::string> junction_id;

@@ -493,6 +493,7 @@ class Builder {
     int32_t via, signal, junction;
     int16_t link;
     char state, dir;
+    bool keep_clear;
   };
 
   void add_connections() {
@@ -522,7 +523,16 @@ class Builder {
         ++net_.skipped_connections;
         continue;
       }
-      Conn k{static_cast<uint32_t>(fl), static_cast<uint32_t>(tl), te, via, kNone, kNone, -1, c.state, c.dir};
+      Conn k{static_cast<uint32_t>(fl),
+             static_cast<uint32_t>(tl),
+             te,
+             via,
+             kNone,
+             kNone,
+             -1,
+             c.state,
+             c.dir,
+             c.keep_clear};
       k.junction = net_.edge_is_internal[fe] ? internal_junction_[fe] : net_.edge_to_junction[fe];
       if (!c.tl.empty()) {
         if (!last_tl_.valid || last_tl_.id != c.tl) {
@@ -567,6 +577,7 @@ class Builder {
     net_.conn_state.resize(n);
     net_.conn_dir.resize(n);
     net_.conn_junction.resize(n);
+    net_.conn_keep_clear.resize(n);
     for (const auto& k : kept) {
       const uint32_t i = slot[k.from_lane]++;
       net_.conn_from_lane[i] = k.from_lane;
@@ -578,6 +589,7 @@ class Builder {
       net_.conn_state[i] = k.state;
       net_.conn_dir[i] = k.dir;
       net_.conn_junction[i] = k.junction;
+      net_.conn_keep_clear[i] = k.keep_clear ? 1 : 0;
     }
   }
 
@@ -640,6 +652,13 @@ class Builder {
       }
       net_.roundabout_edges.push_back(std::move(edges));
     }
+    // SUMO drives on into a roundabout's junctions without checking the room behind them (its
+    // junction-blocking rule skips vehicles on roundabout edges).
+    for (const auto& edges : net_.roundabout_edges)
+      for (uint32_t e : edges)
+        for (uint32_t l = net_.edge_first_lane[e]; l < net_.edge_first_lane[e] + net_.edge_num_lanes[e]; ++l)
+          for (uint32_t c = net_.lane_conn_begin[l]; c < net_.lane_conn_begin[l + 1]; ++c)
+            net_.conn_keep_clear[c] = 0;
   }
 };
 

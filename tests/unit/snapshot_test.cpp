@@ -77,6 +77,7 @@ void expect_same_network(const Network& a, const Network& b) {
   EXPECT_COLUMN(a, b, conn_junction);
   EXPECT_COLUMN(a, b, conn_foe_begin);
   EXPECT_COLUMN(a, b, conn_foe);
+  EXPECT_COLUMN(a, b, conn_keep_clear);
   EXPECT_COLUMN(a, b, junction_id);
   EXPECT_COLUMN(a, b, junction_type);
   EXPECT_COLUMN(a, b, junction_x);

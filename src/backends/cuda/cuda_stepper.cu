@@ -104,7 +104,7 @@ void copy_to_host(T* dst, const T* src, size_t n) {
 
 // The stepper lists the columns of these views by hand: a column added to one of them must be added here.
 // (The slot and plan columns are walked through their column lists.)
-static_assert(sizeof(NetView) == 23 * sizeof(void*) + sizeof(void*),
+static_assert(sizeof(NetView) == 24 * sizeof(void*) + sizeof(void*),
               "NetView changed: update upload_network");
 static_assert(sizeof(TypeView) == 11 * sizeof(void*) && sizeof(TripView) == 7 * sizeof(void*),
               "TypeView or TripView changed: update upload_types and DeviceTrips");
@@ -774,6 +774,7 @@ class CudaStepper final : public Stepper {
     d.conn_foe_begin = upload(h.conn_foe_begin, static_cast<size_t>(nc) + 1);
     d.conn_foe = upload(h.conn_foe, h.conn_foe_begin[nc]);
     d.conn_foe_block_cells = upload(h.conn_foe_block_cells, h.conn_foe_begin[nc]);
+    d.conn_keep_clear = upload(h.conn_keep_clear, nc);
     d.lane_permissions = upload(h.lane_permissions, nl);
   }
 
