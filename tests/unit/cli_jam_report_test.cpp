@@ -2,8 +2,7 @@
 // --jam-report.stop-time s, naming what bounded its speed and the chain of vehicles blocking it; a chain that
 // comes back is a <deadlock>. The real binary on two nets made with netconvert (commands below): a queue at a
 // light that never turns green, and a one-lane ring filled until nobody can move. A run's SUMO outputs are
-// the same bytes with and without the report. The ring runs the IDM (--default.carfollowmodel IDM), under
-// which it locks.
+// the same bytes with and without the report. The ring runs the IDM (--default.carfollowmodel IDM).
 #include <gtest/gtest.h>
 
 #include <string>
@@ -74,6 +73,11 @@ constexpr const char* kQueue = R"(<routes>
 
 // netconvert -n ring.nod.xml -e ring.edg.xml --no-turnarounds: priority nodes n0 (0,0), n1 (40,0), n2
 // (40,40), n3 (0,40) joined by the one-lane edges e0 n0->n1, e1 n1->n2, e2 n2->n3, e3 n3->n0 (13.89 m/s).
+// Edited by hand: n0 is a traffic light red for the first 40 s, and the junctions' <request> rows are
+// removed, so that (as for nets without them, e.g. from CSV) every link keeps its keepClear and a vehicle
+// enters a junction only with room behind it. The ring fills behind the red light; once it turns green every
+// head waits for room on a full, standing edge: a real deadlock (with the rows, whose links have no foes,
+// the vehicles would follow each other round the ring and never lock, in SUMO as in LPSim).
 constexpr const char* kRingNet = R"NET(<?xml version="1.0" encoding="UTF-8"?>
 
 <net version="1.9" junctionCornerDetail="5" limitTurnSpeed="5.50" xmlns:xsi="http://www.w3.org/2001/XMLSchema-instance" xsi:noNamespaceSchemaLocation="http://sumo.dlr.de/xsd/net_file.xsd">
@@ -93,6 +97,11 @@ constexpr const char* kRingNet = R"NET(<?xml version="1.0" encoding="UTF-8"?>
         <lane id=":n3_0_0" index="0" speed="3.90" length="2.58" shape="0.00,41.60 -0.70,41.50 -1.20,41.20 -1.50,40.70 -1.60,40.00"/>
     </edge>
 
+    <tlLogic id="n0" type="static" programID="0" offset="0">
+        <phase duration="40" state="r"/>
+        <phase duration="1000" state="G"/>
+    </tlLogic>
+
     <edge id="e0" from="n0" to="n1" priority="-1">
         <lane id="e0_0" index="0" speed="13.89" length="40.00" shape="0.00,-1.60 40.00,-1.60"/>
     </edge>
@@ -106,23 +115,15 @@ constexpr const char* kRingNet = R"NET(<?xml version="1.0" encoding="UTF-8"?>
         <lane id="e3_0" index="0" speed="13.89" length="40.00" shape="-1.60,40.00 -1.60,0.00"/>
     </edge>
 
-    <junction id="n0" type="priority" x="0.00" y="0.00" incLanes="e3_0" intLanes=":n0_0_0" shape="-3.20,0.00 0.00,0.00 0.00,-3.20 -1.78,-2.84 -2.40,-2.40 -2.84,-1.78 -3.11,-0.98">
-        <request index="0" response="0" foes="0" cont="0"/>
-    </junction>
-    <junction id="n1" type="priority" x="40.00" y="0.00" incLanes="e0_0" intLanes=":n1_0_0" shape="40.00,0.00 43.20,0.00 42.84,-1.78 42.40,-2.40 41.78,-2.84 40.98,-3.11 40.00,-3.20">
-        <request index="0" response="0" foes="0" cont="0"/>
-    </junction>
-    <junction id="n2" type="priority" x="40.00" y="40.00" incLanes="e1_0" intLanes=":n2_0_0" shape="43.20,40.00 40.00,40.00 40.00,43.20 41.78,42.84 42.40,42.40 42.84,41.78 43.11,40.98">
-        <request index="0" response="0" foes="0" cont="0"/>
-    </junction>
-    <junction id="n3" type="priority" x="0.00" y="40.00" incLanes="e2_0" intLanes=":n3_0_0" shape="0.00,43.20 0.00,40.00 -3.20,40.00 -2.84,41.78 -2.40,42.40 -1.78,42.84 -0.98,43.11">
-        <request index="0" response="0" foes="0" cont="0"/>
-    </junction>
+    <junction id="n0" type="traffic_light" x="0.00" y="0.00" incLanes="e3_0" intLanes=":n0_0_0" shape="-3.20,0.00 0.00,0.00 0.00,-3.20 -1.78,-2.84 -2.40,-2.40 -2.84,-1.78 -3.11,-0.98"/>
+    <junction id="n1" type="priority" x="40.00" y="0.00" incLanes="e0_0" intLanes=":n1_0_0" shape="40.00,0.00 43.20,0.00 42.84,-1.78 42.40,-2.40 41.78,-2.84 40.98,-3.11 40.00,-3.20"/>
+    <junction id="n2" type="priority" x="40.00" y="40.00" incLanes="e1_0" intLanes=":n2_0_0" shape="43.20,40.00 40.00,40.00 40.00,43.20 41.78,42.84 42.40,42.40 42.84,41.78 43.11,40.98"/>
+    <junction id="n3" type="priority" x="0.00" y="40.00" incLanes="e2_0" intLanes=":n3_0_0" shape="0.00,43.20 0.00,40.00 -3.20,40.00 -2.84,41.78 -2.40,42.40 -1.78,42.84 -0.98,43.11"/>
 
     <connection from="e0" to="e1" fromLane="0" toLane="0" via=":n1_0_0" dir="l" state="M"/>
     <connection from="e1" to="e2" fromLane="0" toLane="0" via=":n2_0_0" dir="l" state="M"/>
     <connection from="e2" to="e3" fromLane="0" toLane="0" via=":n3_0_0" dir="l" state="M"/>
-    <connection from="e3" to="e0" fromLane="0" toLane="0" via=":n0_0_0" dir="l" state="M"/>
+    <connection from="e3" to="e0" fromLane="0" toLane="0" via=":n0_0_0" tl="n0" linkIndex="0" dir="l" state="O"/>
 
     <connection from=":n0_0" to="e0" fromLane="0" toLane="0" dir="l" state="M"/>
     <connection from=":n1_0" to="e1" fromLane="0" toLane="0" dir="l" state="M"/>
@@ -132,7 +133,7 @@ constexpr const char* kRingNet = R"NET(<?xml version="1.0" encoding="UTF-8"?>
 </net>
 )NET";
 
-// More vehicles than the ring holds, each going round it many times: the ring fills and locks.
+// More vehicles than the ring holds, each going round it many times: the ring fills and locks (see kRingNet).
 std::string ring_routes() {
   const std::vector<std::string> edges{"e0", "e1", "e2", "e3"};
   std::string out = "<routes>\n    <vType id=\"car\" sigma=\"0\"/>\n";
@@ -219,8 +220,6 @@ TEST_F(CliJamReportTest, ShortStopsAreNotReported) {
 TEST_F(CliJamReportTest, AFullRingIsReportedAsADeadlockCycle) {
   tmp_.write("ring.net.xml", kRingNet);
   tmp_.write("ring.rou.xml", ring_routes());
-  // The IDM: its queues lock this ring; Krauss keeps it circulating (SUMO's default model, which the report
-  // is not about).
   const CliResult r = run({"run", "-n", "ring.net.xml", "-r", "ring.rou.xml", "--end", "400", "--jam-report",
                            "jam.xml", "--time-to-teleport", "-1", "--default.carfollowmodel", "IDM"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -249,7 +248,7 @@ TEST_F(CliJamReportTest, ATeleportIsRecordedWithItsCause) {
 TEST_F(CliJamReportTest, OutputsAreTheSameWithAndWithoutTheReport) {
   tmp_.write("ring.net.xml", kRingNet);
   tmp_.write("ring.rou.xml", ring_routes());
-  // The IDM, whose queues lock the ring (see above): the report has stops to record.
+  // The ring locks (see kRingNet): the report has stops to record.
   const std::vector<std::string> base{"run",
                                       "-n",
                                       "ring.net.xml",
