@@ -756,13 +756,19 @@ LPSIM_HD_INLINED void stop_at(const StepContext& s, const PlanInput& in, float e
 }
 
 /// The route's way after a link, as the junction-blocking rule looks along it: the normal lanes reached
-/// (each through the internal lanes of the link before it) and the link at each one's end.
+/// (each through the internal lanes of the link before it) and the link at each one's end. Found lane by
+/// lane as the rule asks for them (most decisions end at the first lane), as far as the vehicle's own
+/// look-ahead and that of a vehicle on its last lane reach.
 struct RoomPath {
   int32_t n;
+  bool ended;              // no lane after lane[n - 1] belongs to the path
+  int32_t next_link;       // link into the next lane to find
+  uint32_t rp;             // route position of lane[n - 1] (of the lane before the first link when n == 0)
+  float normal, internal;  // lengths of the normal lanes found and of the internal lanes before them
   int32_t entry[kMaxPathHops];  // link into lane[k] (its internal lanes come first)
   int32_t lane[kMaxPathHops];
   int32_t exit[kMaxPathHops];  // link at lane[k]'s end on the route, -1: the route ends there (or a dead end)
-  float internal[kMaxPathHops];  // length of entry[k]'s internal lanes
+  float internal_len[kMaxPathHops];  // length of entry[k]'s internal lanes
 };
 
 /// Normal lane behind a link's internal lanes.
@@ -772,49 +778,58 @@ LPSIM_HD int32_t lane_after_link(const NetView& net, uint32_t c) {
   return lane;
 }
 
-/// The way after link c (at the end of the lane with route position rp), as far as the vehicle's own
-/// look-ahead and that of a vehicle on its last lane reach.
-LPSIM_HD RoomPath room_path_after(const StepContext& s, const PlanInput& in, uint32_t c, uint32_t rp) {
-  const NetView& net = s.net;
-  const uint32_t vclass = vclass_of(s, in.r);
+/// The path after link c at the end of the lane with route position rp, no lane found yet.
+LPSIM_HD RoomPath room_path_after(uint32_t c, uint32_t rp) {
   RoomPath p{};
-  float normal = 0.0f, internal = 0.0f;
-  int32_t link = static_cast<int32_t>(c);
-  while (p.n < kMaxPathHops && link >= 0) {
+  p.next_link = static_cast<int32_t>(c);
+  p.rp = rp;
+  return p;
+}
+
+/// Finds the path's lanes up to lane k; false when the path has no lane k.
+LPSIM_HD bool room_path_has(const StepContext& s, const PlanInput& in, RoomPath& p, int32_t k) {
+  const NetView& net = s.net;
+  while (p.n <= k) {
+    if (p.ended || p.n >= kMaxPathHops || p.next_link < 0) return false;
+    const int32_t link = p.next_link;
     const int32_t lane = lane_after_link(net, static_cast<uint32_t>(link));
-    if (lane < 0) break;
+    if (lane < 0) {
+      p.ended = true;
+      return false;
+    }
     float inside = 0.0f;
     for (int32_t l = net.conn_via_lane[link]; l >= 0 && net.lane_internal[l]; l = lane_after_internal(net, l))
       inside += net.lane_length[l];
-    ++rp;
-    const int32_t next =
-        rp + 1 < in.route_size ? conn_onto(net, lane, route_edge(s, in.r, rp + 1), vclass) : -1;
+    ++p.rp;
+    const int32_t next = p.rp + 1 < in.route_size
+                             ? conn_onto(net, lane, route_edge(s, in.r, p.rp + 1), vclass_of(s, in.r))
+                             : -1;
     p.entry[p.n] = link;
     p.lane[p.n] = lane;
     p.exit[p.n] = next;
-    p.internal[p.n] = inside;
+    p.internal_len[p.n] = inside;
     ++p.n;
-    normal += net.lane_length[lane];
-    internal += inside;
-    if (normal > 2.0f * lp_fmaxf(kRoomLookAheadLengths * in.length, in.length + internal)) break;
-    link = next;
+    p.normal += net.lane_length[lane];
+    p.internal += inside;
+    p.ended = p.normal > 2.0f * lp_fmaxf(kRoomLookAheadLengths * in.length, in.length + p.internal);
+    p.next_link = next;
   }
-  return p;
+  return true;
 }
 
 /// A vehicle on path lane k will have to wait at a link it looks ahead to (SUMO's "have to wait on next
 /// link"): one without priority, or a yellow or red signal, within the look-ahead of kRoomLookAheadLengths
 /// vehicle lengths of normal lane after its own (our route stands in for its route).
-LPSIM_HD bool waits_ahead(const StepContext& s, const RoomPath& p, int32_t k, float length) {
+LPSIM_HD bool waits_ahead(const StepContext& s, const PlanInput& in, RoomPath& p, int32_t k) {
   float normal = 0.0f, internal = 0.0f;
-  for (int32_t j = k; j < p.n; ++j) {
+  for (int32_t j = k; room_path_has(s, in, p, j); ++j) {
     if (p.exit[j] < 0) return false;
     const char st = link_state_of(s, static_cast<uint32_t>(p.exit[j]));
     if (link_rule(st) != LinkRule::Priority || signal_is_yellow(st)) return true;
-    if (j + 1 >= p.n) return false;
+    if (!room_path_has(s, in, p, j + 1)) return false;
     normal += s.net.lane_length[p.lane[j + 1]];
-    internal += p.internal[j + 1];
-    if (normal > lp_fmaxf(kRoomLookAheadLengths * length, length + internal)) break;
+    internal += p.internal_len[j + 1];
+    if (normal > lp_fmaxf(kRoomLookAheadLengths * in.length, in.length + internal)) break;
   }
   return false;
 }
@@ -830,10 +845,10 @@ LPSIM_HD bool junction_exit_blocked(const StepContext& s, const PlanInput& in, u
                                     float end_dist) {
   const NetView& net = s.net;
   if (!net.conn_keep_clear[c]) return false;
-  const RoomPath p = room_path_after(s, in, c, rp);
+  RoomPath p = room_path_after(c, rp);
   const float gap = in.p.min_gap, need = in.length + gap;
   float space = 0.0f, seen_internal = 0.0f, seen_normal = 0.0f, dist = end_dist;
-  for (int32_t k = 0; k < p.n; ++k) {
+  for (int32_t k = 0; room_path_has(s, in, p, k); ++k) {
     // Inside a junction the vehicles there count against the room; a link without foes lets its internal
     // lanes' free metres count as well.
     const bool keep_clear = net.conn_keep_clear[p.entry[k]] != 0;
@@ -843,8 +858,8 @@ LPSIM_HD bool junction_exit_blocked(const StepContext& s, const PlanInput& in, u
       space += keep_clear ? r.space - net.lane_length[l] : r.space;
       if (r.standing) return space < need;
     }
-    seen_internal += p.internal[k];
-    dist += p.internal[k];
+    seen_internal += p.internal_len[k];
+    dist += p.internal_len[k];
     const int32_t lane = p.lane[k];
     const LaneRoom r = room_on_lane(s.map_now, net, lane, gap, true);
     // An empty lane shorter than the vehicle cannot hold it (SUMO adds its length only when longer).
@@ -852,7 +867,7 @@ LPSIM_HD bool junction_exit_blocked(const StepContext& s, const PlanInput& in, u
     if (r.standing) return space < need;
     // A last vehicle that is slow (SUMO: slower than its decel per second) or will have to wait further on
     // ends the room with this lane, as a standing one does.
-    if (!r.empty && (r.last_speed < in.p.decel || waits_ahead(s, p, k, in.length))) return space < need;
+    if (!r.empty && (r.last_speed < in.p.decel || waits_ahead(s, in, p, k))) return space < need;
     seen_normal += net.lane_length[lane];
     dist += net.lane_length[lane];
     if (seen_normal > lp_fmaxf(kRoomLookAheadLengths * in.length, in.length + seen_internal)) return false;
