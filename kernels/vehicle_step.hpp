@@ -1193,6 +1193,15 @@ LPSIM_HD void clear_old_footprint(StepContext& s, uint32_t /*i*/, uint32_t slot)
   apply_footprint(s.map_next, s.net, fp, s.types.length[s.veh.trip_type[slot]], 0);
 }
 
+/// No vehicle stood ahead of a front at `pos` on `lane` as the step began. SUMO teleports only the first
+/// vehicle of a lane (MSLane::executeMovements): the ones behind it keep waiting, and once it is gone they
+/// usually move up instead of teleporting in the same step.
+LPSIM_HD bool first_on_lane(const StepContext& s, int32_t lane, float pos) {
+  const int32_t last = static_cast<int32_t>(lane_cells(s.net, lane)) - 1;
+  const int32_t front = static_cast<int32_t>(cell_of(s.net, lane, pos));
+  return front >= last || first_occupied(s.map_now, s.net, lane, front + 1, last) < 0;
+}
+
 /// Commit pass for the vehicle in `slot` (its plan at `i`): settle claims, write the new footprint, update
 /// counters.
 LPSIM_HD_INLINED void commit_vehicle(StepContext& s, uint32_t i, uint32_t slot) {
@@ -1305,7 +1314,8 @@ LPSIM_HD_INLINED void commit_vehicle(StepContext& s, uint32_t i, uint32_t slot) 
     veh.speed[slot] = nspeed;
     return;  // no footprint: it left the network
   }
-  if (s.params.teleport_steps > 0 && veh.stopped_steps[slot] >= s.params.teleport_steps) {
+  if (s.params.teleport_steps > 0 && veh.stopped_steps[slot] >= s.params.teleport_steps &&
+      first_on_lane(s, nlane, npos)) {
     veh.status[slot] = kTeleporting;  // the host moves it on along its route
     veh.lane[slot] = nlane;
     veh.pos[slot] = npos;

@@ -53,8 +53,8 @@ struct ConnectionSpec {
   std::string via;  // internal lane id, empty if none
   std::string tl;   // traffic light id, empty if none
   int link_index = -1;
-  char dir = 's';    // s,t,l,r,L,R; 'T' also stands for SUMO's "invalid"
-  char state = 'M';  // M,m,=,o,O,s,w,Z,...
+  char dir = 's';          // s,t,l,r,L,R; 'T' also stands for SUMO's "invalid"
+  char state = 'M';        // M,m,=,o,O,s,w,Z,...
   bool keep_clear = true;  // keepClear: vehicles do not enter the junction while they could not leave it
   SourceLoc loc;
 };

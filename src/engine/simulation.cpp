@@ -34,6 +34,15 @@ static_assert(kDepartSpeedGiven == uint8_t(DepartSpeed::Given) &&
               kDepartSpeedLimit == uint8_t(DepartSpeed::SpeedLimit) &&
               kDepartSpeedLast == uint8_t(DepartSpeed::Last) && kDepartSpeedAvg == uint8_t(DepartSpeed::Avg));
 
+// SUMO's teleport causes: "wrong lane", "yield" when the link the vehicle waits at has no priority (a minor
+// link, a stop rule, or a red or yellow light, whose SUMO states are lower case too), else "jam".
+TeleportCause teleport_cause(uint8_t limit_reason) {
+  if (limit_reason == kWrongLane) return TeleportCause::WrongLane;
+  if (limit_reason == kYield || limit_reason == kSignal || limit_reason == kHaltRule)
+    return TeleportCause::Yield;
+  return TeleportCause::Jam;
+}
+
 // The LaneCounters columns in the order the backends keep them (kNumLaneCounters).
 std::vector<int64_t>* counter_columns(LaneCounters& c, int k) {
   std::vector<int64_t>* columns[kNumLaneCounters] = {&c.sampled_steps, &c.travelled_mm,      &c.waiting_steps,
@@ -198,10 +207,8 @@ void Simulation::handle_vehicle_ends(std::vector<VehicleEnd>& ends) {
       continue;
     }
     ++counts_.teleports;
-    teleport_events_.push_back(TeleportEvent{v, static_cast<uint32_t>(e.lane),
-                                             e.limit_reason == kYield       ? TeleportCause::Yield
-                                             : e.limit_reason == kWrongLane ? TeleportCause::WrongLane
-                                                                            : TeleportCause::Jam});
+    teleport_events_.push_back(
+        TeleportEvent{v, static_cast<uint32_t>(e.lane), teleport_cause(e.limit_reason)});
     if (e.route_pos + 1 >= d.route_length[v]) {
       // Teleported past the end of its route: the trip ends here.
       moves_.push_back(TeleportMove{v, e.slot, 1});

@@ -1,0 +1,87 @@
+// SUMO's jam teleports (MSLane::executeMovements): only the first vehicle of a lane teleports once it has
+// waited --time-to-teleport; the ones behind it keep waiting, move up into the room it leaves, and their
+// clocks start again. A queue at a light that stays red (a 200 m approach made with netconvert, ten cars at
+// 5 s intervals, --time-to-teleport 100), run by the real sumo and by lpsim: both teleport the head about
+// every 105 s (the wait plus the move up), one at a time, and name the cause "yield" (a red light has no
+// priority). LPSim teleported every vehicle whose own clock ran out, two at a time after the first (eight
+// against SUMO's six by 700 s), and called them "jam".
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include "lpsim_cli.hpp"
+#include "temp_dir.hpp"
+
+namespace lpsim {
+namespace {
+
+namespace fs = std::filesystem;
+using test::CliResult;
+using test::read_file;
+using test::TempDir;
+
+void write(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
+
+struct Teleport {
+  std::string id, cause;
+  double time;
+};
+
+// The "Teleporting vehicle 'X'; waited too long (CAUSE), lane='L', time=T." warnings, in order.
+std::vector<Teleport> teleports(const std::string& log) {
+  const std::regex re(
+      R"re(Teleporting vehicle '([^']+)'; waited too long \(([a-z ]+)\), lane='[^']*', time=([0-9.]+))re");
+  std::vector<Teleport> out;
+  for (auto it = std::sregex_iterator(log.begin(), log.end(), re); it != std::sregex_iterator(); ++it)
+    out.push_back(Teleport{(*it)[1], (*it)[2], std::stod((*it)[3])});
+  return out;
+}
+
+TEST(TeleportRuleTest, OnlyTheFirstVehicleOfALaneTeleportsAsInSumo) {
+  if (!test::have_sumo_tool("sumo") || !test::have_sumo_tool("netconvert"))
+    GTEST_SKIP() << "SUMO not installed";
+  TempDir dir("lpsim_teleport_rule");
+  write(dir.path() / "n.nod.xml",
+        "<nodes><node id=\"a\" x=\"0\" y=\"0\"/><node id=\"b\" x=\"200\" y=\"0\" type=\"traffic_light\"/>"
+        "<node id=\"c\" x=\"400\" y=\"0\"/></nodes>\n");
+  write(dir.path() / "n.edg.xml",
+        "<edges><edge id=\"ab\" from=\"a\" to=\"b\" numLanes=\"1\" speed=\"13.89\"/>"
+        "<edge id=\"bc\" from=\"b\" to=\"c\" numLanes=\"1\" speed=\"13.89\"/></edges>\n");
+  write(dir.path() / "red.add.xml",
+        "<additional><tlLogic id=\"b\" type=\"static\" programID=\"red\" offset=\"0\">"
+        "<phase duration=\"1000\" state=\"r\"/></tlLogic></additional>\n");
+  write(dir.path() / "r.rou.xml",
+        "<routes><flow id=\"q\" from=\"ab\" to=\"bc\" begin=\"0\" end=\"50\" period=\"5\"/></routes>\n");
+  const CliResult net =
+      test::run_program(dir.path(), {"netconvert"},
+                        {"-n", "n.nod.xml", "-e", "n.edg.xml", "--no-turnarounds", "-o", "n.net.xml"});
+  ASSERT_EQ(net.exit_code, 0) << net.err;
+  const std::vector<std::string> common{"-n",          "n.net.xml",          "-r",  "r.rou.xml", "-a",
+                                        "red.add.xml", "--time-to-teleport", "100", "--end",     "700"};
+  std::vector<std::string> sumo_args = common;
+  sumo_args.push_back("--no-step-log");
+  const CliResult sumo = test::run_program(dir.path(), {"sumo"}, sumo_args);
+  ASSERT_EQ(sumo.exit_code, 0) << sumo.err;
+  std::vector<std::string> lpsim_args{"run"};
+  lpsim_args.insert(lpsim_args.end(), common.begin(), common.end());
+  const CliResult lpsim = test::run_lpsim(dir.path(), lpsim_args);
+  ASSERT_EQ(lpsim.exit_code, 0) << lpsim.err;
+
+  const std::vector<Teleport> s = teleports(sumo.err + sumo.out), l = teleports(lpsim.err + lpsim.out);
+  ASSERT_EQ(s.size(), 6u) << sumo.err;
+  ASSERT_EQ(l.size(), s.size()) << lpsim.err;
+  for (size_t k = 0; k < s.size(); ++k) {
+    EXPECT_EQ(l[k].id, s[k].id);
+    EXPECT_EQ(l[k].cause, "yield");
+    EXPECT_EQ(s[k].cause, "yield");
+    EXPECT_NEAR(l[k].time, s[k].time, 10.0) << l[k].id;
+  }
+}
+
+}  // namespace
+}  // namespace lpsim
