@@ -21,6 +21,7 @@ SimulationOptions simulation_options(const ConfigSpec& config) {
   options.seed = static_cast<uint64_t>(config.seed);
   options.threads = config.threads > 0 ? config.threads : 1;
   options.time_to_teleport = config.time_to_teleport;
+  options.time_to_impatience = config.time_to_impatience;
   return options;
 }
 

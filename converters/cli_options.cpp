@@ -77,6 +77,7 @@ const OptionDef kOptions[] = {
   {"default.carfollowmodel", "", 0, Kind::Name, Check::None, false, kLoad, "car-following model of vTypes that name none: Krauss (default) or IDM; others run IDM", [](ConfigSpec& c, Value&& v) { c.default_car_follow_model = std::move(v.text); }},
   {"seed", "", 0, Kind::Integer, Check::None, false, kLoad, "random seed (default 23423)", [](ConfigSpec& c, Value&& v) { c.seed = v.integer; }},
   // Negative disables teleporting, as in SUMO.
+  {"time-to-impatience", "", 0, Kind::Time, Check::None, false, kRun, "waiting time after which a vehicle at a link without priority counts on foes that can still brake to let it go (SUMO's impatience; default 180; <= 0: never)", [](ConfigSpec& c, Value&& v) { c.time_to_impatience = v.seconds; }},
   {"time-to-teleport", "", 0, Kind::Time, Check::None, false, kRun, "waiting time before a blocked vehicle teleports; < 0: never (default 300)", [](ConfigSpec& c, Value&& v) { c.time_to_teleport = v.seconds; }},
   {"weights.minor-penalty", "", 0, Kind::Time, Check::NonNegative, false, kLoad, "routing cost of a minor link, in s (default 1.5)", [](ConfigSpec& c, Value&& v) { c.minor_penalty = v.seconds; }},
   {"no-warnings", "", 'W', Kind::Bool, Check::None, false, kRun, "no teleport warnings on stderr", [](ConfigSpec& c, Value&& v) { c.no_warnings = v.flag; }},

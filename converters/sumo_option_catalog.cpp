@@ -330,7 +330,6 @@ constexpr ForeignOption kForeign[] = {
   {"substations-output.precision", "2", 0, Class::Unsupported},
   {"summary-output.period", "-1", 0, Class::Unsupported},
   {"thread-rngs", "64", 0, Class::Inert},
-  {"time-to-impatience", "180", 0, Class::Unsupported},
   {"time-to-teleport.bidi", "-1", 0, Class::Unsupported},
   {"time-to-teleport.disconnected", "-1", 0, Class::Unsupported},
   {"time-to-teleport.highways", "0", 0, Class::Unsupported},

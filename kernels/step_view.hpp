@@ -252,6 +252,7 @@ struct StepParams {
   float max_accel;            // largest accel over all types (bounds how far an unseen vehicle can get)
   float max_emergency_decel;  // largest emergency decel over all types (hardest a leader may brake)
   uint32_t teleport_steps;    // 0: never teleport
+  uint32_t impatience_steps;  // stopped steps for a vehicle's impatience to grow from 0 to 1; 0: never
 };
 
 /// A vehicle that arrived or started a teleport in a step, as the host sees it (trip record, teleport).

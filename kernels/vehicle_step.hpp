@@ -62,6 +62,17 @@ constexpr float kMaxLookahead = 1000.0f;
 constexpr float kDecisionMargin = 10.0f;  // m beyond the stopping distance where link decisions are taken
 constexpr float kFoeWindow = 1.0f;        // s of safety margin in right-of-way time windows
 constexpr float kClampEps = 0.001f;
+// How much later SUMO takes a foe's arrival at full impatience when the foe can still stop (its braking
+// arrival time, MSVehicle::planMoveInternal's arrivalTimeBraking) [s].
+constexpr float kImpatientFoeDelay = 30.0f;
+
+/// SUMO's impatience (MSVehicle::getImpatience with a vType impatience of 0): consecutive waiting over
+/// --time-to-impatience, at most 1; 0 when impatience is off.
+LPSIM_HD float impatience_of(uint32_t stopped_steps, uint32_t impatience_steps) {
+  return impatience_steps == 0
+             ? 0.0f
+             : lp_fminf(1.0f, static_cast<float>(stopped_steps) / static_cast<float>(impatience_steps));
+}
 
 LPSIM_HD IdmParams idm_of(const StepContext& s, uint32_t type) {
   return IdmParams{s.types.accel[type], s.types.decel[type],   s.types.emergency_decel[type],
@@ -329,7 +340,7 @@ LPSIM_HD bool unseen_at_internal_junction(const StepContext& s, uint32_t c, floa
 /// waits (right_before_left with all approaches busy) are broken by letting the lowest lane index go once
 /// everyone involved stands.
 LPSIM_HD bool may_enter(const StepContext& s, uint32_t c, float dist, float speed, float v0,
-                        const IdmParams& p, float length, bool self_waiting) {
+                        const IdmParams& p, float length, bool self_waiting, float impatience) {
   const NetView& net = s.net;
   const int32_t via = net.conn_via_lane[c];
   const float cross = (via >= 0 ? net.lane_length[via] : 0.0f) + length;
@@ -351,7 +362,12 @@ LPSIM_HD bool may_enter(const StepContext& s, uint32_t c, float dist, float spee
     if (a.dist > a.reach) continue;  // not announced yet: it can still stop for this vehicle
     // The foe is expected at its current speed (as SUMO's announced arrival times), not at its fastest.
     const ApproachingFoe foe{a.dist, a.speed, 0.0f, a.speed};
-    if (!foe_conflicts(foe, own_clear, kFoeWindow)) continue;
+    // An impatient vehicle counts on a foe that can still brake comfortably to let it go: SUMO takes such a
+    // foe's arrival as if it braked, kImpatientFoeDelay later at full impatience (MSLink::blockedByFoe).
+    const float later = impatience > 0.0f && can_stop_before(a.dist, a.speed, p.decel, s.params.dt)
+                            ? impatience * kImpatientFoeDelay
+                            : 0.0f;
+    if (!foe_conflicts(foe, own_clear - later, kFoeWindow)) continue;
     // Deadlock breaking: both stand at their lines; the lower lane index goes first.
     if (self_waiting && a.speed < kHaltingSpeed && a.waiting > 0 && own_lane < flane) continue;
     return false;
@@ -375,7 +391,7 @@ LPSIM_HD int32_t conn_onto(const NetView& net, int32_t lane, uint32_t next, uint
 /// junction-blocking rule asks it of the links after the first): not closed, no halt required, and a
 /// link without priority free of foes at the vehicle's arrival.
 LPSIM_HD bool link_lets_through(const StepContext& s, uint32_t c, float dist, float speed, float v0,
-                                const IdmParams& p, float length) {
+                                const IdmParams& p, float length, float impatience) {
   const char st = link_state_of(s, c);
   if (signal_is_yellow(st)) return false;
   switch (link_rule(st)) {
@@ -383,7 +399,7 @@ LPSIM_HD bool link_lets_through(const StepContext& s, uint32_t c, float dist, fl
       return true;
     case LinkRule::Yield:
     case LinkRule::RightBeforeLeft:
-      return may_enter(s, c, dist, speed, v0, p, length, false);
+      return may_enter(s, c, dist, speed, v0, p, length, false, impatience);
     default:
       return false;
   }
@@ -613,6 +629,7 @@ struct PlanInput {
   uint32_t route_size;  // edges in the route
   float v0;             // desired speed on the current lane
   bool waiting;         // stopped in the last step (halt rules, deadlock breaking)
+  float impatience;     // 0 to 1: its consecutive waiting over --time-to-impatience (SUMO's impatience)
 };
 
 LPSIM_HD_INLINED PlanInput read_plan_input(const StepContext& s, VehicleRef r, uint32_t i, uint32_t type,
@@ -634,7 +651,8 @@ LPSIM_HD_INLINED PlanInput read_plan_input(const StepContext& s, VehicleRef r, u
                    .rp = s.veh.route_pos[slot],
                    .route_size = s.veh.trip_route_size[slot],
                    .v0 = desired_speed(s.net.lane_speed[lane], speed_factor, max_speed),
-                   .waiting = s.veh.stopped_steps[slot] > 0};
+                   .waiting = s.veh.stopped_steps[slot] > 0,
+                   .impatience = impatience_of(s.veh.stopped_steps[slot], s.params.impatience_steps)};
 }
 
 /// Where the plan puts the vehicle at the end of the step.
@@ -872,7 +890,8 @@ LPSIM_HD bool junction_exit_blocked(const StepContext& s, const PlanInput& in, u
     dist += net.lane_length[lane];
     if (seen_normal > lp_fmaxf(kRoomLookAheadLengths * in.length, in.length + seen_internal)) return false;
     if (p.exit[k] < 0) return false;
-    if (!link_lets_through(s, static_cast<uint32_t>(p.exit[k]), dist, in.speed, in.v0, in.p, in.length))
+    if (!link_lets_through(s, static_cast<uint32_t>(p.exit[k]), dist, in.speed, in.v0, in.p, in.length,
+                           in.impatience))
       return space < need;
   }
   return false;
@@ -891,7 +910,7 @@ LPSIM_HD_INLINED uint8_t link_stop_reason(const StepContext& s, const PlanInput&
     if (junction_exit_blocked(s, in, c, rp, end_dist)) return kNoRoom;
     // Links with an internal junction yield at it, inside the junction (SUMO's waiting position).
     if (!has_internal_junction(s.net, c) &&
-        !may_enter(s, c, end_dist, in.speed, in.v0, in.p, in.length, in.waiting))
+        !may_enter(s, c, end_dist, in.speed, in.v0, in.p, in.length, in.waiting, in.impatience))
       return kYield;
     if (can_stop_before(end_dist, in.speed, in.p.decel, in.dt) &&
         yielder_inside(s, c, in.speed > kHaltingSpeed ? end_dist / in.speed : 0.0f))
@@ -925,8 +944,9 @@ LPSIM_HD_INLINED bool must_wait_at_internal_junction(const StepContext& s, const
          has_internal_junction(s.net, static_cast<uint32_t>(entry_conn)) &&
          ((unseen_at_internal_junction(s, static_cast<uint32_t>(entry_conn), end_dist) &&
            can_stop_before(end_dist, in.speed, in.p.decel, in.dt)) ||
-          (end_dist <= decision_distance(in) && !may_enter(s, static_cast<uint32_t>(entry_conn), end_dist,
-                                                           in.speed, in.v0, in.p, in.length, in.waiting)));
+          (end_dist <= decision_distance(in) &&
+           !may_enter(s, static_cast<uint32_t>(entry_conn), end_dist, in.speed, in.v0, in.p, in.length,
+                      in.waiting, in.impatience)));
 }
 
 /// The free-road speed joins the bounds found along the path. A free speed (never negative) cannot lower a

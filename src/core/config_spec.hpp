@@ -24,6 +24,7 @@ struct ConfigSpec {
   // SUMO's --default.carfollowmodel: the car-following model of every vType that names none.
   std::string default_car_follow_model = "Krauss";
   double time_to_teleport = 300;
+  double time_to_impatience = 180;  // SUMO's --time-to-impatience [s]; <= 0: never impatient
   double minor_penalty =
       1.5;                   // SUMO's --weights.minor-penalty: routing cost of a crossing on a minor link [s]
   bool no_warnings = false;  // SUMO's --no-warnings: no teleport warnings on stderr

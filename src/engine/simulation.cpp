@@ -86,6 +86,10 @@ Simulation::Simulation(const Network& net, Demand demand, const SimulationOption
       opt_.time_to_teleport > 0
           ? static_cast<uint32_t>(std::min(std::ceil(opt_.time_to_teleport / step_length()), 4294967295.0))
           : 0;
+  impatience_steps_ =
+      opt_.time_to_impatience > 0
+          ? static_cast<uint32_t>(std::min(std::ceil(opt_.time_to_impatience / step_length()), 4294967295.0))
+          : 0;
 
   StepperSetup setup;
   setup.net = engine_net_.view(net_);
@@ -148,7 +152,8 @@ StepParams Simulation::step_params() const {
                     idm_default_substeps(dt),
                     max_accel_,
                     max_emergency_decel_,
-                    teleport_steps_};
+                    teleport_steps_,
+                    impatience_steps_};
 }
 
 void Simulation::step() {

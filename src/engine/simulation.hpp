@@ -25,7 +25,8 @@ struct SimulationOptions {
   int64_t step_ms = 1000;  // the step length, in the one form the engine keeps it: whole milliseconds
   uint64_t seed = 23423;
   int threads = 1;
-  double time_to_teleport = 300;  // s; <= 0: never
+  double time_to_teleport = 300;    // s; <= 0: never
+  double time_to_impatience = 180;  // s for a waiting vehicle's impatience to grow from 0 to 1; <= 0: never
   // Run the step on the CUDA device (backends/cuda). The device then owns the run state; the host keeps the
   // insertion queues and the trip ledger and fetches only what outputs and teleports need.
   bool gpu = false;
@@ -134,8 +135,9 @@ class Simulation {
   uint32_t step_ = 0;
   Counts counts_;
   float max_accel_ = 2.6f, max_emergency_decel_ = 9.0f, min_decel_ = 4.5f;
-  uint32_t teleport_steps_ = 0;  // stopped steps before a teleport (0: never)
-  int cur_ = 0;                  // the lane map the state is in (the next step reads it)
+  uint32_t teleport_steps_ = 0;    // stopped steps before a teleport (0: never)
+  uint32_t impatience_steps_ = 0;  // stopped steps for impatience to reach 1 (0: never impatient)
+  int cur_ = 0;                    // the lane map the state is in (the next step reads it)
 
   // Host bookkeeping: slots handed out, the queues, every trip's account.
   SlotPool slots_;
