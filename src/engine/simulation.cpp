@@ -34,6 +34,12 @@ static_assert(kDepartSpeedGiven == uint8_t(DepartSpeed::Given) &&
               kDepartSpeedLimit == uint8_t(DepartSpeed::SpeedLimit) &&
               kDepartSpeedLast == uint8_t(DepartSpeed::Last) && kDepartSpeedAvg == uint8_t(DepartSpeed::Avg));
 
+// Steps a vehicle must stand to wait `seconds` (0: never, for a time of 0 or less). Beyond 2^32 - 1 steps it
+// would never happen anyway (the stopped-steps counter is 32 bits): capped.
+uint32_t stopped_steps_for(double seconds, double step_length) {
+  return seconds > 0 ? static_cast<uint32_t>(std::min(std::ceil(seconds / step_length), 4294967295.0)) : 0;
+}
+
 // SUMO's teleport causes: "wrong lane", "yield" when the link the vehicle waits at has no priority (a minor
 // link, a stop rule, or a red or yellow light, whose SUMO states are lower case too), else "jam".
 TeleportCause teleport_cause(uint8_t limit_reason) {
@@ -81,15 +87,8 @@ Simulation::Simulation(const Network& net, Demand demand, const SimulationOption
     ++counts_.removed;
     ++next_departure_;
   }
-  // A time-to-teleport beyond 2^32 - 1 steps never fires (the stopped-steps counter is 32 bits): capped.
-  teleport_steps_ =
-      opt_.time_to_teleport > 0
-          ? static_cast<uint32_t>(std::min(std::ceil(opt_.time_to_teleport / step_length()), 4294967295.0))
-          : 0;
-  impatience_steps_ =
-      opt_.time_to_impatience > 0
-          ? static_cast<uint32_t>(std::min(std::ceil(opt_.time_to_impatience / step_length()), 4294967295.0))
-          : 0;
+  teleport_steps_ = stopped_steps_for(opt_.time_to_teleport, step_length());
+  impatience_steps_ = stopped_steps_for(opt_.time_to_impatience, step_length());
 
   StepperSetup setup;
   setup.net = engine_net_.view(net_);

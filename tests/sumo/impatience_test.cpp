@@ -5,8 +5,6 @@
 // LPSim's side-road vehicles waited for gaps SUMO's stop waiting for: 106.0 s (+51 %).
 #include <gtest/gtest.h>
 
-#include <filesystem>
-#include <fstream>
 #include <map>
 #include <regex>
 #include <string>
@@ -18,12 +16,29 @@
 namespace lpsim {
 namespace {
 
-namespace fs = std::filesystem;
 using test::CliResult;
 using test::read_file;
 using test::TempDir;
 
-void write(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
+// A minor road joining a busy priority road (a T junction: main road W-J-E at 1500 veh/h, 120 veh/h from the
+// side road SJ), made with netconvert in `dir`.
+void write_t_junction(const TempDir& dir) {
+  dir.write("n.nod.xml",
+            "<nodes><node id=\"W\" x=\"-400\" y=\"0\"/><node id=\"J\" x=\"0\" y=\"0\" type=\"priority\"/>"
+            "<node id=\"E\" x=\"400\" y=\"0\"/><node id=\"S\" x=\"0\" y=\"-300\"/></nodes>\n");
+  dir.write("n.edg.xml",
+            "<edges><edge id=\"WJ\" from=\"W\" to=\"J\" numLanes=\"1\" speed=\"13.89\" priority=\"3\"/>"
+            "<edge id=\"JE\" from=\"J\" to=\"E\" numLanes=\"1\" speed=\"13.89\" priority=\"3\"/>"
+            "<edge id=\"SJ\" from=\"S\" to=\"J\" numLanes=\"1\" speed=\"13.89\" priority=\"1\"/></edges>\n");
+  dir.write(
+      "r.rou.xml",
+      "<routes><flow id=\"main\" from=\"WJ\" to=\"JE\" begin=\"0\" end=\"1800\" vehsPerHour=\"1500\"/>"
+      "<flow id=\"side\" from=\"SJ\" to=\"JE\" begin=\"0\" end=\"1800\" vehsPerHour=\"120\"/></routes>\n");
+  const CliResult net =
+      test::run_program(dir.path(), {"netconvert"},
+                        {"-n", "n.nod.xml", "-e", "n.edg.xml", "--no-turnarounds", "-o", "n.net.xml"});
+  ASSERT_EQ(net.exit_code, 0) << net.err;
+}
 
 // Mean trip duration of the flow `id` (`count` trips) in a tripinfo file.
 double mean_duration(const std::string& tripinfo, const std::string& id, int count = 60) {
@@ -41,20 +56,7 @@ TEST(ImpatienceTest, SideRoadJoinsABusyRoadAsInSumo) {
   if (!test::have_sumo_tool("sumo") || !test::have_sumo_tool("netconvert"))
     GTEST_SKIP() << "SUMO not installed";
   TempDir dir("lpsim_impatience");
-  write(dir.path() / "n.nod.xml",
-        "<nodes><node id=\"W\" x=\"-400\" y=\"0\"/><node id=\"J\" x=\"0\" y=\"0\" type=\"priority\"/>"
-        "<node id=\"E\" x=\"400\" y=\"0\"/><node id=\"S\" x=\"0\" y=\"-300\"/></nodes>\n");
-  write(dir.path() / "n.edg.xml",
-        "<edges><edge id=\"WJ\" from=\"W\" to=\"J\" numLanes=\"1\" speed=\"13.89\" priority=\"3\"/>"
-        "<edge id=\"JE\" from=\"J\" to=\"E\" numLanes=\"1\" speed=\"13.89\" priority=\"3\"/>"
-        "<edge id=\"SJ\" from=\"S\" to=\"J\" numLanes=\"1\" speed=\"13.89\" priority=\"1\"/></edges>\n");
-  write(dir.path() / "r.rou.xml",
-        "<routes><flow id=\"main\" from=\"WJ\" to=\"JE\" begin=\"0\" end=\"1800\" vehsPerHour=\"1500\"/>"
-        "<flow id=\"side\" from=\"SJ\" to=\"JE\" begin=\"0\" end=\"1800\" vehsPerHour=\"120\"/></routes>\n");
-  const CliResult net =
-      test::run_program(dir.path(), {"netconvert"},
-                        {"-n", "n.nod.xml", "-e", "n.edg.xml", "--no-turnarounds", "-o", "n.net.xml"});
-  ASSERT_EQ(net.exit_code, 0) << net.err;
+  ASSERT_NO_FATAL_FAILURE(write_t_junction(dir));
   const std::vector<std::string> common{
       "-n", "n.net.xml", "-r", "r.rou.xml", "--end", "3600", "--default.carfollowmodel", "IDM"};
   std::vector<std::string> sumo_args = common;
@@ -80,20 +82,7 @@ TEST(ImpatienceTest, SideRoadJoinsABusyRoadAsInSumo) {
 TEST(ImpatienceTest, ZeroTimeToImpatienceSwitchesItOff) {
   if (!test::have_sumo_tool("netconvert")) GTEST_SKIP() << "netconvert not found";
   TempDir dir("lpsim_impatience_off");
-  write(dir.path() / "n.nod.xml",
-        "<nodes><node id=\"W\" x=\"-400\" y=\"0\"/><node id=\"J\" x=\"0\" y=\"0\" type=\"priority\"/>"
-        "<node id=\"E\" x=\"400\" y=\"0\"/><node id=\"S\" x=\"0\" y=\"-300\"/></nodes>\n");
-  write(dir.path() / "n.edg.xml",
-        "<edges><edge id=\"WJ\" from=\"W\" to=\"J\" numLanes=\"1\" speed=\"13.89\" priority=\"3\"/>"
-        "<edge id=\"JE\" from=\"J\" to=\"E\" numLanes=\"1\" speed=\"13.89\" priority=\"3\"/>"
-        "<edge id=\"SJ\" from=\"S\" to=\"J\" numLanes=\"1\" speed=\"13.89\" priority=\"1\"/></edges>\n");
-  write(dir.path() / "r.rou.xml",
-        "<routes><flow id=\"main\" from=\"WJ\" to=\"JE\" begin=\"0\" end=\"1800\" vehsPerHour=\"1500\"/>"
-        "<flow id=\"side\" from=\"SJ\" to=\"JE\" begin=\"0\" end=\"1800\" vehsPerHour=\"120\"/></routes>\n");
-  const CliResult net =
-      test::run_program(dir.path(), {"netconvert"},
-                        {"-n", "n.nod.xml", "-e", "n.edg.xml", "--no-turnarounds", "-o", "n.net.xml"});
-  ASSERT_EQ(net.exit_code, 0) << net.err;
+  ASSERT_NO_FATAL_FAILURE(write_t_junction(dir));
   auto side = [&](const std::string& tti, const std::string& out) {
     const CliResult r = test::run_lpsim(
         dir.path(), {"run", "-n", "n.net.xml", "-r", "r.rou.xml", "--end", "3600", "--default.carfollowmodel",

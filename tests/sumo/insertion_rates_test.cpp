@@ -12,8 +12,6 @@
 #include <gtest/gtest.h>
 
 #include <array>
-#include <filesystem>
-#include <fstream>
 #include <regex>
 #include <string>
 
@@ -23,13 +21,10 @@
 namespace lpsim {
 namespace {
 
-namespace fs = std::filesystem;
 using test::CliResult;
 using test::read_file;
 using test::run_lpsim;
 using test::TempDir;
-
-void write(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
 
 struct Setting {
   const char* lane;
@@ -49,20 +44,20 @@ class InsertionRatesTest : public ::testing::TestWithParam<Setting> {
 TEST_P(InsertionRatesTest, InsertsPerLaneAsSumo) {
   const Setting& s = GetParam();
   TempDir dir("lpsim_insertion");
-  write(dir.path() / "m.nod.xml",
-        "<nodes><node id=\"a\" x=\"0\" y=\"0\"/><node id=\"b\" x=\"600\" y=\"0\"/></nodes>\n");
-  write(dir.path() / "m.edg.xml",
-        "<edges><edge id=\"e\" from=\"a\" to=\"b\" numLanes=\"3\" speed=\"33.33\"/></edges>\n");
+  dir.write("m.nod.xml",
+            "<nodes><node id=\"a\" x=\"0\" y=\"0\"/><node id=\"b\" x=\"600\" y=\"0\"/></nodes>\n");
+  dir.write("m.edg.xml",
+            "<edges><edge id=\"e\" from=\"a\" to=\"b\" numLanes=\"3\" speed=\"33.33\"/></edges>\n");
   const CliResult net =
       test::run_program(dir.path(), {"netconvert"},
                         {"--node-files", "m.nod.xml", "--edge-files", "m.edg.xml", "-o", "m.net.xml"});
   ASSERT_EQ(net.exit_code, 0) << net.err;
-  write(dir.path() / "m.rou.xml",
-        std::string("<routes>\n  <vType id=\"car\" carFollowModel=\"IDM\" length=\"5\" minGap=\"2.5\" "
-                    "accel=\"2.6\" decel=\"4.5\" maxSpeed=\"40\" speedDev=\"0\"/>\n"
-                    "  <flow id=\"f\" type=\"car\" from=\"e\" to=\"e\" begin=\"0\" end=\"300\" "
-                    "vehsPerHour=\"9000\" departLane=\"") +
-            s.lane + "\" departPos=\"" + s.pos + "\" departSpeed=\"" + s.speed + "\"/>\n</routes>\n");
+  dir.write("m.rou.xml",
+            std::string("<routes>\n  <vType id=\"car\" carFollowModel=\"IDM\" length=\"5\" minGap=\"2.5\" "
+                        "accel=\"2.6\" decel=\"4.5\" maxSpeed=\"40\" speedDev=\"0\"/>\n"
+                        "  <flow id=\"f\" type=\"car\" from=\"e\" to=\"e\" begin=\"0\" end=\"300\" "
+                        "vehsPerHour=\"9000\" departLane=\"") +
+                s.lane + "\" departPos=\"" + s.pos + "\" departSpeed=\"" + s.speed + "\"/>\n</routes>\n");
   const CliResult run = run_lpsim(dir.path(), {"run", "-n", "m.net.xml", "-r", "m.rou.xml", "--end", "400",
                                                "--tripinfo-output", "t.xml", "--no-step-log", "true", "-W"});
   ASSERT_EQ(run.exit_code, 0) << run.err;

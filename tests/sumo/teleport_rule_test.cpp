@@ -8,8 +8,6 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
-#include <filesystem>
-#include <fstream>
 #include <regex>
 #include <string>
 #include <vector>
@@ -20,12 +18,9 @@
 namespace lpsim {
 namespace {
 
-namespace fs = std::filesystem;
 using test::CliResult;
 using test::read_file;
 using test::TempDir;
-
-void write(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
 
 struct Teleport {
   std::string id, cause;
@@ -46,17 +41,17 @@ TEST(TeleportRuleTest, OnlyTheFirstVehicleOfALaneTeleportsAsInSumo) {
   if (!test::have_sumo_tool("sumo") || !test::have_sumo_tool("netconvert"))
     GTEST_SKIP() << "SUMO not installed";
   TempDir dir("lpsim_teleport_rule");
-  write(dir.path() / "n.nod.xml",
-        "<nodes><node id=\"a\" x=\"0\" y=\"0\"/><node id=\"b\" x=\"200\" y=\"0\" type=\"traffic_light\"/>"
-        "<node id=\"c\" x=\"400\" y=\"0\"/></nodes>\n");
-  write(dir.path() / "n.edg.xml",
-        "<edges><edge id=\"ab\" from=\"a\" to=\"b\" numLanes=\"1\" speed=\"13.89\"/>"
-        "<edge id=\"bc\" from=\"b\" to=\"c\" numLanes=\"1\" speed=\"13.89\"/></edges>\n");
-  write(dir.path() / "red.add.xml",
-        "<additional><tlLogic id=\"b\" type=\"static\" programID=\"red\" offset=\"0\">"
-        "<phase duration=\"1000\" state=\"r\"/></tlLogic></additional>\n");
-  write(dir.path() / "r.rou.xml",
-        "<routes><flow id=\"q\" from=\"ab\" to=\"bc\" begin=\"0\" end=\"50\" period=\"5\"/></routes>\n");
+  dir.write("n.nod.xml",
+            "<nodes><node id=\"a\" x=\"0\" y=\"0\"/><node id=\"b\" x=\"200\" y=\"0\" type=\"traffic_light\"/>"
+            "<node id=\"c\" x=\"400\" y=\"0\"/></nodes>\n");
+  dir.write("n.edg.xml",
+            "<edges><edge id=\"ab\" from=\"a\" to=\"b\" numLanes=\"1\" speed=\"13.89\"/>"
+            "<edge id=\"bc\" from=\"b\" to=\"c\" numLanes=\"1\" speed=\"13.89\"/></edges>\n");
+  dir.write("red.add.xml",
+            "<additional><tlLogic id=\"b\" type=\"static\" programID=\"red\" offset=\"0\">"
+            "<phase duration=\"1000\" state=\"r\"/></tlLogic></additional>\n");
+  dir.write("r.rou.xml",
+            "<routes><flow id=\"q\" from=\"ab\" to=\"bc\" begin=\"0\" end=\"50\" period=\"5\"/></routes>\n");
   const CliResult net =
       test::run_program(dir.path(), {"netconvert"},
                         {"-n", "n.nod.xml", "-e", "n.edg.xml", "--no-turnarounds", "-o", "n.net.xml"});
