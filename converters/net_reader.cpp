@@ -5,7 +5,9 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <optional>
 
+#include "converters/cli_options.hpp"       // parse_sumo_bool
 #include "converters/route_attributes.hpp"  // split_ids
 #include "converters/tl_logic_reader.hpp"
 #include "converters/xml_stream.hpp"
@@ -126,12 +128,12 @@ long long integer(const XmlStream& xs, const char* key, const std::string* v, lo
   return *i;
 }
 
-// A SUMO boolean attribute: true/false, 1/0, yes/no, on/off, x/- (SUMO's spellings).
+// A SUMO boolean attribute (parse_sumo_bool's spellings).
 bool flag(const XmlStream& xs, const char* key, const std::string* v, bool fallback) {
   if (!v) return fallback;
-  if (*v == "1" || *v == "true" || *v == "True" || *v == "yes" || *v == "on" || *v == "x") return true;
-  if (*v == "0" || *v == "false" || *v == "False" || *v == "no" || *v == "off" || *v == "-") return false;
-  xs.fail(std::string("attribute '") + key + "' is not a boolean: '" + *v + "'");
+  const std::optional<bool> b = parse_sumo_bool(*v);
+  if (!b) xs.fail(std::string("attribute '") + key + "' is not a boolean: '" + *v + "'");
+  return *b;
 }
 
 EdgeFunction parse_function(const XmlStream& xs, const std::string* f) {
