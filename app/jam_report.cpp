@@ -16,7 +16,7 @@ constexpr float kStandingSpeed = 0.1f;
 // on the next lane) up to what holds the queue's head; a faster vehicle ends it, as traffic that flows.
 constexpr float kQueueSpeed = 10.0f / 3.6f;
 constexpr double kTimeSlack = 1e-9;
-constexpr size_t kReasons = kSwap + 1;
+constexpr size_t kReasons = kStop + 1;
 
 bool held_by_vehicle(const JamVehicleState& s) { return s.reason == kLeader || s.reason == kNoRoom; }
 

@@ -158,6 +158,8 @@ void visit(IO& io, Demand& d) {
   io.field(d.route_length), io.field(d.speed_factor), io.field(d.source), io.field(d.depart_lane_kind);
   io.field(d.depart_lane), io.field(d.depart_pos_kind), io.field(d.depart_pos), io.field(d.depart_speed_kind);
   io.field(d.depart_speed), io.field(d.arrival_pos_kind), io.field(d.arrival_pos), io.field(d.route_edges);
+  io.field(d.stops.vehicle_begin), io.field(d.stops.route_pos), io.field(d.stops.lane);
+  io.field(d.stops.start_pos), io.field(d.stops.end_pos), io.field(d.stops.duration), io.field(d.stops.until);
   uint64_t n = d.unroutable.size();
   io.field(n);
   d.unroutable.resize(n);

@@ -31,7 +31,7 @@ const char* teleport_name(TeleportCause c) {
 const char* stop_reason_name(uint8_t reason) {
   // In the order of StopReason (kernels/step_view.hpp), which converters/ does not include.
   static constexpr const char* kNames[] = {"free",    "leader", "wrong_lane", "signal", "halt_rule",
-                                           "no_room", "yield",  "merge_gap",  "swap"};
+                                           "no_room", "yield",  "merge_gap",  "swap",   "scheduled_stop"};
   return reason < sizeof(kNames) / sizeof(kNames[0]) ? kNames[reason] : "unknown";
 }
 

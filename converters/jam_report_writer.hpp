@@ -42,7 +42,7 @@ struct JamRecord {
 };
 
 /// The name the report gives a StopReason ("leader", "wrong_lane", "signal", "halt_rule", "no_room",
-/// "yield", "merge_gap", "swap"; "free" for none).
+/// "yield", "merge_gap", "swap", "scheduled_stop"; "free" for none).
 const char* stop_reason_name(uint8_t reason);
 
 class JamReportWriter {

@@ -193,6 +193,8 @@ class RouteFileReader {
       read_mean_data(true);
     else if (name == "interval")
       read_interval();
+    else if (name == "busStop" || name == "trainStop" || name == "containerStop" || name == "chargingStation")
+      read_stopping_place();
     else
       skip_counted();
   }
@@ -287,11 +289,12 @@ class RouteFileReader {
     return true;
   }
 
-  // Reads the children of a vehicle, trip or flow: a nested <route> or <routeDistribution> gives the path;
-  // anything else (stops, params, ...) is counted as unsupported. With `interned` (vehicles and trips, read
+  // Reads the children of a vehicle, trip or flow: a nested <route> or <routeDistribution> gives the path,
+  // <stop>s (its own or its nested route's) go to `stops`; anything else (params, ...) is counted as
+  // unsupported. With `interned` (vehicles and trips, read
   // by the million) a nested route's edges are interned into it instead of filling `edges`.
   void read_path_children(const SourceLoc& loc, std::string_view element, const std::string& id,
-                          std::string& route, std::vector<std::string>& edges,
+                          std::string& route, std::vector<std::string>& edges, std::vector<StopSpec>& stops,
                           VehicleSpec* interned = nullptr) {
     for_each_child(loc, element, id, [&] {
       const bool has_path = !route.empty() || !edges.empty() || (interned && interned->edge_ref_count > 0);
@@ -316,21 +319,111 @@ class RouteFileReader {
         });
         if (!given) fail(xs_.loc(), element, id, "nested <route> without 'edges'");
         if (count == 0) fail(xs_.loc(), element, id, "nested <route> with empty 'edges'");
-        skip_children_counted();
+        read_route_children(stops);
       } else if (xs_.name() == "routeDistribution") {
         if (has_path)
           fail(xs_.loc(), element, id, "more than one route (attribute 'route' or nested routes)");
         route = read_route_distribution("!" + id);
+      } else if (xs_.name() == "stop") {
+        read_stop(stops);
       } else {
         skip_counted();
       }
     });
   }
 
-  // Counts the children of the current element as unsupported (a route's stops) and leaves it at its End.
+  // Reads a route's <stop> children into `stops`, counts the others as unsupported, and leaves the stream
+  // at the route's End.
+  void read_route_children(std::vector<StopSpec>& stops) {
+    const std::string element = xs_.name();
+    for_each_child(xs_.loc(), element, xs_.get("id", ""), [&] {
+      if (xs_.name() == "stop")
+        read_stop(stops);
+      else
+        skip_counted();
+    });
+  }
+
+  // Counts the children of the current element as unsupported and leaves it at its End.
   void skip_children_counted() {
     const std::string element = xs_.name();
     for_each_child(xs_.loc(), element, xs_.get("id", ""), [&] { skip_counted(); });
+  }
+
+  // A number attribute of the current element, or `fallback` when absent; InputError when not a number.
+  double number_attr(const char* key, std::string_view element, double fallback) const {
+    auto text = xs_.attr(key);
+    if (!text) return fallback;
+    auto d = parse_double(*text);
+    if (!d)
+      fail(xs_.loc(), element, xs_.get("id", ""),
+           std::string("attribute '") + key + "' is not a number: '" + *text + "'");
+    return *d;
+  }
+
+  // A <stop>: kept in `stops` when LPSim makes it (on the road, for a duration or until a time); counted
+  // as unsupported, with why, when it is one LPSim does not model (parking off the road, waiting for
+  // persons or containers, a waypoint passed at speed, a parking area).
+  void read_stop(std::vector<StopSpec>& stops) {
+    const std::string_view element = "stop";
+    StopSpec st;
+    st.loc = xs_.loc();
+    auto skip_as = [&](const std::string& why) {
+      ++demand_.skipped["stop (" + why + ")"];
+      skip_subtree();
+    };
+    if (xs_.has("parkingArea")) return skip_as("parkingArea");
+    for (const char* key : {"busStop", "trainStop", "containerStop", "chargingStation"})
+      if (auto v = xs_.attr(key)) st.stopping_place = std::string(trim(*v));
+    if (auto v = xs_.attr("lane")) st.lane = std::string(trim(*v));
+    if (auto v = xs_.attr("edge")) st.edge = std::string(trim(*v));
+    if (st.stopping_place.empty() && st.lane.empty() && st.edge.empty())
+      fail(st.loc, element, "", "needs a lane, an edge or a stopping place (busStop, trainStop, ...)");
+    if (auto v = xs_.attr("parking"); v && trim(*v) != "false" && trim(*v) != "0") {
+      auto b = parse_sumo_bool(*v);
+      if (!b || *b) return skip_as("parking");
+    }
+    for (const char* key : {"triggered", "containerTriggered"})
+      if (auto v = xs_.attr(key); v && trim(*v) != "false" && trim(*v) != "0") return skip_as("triggered");
+    if (number_attr("speed", element, 0) > 0) return skip_as("waypoint");
+    if (xs_.has("startPos")) st.start_pos = number_attr("startPos", element, 0);
+    if (xs_.has("endPos")) st.end_pos = number_attr("endPos", element, 0);
+    auto time = [&](const char* key) {
+      auto text = xs_.attr(key);
+      if (!text) return -1.0;
+      const TimeValue t = parse_time_value(key, *text);
+      if (!t.problem.empty()) fail(st.loc, element, "", t.problem);
+      return t.seconds;
+    };
+    st.duration = time("duration");
+    st.until = time("until");
+    // SUMO waits for a person or container there, which never comes in a scenario without them.
+    if (st.duration < 0 && st.until < 0) return skip_as("neither duration nor until");
+    stops.push_back(std::move(st));
+    skip_children_counted();
+  }
+
+  // <busStop>, <trainStop>, <containerStop>, <chargingStation>: where stops that name them are made.
+  void read_stopping_place() {
+    const std::string element = xs_.name();
+    StoppingPlaceSpec p;
+    p.loc = xs_.loc();
+    p.id = xs_.get("id", "");
+    if (p.id.empty()) fail(p.loc, element, "", "missing or empty attribute 'id'");
+    auto lane = xs_.attr("lane");
+    if (!lane || trim(*lane).empty()) fail(p.loc, element, p.id, "missing attribute 'lane'");
+    p.lane = std::string(trim(*lane));
+    p.start_pos = number_attr("startPos", element, 0);
+    if (xs_.has("endPos")) p.end_pos = number_attr("endPos", element, 0);
+    if (auto v = xs_.attr("friendlyPos")) {
+      auto b = parse_sumo_bool(*v);
+      if (!b) fail(p.loc, element, p.id, "attribute 'friendlyPos' is not a boolean: '" + *v + "'");
+      p.friendly_pos = *b;
+    }
+    for (const auto& other : demand_.stopping_places)
+      if (other.id == p.id) fail(p.loc, element, p.id, "duplicate id, first used at " + other.loc.str());
+    demand_.stopping_places.push_back(std::move(p));
+    skip_children_counted();
   }
 
   static bool has_endpoints(const std::string& from, const std::string& from_junction, const std::string& to,
@@ -362,7 +455,7 @@ class RouteFileReader {
     v.depart = time_attr(kDepart, loc, element, id, 0);
     read_type_and_path(v);
     read_depart_spec(loc, element, id, v.depart_spec);
-    read_path_children(loc, element, v.id, v.route, v.edges, &v);
+    read_path_children(loc, element, v.id, v.route, v.edges, v.stops, &v);
 
     const bool endpoints = has_endpoints(v.from, v.from_junction, v.to, v.to_junction);
     if (source == DemandSource::Trip && !endpoints)
@@ -428,7 +521,7 @@ class RouteFileReader {
 
     read_type_and_path(f);
     read_depart_spec(loc, element, id, f.depart_spec);
-    read_path_children(loc, element, f.id, f.route, f.edges);
+    read_path_children(loc, element, f.id, f.route, f.edges, f.stops);
     if (f.route.empty() && f.edges.empty() && !has_endpoints(f.from, f.from_junction, f.to, f.to_junction))
       fail(loc, element, f.id,
            "no route: give 'route', a nested <route>, from/to or fromJunction/toJunction");
@@ -446,8 +539,8 @@ class RouteFileReader {
     r.edges = split_ids(*edges);
     if (r.edges.empty()) fail(loc, "route", r.id, "empty 'edges'");
     register_route_id(loc, "route", r.id);
+    read_route_children(r.stops);
     demand_.routes.push_back(std::move(r));
-    skip_children_counted();
   }
 
   // Members given as `ids="a b"` with optional `probabilities="0.3 0.7"` (default 1 each).
@@ -516,8 +609,8 @@ class RouteFileReader {
       if (r.edges.empty()) fail(loc, "route", r.id, "empty 'edges'");
       register_route_id(loc, "route", r.id);
       dist.members.push_back(WeightedId{r.id, probability});
+      read_route_children(r.stops);
       demand_.routes.push_back(std::move(r));
-      skip_children_counted();
     });
     if (dist.members.empty()) fail(dist.loc, element, dist.id, "no routes");
     std::string id = dist.id;

@@ -35,7 +35,7 @@ void TripinfoWriter::write(const TripRecord& trip) {
   out_.attr_fixed("routeLength", trip.route_length);
   out_.attr_fixed("waitingTime", trip.waiting_time);
   out_.attr_int("waitingCount", trip.waiting_count);
-  out_.text(" stopTime=\"0.00\"");
+  out_.attr_fixed("stopTime", trip.stop_time);
   out_.attr_fixed("timeLoss", trip.time_loss);
   out_.text(" rerouteNo=\"0\" devices=\"");
   for (size_t i = 0; i < devices_.size(); ++i) {

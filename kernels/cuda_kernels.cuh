@@ -80,11 +80,13 @@ __global__ void activate_kernel(VehicleView veh, TripView trips, const SlotInit*
 }
 
 __global__ void sample_kernel(VehicleView veh, const uint32_t* active, uint32_t n, uint32_t* vehicle,
-                              uint8_t* status, int32_t* lane, float* pos, float* speed) {
+                              uint8_t* status, int32_t* lane, float* pos, float* speed,
+                              uint32_t* stop_release) {
   const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
   if (i >= n) return;
   const uint32_t k = active[i];
   vehicle[i] = veh.vehicle[k];
+  stop_release[i] = veh.stop_release[k];
   status[i] = veh.status[k];
   lane[i] = veh.lane[k];
   pos[i] = veh.pos[k];

@@ -63,6 +63,14 @@ struct TripView {
   const float* speed_factor;
   const uint8_t* arrival_pos_kind;  // ArrivalPos
   const float* arrival_pos;
+  // Scheduled stops (<stop>) of all trips, one table for the run; a slot holds the range of its trip's
+  // that it has still to make (VehicleView::next_stop, stops_end).
+  const uint32_t* stop_route_pos;       // position in the trip's route of the stop's edge
+  const uint32_t* stop_lane;            // the lane it stops on
+  const float* stop_start;              // m: the stretch of the lane within which it stops
+  const float* stop_end;                // m: the front stops here, or behind vehicles stopped there
+  const uint32_t* stop_duration_steps;  // steps it stands at least
+  const uint32_t* stop_until_step;      // step before which it does not leave (0: none)
 };
 
 enum VehicleStatus : uint8_t { kPending = 0, kRunning = 1, kArrived = 2, kTeleporting = 3 };
@@ -103,8 +111,8 @@ struct VehicleView {
   uint8_t* lane_change_dir;  // last lane change: 0 none, 1 left, 2 right (for outputs)
   uint8_t* held_at_line;     // last plan stopped at the lane end for a red light or a full next lane
   uint8_t* limit_reason;     // what bounded the last plan's speed (StopReason), for diagnostics and tests
-  // Cache of best lanes (a pure function of vehicle and route position): kBestLaneEntries per slot,
-  // slot k's at [k * kBestLaneEntries, (k + 1) * kBestLaneEntries).
+  // Cache of best lanes (a pure function of vehicle, route position and next stop): kBestLaneEntries per
+  // slot, slot k's at [k * kBestLaneEntries, (k + 1) * kBestLaneEntries).
   uint32_t* best_rp;    // route position an entry was computed for (0xFFFFFFFF: none yet)
   uint32_t* best_mask;  // best lanes of that route edge
   // Cache of the connection taken at the end of the current lane (a pure function of vehicle, lane and route
@@ -118,6 +126,11 @@ struct VehicleView {
   float* trip_speed_factor;
   uint32_t* trip_route_begin;  // first of its route's edges in TripView::route_edges
   uint32_t* trip_route_size;   // edges in its route
+  // Its scheduled stops: the next one to make, in TripView's stop table (== stops_end: none left).
+  uint32_t* next_stop;
+  uint32_t* stops_end;
+  uint32_t* stop_release;  // standing at next_stop until this step (0: not at a stop)
+  uint32_t* stop_steps;    // steps stood at stops (tripinfo stopTime)
 };
 
 constexpr uint32_t kBestLaneEntries = 2;  // a power of two
@@ -162,8 +175,12 @@ void visit_vehicle_columns(F&& f, Views&... v) {
   f(1u, v.trip_speed_factor...);
   f(1u, v.trip_route_begin...);
   f(1u, v.trip_route_size...);
+  f(1u, v.next_stop...);
+  f(1u, v.stops_end...);
+  f(1u, v.stop_release...);
+  f(1u, v.stop_steps...);
 }
-static_assert(sizeof(VehicleView) == 30 * sizeof(void*), "VehicleView changed: update visit_vehicle_columns");
+static_assert(sizeof(VehicleView) == 34 * sizeof(void*), "VehicleView changed: update visit_vehicle_columns");
 
 enum StopReason : uint8_t {
   kFree = 0,
@@ -174,7 +191,8 @@ enum StopReason : uint8_t {
   kNoRoom = 5,
   kYield = 6,
   kMergeGap = 7,
-  kSwap = 8
+  kSwap = 8,
+  kStop = 9  // approaching or standing at a scheduled stop
 };
 
 /// What a vehicle decided this step, between the plan and the commit passes. Indexed by the vehicle's
@@ -269,6 +287,8 @@ struct VehicleEnd {
   uint32_t waiting_steps;
   uint32_t waiting_count;
   uint32_t limit_reason;  // StopReason of its last plan (why a teleporting vehicle was stuck)
+  uint32_t next_stop;     // the scheduled stops it carries over a teleport
+  uint32_t stop_steps;
 };
 
 /// What becomes of a teleporting vehicle (decided on the host, which owns the insertion queues).
@@ -291,6 +311,9 @@ struct SlotInit {
   float time_loss;
   uint32_t waiting_steps;
   uint32_t waiting_count;
+  uint32_t next_stop;  // its scheduled stops still to make: [next_stop, stops_end) of TripView's table
+  uint32_t stops_end;
+  uint32_t stop_steps;
 };
 
 /// A running vehicle's new route (rerouting): where its edges start in TripView::route_edges, how many, and

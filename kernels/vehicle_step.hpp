@@ -17,6 +17,7 @@
 #include "kernels/lane_change.hpp"
 #include "kernels/lane_map.hpp"
 #include "kernels/right_of_way.hpp"
+#include "kernels/scheduled_stop.hpp"
 #include "kernels/signal_state.hpp"
 #include "kernels/step_view.hpp"
 
@@ -122,7 +123,9 @@ constexpr float kBestLaneDistance = 600.0f;
 /// Bit k set: lane k (rank among the edge's lanes) of the route's edge rp+level can follow the route for
 /// the next edges in view without a lane change (SUMO's "best lanes", limited to kBestLaneEdges), using
 /// only lanes and connections that vClass mask `vclass` may use. Where no lane can, the lanes that at least
-/// reach the next edge. Edges with more than 32 lanes see their first 32.
+/// reach the next edge. Edges with more than 32 lanes see their first 32. A scheduled stop `stop_offset`
+/// edges ahead (kNoStopAhead: none) allows only its lane (`stop_bit`) on its edge, as SUMO's best lanes
+/// lead to the stop's lane.
 struct BestLanes {
   uint32_t mask[kBestLaneEdges];
   uint32_t levels;  // edges in view (1 = only the current edge)
@@ -141,8 +144,10 @@ LPSIM_HD uint32_t allowed_lane_bits(const NetView& net, uint32_t e, uint32_t vcl
   return bits;
 }
 
+constexpr uint32_t kNoStopAhead = 0xFFFFFFFFu;
+
 LPSIM_HD BestLanes best_lanes(const NetView& net, const uint32_t* route, uint32_t len, uint32_t rp,
-                              uint32_t vclass) {
+                              uint32_t vclass, uint32_t stop_offset = kNoStopAhead, uint32_t stop_bit = 0) {
   BestLanes b{};
   // The current edge and always the next one; further edges while they start within the distance.
   float dist = 0.0f;
@@ -153,6 +158,7 @@ LPSIM_HD BestLanes best_lanes(const NetView& net, const uint32_t* route, uint32_
   }
   b.levels = n;
   b.mask[n - 1] = allowed_lane_bits(net, route[rp + n - 1], vclass);
+  if (stop_offset == n - 1) b.mask[n - 1] = stop_bit;
   for (int32_t i = static_cast<int32_t>(n) - 2; i >= 0; --i) {
     const uint32_t e = route[rp + static_cast<uint32_t>(i)];
     const uint32_t next = route[rp + static_cast<uint32_t>(i) + 1];
@@ -166,9 +172,21 @@ LPSIM_HD BestLanes best_lanes(const NetView& net, const uint32_t* route, uint32_
         if (lane_bit(net, net.conn_to_lane[c]) & b.mask[i + 1]) keep |= 1u << k;
       }
     }
-    b.mask[i] = keep ? keep : reach;
+    b.mask[i] = stop_offset == static_cast<uint32_t>(i) ? stop_bit : (keep ? keep : reach);
   }
   return b;
+}
+
+/// Empties slot k's caches keyed by route position (best lanes, the connection at the lane's end), which
+/// also depend on its next scheduled stop.
+LPSIM_HD void clear_route_caches(const VehicleView& veh, uint32_t k) {
+  for (uint32_t e = 0; e < kBestLaneEntries; ++e) {
+    veh.best_rp[k * kBestLaneEntries + e] = 0xFFFFFFFFu;
+    veh.best_mask[k * kBestLaneEntries + e] = 0;
+  }
+  veh.conn_lane[k] = -1;
+  veh.conn_rp[k] = 0;
+  veh.conn[k] = -1;
 }
 
 /// Best lanes of route edge rp of vehicle r, cached in kBestLaneEntries entries per slot, direct-mapped by
@@ -178,9 +196,17 @@ LPSIM_HD BestLanes best_lanes(const NetView& net, const uint32_t* route, uint32_
 LPSIM_HD uint32_t best_mask_at(const StepContext& s, VehicleRef r, uint32_t rp) {
   const uint32_t entry = r.slot * kBestLaneEntries + (rp & (kBestLaneEntries - 1u));
   if (s.veh.best_rp[entry] != rp) {
-    s.veh.best_mask[entry] = best_lanes(s.net, s.trips.route_edges + s.veh.trip_route_begin[r.slot],
-                                        s.veh.trip_route_size[r.slot], rp, vclass_of(s, r))
-                                 .mask[0];
+    // The next scheduled stop, if it lies on this edge or ahead (the cache is emptied when it is made).
+    uint32_t stop_offset = kNoStopAhead, stop_bit = 0;
+    const uint32_t k = s.veh.next_stop[r.slot];
+    if (k < s.veh.stops_end[r.slot] && s.trips.stop_route_pos[k] >= rp) {
+      stop_offset = s.trips.stop_route_pos[k] - rp;
+      stop_bit = lane_bit(s.net, s.trips.stop_lane[k]);
+    }
+    s.veh.best_mask[entry] =
+        best_lanes(s.net, s.trips.route_edges + s.veh.trip_route_begin[r.slot], s.veh.trip_route_size[r.slot],
+                   rp, vclass_of(s, r), stop_offset, stop_bit)
+            .mask[0];
     s.veh.best_rp[entry] = rp;
   }
   return s.veh.best_mask[entry];
@@ -959,6 +985,18 @@ LPSIM_HD_INLINED void join_free_speed(const StepContext& s, const PlanInput& in,
   }
 }
 
+/// Distance from the front to where the vehicle's next scheduled stop makes it stand, when the stop lies on
+/// path lane `lane` (at route position `rp`, starting `lane_start` ahead), or -1: the stop's end on the
+/// stop's lane, and the same place on another lane of its edge, where it waits to change onto the stop's
+/// lane (as SUMO's vehicles do not drive past their stop).
+LPSIM_HD_INLINED float scheduled_stop_distance(const StepContext& s, const PlanInput& in, int32_t lane,
+                                               uint32_t rp, float lane_start) {
+  const uint32_t k = s.veh.next_stop[in.r.slot];
+  if (k >= s.veh.stops_end[in.r.slot] || s.trips.stop_route_pos[k] != rp || s.net.lane_internal[lane])
+    return -1.0f;
+  return lp_fmaxf(lane_start + s.trips.stop_end[k], 0.0f);
+}
+
 /// Walk the path ahead: current lane, then the lanes the route leads through, up to the budget. Bounds the
 /// speed by the leader, a wrong lane's end, the links' signals and right of way, and internal junctions, and
 /// records in `path` the lanes passed into.
@@ -978,6 +1016,14 @@ LPSIM_HD_INLINED PathBounds walk_path_ahead(const StepContext& s, const PlanInpu
   int32_t entry_conn = entry_connection(s, in);
   for (;;) {
     const int32_t hit = first_occupied_ahead(s, in, cur, cur_start, budget);
+    const float stop_dist = scheduled_stop_distance(s, in, cur, cur_rp, cur_start);
+    if (stop_dist >= 0.0f && (hit < 0 || cur_start + static_cast<float>(hit) > stop_dist)) {
+      stop_at(s, in, stop_dist, b, &free_speed);
+      b.hard_limit = lp_fminf(b.hard_limit, stop_dist);
+      b.reason =
+          cur == static_cast<int32_t>(s.trips.stop_lane[s.veh.next_stop[in.r.slot]]) ? kStop : kWrongLane;
+      break;
+    }
     if (hit >= 0) {
       follow_leader_at(s, in, cur, cur_start, hit, b, &free_speed);
       break;
@@ -1059,7 +1105,10 @@ LPSIM_HD_INLINED LaneChangeAttempt lane_change_attempt(const StepContext& s, con
   const NetView& net = s.net;
   const LaneChangeAttempt none{-1, false, 0.0f};
   const bool last_edge_here = in.rp + 1 >= in.route_size;
-  if (net.lane_internal[in.lane] || last_edge_here) return none;
+  // A scheduled stop on this edge: its lane must be reached before the stop, even on the route's last edge.
+  const uint32_t k = s.veh.next_stop[in.r.slot];
+  const bool stop_here = k < s.veh.stops_end[in.r.slot] && s.trips.stop_route_pos[k] == in.rp;
+  if (net.lane_internal[in.lane] || (last_edge_here && !stop_here)) return none;
   const bool left_step = (s.params.step & 1u) == 0;
   const int32_t target = left_step ? net.lane_left[in.lane] : net.lane_right[in.lane];
   // Never onto a lane the vehicle's class may not use (a car beside a bus lane).
@@ -1069,12 +1118,14 @@ LPSIM_HD_INLINED LaneChangeAttempt lane_change_attempt(const StepContext& s, con
   const bool target_good = (lane_bit(net, static_cast<uint32_t>(target)) & good) != 0;
   int32_t to_cross = 0;
   if (!here_good && mandatory_target_in(net, in.lane, good, &to_cross) == target) {
-    const float dist_to_lane_end = net.lane_length[in.lane] - in.pos;
+    float dist_to_lane_end = net.lane_length[in.lane] - in.pos;
+    if (stop_here) dist_to_lane_end = lp_fminf(dist_to_lane_end, s.trips.stop_end[k] - in.pos);
     return LaneChangeAttempt{
         target, true,
         mandatory_lc_urgency(dist_to_lane_end, to_cross, in.speed, lane_change_default_params())};
   }
-  if (here_good && target_good && lc_attempt_allowed(s.params.seed, in.r.id, s.params.step, 0.5f))
+  if (here_good && target_good && !last_edge_here &&
+      lc_attempt_allowed(s.params.seed, in.r.id, s.params.step, 0.5f))
     return LaneChangeAttempt{target, false, 0.0f};
   return none;
 }
@@ -1102,7 +1153,8 @@ LPSIM_HD_INLINED void plan_lane_change(const StepContext& s, const PlanInput& in
   m.speed = cf_finalize_speed(in.p, in.speed, lp_fminf(b.cand, lc.speed_cap), in.dt, s.params.seed, in.r.id,
                               s.params.step);
   m.hard_limit = lp_fminf(m.hard_limit, lc.leader_gap - kClampEps);
-  if (!lane_has_conn_to(s.net, target, route_edge(s, in.r, in.rp + 1), vclass_of(s, in.r))) {
+  if (in.rp + 1 < in.route_size &&
+      !lane_has_conn_to(s.net, target, route_edge(s, in.r, in.rp + 1), vclass_of(s, in.r))) {
     const float end_dist = s.net.lane_length[target] - in.pos;
     m.speed = lp_fminf(
         m.speed, lp_fmaxf(0.0f, cf_stop_speed(in.p, in.speed, in.v0, end_dist, in.dt, s.params.substeps)));
@@ -1181,6 +1233,38 @@ LPSIM_HD_INLINED bool reaches_arrival(const StepContext& s, const PlanInput& in,
   return m.pos >= arrival - kClampEps;
 }
 
+/// A vehicle standing out a scheduled stop keeps its place (its whole plan is written: true). Once its
+/// stop is over it goes on towards the next one; a stop it can no longer make (its edge behind it, or its
+/// place passed) is dropped.
+LPSIM_HD_INLINED bool stand_at_scheduled_stop(StepContext& s, const PlanInput& in) {
+  const VehicleView& veh = s.veh;
+  const uint32_t slot = in.r.slot;
+  const uint32_t release = veh.stop_release[slot];
+  if (release != 0) {
+    if (s.params.step < release) {
+      veh.held_at_line[slot] = 1;  // it will not enter a junction now: foes need not wait for it
+      veh.limit_reason[slot] = kStop;
+      write_planned_move(s.plan, in.i,
+                         PlannedMove{0.0f, in.lane, in.pos, veh.prev[slot], veh.prev2[slot], in.rp});
+      s.plan.stop_lane[in.i] = in.lane;
+      s.plan.stop_pos[in.i] = in.pos;
+      s.plan.first_rp[in.i] = in.rp;
+      return true;
+    }
+    veh.stop_release[slot] = 0;
+    ++veh.next_stop[slot];
+    clear_route_caches(veh, slot);
+  }
+  while (veh.next_stop[slot] < veh.stops_end[slot] && !s.net.lane_internal[in.lane]) {
+    const uint32_t k = veh.next_stop[slot];
+    const uint32_t rp = s.trips.stop_route_pos[k];
+    if (rp > in.rp || (rp == in.rp && in.pos <= s.trips.stop_end[k] + kStopReachTolerance)) break;
+    ++veh.next_stop[slot];
+    clear_route_caches(veh, slot);
+  }
+  return false;
+}
+
 /// Plan pass for the vehicle in `slot`, `i` its position in this step's active list (where its plan goes).
 /// Every plan entry the commit pass reads is written here in every step.
 LPSIM_HD void plan_vehicle(StepContext& s, uint32_t i, uint32_t slot) {
@@ -1190,6 +1274,7 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t i, uint32_t slot) {
   const uint32_t type = s.veh.trip_type[slot];
   const IdmParams p = idm_of(s, type);
   const PlanInput in = read_plan_input(s, r, i, type, p);
+  if (stand_at_scheduled_stop(s, in)) return;
   if (plan_swap_at_lane_end(s, in)) return;
   const float budget = lp_fminf(s.plan.lookahead[i] + in.p.min_gap, kMaxLookahead);
   PathAhead path;
@@ -1222,6 +1307,20 @@ LPSIM_HD bool first_on_lane(const StepContext& s, int32_t lane, float pos) {
   return front >= last || first_occupied(s.map_now, s.net, lane, front + 1, last) < 0;
 }
 
+/// The vehicle in `slot` ends the step standing at its next scheduled stop (on its lane, within its
+/// stretch, below SUMO's halting speed): it stands there until the stop's release step.
+LPSIM_HD_INLINED bool begin_scheduled_stop(const StepContext& s, uint32_t slot, uint32_t rp, int32_t lane,
+                                           float pos, float speed, float length) {
+  const uint32_t k = s.veh.next_stop[slot];
+  if (k >= s.veh.stops_end[slot] || s.trips.stop_route_pos[k] != rp ||
+      lane != static_cast<int32_t>(s.trips.stop_lane[k]) || speed >= kHaltingSpeed)
+    return false;
+  if (!stop_reached(pos, length, s.trips.stop_start[k], s.trips.stop_end[k])) return false;
+  s.veh.stop_release[slot] =
+      stop_release_step(s.params.step, s.trips.stop_duration_steps[k], s.trips.stop_until_step[k]);
+  return true;
+}
+
 /// Commit pass for the vehicle in `slot` (its plan at `i`): settle claims, write the new footprint, update
 /// counters.
 LPSIM_HD_INLINED void commit_vehicle(StepContext& s, uint32_t i, uint32_t slot) {
@@ -1233,6 +1332,8 @@ LPSIM_HD_INLINED void commit_vehicle(StepContext& s, uint32_t i, uint32_t slot) 
   veh.old_prev2[slot] = veh.prev2[slot];
   veh.old_pos[slot] = veh.pos[slot];
   if (veh.status[slot] != kRunning) return;
+  // Standing at a scheduled stop through this step (its plan kept it there).
+  const bool stood_at_stop = veh.stop_release[slot] > s.params.step;
   const NetView& net = s.net;
   PlanView& plan = s.plan;
   const uint32_t type = s.veh.trip_type[slot];
@@ -1286,14 +1387,20 @@ LPSIM_HD_INLINED void commit_vehicle(StepContext& s, uint32_t i, uint32_t slot) 
   const uint32_t rp = lost0 ? veh.route_pos[slot] : (lost1 ? plan.first_rp[i] : plan.new_rp[i]);
   veh.route_pos[slot] = rp;
 
+  // Standing at a scheduled stop at the end of this step (reached in it, or stood through it): as in SUMO,
+  // neither waiting nor losing time.
+  const bool at_stop =
+      stood_at_stop || (!arrives && begin_scheduled_stop(s, slot, rp, nlane, npos, nspeed, length));
+
   // Per-vehicle counters (tripinfo).
   const float v0 = desired_speed(net.lane_speed[nlane], veh.trip_speed_factor[slot], s.types.max_speed[type]);
   // Time lost this step against the desired speed [s]; no loss where the desired speed is 0.
   const float lost = v0 > 0.0f ? dt * lp_fmaxf(0.0f, (v0 - nspeed) / v0) : 0.0f;
   veh.route_length[slot] += driven;
-  veh.time_loss[slot] += lost;
+  veh.time_loss[slot] += at_stop ? 0.0f : lost;
+  veh.stop_steps[slot] += at_stop ? 1u : 0u;
   // Counted without branches: whether a vehicle halts in a step is hard to predict.
-  const uint32_t halting = nspeed < kHaltingSpeed ? 1u : 0u;
+  const uint32_t halting = (nspeed < kHaltingSpeed ? 1u : 0u) & (at_stop ? 0u : 1u);
   veh.waiting_count[slot] += halting & (veh.stopped_steps[slot] == 0 ? 1u : 0u);
   veh.stopped_steps[slot] = halting * (veh.stopped_steps[slot] + 1u);
   veh.waiting_steps[slot] += halting;
@@ -1384,7 +1491,9 @@ LPSIM_HD VehicleEnd vehicle_end(const VehicleView& veh, uint32_t slot, uint32_t 
                     veh.route_pos[slot],
                     veh.waiting_steps[slot],
                     veh.waiting_count[slot],
-                    veh.limit_reason[slot]};
+                    veh.limit_reason[slot],
+                    veh.next_stop[slot],
+                    veh.stop_steps[slot]};
 }
 
 /// The host's decision for a teleporting vehicle: its trip ends (past the end of its route), or it waits to
@@ -1396,17 +1505,6 @@ LPSIM_HD void apply_teleport_move(const VehicleView& veh, const TeleportMove& m,
   } else {
     veh.stopped_steps[m.slot] = 0;
   }
-}
-
-/// Empties slot k's caches keyed by route position (best lanes, the connection at the lane's end).
-LPSIM_HD void clear_route_caches(const VehicleView& veh, uint32_t k) {
-  for (uint32_t e = 0; e < kBestLaneEntries; ++e) {
-    veh.best_rp[k * kBestLaneEntries + e] = 0xFFFFFFFFu;
-    veh.best_mask[k * kBestLaneEntries + e] = 0;
-  }
-  veh.conn_lane[k] = -1;
-  veh.conn_rp[k] = 0;
-  veh.conn[k] = -1;
 }
 
 /// A vehicle takes a free slot after its insertion: its state starts from where it was placed, with no
@@ -1438,6 +1536,10 @@ LPSIM_HD void activate_slot(const VehicleView& veh, const TripView& trips, const
   veh.lane_change_dir[k] = 0;
   veh.held_at_line[k] = 0;
   veh.limit_reason[k] = 0;
+  veh.next_stop[k] = in.next_stop;
+  veh.stops_end[k] = in.stops_end;
+  veh.stop_release[k] = 0;
+  veh.stop_steps[k] = in.stop_steps;
   clear_route_caches(veh, k);
 }
 
@@ -1449,6 +1551,9 @@ LPSIM_HD void set_slot_route(const VehicleView& veh, const SlotRoute& r) {
   veh.trip_route_begin[k] = r.route_begin;
   veh.trip_route_size[k] = r.route_size;
   veh.route_pos[k] = r.route_pos;
+  // Its stops were placed along the old route: a new one drops those not yet made.
+  veh.next_stop[k] = veh.stops_end[k];
+  veh.stop_release[k] = 0;
   clear_route_caches(veh, k);
 }
 

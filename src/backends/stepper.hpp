@@ -45,6 +45,7 @@ struct TripTableView {
   DepartView depart;
   uint32_t num_vehicles = 0;
   uint64_t num_route_edges = 0;
+  uint64_t num_stops = 0;  // entries of the stop table (TripView::stop_*), fixed for a run
 };
 
 /// Everything a backend needs to set up a run; the pointers outlive the stepper (the Simulation owns them).
@@ -83,14 +84,14 @@ struct StepOutcome {
 struct HostState {
   const uint32_t* active = nullptr;
   uint32_t num_active = 0;
-  VehicleView veh{};                 // Sample: vehicle, status, lane, pos and speed only; Full: every column
+  VehicleView veh{};  // Sample: vehicle, status, lane, pos, speed and stop_release only; Full: every column
   const uint8_t* map = nullptr;      // Full: the lane map now
   const char* link_state = nullptr;  // Full: every signal link's character now
 };
 
 enum class StateParts {
   Sample,  // what outputs read every step: the active list and each active slot's vehicle, status, lane,
-           // position and speed
+           // position, speed and stop_release (the summary's stopped vehicles)
   Full,    // everything (tests): every slot column up to the slots in use, the lane map, the signals
 };
 

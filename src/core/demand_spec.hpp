@@ -3,6 +3,7 @@
 // Readers fill it; src/demand/demand_builder resolves ids, expands flows and routes trips.
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -37,9 +38,31 @@ struct VTypeDistSpec {
   SourceLoc loc;
 };
 
+/// A scheduled stop (<stop> in a vehicle, trip, flow or route): at a stopping place, or on a lane up to
+/// end_pos. It lasts `duration` and at least until `until` (SUMO's rule: the later of the two).
+struct StopSpec {
+  std::string stopping_place;  // busStop, trainStop, containerStop or chargingStation id; or empty
+  std::string lane;            // with no stopping place
+  std::string edge;            // with neither: the edge's first lane the vehicle's class may use
+  std::optional<double> start_pos, end_pos;  // not given: SUMO's defaults apply
+  double duration = -1, until = -1;          // s; -1: not given
+  SourceLoc loc;
+};
+
+/// A stopping place (<busStop>, <trainStop>, <containerStop>, <chargingStation>): a stretch of a lane
+/// where stops that name it are made.
+struct StoppingPlaceSpec {
+  std::string id, lane;
+  double start_pos = 0;
+  std::optional<double> end_pos;  // not given: the lane's end
+  bool friendly_pos = false;      // positions outside the lane are moved onto it instead of refused
+  SourceLoc loc;
+};
+
 struct RouteSpec {
   std::string id;
   std::vector<std::string> edges;
+  std::vector<StopSpec> stops;  // made by every vehicle on the route, before the vehicle's own
   SourceLoc loc;
 };
 
@@ -83,6 +106,7 @@ struct VehicleSpec {
   std::string from_junction, to_junction;  // trip endpoints as junctions (fromJunction / OD CSV nodes)
   std::vector<std::string> via;
   DepartSpec depart_spec;
+  std::vector<StopSpec> stops;
   SourceLoc loc;
 };
 
@@ -97,6 +121,7 @@ struct FlowSpec {
   std::string from, to, from_junction, to_junction;
   std::vector<std::string> via;
   DepartSpec depart_spec;
+  std::vector<StopSpec> stops;  // `until` counts from begin: each vehicle's is later by its depart - begin
   SourceLoc loc;
 };
 
@@ -107,6 +132,7 @@ struct DemandSpec {
   std::vector<RouteDistSpec> route_dists;
   std::vector<VehicleSpec> vehicles;  // vehicles, trips and OD rows in file order
   std::vector<FlowSpec> flows;
+  std::vector<StoppingPlaceSpec> stopping_places;
   std::vector<std::string> edge_names;     // each edge id of the interned inline routes, once
   std::vector<uint32_t> edge_refs;         // interned inline routes: indices into edge_names
   std::map<std::string, int64_t> skipped;  // element name -> count of unsupported elements (persons, ...)

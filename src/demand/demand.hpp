@@ -23,6 +23,22 @@ struct VehicleTypes {
   uint32_t size() const { return static_cast<uint32_t>(id.size()); }
 };
 
+/// Scheduled stops (<stop>) of all vehicles, in one table: vehicle v's are [vehicle_begin[v],
+/// vehicle_begin[v+1]), in the order they are made along its route.
+struct StopTable {
+  std::vector<uint32_t> vehicle_begin;    // [vehicles + 1]; empty while no vehicle has a stop
+  std::vector<uint32_t> route_pos;        // position in the vehicle's route of the stop's edge
+  std::vector<uint32_t> lane;             // network lane index
+  std::vector<float> start_pos, end_pos;  // m along the lane: the stretch the vehicle stops within
+  std::vector<double> duration;           // s
+  std::vector<double> until;              // s; -1: none
+
+  uint32_t size() const { return static_cast<uint32_t>(route_pos.size()); }
+  /// Vehicle v's stops: [first, last).
+  uint32_t first(uint32_t v) const { return vehicle_begin.empty() ? 0 : vehicle_begin[v]; }
+  uint32_t last(uint32_t v) const { return vehicle_begin.empty() ? 0 : vehicle_begin[v + 1]; }
+};
+
 struct Demand {
   VehicleTypes types;
 
@@ -44,6 +60,7 @@ struct Demand {
   std::vector<float> arrival_pos;
 
   std::vector<uint32_t> route_edges;  // edge indices; routes shared by id are stored once
+  StopTable stops;
 
   // --- what was not turned into vehicles ---
   struct Skipped {

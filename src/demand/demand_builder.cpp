@@ -12,6 +12,7 @@
 #include "demand/flat_index.hpp"
 #include "demand/flow_expansion.hpp"
 #include "demand/route_table.hpp"
+#include "demand/stop_resolution.hpp"
 #include "demand/trip_batch.hpp"
 #include "demand/vtype_table.hpp"
 
@@ -49,7 +50,8 @@ class Builder {
         demand_(demand),
         types_(spec, options.default_car_follow_model),
         routes_(spec, net, options.ignore_route_errors, demand.route_edges),
-        trips_(net, routes_) {}
+        trips_(net, routes_),
+        stops_(spec, net) {}
 
   void run() {
     std::vector<std::vector<double>> flow_times(spec_.flows.size());
@@ -85,7 +87,7 @@ class Builder {
     } else if (v.edge_ref_count > 0) {
       slot = routes_.interned_route(v.edge_ref_begin, v.edge_ref_count, "vehicle", v.id, v.loc);
     } else {
-      slot = trips_.add({v.from, v.to, v.from_junction, v.to_junction, v.via},
+      slot = trips_.add({v.from, v.to, v.from_junction, v.to_junction, via_and_stops(v.via, v.stops)},
                         types_.types().vclass_mask[type], kind_name(v.source), v.id, v.loc);
     }
     pending_.push_back({v.depart, type, slot, types_.speed_factor(type, opt_.seed, stream), i, false});
@@ -104,7 +106,8 @@ class Builder {
       const uint32_t first_type =
           types_.resolve(flow.type, first_id, opt_.seed, draw_stream(first_id), flow.loc);
       shared_slot = flow.edges.empty()
-                        ? trips_.add({flow.from, flow.to, flow.from_junction, flow.to_junction, flow.via},
+                        ? trips_.add({flow.from, flow.to, flow.from_junction, flow.to_junction,
+                                      via_and_stops(flow.via, flow.stops)},
                                      types_.types().vclass_mask[first_type], "flow", flow.id, flow.loc)
                         : routes_.inline_route(flow.edges, "flow '" + flow.id + "'", flow.loc);
     }
@@ -117,6 +120,55 @@ class Builder {
           flow.route.empty() ? shared_slot : routes_.named(flow.route, id, opt_.seed, stream, flow.loc);
       pending_.push_back({times[n], type, slot, types_.speed_factor(type, opt_.seed, stream), f, true});
       ids_.push_back(id);
+    }
+  }
+
+  // A trip's via edges, then the edges of its stops: the router leads it through both, as duarouter does.
+  const std::vector<std::string>& via_and_stops(const std::vector<std::string>& via,
+                                                const std::vector<StopSpec>& stops) {
+    if (stops.empty()) return via;
+    via_buffer_ = via;
+    for (const StopSpec& st : stops) via_buffer_.push_back(net_.edge_id[stops_.edge_of(st)]);
+    return via_buffer_;
+  }
+
+  // Resolves pending vehicle k's stops (its named route's, then its own) into staged_; "" or why they
+  // cannot be made.
+  std::string stage_stops(uint32_t k) {
+    const PendingVehicle& p = pending_[k];
+    const RouteSlot& slot = routes_.slot(p.slot);
+    const std::vector<StopSpec>& own =
+        p.from_flow ? spec_.flows[p.origin].stops : spec_.vehicles[p.origin].stops;
+    const std::vector<StopSpec>& on_route = routes_.route_stops(p.slot);
+    if (own.empty() && on_route.empty()) return "";
+    std::vector<const StopSpec*> specs;
+    for (const StopSpec& s : on_route) specs.push_back(&s);
+    for (const StopSpec& s : own) specs.push_back(&s);
+    const double shift = p.from_flow ? p.depart - spec_.flows[p.origin].begin : 0.0;
+    std::string why = stops_.append(specs, demand_.route_edges.data() + slot.begin, slot.length,
+                                    types_.types().vclass_mask[p.type], shift, staged_);
+    if (!why.empty()) {
+      why = "vehicle '" + ids_[k] + "': " + why;
+      staged_.route_pos.resize(staged_begin_[k]);
+      staged_.lane.resize(staged_begin_[k]);
+      staged_.start_pos.resize(staged_begin_[k]);
+      staged_.end_pos.resize(staged_begin_[k]);
+      staged_.duration.resize(staged_begin_[k]);
+      staged_.until.resize(staged_begin_[k]);
+    }
+    return why;
+  }
+
+  // Appends vehicle k's staged stops to the demand's table (vehicle by vehicle, in the final order).
+  void take_staged_stops(uint32_t k) {
+    StopTable& t = demand_.stops;
+    for (uint32_t i = staged_begin_[k]; i < staged_begin_[k + 1]; ++i) {
+      t.route_pos.push_back(staged_.route_pos[i]);
+      t.lane.push_back(staged_.lane[i]);
+      t.start_pos.push_back(staged_.start_pos[i]);
+      t.end_pos.push_back(staged_.end_pos[i]);
+      t.duration.push_back(staged_.duration[i]);
+      t.until.push_back(staged_.until[i]);
     }
   }
 
@@ -172,9 +224,11 @@ class Builder {
     // (depart, position) pairs is a stable sort by depart that touches only the pairs.
     std::vector<std::pair<double, uint32_t>> by_depart;
     by_depart.reserve(pending_.size());
+    staged_begin_.assign(pending_.size() + 1, 0);
     for (uint32_t k = 0; k < pending_.size(); ++k) {
       const RouteSlot& slot = routes_.slot(pending_[k].slot);
       std::string reason;
+      staged_begin_[k] = staged_.size();
       if (slot.problem >= 0) {
         reason = routes_.problem(slot.problem);
         if (routes_.problem_outside_car_map(slot.problem)) {
@@ -188,6 +242,8 @@ class Builder {
         }
       } else {
         reason = class_problem(k);
+        // As SUMO: stops that are not along the route, or on a lane the class may not use, are errors.
+        if (reason.empty()) reason = stage_stops(k);
         // As SUMO: a vehicle whose class cannot drive its route is an error, or skipped with the reason
         // when route errors are ignored.
         if (!reason.empty() && !routes_.ignore_route_errors()) throw InputError(loc_of(pending_[k]), reason);
@@ -200,6 +256,7 @@ class Builder {
         by_depart.emplace_back(pending_[k].depart, k);
       }
     }
+    staged_begin_[pending_.size()] = staged_.size();
     if (!std::is_sorted(by_depart.begin(), by_depart.end())) std::sort(by_depart.begin(), by_depart.end());
     std::vector<uint32_t> order(by_depart.size());
     for (size_t v = 0; v < order.size(); ++v) order[v] = by_depart[v].second;
@@ -222,6 +279,15 @@ class Builder {
     d.depart_speed.resize(n);
     d.arrival_pos_kind.resize(n);
     d.arrival_pos.resize(n);
+    if (staged_.size() > 0) {
+      d.stops.vehicle_begin.resize(n + 1);
+      for (size_t v = 0; v < n; ++v) {
+        d.stops.vehicle_begin[v] = d.stops.size();
+        take_staged_stops(order[v]);
+      }
+      d.stops.vehicle_begin[n] = d.stops.size();
+      staged_ = StopTable{};
+    }
     for (size_t v = 0; v < n; ++v) {
       const PendingVehicle& p = pending_[order[v]];
       const RouteSlot& slot = routes_.slot(p.slot);
@@ -262,6 +328,10 @@ class Builder {
   VTypeTable types_;
   RouteTable routes_;
   TripBatch trips_;
+  StopResolver stops_;
+  std::vector<std::string> via_buffer_;
+  StopTable staged_;                    // stops in pending order, while vehicles may still be dropped
+  std::vector<uint32_t> staged_begin_;  // [pending + 1]: each pending vehicle's first staged stop
   std::vector<PendingVehicle> pending_;
   std::vector<std::string> ids_;
 };

@@ -97,6 +97,7 @@ uint32_t RouteTable::route_slot(uint32_t route, std::string_view vehicle_id) {
     const RouteSpec& r = spec_.routes[route];
     route_slot_[route] =
         resolve(r.edges, "route '" + r.id + "'", r.loc, " of vehicle '" + std::string(vehicle_id) + "'");
+    if (!r.stops.empty()) slot_route_.emplace(static_cast<uint32_t>(route_slot_[route]), route);
   }
   return static_cast<uint32_t>(route_slot_[route]);
 }

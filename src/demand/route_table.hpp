@@ -73,6 +73,11 @@ class RouteTable {
   void set_broken(uint32_t slot, const SourceLoc& loc, const std::string& reason);
 
   const RouteSlot& slot(uint32_t s) const { return slots_[s]; }
+  /// The stops of the named route whose slot `s` is (made by every vehicle on it), or none.
+  const std::vector<StopSpec>& route_stops(uint32_t s) const {
+    auto it = slot_route_.find(s);
+    return it == slot_route_.end() ? no_stops_ : spec_.routes[it->second].stops;
+  }
   const std::string& problem(int32_t p) const { return problems_[static_cast<size_t>(p)]; }
   bool problem_outside_car_map(int32_t p) const { return outside_car_map_[static_cast<size_t>(p)] != 0; }
   bool ignore_route_errors() const { return ignore_; }
@@ -107,7 +112,9 @@ class RouteTable {
   std::vector<uint32_t>& route_edges_;
   std::unordered_map<std::string, uint32_t> route_index_, dist_index_;
   std::vector<Distribution> dists_;
-  std::vector<int64_t> route_slot_;  // per named route: its slot, -1 until first used
+  std::vector<int64_t> route_slot_;                    // per named route: its slot, -1 until first used
+  std::unordered_map<uint32_t, uint32_t> slot_route_;  // slot of a named route with stops -> the route
+  const std::vector<StopSpec> no_stops_;
   std::vector<RouteSlot> slots_;
   std::vector<std::string> problems_;
   std::vector<uint8_t> outside_car_map_;

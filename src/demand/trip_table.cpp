@@ -59,6 +59,8 @@ uint32_t TripTable::add(const NewTrip& t, const Network& net) {
   d_.route_edges.insert(d_.route_edges.end(), t.route.begin(), t.route.end());
   d_.speed_factor.push_back(t.speed_factor);
   d_.source.push_back(DemandSource::Added);
+  // An added trip makes no scheduled stops.
+  if (!d_.stops.vehicle_begin.empty()) d_.stops.vehicle_begin.push_back(d_.stops.size());
   return v;
 }
 

@@ -56,6 +56,7 @@ struct TripRecord {
   double route_length = 0;  // m actually driven along the route
   double waiting_time = 0;  // s with speed < 0.1 m/s
   uint32_t waiting_count = 0;
+  double stop_time = 0;  // s stood at scheduled stops (not counted as waiting or as lost time)
   double time_loss = 0;  // s
   float speed_factor = 1;
   bool teleported = false;

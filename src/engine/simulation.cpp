@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "backends/cpu/cpu_stepper.hpp"
@@ -89,6 +90,7 @@ Simulation::Simulation(const Network& net, Demand demand, const SimulationOption
   }
   teleport_steps_ = stopped_steps_for(opt_.time_to_teleport, step_length());
   impatience_steps_ = stopped_steps_for(opt_.time_to_impatience, step_length());
+  stop_steps_from_times();
 
   StepperSetup setup;
   setup.net = engine_net_.view(net_);
@@ -120,12 +122,44 @@ bool Simulation::finished() const {
   return num_active_ == 0 && queues_.waiting() == 0 && next_departure_ >= num_loaded_ && added_due_.empty();
 }
 
+// The stops' times as the step counts them: steps stood at least, and the step from which `until` lets a
+// vehicle leave: the one that ends at `until` (counted from the begin time; 0: none, or already past).
+void Simulation::stop_steps_from_times() {
+  const StopTable& st = trips_.demand().stops;
+  stop_duration_steps_.resize(st.size());
+  stop_until_step_.resize(st.size());
+  const double cap = static_cast<double>(std::numeric_limits<uint32_t>::max() / 2);
+  for (uint32_t k = 0; k < st.size(); ++k) {
+    const double duration = std::ceil(std::llround(st.duration[k] * 1000.0) / static_cast<double>(dt_ms_));
+    stop_duration_steps_[k] = static_cast<uint32_t>(std::min(duration, cap));
+    const double until = st.until[k] < 0
+                             ? 0.0
+                             : std::ceil(static_cast<double>(std::llround(st.until[k] * 1000.0) - time_ms_) /
+                                         static_cast<double>(dt_ms_)) -
+                                   1.0;
+    stop_until_step_[k] = static_cast<uint32_t>(std::clamp(until, 0.0, cap));
+  }
+}
+
+// Vehicle v's scheduled stops still to make when it enters the road at route position `rp`: from
+// `next` (where a teleport left it, else its first) on, skipping those on edges it has already left.
+void Simulation::set_stops(SlotInit& init, uint32_t next) const {
+  const StopTable& st = trips_.demand().stops;
+  init.stops_end = st.last(init.vehicle);
+  while (next < init.stops_end && st.route_pos[next] < init.route_pos) ++next;
+  init.next_stop = next;
+}
+
 TripTableView Simulation::trip_table_view() const {
   const Demand& d = trips_.demand();
   TripTableView v;
-  v.trips =
-      TripView{d.vehicle_type.data(), d.route_begin.data(),      d.route_length.data(), d.route_edges.data(),
-               d.speed_factor.data(), d.arrival_pos_kind.data(), d.arrival_pos.data()};
+  const StopTable& st = d.stops;
+  v.trips = TripView{d.vehicle_type.data(),  d.route_begin.data(),  d.route_length.data(),
+                     d.route_edges.data(),   d.speed_factor.data(), d.arrival_pos_kind.data(),
+                     d.arrival_pos.data(),   st.route_pos.data(),   st.lane.data(),
+                     st.start_pos.data(),    st.end_pos.data(),     stop_duration_steps_.data(),
+                     stop_until_step_.data()};
+  v.num_stops = st.size();
   v.depart = DepartView{d.depart_lane_kind.data(), d.depart_lane.data(),       d.depart_pos_kind.data(),
                         d.depart_pos.data(),       d.depart_speed_kind.data(), d.depart_speed.data()};
   v.num_vehicles = d.size();
@@ -273,13 +307,25 @@ void Simulation::insert_waiting(int map_index) {
   inits_.clear();
   queues_.take_inserted([&](uint32_t i) {
     const uint32_t v = batch.entry[i] & ~kInsertTeleported;
-    SlotInit init{
-        0, v, batch.route_pos[i], batch.out_lane[i], batch.out_pos[i], batch.out_speed[i], 0.0f, 0.0f, 0, 0};
+    SlotInit init{0,
+                  v,
+                  batch.route_pos[i],
+                  batch.out_lane[i],
+                  batch.out_pos[i],
+                  batch.out_speed[i],
+                  0.0f,
+                  0.0f,
+                  0,
+                  0,
+                  0,
+                  0,
+                  0};
     if (batch.entry[i] & kInsertTeleported) {
-      ledger_.reentering(init);
+      set_stops(init, ledger_.reentering(init));
     } else {
       ++counts_.inserted;
       ledger_.departed(v, time(), d.depart[v], init);
+      set_stops(init, d.stops.first(v));
     }
     init.slot = slots_.take();
     inits_.push_back(init);
@@ -474,7 +520,7 @@ SummaryRow Simulation::summary_row() const {
   // Summed in units of 2^-24 (integers: the sums do not depend on the order of the slots, which sort_slots
   // changes; each term is off by at most 3e-8).
   int64_t speed_sum = 0, rel_sum = 0;
-  uint64_t running = 0, halting = 0;
+  uint64_t running = 0, halting = 0, stopped = 0;
   const Demand& d = trips_.demand();
   const VehicleTypes& t = d.types;
   const HostState& s = state(StateParts::Sample);
@@ -489,8 +535,10 @@ SummaryRow Simulation::summary_row() const {
         desired_speed(net_.lane_speed[s.veh.lane[k]], d.speed_factor[v], t.max_speed[d.vehicle_type[v]]);
     if (v0 > 0) rel_sum += std::llround(static_cast<double>(speed / v0) * kSummaryUnits);
     if (speed < kHaltingSpeed) ++halting;
+    if (s.veh.stop_release[k] != 0) ++stopped;  // standing at a scheduled stop
   }
   r.halting = halting;
+  r.stopped = stopped;
   if (running > 0) {
     r.mean_speed = static_cast<double>(speed_sum) / kSummaryUnits / static_cast<double>(running);
     r.mean_speed_relative = static_cast<double>(rel_sum) / kSummaryUnits / static_cast<double>(running);

@@ -113,6 +113,8 @@ class Simulation {
   void enqueue(uint32_t v);
   void insert_waiting(int map_index);
   void handle_vehicle_ends(std::vector<VehicleEnd>& ends);
+  void stop_steps_from_times();
+  void set_stops(SlotInit& init, uint32_t next) const;
   void start_inserted(uint32_t kept, uint32_t running);
   void sort_slots();
   void check_kept(uint32_t kept) const;
@@ -151,6 +153,8 @@ class Simulation {
   std::vector<uint32_t> retiring_, retiring_next_;
   // This step's insertions, each with the slot it took, and those slots ascending.
   std::vector<SlotInit> inits_;
+  // The stop table's durations and until times in steps (TripView::stop_duration_steps, stop_until_step).
+  std::vector<uint32_t> stop_duration_steps_, stop_until_step_;
   std::vector<uint32_t> added_;
   uint32_t num_active_ = 0;
   std::vector<TeleportMove> moves_;

@@ -1,5 +1,7 @@
 #include "engine/trip_ledger.hpp"
 
+#include <stdexcept>
+
 namespace lpsim {
 
 void TripLedger::resize(uint32_t n) {
@@ -22,17 +24,21 @@ void TripLedger::departed(uint32_t v, double now, double depart_due, const SlotI
 void TripLedger::teleporting(const VehicleEnd& e, uint32_t rp) {
   status_[e.vehicle] = kTeleporting;
   resume_rp_[e.vehicle] = rp;
-  carried_[e.vehicle] = Carried{e.route_length, e.time_loss, e.waiting_steps, e.waiting_count};
+  carried_[e.vehicle] =
+      Carried{e.route_length, e.time_loss, e.waiting_steps, e.waiting_count, e.next_stop, e.stop_steps};
 }
 
-void TripLedger::reentering(SlotInit& init) {
+uint32_t TripLedger::reentering(SlotInit& init) {
   const auto c = carried_.find(init.vehicle);
-  if (c == carried_.end()) return;
+  if (c == carried_.end()) throw std::logic_error("a vehicle re-enters that did not teleport");
   init.route_length = c->second.route_length;
   init.time_loss = c->second.time_loss;
   init.waiting_steps = c->second.waiting_steps;
   init.waiting_count = c->second.waiting_count;
+  init.stop_steps = c->second.stop_steps;
+  const uint32_t next_stop = c->second.next_stop;
   carried_.erase(c);
+  return next_stop;
 }
 
 void TripLedger::ended(const VehicleEnd& e, bool teleported, double now, double depart_due,
@@ -53,6 +59,7 @@ void TripLedger::ended(const VehicleEnd& e, bool teleported, double now, double 
   r.route_length = e.route_length;
   r.waiting_time = static_cast<double>(e.waiting_steps) * step_length;
   r.waiting_count = e.waiting_count;
+  r.stop_time = static_cast<double>(e.stop_steps) * step_length;
   r.time_loss = e.time_loss;
   r.speed_factor = speed_factor;
   r.teleported = teleported;

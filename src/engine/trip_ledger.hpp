@@ -27,8 +27,9 @@ class TripLedger {
   void departed(uint32_t v, double now, double depart_due, const SlotInit& init);
   /// A teleporting vehicle waits to re-enter at route position `rp`, carrying the counters of `end`.
   void teleporting(const VehicleEnd& end, uint32_t rp);
-  /// A teleported vehicle re-enters: `init` takes the counters it carried.
-  void reentering(SlotInit& init);
+  /// A teleported vehicle re-enters: `init` takes the counters it carried. Returns the first of its
+  /// scheduled stops it had not made.
+  uint32_t reentering(SlotInit& init);
 
   /// A trip ended at time `now`: its record joins those taken by take_finished().
   void ended(const VehicleEnd& end, bool teleported, double now, double depart_due, double step_length,
@@ -43,7 +44,7 @@ class TripLedger {
   std::vector<uint32_t> resume_rp_;
   struct Carried {
     float route_length, time_loss;
-    uint32_t waiting_steps, waiting_count;
+    uint32_t waiting_steps, waiting_count, next_stop, stop_steps;
   };
   std::unordered_map<uint32_t, Carried> carried_;
   // Departure records for tripinfo.

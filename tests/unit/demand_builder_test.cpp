@@ -57,7 +57,11 @@ FlowSpec flow(const std::string& id, std::vector<std::string> edges, int line = 
 }
 
 RouteSpec route(const std::string& id, std::vector<std::string> edges, int line = 5) {
-  return {id, std::move(edges), at(line)};
+  RouteSpec r;
+  r.id = id;
+  r.edges = std::move(edges);
+  r.loc = at(line);
+  return r;
 }
 
 VTypeSpec vtype(const std::string& id, int line = 2) {
@@ -674,6 +678,134 @@ TEST_F(DemandBuilderTest, LargeFlowsBuildQuickly) {
   EXPECT_EQ(d.vehicle_id[0], "a.0");
   EXPECT_EQ(d.vehicle_id[1], "b.0");
   EXPECT_EQ(d.vehicle_id.back(), "b.149999");
+}
+
+}  // namespace
+}  // namespace lpsim
+
+// --- scheduled stops ---
+
+namespace lpsim {
+namespace {
+
+StopSpec stop_on(const std::string& lane, double end_pos, double duration, double until = -1, int line = 11) {
+  StopSpec s;
+  s.lane = lane;
+  s.end_pos = end_pos;
+  s.duration = duration;
+  s.until = until;
+  s.loc = at(line);
+  return s;
+}
+
+StopSpec stop_at_place(const std::string& place, double duration) {
+  StopSpec s;
+  s.stopping_place = place;
+  s.duration = duration;
+  s.loc = at(12);
+  return s;
+}
+
+StoppingPlaceSpec bus_stop(const std::string& id, const std::string& lane, double start, double end) {
+  StoppingPlaceSpec p;
+  p.id = id;
+  p.lane = lane;
+  p.start_pos = start;
+  p.end_pos = end;
+  p.loc = {"s.add.xml", 3};
+  return p;
+}
+
+TEST_F(DemandBuilderTest, StopsArePlacedAlongTheRouteAsSumoPlacesThem) {
+  DemandSpec spec;
+  spec.stopping_places = {bus_stop("bs", "E1_0", 20, 40), bus_stop("end", "E3_1", -30, -1)};
+  RouteSpec r = route("r", {"E0", "E1", "E2", "E3"});
+  r.stops = {stop_on("E0_1", -1, 4)};  // a route's stops come before the vehicle's own
+  spec.routes = {r};
+  VehicleSpec v = on_route("v", 0, "r");
+  v.stops = {stop_at_place("bs", 20), stop_on("E2_0", 50, 0, 300), stop_at_place("end", 5)};
+  spec.vehicles = {v};
+  const Demand d = build_demand(spec, corridor, {});
+  const StopTable& st = d.stops;
+  ASSERT_EQ(st.size(), 4u);
+  EXPECT_EQ(st.first(0), 0u);
+  EXPECT_EQ(st.last(0), 4u);
+  EXPECT_EQ(st.route_pos, (std::vector<uint32_t>{0, 1, 2, 3}));
+  EXPECT_EQ(corridor.lane_id[st.lane[0]], "E0_1");
+  EXPECT_FLOAT_EQ(st.end_pos[0], 99.0f);    // negative: from the lane's end
+  EXPECT_FLOAT_EQ(st.start_pos[0], 98.8f);  // SUMO's default: 0.2 m before the end
+  EXPECT_FLOAT_EQ(st.start_pos[1], 20.0f);
+  EXPECT_FLOAT_EQ(st.end_pos[1], 40.0f);
+  EXPECT_DOUBLE_EQ(st.duration[1], 20);
+  EXPECT_DOUBLE_EQ(st.until[1], -1);
+  EXPECT_DOUBLE_EQ(st.until[2], 300);
+  EXPECT_FLOAT_EQ(st.start_pos[3], 70.0f);
+  EXPECT_FLOAT_EQ(st.end_pos[3], 99.0f);
+}
+
+TEST_F(DemandBuilderTest, AStopOnAnEdgeVisitedTwiceIsOnTheOccurrenceAfterTheStopBefore) {
+  DemandSpec spec;
+  const std::string a = test::grid_edge(0, 0, 1, 0), b = test::grid_edge(1, 0, 1, 1),
+                    c = test::grid_edge(1, 1, 0, 1), e = test::grid_edge(0, 1, 0, 0);
+  VehicleSpec v = on_edges("loop", 0, {a, b, c, e, a, b});
+  // Further along the same edge: the same occurrence; back on it: its next one.
+  v.stops = {stop_on(test::lane_of(a, 0), 30, 1), stop_on(test::lane_of(a, 0), 60, 1),
+             stop_on(test::lane_of(a, 0), 10, 1), stop_on(test::lane_of(b, 0), 50, 1)};
+  spec.vehicles = {v};
+  const Demand d = build_demand(spec, grid, {});
+  EXPECT_EQ(d.stops.route_pos, (std::vector<uint32_t>{0, 0, 4, 5}));
+}
+
+TEST_F(DemandBuilderTest, FlowUntilIsLaterForEachVehicleByItsDepartOffset) {
+  DemandSpec spec;
+  FlowSpec f = flow("f", {"E0", "E1"});
+  f.begin = 100;
+  f.end = 130;
+  f.period = 10;
+  f.stops = {stop_on("E1_0", 50, 0, 200)};
+  spec.flows = {f};
+  const Demand d = build_demand(spec, corridor, {});
+  ASSERT_EQ(d.size(), 3u);
+  for (uint32_t v = 0; v < 3; ++v) {
+    ASSERT_EQ(d.stops.last(v) - d.stops.first(v), 1u);
+    EXPECT_DOUBLE_EQ(d.stops.until[d.stops.first(v)], 200 + 10.0 * v) << v;
+  }
+}
+
+TEST_F(DemandBuilderTest, ATripIsRoutedThroughItsStops) {
+  DemandSpec spec;
+  const std::string from = test::grid_edge(0, 0, 1, 0);
+  const std::string detour = test::grid_edge(1, 1, 2, 1);
+  VehicleSpec t = trip("t", 0, from, test::grid_edge(2, 1, 2, 0));
+  t.stops = {stop_on(test::lane_of(detour, 0), 50, 5)};
+  spec.vehicles = {t};
+  const Demand d = build_demand(spec, grid, {});
+  const std::vector<std::string> r = route_ids(d, grid, 0);
+  ASSERT_EQ(d.stops.size(), 1u);
+  EXPECT_EQ(r[d.stops.route_pos[0]], detour);
+}
+
+TEST_F(DemandBuilderTest, StopsThatCannotBeMadeAreErrorsNamingTheVehicle) {
+  DemandSpec spec;
+  VehicleSpec v = on_edges("v", 0, {"E1", "E2"});
+  v.stops = {stop_on("E0_0", 50, 5)};
+  spec.vehicles = {v};
+  EXPECT_EQ(error_of(spec, corridor),
+            "test.rou.xml:10: vehicle 'v': stop on lane 'E0_0' is not downstream the current route");
+  spec.vehicles[0].stops = {stop_on("E2_0", 50, 5), stop_on("E1_0", 50, 5)};  // out of order
+  EXPECT_NE(error_of(spec, corridor).find("not downstream"), std::string::npos);
+  spec.vehicles[0].stops = {stop_at_place("nowhere", 5)};
+  EXPECT_EQ(error_of(spec, corridor), "test.rou.xml:12: stop: unknown stopping place 'nowhere'");
+  spec.vehicles[0].stops = {stop_on("E1_7", 50, 5)};
+  EXPECT_NE(error_of(spec, corridor).find("test.rou.xml:11: stop: unknown lane 'E1_7'"), std::string::npos);
+  spec.vehicles[0].stops = {stop_on("E1_0", 150, 5)};
+  EXPECT_NE(error_of(spec, corridor).find("invalid position"), std::string::npos);
+  spec.vehicles[0].stops = {};
+  spec.stopping_places = {bus_stop("bs", "E1_0", 90, 120)};
+  EXPECT_NE(error_of(spec, corridor).find("s.add.xml:3: stopping place 'bs': invalid position"),
+            std::string::npos);
+  spec.stopping_places[0].friendly_pos = true;  // moved onto the lane instead
+  EXPECT_EQ(error_of(spec, corridor), "");
 }
 
 }  // namespace

@@ -45,11 +45,20 @@ TEST(EngineRouteTest, TheCachedLaneEndConnectionFollowsTheRoutePosition) {
   StepContext ctx{};
   ctx.net = engine_net.view(s.net);
   ctx.types.vclass = s.demand.types.vclass_mask.data();  // the only type column these passes read
-  ctx.trips =
-      TripView{s.demand.vehicle_type.data(), s.demand.route_begin.data(),  s.demand.route_length.data(),
-               s.demand.route_edges.data(),  s.demand.speed_factor.data(), s.demand.arrival_pos_kind.data(),
-               s.demand.arrival_pos.data()};
-  // One slot holding vehicle 0, with empty caches (as activate_slot leaves them).
+  ctx.trips = TripView{s.demand.vehicle_type.data(),
+                       s.demand.route_begin.data(),
+                       s.demand.route_length.data(),
+                       s.demand.route_edges.data(),
+                       s.demand.speed_factor.data(),
+                       s.demand.arrival_pos_kind.data(),
+                       s.demand.arrival_pos.data(),
+                       nullptr,
+                       nullptr,
+                       nullptr,
+                       nullptr,
+                       nullptr,
+                       nullptr};
+  // One slot holding vehicle 0, with empty caches (as activate_slot leaves them) and no scheduled stops.
   std::vector<uint32_t> best_rp(kBestLaneEntries, 0xFFFFFFFFu), best_mask(kBestLaneEntries, 0);
   int32_t conn_lane = -1, conn = -1;
   uint32_t conn_rp = 0;
@@ -66,6 +75,9 @@ TEST(EngineRouteTest, TheCachedLaneEndConnectionFollowsTheRoutePosition) {
   ctx.veh.trip_speed_factor = &speed_factor;
   ctx.veh.trip_route_begin = &route_begin;
   ctx.veh.trip_route_size = &route_size;
+  uint32_t next_stop = 0, stops_end = 0;
+  ctx.veh.next_stop = &next_stop;
+  ctx.veh.stops_end = &stops_end;
   const VehicleRef r{0, 0};
   const int32_t lane = static_cast<int32_t>(s.net.lane_index_by_id.at(test::lane_of(s.route[0], 0)));
   // The same lane at route positions 0 and 4, asked for one after the other (no other lane in between).

@@ -178,7 +178,13 @@ TEST_F(RouteReaderTest, VehiclesTripsAndInlineRoutes) {
   EXPECT_EQ(v2.depart_spec.pos, DepartPos::RandomFree);
   EXPECT_EQ(v2.depart_spec.speed, DepartSpeed::Max);
   EXPECT_EQ(v2.depart_spec.arrival, ArrivalPos::Random);
-  EXPECT_EQ(demand_.skipped.at("stop"), 1);
+  ASSERT_EQ(v2.stops.size(), 1u);
+  EXPECT_EQ(v2.stops[0].lane, "e2_0");
+  EXPECT_DOUBLE_EQ(v2.stops[0].duration, 10);
+  EXPECT_DOUBLE_EQ(v2.stops[0].until, -1);
+  EXPECT_FALSE(v2.stops[0].end_pos.has_value());
+  EXPECT_EQ(v2.stops[0].loc.line, 5);
+  EXPECT_EQ(demand_.skipped.count("stop"), 0u);
 
   const auto& t1 = demand_.vehicles[2];
   EXPECT_EQ(t1.source, DemandSource::Trip);
@@ -235,21 +241,36 @@ TEST_F(RouteReaderTest, UnsupportedContentIsCounted) {
   <personFlow id="pf" begin="0" end="10" number="2"><walk from="a" to="b"/></personFlow>
   <container id="c" depart="0"/>
   <param key="x" value="y"/>
-  <busStop id="bs" lane="a_0" startPos="0" endPos="10"/>
+  <busStop id="bs" lane="a_0" startPos="0" endPos="10" friendlyPos="true"/>
+  <parkingArea id="pa" lane="a_0" startPos="0" endPos="10"/>
   <vehicle id="trig" depart="triggered" route="r"/>
   <trip id="taz" depart="1" fromTaz="z1" toTaz="z2"/>
-  <vehicle id="kept" depart="2" route="r"><stop busStop="bs" duration="5"/><param key="a" value="b"/></vehicle>)X"));
+  <vehicle id="kept" depart="2" route="r"><stop busStop="bs" duration="5"/><param key="a" value="b"/>
+    <stop parkingArea="pa" duration="5"/><stop lane="a_0" parking="true" duration="5"/>
+    <stop lane="a_0" triggered="person"/><stop lane="a_0" speed="5" duration="1"/><stop lane="a_0"/></vehicle>)X"));
   EXPECT_EQ(demand_.skipped.at("person"), 1);
   EXPECT_EQ(demand_.skipped.at("personFlow"), 1);
   EXPECT_EQ(demand_.skipped.at("container"), 1);
   EXPECT_EQ(demand_.skipped.at("param"), 2);
-  EXPECT_EQ(demand_.skipped.at("busStop"), 1);
-  EXPECT_EQ(demand_.skipped.at("stop"), 1);
+  EXPECT_EQ(demand_.skipped.at("parkingArea"), 1);
+  // Stops LPSim does not make are counted with why; the busStop stop is kept.
+  EXPECT_EQ(demand_.skipped.at("stop (parkingArea)"), 1);
+  EXPECT_EQ(demand_.skipped.at("stop (parking)"), 1);
+  EXPECT_EQ(demand_.skipped.at("stop (triggered)"), 1);
+  EXPECT_EQ(demand_.skipped.at("stop (waypoint)"), 1);
+  EXPECT_EQ(demand_.skipped.at("stop (neither duration nor until)"), 1);
+  EXPECT_EQ(demand_.skipped.count("stop"), 0u);
   EXPECT_EQ(demand_.skipped.at("vehicle (depart=triggered)"), 1);
   EXPECT_EQ(demand_.skipped.at("trip (fromTaz/toTaz)"), 1);
   EXPECT_EQ(demand_.skipped.count("walk"), 0u);  // children of a skipped element are not counted
   ASSERT_EQ(demand_.vehicles.size(), 1u);
   EXPECT_EQ(demand_.vehicles[0].id, "kept");
+  ASSERT_EQ(demand_.vehicles[0].stops.size(), 1u);
+  EXPECT_EQ(demand_.vehicles[0].stops[0].stopping_place, "bs");
+  ASSERT_EQ(demand_.stopping_places.size(), 1u);
+  EXPECT_EQ(demand_.stopping_places[0].lane, "a_0");
+  EXPECT_EQ(demand_.stopping_places[0].end_pos, 10.0);
+  EXPECT_TRUE(demand_.stopping_places[0].friendly_pos);
 }
 
 TEST_F(RouteReaderTest, AddFileSignalsAndMeanData) {

@@ -106,7 +106,7 @@ void copy_to_host(T* dst, const T* src, size_t n) {
 // (The slot and plan columns are walked through their column lists.)
 static_assert(sizeof(NetView) == 24 * sizeof(void*) + sizeof(void*),
               "NetView changed: update upload_network");
-static_assert(sizeof(TypeView) == 11 * sizeof(void*) && sizeof(TripView) == 7 * sizeof(void*),
+static_assert(sizeof(TypeView) == 11 * sizeof(void*) && sizeof(TripView) == 13 * sizeof(void*),
               "TypeView or TripView changed: update upload_types and DeviceTrips");
 static_assert(sizeof(StepContext) == sizeof(NetView) + sizeof(TypeView) + sizeof(TripView) +
                                          sizeof(VehicleView) + sizeof(PlanView) + sizeof(StepParams) +
@@ -279,6 +279,7 @@ class DeviceTrips {
     const uint64_t first_edge = std::min<uint64_t>(first_route_edge, host.num_route_edges);
     copy_to_device(const_cast<uint32_t*>(trips.route_edges) + first_edge, host.trips.route_edges + first_edge,
                    host.num_route_edges - first_edge);
+    if (host.num_stops != num_stops_) upload_stops(host);
   }
 
   /// Bytes per trip and per route edge the device holds.
@@ -301,6 +302,22 @@ class DeviceTrips {
     f(d.lane_kind), f(d.lane), f(d.pos_kind), f(d.pos), f(d.speed_kind), f(d.speed);
   }
 
+  // The stop table, whole: trips added during a run make no stops, so it is uploaded once.
+  void upload_stops(const TripTableView& host) {
+    num_stops_ = host.num_stops;
+    stop_buffers_.clear();
+    auto up = [&](const auto* from, const auto*& to) {
+      using T = std::remove_const_t<std::remove_reference_t<decltype(*from)>>;
+      stop_buffers_.emplace_back(std::max<size_t>(num_stops_, 1) * sizeof(T));
+      to = static_cast<const T*>(stop_buffers_.back().get());
+      copy_to_device(static_cast<T*>(stop_buffers_.back().get()), from, num_stops_);
+    };
+    const TripView& h = host.trips;
+    up(h.stop_route_pos, trips.stop_route_pos), up(h.stop_lane, trips.stop_lane);
+    up(h.stop_start, trips.stop_start), up(h.stop_end, trips.stop_end);
+    up(h.stop_duration_steps, trips.stop_duration_steps), up(h.stop_until_step, trips.stop_until_step);
+  }
+
   template <class T>
   void regrow(const T*& column, size_t buffer, size_t old, size_t c) {
     DeviceBuffer fresh(c * sizeof(T));
@@ -312,6 +329,8 @@ class DeviceTrips {
 
   std::vector<DeviceBuffer> buffers_;
   size_t vehicle_capacity_ = 0, route_capacity_ = 0;
+  std::vector<DeviceBuffer> stop_buffers_;
+  uint64_t num_stops_ = ~uint64_t{0};
 };
 
 class CudaStepper final : public Stepper {
@@ -607,10 +626,11 @@ class CudaStepper final : public Stepper {
       int32_t* ln = sample_lane_.get(n);
       float* ps = sample_pos_.get(n);
       float* sp = sample_speed_.get(n);
+      uint32_t* sr = sample_stop_release_.get(n);
       LPSIM_LAUNCH(sample_kernel, blocks_for(n), kBlock)
-      (dev_.veh, active_[cur_active_], n, vh, st, ln, ps, sp);
+      (dev_.veh, active_[cur_active_], n, vh, st, ln, ps, sp, sr);
       LPSIM_CUDA_CHECK_LAUNCH(sample_kernel);
-      sample_u32_.resize(n);
+      sample_u32_.resize(2 * size_t{n});
       sample_u8_.resize(n);
       sample_i32_.resize(n);
       sample_f32_.resize(2 * size_t{n});
@@ -619,6 +639,7 @@ class CudaStepper final : public Stepper {
       copy_to_host(sample_i32_.data(), ln, n);
       copy_to_host(sample_f32_.data(), ps, n);
       copy_to_host(sample_f32_.data() + n, sp, n);
+      copy_to_host(sample_u32_.data() + n, sr, n);
       const VehicleView& h = host_.view();
       for (uint32_t i = 0; i < n; ++i) {
         const uint32_t k = host_active_[i];
@@ -627,6 +648,7 @@ class CudaStepper final : public Stepper {
         h.lane[k] = sample_i32_[i];
         h.pos[k] = sample_f32_[i];
         h.speed[k] = sample_f32_[n + i];
+        h.stop_release[k] = sample_u32_[n + i];
       }
     }
     fetched_version_ = version_;
@@ -879,7 +901,7 @@ class CudaStepper final : public Stepper {
   ScratchArray<SlotRoute> slot_routes_;
   ScratchArray<uint32_t> sort_keys_, sort_order_, sort_inverse_, sort_asked_;  // sort_slots
   ScratchArray<unsigned char> sort_moved_;
-  ScratchArray<uint32_t> sample_vehicle_;
+  ScratchArray<uint32_t> sample_vehicle_, sample_stop_release_;
   ScratchArray<uint8_t> sample_status_;
   ScratchArray<int32_t> sample_lane_;
   ScratchArray<float> sample_pos_, sample_speed_;

@@ -1,0 +1,52 @@
+#pragma once
+// Scheduled stops (<stop>) resolved against the network and a vehicle's route, as SUMO 1.15 places them:
+//  - at a stopping place (busStop, trainStop, containerStop, chargingStation): its lane and stretch
+//    [startPos, endPos] (endPos defaults to the lane's end; negative positions count from the end);
+//  - on a lane: endPos (default the lane's end), startPos (default endPos - 0.2 m);
+//  - on an edge: its first lane the vehicle's class may use, as on a lane;
+//  - each stop on the first occurrence of its edge in the route after the stop before it (a stop further
+//    along the same edge stays on it); a stop that is not downstream is an error, as in SUMO;
+//  - a flow's `until` is later for each vehicle by its depart - the flow's begin (SUMO shifts it so).
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "core/demand_spec.hpp"
+#include "demand/demand.hpp"
+#include "net/network.hpp"
+
+namespace lpsim {
+
+class StopResolver {
+ public:
+  /// Stopping places are checked here (unknown or dropped lane, positions outside it): InputError at
+  /// their location.
+  StopResolver(const DemandSpec& spec, const Network& net);
+
+  /// The edge a stop is made on, for routing a trip through it. InputError at the stop's location for an
+  /// unknown stopping place, lane or edge.
+  uint32_t edge_of(const StopSpec& stop) const;
+
+  /// Appends the stops `specs` of a vehicle of class mask `vclass` on `route` (route_len edges) to `out`.
+  /// Returns "" or why they cannot be made (naming the stop's lane), for the caller to raise or record.
+  /// `until_shift` (s) is added to each `until`.
+  std::string append(const std::vector<const StopSpec*>& specs, const uint32_t* route, uint32_t route_len,
+                     uint32_t vclass, double until_shift, StopTable& out) const;
+
+ private:
+  struct Place {
+    uint32_t lane;
+    float start, end;
+  };
+  // Where stop `s` is made for a vehicle of class `vclass`: lane and stretch; InputError for ids or
+  // positions that do not exist.
+  Place place_of(const StopSpec& s, uint32_t vclass) const;
+  uint32_t lane_of(const std::string& id, const SourceLoc& loc, const char* what) const;
+
+  const Network& net_;
+  std::unordered_map<std::string, Place> places_;
+};
+
+}  // namespace lpsim
