@@ -95,6 +95,102 @@ LPSIM_HD bool yield_may_enter(float own_time_to_clear, const ApproachingFoe* foe
   return true;
 }
 
+// SUMO's safety margin between a yielding vehicle leaving a link and a foe arriving (MSLink's lookahead
+// time, jmTimegapMinor's default) [s].
+constexpr float kSumoLinkTimegap = 1.0f;
+// How much later an impatient vehicle takes a foe that could still stop (SUMO's arrivalTimeBraking,
+// MSLink::computeFoeArrivalTimeBraking) [s].
+constexpr float kSumoFoeStopDelay = 30.0f;
+
+/// A vehicle's passage through a link as SUMO estimates it for its gap test (MSVehicle::planMoveInternal's
+/// arrival time and speed and estimated leave speed, MSLink::getLeaveTime), in seconds from now.
+struct LinkPassage {
+  float arrival;        // front at the line
+  float leave;          // rear past the link's internal lane
+  float arrival_speed;  // [m/s]
+  float leave_speed;    // [m/s]
+};
+
+/// `dist` to the line at `speed`: the vehicle's next speed (accelerating at `accel`, at most v_max) carries
+/// it to the line; it crosses the line at the speed reached accelerating over `dist` and leaves the link at
+/// the speed reached over its `link_length` (at most link_speed), at the mean of the two.
+LPSIM_HD LinkPassage link_passage(float dist, float speed, float accel, float dt, float v_max,
+                                  float link_length, float link_speed, float length) {
+  const float d = lp_fmaxf(dist, 0.0f);
+  const float v_next = lp_fminf(lp_fmaxf(speed, 0.0f) + accel * dt, lp_fmaxf(v_max, 0.0f));
+  const float arrival = d <= 0.0f ? 0.0f : (v_next > 0.0f ? d / v_next : kNeverArrives);
+  const float at_line = lp_fminf(sqrtf(v_next * v_next + 2.0f * accel * d), lp_fmaxf(v_max, v_next));
+  const float leave_speed =
+      lp_fminf(sqrtf(at_line * at_line + 2.0f * accel * lp_fmaxf(link_length, 0.0f)), link_speed);
+  const float mean = lp_fmaxf(0.5f * (at_line + leave_speed), 1e-3f);
+  return LinkPassage{arrival, arrival + (lp_fmaxf(link_length, 0.0f) + length) / mean, at_line, leave_speed};
+}
+
+/// The passage when the vehicle leaves the link no faster than `cap` (behind a leader).
+LPSIM_HD LinkPassage link_passage_capped(const LinkPassage& p, float cap, float link_length, float length) {
+  const float leave_speed = lp_fminf(p.leave_speed, lp_fmaxf(cap, 0.0f));
+  const float mean = lp_fmaxf(0.5f * (p.arrival_speed + leave_speed), 1e-3f);
+  return LinkPassage{p.arrival, p.arrival + (lp_fmaxf(link_length, 0.0f) + length) / mean, p.arrival_speed,
+                     leave_speed};
+}
+
+/// A foe announced at a prioritised link, as SUMO's gap test sees it.
+struct AnnouncedFoe {
+  float dist;       // [m] to its line
+  float speed;      // [m/s]
+  float accel;      // its maximum acceleration [m/s^2]
+  float max_speed;  // its desired speed on the approach [m/s]
+  float decel;      // its comfortable deceleration [m/s^2]
+};
+
+/// The foe blocks a vehicle that would pass the link as `own` (SUMO 1.15's MSLink::blockedByFoe for a
+/// foe that has not yet passed): it arrives before the vehicle has left plus kSumoLinkTimegap, or, on a
+/// merge into the same lane, it would reach the merge faster than the vehicle leaves it (unsafeMergeSpeeds).
+/// An impatient vehicle (impatience in (0, 1]) takes the foe as braking at impatience times its decel
+/// (computeFoeArrivalTimeBraking): one that can stop so arrives kSumoFoeStopDelay s later, at speed 0;
+/// one that cannot arrives at nearly its own speed, and on a merge that blocks. Why a vehicle that has
+/// just stopped at a merge waits long in SUMO: with little impatience every foe faster than the
+/// vehicle's leave speed blocks it, until the nearest can stop at decel times impatience.
+LPSIM_HD bool foe_blocks_passage(const LinkPassage& own, float own_decel, const AnnouncedFoe& foe,
+                                 float impatience, bool same_target, float dt) {
+  const float v = lp_fmaxf(foe.speed, 0.0f);
+  // SUMO's announced arrival: at the speed it plans for this step (accelerating, at most its desired speed).
+  const float v_next = v > 0.0f ? lp_fminf(v + foe.accel * dt, lp_fmaxf(foe.max_speed, v)) : 0.0f;
+  const float arrival = foe.dist <= 0.0f ? 0.0f : (v_next > 0.0f ? foe.dist / v_next : kNeverArrives);
+  if (arrival >= kNeverArrives) return false;
+  // The speed at which the foe reaches the line braking now: 0 when it can still stop (SUMO's
+  // arrivalSpeedBraking).
+  const float brake_gap = v * v / (2.0f * lp_fmaxf(foe.decel, 1e-3f));
+  float speed_braking =
+      foe.dist < brake_gap ? sqrtf(lp_fmaxf(v * v - 2.0f * foe.decel * foe.dist, 0.0f)) : 0.0f;
+  float foe_time = arrival;
+  // SUMO counts in whole steps: a foe arriving in the vehicle's own step is taken at its arrival.
+  const bool same_step =
+      lp_floor_nonneg(lp_fmaxf(own.arrival, 0.0f) / dt) == lp_floor_nonneg(lp_fmaxf(arrival, 0.0f) / dt);
+  if (impatience > 0.0f && own.arrival < arrival && !same_step) {
+    const float m = lp_fmaxf(foe.decel * impatience, 1e-3f);
+    const float gap_t = arrival - own.arrival;
+    const float d = gap_t * m;
+    const float a = gap_t * d * 0.5f;
+    const float vv = foe.dist / (arrival + dt);
+    const float dist2 = foe.dist - vv * own.arrival;
+    float braking_time;
+    if (0.5f * vv * vv / m <= dist2) {
+      speed_braking = 0.0f;
+      braking_time = arrival + kSumoFoeStopDelay;
+    } else {
+      const float root = sqrtf(lp_fmaxf(4.0f * (vv - d) * (vv - d) - 8.0f * m * a, 0.0f));
+      const float x = (-0.5f * root - d + vv) / m;
+      speed_braking = vv - (gap_t + x) * m;
+      braking_time = arrival + x;
+    }
+    foe_time = (1.0f - impatience) * arrival + impatience * braking_time;
+  }
+  if (foe_time <= own.leave + kSumoLinkTimegap) return true;
+  return same_target && own.leave_speed * own.leave_speed / lp_fmaxf(own_decel, 1e-3f) <=
+                            speed_braking * speed_braking / lp_fmaxf(foe.decel, 1e-3f);
+}
+
 /// Right-before-left ('='): like yield, but only foes approaching from the right count. from_right[i]
 /// says whether foes[i] comes from this vehicle's right (the engine derives it from the junction geometry).
 /// A circular wait (every approach has a foe on its right) is not resolved here; the engine falls back

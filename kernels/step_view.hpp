@@ -256,6 +256,7 @@ struct LaneApproach {
   uint32_t waiting;  // consecutive steps stopped (deadlock breaking)
   uint32_t held;     // 1: standing at the line for a red light or a full next lane (not a foe now)
   float reach;       // distance within which it announces its arrival (SUMO's request horizon) [m]
+  float v_max;       // its desired speed on the lane [m/s]
 };
 
 /// Everything one step needs besides the arrays above.

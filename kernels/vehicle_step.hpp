@@ -63,9 +63,6 @@ constexpr float kMaxLookahead = 1000.0f;
 constexpr float kDecisionMargin = 10.0f;  // m beyond the stopping distance where link decisions are taken
 constexpr float kFoeWindow = 1.0f;        // s of safety margin in right-of-way time windows
 constexpr float kClampEps = 0.001f;
-// How much later SUMO takes a foe's arrival at full impatience when the foe can still stop (its braking
-// arrival time, MSVehicle::planMoveInternal's arrivalTimeBraking) [s].
-constexpr float kImpatientFoeDelay = 30.0f;
 
 /// SUMO's impatience (MSVehicle::getImpatience with a vType impatience of 0): consecutive waiting over
 /// --time-to-impatience, at most 1; 0 when impatience is off.
@@ -358,20 +355,60 @@ LPSIM_HD bool unseen_at_internal_junction(const StepContext& s, uint32_t c, floa
   return foes_unseen('m', dist);
 }
 
+// Metres of a foe lane scanned for its nearest vehicle when none announced itself.
+constexpr int32_t kFoeScanCells = 250;
+
+/// SUMO's gap test against foe link f (from lane flane) for a vehicle that would pass connection c as
+/// `own` (foe_blocks_passage): the foe is the first vehicle on flane, announced (LaneApproach) or, beyond
+/// its reach, the nearest one found in the lane map, counted when flane has no other connection (its route
+/// is not in the map). Vehicles on lanes before flane are not seen.
+LPSIM_HD bool krauss_gap_blocked(const StepContext& s, uint32_t c, uint32_t f, uint32_t flane,
+                                 const LinkPassage& own, const IdmParams& p, float impatience) {
+  const NetView& net = s.net;
+  const LaneApproach& a = s.approach[flane];
+  const bool same_target = net.conn_to_lane[c] == net.conn_to_lane[f];
+  // The foe's accel and decel are not in the lane map: the vehicle assumes its own, as Krauss does for
+  // leaders.
+  if (a.step == s.params.step) {
+    if (a.conn != static_cast<int32_t>(f) || a.held) return false;
+    return foe_blocks_passage(own, p.decel, AnnouncedFoe{a.dist, a.speed, p.accel, a.v_max, p.decel},
+                              impatience, same_target, s.params.dt);
+  }
+  if (net.lane_conn_begin[flane + 1] - net.lane_conn_begin[flane] != 1) return false;
+  const int32_t cells = static_cast<int32_t>(lane_cells(net, static_cast<int32_t>(flane)));
+  const int32_t from = cells > kFoeScanCells ? cells - kFoeScanCells : 0;
+  const int32_t hit = last_occupied(s.map_now, net, static_cast<int32_t>(flane), from, cells - 1);
+  if (hit < 0) return false;
+  const float v = decode_cell_speed(s.map_now[net.lane_cell_begin[flane] + static_cast<uint32_t>(hit)]);
+  const float dist = lp_fmaxf(net.lane_length[flane] - static_cast<float>(hit + 1), 0.0f);
+  return foe_blocks_passage(own, p.decel,
+                            AnnouncedFoe{dist, v, p.accel, lp_fmaxf(net.lane_speed[flane], 1.0f), p.decel},
+                            impatience, same_target, s.params.dt);
+}
+
 /// Right of way for entering connection c, `dist` metres ahead: every foe link it must yield to is either
 /// closed by its signal, empty inside the junction and without an approaching vehicle that would arrive
 /// before this one has cleared. Foes beyond their request horizon (the distance within which they could
 /// still stop comfortably after one more step) are not considered: like SUMO, which only knows approaching
-/// vehicles that announced their arrival, the foe then brakes for this vehicle (yielder_inside). Circular
-/// waits (right_before_left with all approaches busy) are broken by letting the lowest lane index go once
-/// everyone involved stands.
+/// vehicles that announced their arrival, the foe then brakes for this vehicle (yielder_inside). Krauss
+/// drivers take SUMO's own gap test instead (krauss_gap_blocked). Circular waits (right_before_left with
+/// all approaches busy) are broken by letting the lowest lane index go once everyone involved stands.
 LPSIM_HD bool may_enter(const StepContext& s, uint32_t c, float dist, float speed, float v0,
                         const IdmParams& p, float length, bool self_waiting, float impatience) {
   const NetView& net = s.net;
   const int32_t via = net.conn_via_lane[c];
-  const float cross = (via >= 0 ? net.lane_length[via] : 0.0f) + length;
-  const float own_clear = earliest_arrival_time(dist + cross, speed, p.accel, lp_fmaxf(v0, 1.0f));
   const uint32_t own_lane = net.conn_from_lane[c];
+  // Krauss drivers stop at the line and take SUMO's gap test there; SUMO's IDM drivers creep over the line
+  // (IDM's stop speed halts them about a metre short, then rolls them into the junction at 0.7 m/s) and
+  // merge from inside it, which the time-window test below reproduces (docs/MODELS.md, "Junctions").
+  const bool stops_at_line = is_krauss(p);
+  const float via_length = via >= 0 ? net.lane_length[via] : 0.0f;
+  const LinkPassage passage =
+      stops_at_line ? link_passage(dist, speed, p.accel, s.params.dt, lp_fmaxf(v0, 1.0f), via_length,
+                                   via >= 0 ? net.lane_speed[via] : lp_fmaxf(v0, 1.0f), length)
+                    : LinkPassage{0.0f, 0.0f, 0.0f, 0.0f};
+  const float own_clear =
+      earliest_arrival_time(dist + (via_length + length), speed, p.accel, lp_fmaxf(v0, 1.0f));
   for (uint32_t k = net.conn_foe_begin[c]; k < net.conn_foe_begin[c + 1]; ++k) {
     const uint32_t f = net.conn_foe[k];
     const char fs = link_state_of(s, f);
@@ -379,19 +416,39 @@ LPSIM_HD bool may_enter(const StepContext& s, uint32_t c, float dist, float spee
     // A foe on its via lane blocks until its rear has passed the crossing, unless that link has an internal
     // junction: the vehicle there waits before the crossing (for links that include this one's).
     const int32_t fvia = net.conn_via_lane[f];
-    if (fvia >= 0 && !has_internal_junction(net, f) &&
-        first_occupied(s.map_now, net, fvia, 0, net.conn_foe_block_cells[k] - 1) >= 0)
-      return false;
+    const int32_t inside = fvia >= 0 && !has_internal_junction(net, f)
+                               ? first_occupied(s.map_now, net, fvia, 0, net.conn_foe_block_cells[k] - 1)
+                               : -1;
+    const bool merge = net.conn_to_lane[c] == net.conn_to_lane[f];
+    if (inside >= 0 && !(stops_at_line && merge)) return false;
     const uint32_t flane = net.conn_from_lane[f];
     const LaneApproach& a = s.approach[flane];
+    if (stops_at_line) {
+      LinkPassage own = passage;
+      if (inside >= 0) {
+        // A merging foe still in the junction is SUMO's link leader: the vehicle may follow it in once its
+        // rear is ahead of where the vehicle's own front would be (minGap kept), leaving the link no faster
+        // than its next step's speed (MSVehicle::adaptToLeader on a link leader).
+        const float rear_to_end = net.lane_length[fvia] - static_cast<float>(inside);
+        if (dist + via_length - rear_to_end - p.min_gap < 0.0f) return false;
+        own = link_passage_capped(passage, lp_fmaxf(speed, 0.0f) + p.accel * s.params.dt, via_length, length);
+      }
+      // SUMO's gap test (see krauss_gap_blocked): every foe on the lane is announced, not only those within
+      // their reach.
+      if (krauss_gap_blocked(s, c, f, flane, own, p, impatience) &&
+          !(self_waiting && a.step == s.params.step && a.speed < kHaltingSpeed && a.waiting > 0 &&
+            own_lane < flane))
+        return false;
+      continue;
+    }
     if (a.step != s.params.step || a.conn != static_cast<int32_t>(f) || a.held) continue;
     if (a.dist > a.reach) continue;  // not announced yet: it can still stop for this vehicle
     // The foe is expected at its current speed (as SUMO's announced arrival times), not at its fastest.
     const ApproachingFoe foe{a.dist, a.speed, 0.0f, a.speed};
     // An impatient vehicle counts on a foe that can still brake comfortably to let it go: SUMO takes such a
-    // foe's arrival as if it braked, kImpatientFoeDelay later at full impatience (MSLink::blockedByFoe).
+    // foe's arrival as if it braked, kSumoFoeStopDelay later at full impatience (MSLink::blockedByFoe).
     const float later = impatience > 0.0f && can_stop_before(a.dist, a.speed, p.decel, s.params.dt)
-                            ? impatience * kImpatientFoeDelay
+                            ? impatience * kSumoFoeStopDelay
                             : 0.0f;
     if (!foe_conflicts(foe, own_clear - later, kFoeWindow)) continue;
     // Deadlock breaking: both stand at their lines; the lower lane index goes first.
@@ -515,6 +572,8 @@ LPSIM_HD void approach_vehicle(StepContext& s, uint32_t i, uint32_t slot) {
   a.waiting = s.veh.stopped_steps[slot];
   a.held = s.veh.held_at_line[slot] != 0 && a.speed < kHaltingSpeed ? 1u : 0u;
   a.reach = reach;
+  a.v_max = desired_speed(s.net.lane_speed[lane], s.veh.trip_speed_factor[slot],
+                          s.types.max_speed[s.veh.trip_type[slot]]);
   s.approach[lane] = a;
 }
 

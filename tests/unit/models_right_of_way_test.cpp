@@ -99,5 +99,39 @@ TEST(ModelsRightOfWay, FoesOfLinksWithoutPriorityAreSeenWithinTheVisibilityDista
   for (char c : {'M', 'G', 'O', 'Z', 'y', 'Y', 'r', 'u'}) EXPECT_FALSE(foes_unseen(c, 50.0f)) << c;
 }
 
+// SUMO's gap test at a minor link (MSLink::blockedByFoe), with the numbers SUMO 1.15's --link-output shows
+// for a Krauss car standing 0.1 m before the line of the T junction in tests/sumo/impatience_test.cpp
+// (internal lane 9.03 m at 6.51 m/s): it arrives in 0.04 s at 2.70 m/s and leaves 3.05 s later.
+TEST(ModelsRightOfWay, LinkPassageAsSumoEstimatesIt) {
+  const LinkPassage p = link_passage(0.1f, 0.0f, 2.6f, 1.0f, 13.89f, 9.03f, 6.51f, 5.0f);
+  EXPECT_NEAR(p.arrival, 0.04f, 0.01f);
+  EXPECT_NEAR(p.arrival_speed, 2.70f, 0.01f);
+  EXPECT_FLOAT_EQ(p.leave_speed, 6.51f);
+  EXPECT_NEAR(p.leave - p.arrival, 14.03f / (0.5f * (2.70f + 6.51f)), 0.02f);
+  // Behind a leader still in the junction it leaves no faster than its next step's speed: SUMO's 2.60.
+  const LinkPassage q = link_passage_capped(p, 2.6f, 9.03f, 5.0f);
+  EXPECT_FLOAT_EQ(q.leave_speed, 2.6f);
+  EXPECT_NEAR(q.leave - q.arrival, 14.03f / (0.5f * (2.70f + 2.6f)), 0.02f);
+}
+
+TEST(ModelsRightOfWay, FoeBlocksThePassageAsInSumo) {
+  const LinkPassage own = link_passage(0.1f, 0.0f, 2.6f, 1.0f, 13.89f, 9.03f, 6.51f, 5.0f);
+  // Without impatience only the time window counts: a foe arriving within leave + 1 s blocks, a later
+  // one that can still stop does not, on a merge or not.
+  EXPECT_TRUE(foe_blocks_passage(own, 4.5f, AnnouncedFoe{30.0f, 12.0f, 2.6f, 12.0f, 4.5f}, 0.0f, true, 1.0f));
+  EXPECT_FALSE(
+      foe_blocks_passage(own, 4.5f, AnnouncedFoe{60.0f, 12.0f, 2.6f, 12.0f, 4.5f}, 0.0f, true, 1.0f));
+  // A little impatience: the foe braking at impatience x decel cannot stop, so on a merge it arrives
+  // faster than the car leaves and blocks; on a crossing it only arrives a little later and does not.
+  EXPECT_TRUE(foe_blocks_passage(own, 4.5f, AnnouncedFoe{60.0f, 12.0f, 2.6f, 12.0f, 4.5f}, 0.1f, true, 1.0f));
+  EXPECT_FALSE(
+      foe_blocks_passage(own, 4.5f, AnnouncedFoe{60.0f, 12.0f, 2.6f, 12.0f, 4.5f}, 0.1f, false, 1.0f));
+  // Enough impatience for the foe to stop: it is taken as arriving 30 s later at speed 0.
+  EXPECT_FALSE(
+      foe_blocks_passage(own, 4.5f, AnnouncedFoe{60.0f, 12.0f, 2.6f, 12.0f, 4.5f}, 0.5f, true, 1.0f));
+  // A standing foe never arrives.
+  EXPECT_FALSE(foe_blocks_passage(own, 4.5f, AnnouncedFoe{5.0f, 0.0f, 2.6f, 12.0f, 4.5f}, 0.0f, true, 1.0f));
+}
+
 }  // namespace
 }  // namespace lpsim

@@ -44,7 +44,7 @@ class CpuStepper final : public Stepper {
     actuated_phase_.assign(ns, 0);
     actuated_start_ms_.assign(ns, 0);
     det_last_ms_.assign(setup.signals.actuated.signal_det_begin[ns], kNeverDetected);
-    approach_.assign(nl, LaneApproach{0xFFFFFFFFu, -1, 0, 0, 0, 0, 0});
+    approach_.assign(nl, LaneApproach{0xFFFFFFFFu, -1, 0, 0, 0, 0, 0, 0});
     claims_.assign(nl, 0);
     merge_requests_.assign(nl, 0);
     if (setup.lane_counters) counters_.assign(static_cast<size_t>(kNumLaneCounters) * nl, 0);

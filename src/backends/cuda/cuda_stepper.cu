@@ -343,7 +343,7 @@ class CudaStepper final : public Stepper {
     update_trips(setup.trips, TripChanges{});
 
     grow_slots(LPSIM_GPU_INITIAL_SLOTS);
-    const std::vector<LaneApproach> approach(nl, LaneApproach{0xFFFFFFFFu, -1, 0, 0, 0, 0, 0});
+    const std::vector<LaneApproach> approach(nl, LaneApproach{0xFFFFFFFFu, -1, 0, 0, 0, 0, 0, 0});
     dev_.approach = upload(approach.data(), nl);
     dev_.claims = allocate<uint64_t>(nl);
     LPSIM_CUDA_CHECK(cudaMemset(dev_.claims, 0, nl * sizeof(uint64_t)));
