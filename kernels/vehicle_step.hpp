@@ -463,20 +463,33 @@ LPSIM_HD uint32_t merge_slot(float lane_length, float rear_pos) {
 // m per lane to cross before the end of the usable distance where a blocked changer asks for a gap
 constexpr float kMergeRequestZone = 30.0f;
 
+LPSIM_HD int popcount64(uint64_t x) {
+#ifdef __CUDA_ARCH__
+  return __popcll(x);
+#else
+  return __builtin_popcountll(x);
+#endif
+}
+
 /// Metres of a lane its vehicles take up, each with a minimum gap `gap` (SUMO's occupation of a lane): the
-/// occupied cells plus one gap per run of occupied cells. Asked only for vehicles on a wrong lane.
+/// occupied cells plus one gap per run of occupied cells. Asked only for vehicles on a wrong lane, eight
+/// cells at a time (the lane map has kLaneMapPadding readable bytes after its last cell).
 LPSIM_HD float lane_occupation(const uint8_t* map, const NetView& net, int32_t lane, float gap) {
   const uint8_t* cells = map + net.lane_cell_begin[lane];
   const int32_t n = static_cast<int32_t>(lane_cells(net, lane));
-  float occ = 0.0f;
-  bool in_run = false;
-  for (int32_t c = 0; c < n; ++c) {
-    const bool o = cells[c] != 0;
-    occ += o ? 1.0f : 0.0f;
-    if (o && !in_run) occ += gap;
-    in_run = o;
+  constexpr uint64_t kLow7 = 0x7F7F7F7F7F7F7F7Full, kHigh = 0x8080808080808080ull;
+  int32_t occupied = 0, runs = 0;
+  uint64_t carry = 0;  // the high bit of byte 0 set when the previous word's last cell is occupied
+  for (int32_t c = 0; c < n; c += 8) {
+    uint64_t w;
+    memcpy(&w, cells + c, sizeof w);
+    if (n - c < 8) w &= (uint64_t{1} << (8 * (n - c))) - 1;  // cells past the lane's end
+    const uint64_t f = (((w & kLow7) + kLow7) | w) & kHigh;  // high bit of each occupied cell's byte
+    occupied += popcount64(f);
+    runs += popcount64(f & ~((f << 8) | carry));
+    carry = f >> 56;
   }
-  return occ;
+  return static_cast<float>(occupied) + static_cast<float>(runs) * gap;
 }
 
 /// Metres a vehicle on a wrong lane can still drive before it must have changed lanes (SUMO's usableDist):
@@ -489,8 +502,17 @@ LPSIM_HD float usable_distance(const StepContext& s, VehicleRef r, int32_t lane,
   float dist = net.lane_length[lane] - pos;
   int32_t l = lane;
   uint32_t rp = s.veh.route_pos[r.slot];
+  const uint32_t len = s.veh.trip_route_size[r.slot];
+  const uint32_t vclass = vclass_of(s, r);
   for (int h = 0; h < kMaxPathHops && dist < kMaxLookahead; ++h) {
-    const int32_t c = h == 0 ? current_lane_connection(s, r, l, rp) : choose_connection(s, r, l, rp);
+    // Beyond the current lane, a connection that leads on along the route, found without the later edges'
+    // best lanes (asking for them would evict the current edge's from the slot's two-entry cache).
+    int32_t c = -1;
+    if (h == 0)
+      c = current_lane_connection(s, r, l, rp);
+    else if (rp + 2 < len)
+      c = conn_through(net, l, route_edge(s, r, rp + 1), route_edge(s, r, rp + 2), vclass);
+    if (h > 0 && c < 0) c = conn_onto(net, l, route_edge(s, r, rp + 1), vclass);
     if (c < 0) break;
     int32_t nxt =
         net.conn_via_lane[c] >= 0 ? net.conn_via_lane[c] : static_cast<int32_t>(net.conn_to_lane[c]);
@@ -506,7 +528,7 @@ LPSIM_HD float usable_distance(const StepContext& s, VehicleRef r, int32_t lane,
     ++rp;
     l = nxt;
     dist += net.lane_length[l];
-    if (rp + 1 >= s.veh.trip_route_size[r.slot]) break;
+    if (rp + 1 >= len) break;
   }
   return dist - lane_occupation(s.map_now, net, target, min_gap);
 }
