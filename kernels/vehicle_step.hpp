@@ -463,12 +463,9 @@ LPSIM_HD uint32_t merge_slot(float lane_length, float rear_pos) {
 // m per lane to cross before the end of the usable distance where a blocked changer asks for a gap
 constexpr float kMergeRequestZone = 30.0f;
 
-LPSIM_HD int popcount64(uint64_t x) {
-#ifdef __CUDA_ARCH__
-  return __popcll(x);
-#else
-  return __builtin_popcountll(x);
-#endif
+/// Number of bytes of `f` with their high bit set, `f` having no other bits set.
+LPSIM_HD int32_t count_byte_flags(uint64_t f) {
+  return static_cast<int32_t>(((f >> 7) * 0x0101010101010101ull) >> 56);
 }
 
 /// Metres of a lane its vehicles take up, each with a minimum gap `gap` (SUMO's occupation of a lane): the
@@ -485,8 +482,8 @@ LPSIM_HD float lane_occupation(const uint8_t* map, const NetView& net, int32_t l
     memcpy(&w, cells + c, sizeof w);
     if (n - c < 8) w &= (uint64_t{1} << (8 * (n - c))) - 1;  // cells past the lane's end
     const uint64_t f = (((w & kLow7) + kLow7) | w) & kHigh;  // high bit of each occupied cell's byte
-    occupied += popcount64(f);
-    runs += popcount64(f & ~((f << 8) | carry));
+    occupied += count_byte_flags(f);
+    runs += count_byte_flags(f & ~((f << 8) | carry));
     carry = f >> 56;
   }
   return static_cast<float>(occupied) + static_cast<float>(runs) * gap;
@@ -583,9 +580,11 @@ struct LaneChangeResult {
   bool near_start;   // the changer's rear is within reach of vehicles entering the target lane this step
 };
 
+/// A mandatory change (to_cross > 0: lanes still to cross) takes its urgency from the usable distance, found
+/// only once the cheap tests let the change through to gap acceptance.
 LPSIM_HD LaneChangeResult try_lane_change(const StepContext& s, VehicleRef me, int32_t lane, int32_t target,
-                                          bool mandatory, float urgency, float cand_here,
-                                          float own_leader_gap, float own_leader_speed, bool own_has_leader) {
+                                          int32_t to_cross, float cand_here, float own_leader_gap,
+                                          float own_leader_speed, bool own_has_leader) {
   LaneChangeResult r{false, 0.0f, 1e30f, false};
   const NetView& net = s.net;
   const uint32_t type = s.veh.trip_type[me.slot];
@@ -635,8 +634,10 @@ LPSIM_HD LaneChangeResult try_lane_change(const StepContext& s, VehicleRef me, i
   }
   const LaneChangeParams lcp = lane_change_default_params();
   bool ok;
-  if (mandatory) {
-    ok = lc_gaps_acceptable(p, speed, v0, lead, lag, urgency, lcp, dt);
+  if (to_cross > 0) {
+    const float usable = usable_distance(s, me, lane, pos, target, p.min_gap);
+    ok = lc_gaps_acceptable(p, speed, v0, lead, lag, mandatory_lc_urgency(usable, to_cross, speed, lcp), lcp,
+                            dt);
   } else {
     LcNeighbor cur_lead = lc_no_neighbor();
     if (own_has_leader) cur_lead = LcNeighbor{true, own_leader_gap, own_leader_speed, v0, p};
@@ -1173,18 +1174,18 @@ LPSIM_HD_INLINED void fall_behind_target_leader(const StepContext& s, const Plan
   if (v < b.cand) b.cand = v, b.reason = kWrongLane;
 }
 
-/// A lane change to try this step: to `target` (-1: none), mandatory (toward the route's lanes) or not.
+/// A lane change to try this step: to `target` (-1: none), mandatory (toward the route's lanes, with
+/// to_cross > 0 lanes still to cross) or not (to_cross 0).
 struct LaneChangeAttempt {
   int32_t target;
-  bool mandatory;
-  float urgency;
+  int32_t to_cross;
 };
 
 /// Lane changes on normal lanes only, left on even steps and right on odd ones, so that no lane receives
 /// changers from both sides in one step.
 LPSIM_HD_INLINED LaneChangeAttempt lane_change_attempt(const StepContext& s, const PlanInput& in) {
   const NetView& net = s.net;
-  const LaneChangeAttempt none{-1, false, 0.0f};
+  const LaneChangeAttempt none{-1, 0};
   const bool last_edge_here = in.rp + 1 >= in.route_size;
   if (net.lane_internal[in.lane] || last_edge_here) return none;
   const bool left_step = (s.params.step & 1u) == 0;
@@ -1195,13 +1196,10 @@ LPSIM_HD_INLINED LaneChangeAttempt lane_change_attempt(const StepContext& s, con
   const bool here_good = (lane_bit(net, static_cast<uint32_t>(in.lane)) & good) != 0;
   const bool target_good = (lane_bit(net, static_cast<uint32_t>(target)) & good) != 0;
   int32_t to_cross = 0;
-  if (!here_good && mandatory_target_in(net, in.lane, good, &to_cross) == target) {
-    const float usable = usable_distance(s, in.r, in.lane, in.pos, target, in.p.min_gap);
-    return LaneChangeAttempt{target, true,
-                             mandatory_lc_urgency(usable, to_cross, in.speed, lane_change_default_params())};
-  }
+  if (!here_good && mandatory_target_in(net, in.lane, good, &to_cross) == target)
+    return LaneChangeAttempt{target, to_cross};
   if (here_good && target_good && lc_attempt_allowed(s.params.seed, in.r.id, s.params.step, 0.5f))
-    return LaneChangeAttempt{target, false, 0.0f};
+    return LaneChangeAttempt{target, 0};
   return none;
 }
 
@@ -1220,8 +1218,8 @@ LPSIM_HD_INLINED void plan_lane_change(const StepContext& s, const PlanInput& in
   const LaneChangeAttempt attempt = lane_change_attempt(s, in);
   if (attempt.target < 0) return;
   const int32_t target = attempt.target;
-  const LaneChangeResult lc = try_lane_change(s, in.r, in.lane, target, attempt.mandatory, attempt.urgency,
-                                              m.speed, b.leader_gap, b.leader_speed, b.has_leader);
+  const LaneChangeResult lc = try_lane_change(s, in.r, in.lane, target, attempt.to_cross, m.speed,
+                                              b.leader_gap, b.leader_speed, b.has_leader);
   if (!lc.change) return;
   m.lane = target;
   m.change_claim = lc.near_start;
