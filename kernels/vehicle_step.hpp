@@ -531,8 +531,8 @@ LPSIM_HD float usable_distance(const StepContext& s, VehicleRef r, int32_t lane,
 }
 
 /// Approach pass: the first vehicle on its lane (nothing ahead until the lane end) publishes itself, and
-/// a vehicle stuck on a wrong lane near its end asks the followers on the target lane to open a gap (as
-/// SUMO's cooperative lane changing does), so queues cannot lock it out forever.
+/// a slow vehicle on a wrong lane whose usable distance is short asks the follower on the target lane to
+/// open a gap (as SUMO's cooperative lane changing does), so queues cannot lock it out forever.
 LPSIM_HD void approach_vehicle(StepContext& s, uint32_t i, uint32_t slot) {
   const VehicleRef r{slot, s.veh.vehicle[slot]};
   if (s.veh.status[slot] != kRunning) return;
@@ -541,15 +541,15 @@ LPSIM_HD void approach_vehicle(StepContext& s, uint32_t i, uint32_t slot) {
   int32_t to_cross = 0;
   // Only slow vehicles can be stuck on a wrong lane (the cheap test first).
   const int32_t target = s.veh.speed[slot] < 2.0f ? mandatory_target(s, r, lane, &to_cross) : -1;
-  if (target >= 0 && usable_distance(s, r, lane, pos, target, idm_of(s, s.veh.trip_type[slot]).min_gap) <
-                         kMergeRequestZone * static_cast<float>(to_cross)) {
-    const float rear = pos - s.types.length[s.veh.trip_type[slot]];
+  const float rear = pos - s.types.length[s.veh.trip_type[slot]];
+  if (target >= 0 && rear > 0.0f &&
+      usable_distance(s, r, lane, pos, target, idm_of(s, s.veh.trip_type[slot]).min_gap) <
+          kMergeRequestZone * static_cast<float>(to_cross)) {
     // target is this lane's right neighbour when this lane is on its left.
     const bool from_left = target == s.net.lane_right[lane];
-    if (rear > 0.0f)
-      atomic_max_u64(&s.merge_requests[static_cast<uint32_t>(target) * kMergeSlots +
-                                       merge_slot(s.net.lane_length[target], rear)],
-                     merge_key(s.params.step, from_left, rear));
+    atomic_max_u64(&s.merge_requests[static_cast<uint32_t>(target) * kMergeSlots +
+                                     merge_slot(s.net.lane_length[target], rear)],
+                   merge_key(s.params.step, from_left, rear));
   }
   // A vehicle farther from the lane end than its reach is ignored by foes (may_enter): it need not publish,
   // which also spares scanning the rest of long lanes for every vehicle.
