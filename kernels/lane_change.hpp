@@ -141,6 +141,33 @@ LPSIM_HD bool discretionary_change_wanted(const IdmParams& self, float self_spee
   return gain > lc.threshold + bias;
 }
 
+/// Slowest deceleration with which a blocked mandatory changer falls behind the target lane's leader [m/s^2].
+constexpr float kLcMinFallBehind = 0.5f;
+
+/// Whether a mandatory changer can pass the target lane's vehicle that blocks it (gap: from the changer's
+/// front to that vehicle's rear, negative while they overlap) and still change ahead of it before its lane
+/// ends (`left_space` ahead, `remaining_s` seconds at its pace): it must be faster, have the room to get
+/// fully ahead with that vehicle's secure gap behind it plus its own braking distance, and the time to do so.
+LPSIM_HD bool lc_can_overtake(float speed, float leader_speed, float gap, float leader_length_with_gap,
+                              float own_length, float leader_secure_gap, float left_space, float brake_gap,
+                              float remaining_s) {
+  const float dv = speed - leader_speed;
+  if (dv <= 0.0f) return false;
+  const float dist = lp_fmaxf(gap + leader_length_with_gap + own_length + leader_secure_gap, 0.0f);
+  return left_space - brake_gap >= dist && remaining_s >= dist / dv;
+}
+
+/// Next speed of a mandatory changer that cannot overtake the target lane's vehicle: it slows towards
+/// `follow`, spreading the deceleration over the `remaining_s` seconds left (at least kLcMinFallBehind, at
+/// most its decel), so that it drops in behind that vehicle. No bound (1e30) when that needs no slowing.
+LPSIM_HD float lc_fall_behind_speed(float speed, float follow, float decel, float remaining_s, float dt) {
+  if (follow >= speed) return 1e30f;
+  const float b = remaining_s > 0.0f
+                      ? lp_fminf(decel, lp_fmaxf(kLcMinFallBehind, (speed - follow) / remaining_s))
+                      : decel;
+  return lp_fmaxf(0.0f, speed - b * dt);
+}
+
 // Salt that separates lane-change draws from every other use of (seed, vehicle, step).
 constexpr uint64_t kLaneChangeRngSalt = 0x4C414E4543484E47ull;  // "LANECHNG"
 

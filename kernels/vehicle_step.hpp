@@ -57,8 +57,10 @@ struct VehicleRef {
   uint32_t id;
 };
 
-constexpr float kHaltingSpeed = 0.1f;  // SUMO's threshold for "waiting"
-constexpr int kMaxPathHops = 8;        // lanes looked ahead beyond the current one
+constexpr float kHaltingSpeed = 0.1f;      // SUMO's threshold for "waiting"
+constexpr uint32_t kMergeSlots = 8;        // merge requests per lane (64 bytes: one cache line)
+constexpr float kMergeSlotLength = 15.0f;  // m of lane per merge request slot, counted from the lane end
+constexpr int kMaxPathHops = 8;            // lanes looked ahead beyond the current one
 constexpr float kMaxLookahead = 1000.0f;
 constexpr float kDecisionMargin = 10.0f;  // m beyond the stopping distance where link decisions are taken
 constexpr float kFoeWindow = 1.0f;        // s of safety margin in right-of-way time windows
@@ -523,7 +525,10 @@ LPSIM_HD int32_t mandatory_target(const StepContext& s, VehicleRef r, int32_t la
 }
 
 // A merge request: step, the side the changer comes from (1: from the left of the target lane), its rear
-// position in cm. An atomic max picks one per lane (left side first, then nearest the lane end).
+// position in cm. Each lane has kMergeSlots of them, one per kMergeSlotLength metres from its end (the last
+// takes the rest of the lane), so that every changer blocked along a queue gets its follower to hold back,
+// as each of SUMO's blocked changers informs its own follower (MSLCM_LC2013::informFollower); an atomic max
+// picks one per slot (left side first, then nearest the lane end).
 LPSIM_HD uint64_t merge_key(uint32_t step, bool from_left, float rear_pos) {
   const float cm = lp_fminf(lp_fmaxf(rear_pos * 100.0f, 0.0f), 4.0e9f);
   return (static_cast<uint64_t>(step & 0xFFFFFFu) << 40) | (static_cast<uint64_t>(from_left ? 1 : 0) << 39) |
@@ -531,29 +536,108 @@ LPSIM_HD uint64_t merge_key(uint32_t step, bool from_left, float rear_pos) {
 }
 LPSIM_HD float merge_rear(uint64_t key) { return static_cast<float>(key & 0x7FFFFFFFFFull) / 100.0f; }
 LPSIM_HD bool merge_from_left(uint64_t key) { return ((key >> 39) & 1u) != 0; }
-// m per lane to cross before the lane end where a blocked changer asks for a gap
+/// The slot of a lane of `lane_length` that a changer whose rear is at `rear_pos` beside it asks in.
+LPSIM_HD uint32_t merge_slot(float lane_length, float rear_pos) {
+  const float k = (lane_length - rear_pos) / kMergeSlotLength;
+  return k <= 0.0f                                  ? 0u
+         : k >= static_cast<float>(kMergeSlots - 1) ? kMergeSlots - 1
+                                                    : static_cast<uint32_t>(k);
+}
+// m per lane to cross before the end of the usable distance where a blocked changer asks for a gap
 constexpr float kMergeRequestZone = 30.0f;
-constexpr float kMaxLanesToCross = 8.0f;  // bounds the request zone for the cheap pre-test
+
+/// Number of bytes of `f` with their high bit set, `f` having no other bits set.
+LPSIM_HD int32_t count_byte_flags(uint64_t f) {
+  return static_cast<int32_t>(((f >> 7) * 0x0101010101010101ull) >> 56);
+}
+
+/// Metres of a lane its vehicles take up, each with a minimum gap `gap` (SUMO's occupation of a lane): the
+/// occupied cells plus one gap per run of occupied cells. Asked only for vehicles on a wrong lane, eight
+/// cells at a time (the lane map has kLaneMapPadding readable bytes after its last cell).
+LPSIM_HD float lane_occupation(const uint8_t* map, const NetView& net, int32_t lane, float gap) {
+  const uint8_t* cells = map + net.lane_cell_begin[lane];
+  const int32_t n = static_cast<int32_t>(lane_cells(net, lane));
+  constexpr uint64_t kLow7 = 0x7F7F7F7F7F7F7F7Full, kHigh = 0x8080808080808080ull;
+  int32_t occupied = 0, runs = 0;
+  uint64_t carry = 0;  // the high bit of byte 0 set when the previous word's last cell is occupied
+  for (int32_t c = 0; c < n; c += 8) {
+    uint64_t w;
+    memcpy(&w, cells + c, sizeof w);
+    if (n - c < 8) w &= (uint64_t{1} << (8 * (n - c))) - 1;  // cells past the lane's end
+    const uint64_t f = (((w & kLow7) + kLow7) | w) & kHigh;  // high bit of each occupied cell's byte
+    occupied += count_byte_flags(f);
+    runs += count_byte_flags(f & ~((f << 8) | carry));
+    carry = f >> 56;
+  }
+  return static_cast<float>(occupied) + static_cast<float>(runs) * gap;
+}
+
+/// Metres a vehicle on a wrong lane can still drive before it must have changed lanes (SUMO's usableDist):
+/// to the end of its lane's continuation along the route (the lanes its connections lead to, as far as they
+/// lead on), less the occupation of the lane it changes to. A change need not be made on this edge when the
+/// lane leads on, and the queue on the target lane makes it urgent before the changer reaches its tail. With
+/// a scheduled stop on this edge: to the stop, less that occupation.
+LPSIM_HD float usable_distance(const StepContext& s, VehicleRef r, int32_t lane, float pos, int32_t target,
+                               float min_gap) {
+  const NetView& net = s.net;
+  float dist = net.lane_length[lane] - pos;
+  int32_t l = lane;
+  uint32_t rp = s.veh.route_pos[r.slot];
+  const uint32_t len = s.veh.trip_route_size[r.slot];
+  const uint32_t vclass = vclass_of(s, r);
+  // A scheduled stop on this edge: its lane must be reached before the stop.
+  const uint32_t k = s.veh.next_stop[r.slot];
+  if (k < s.veh.stops_end[r.slot] && s.trips.stop_route_pos[k] == rp)
+    return s.trips.stop_end[k] - pos - lane_occupation(s.map_now, net, target, min_gap);
+  for (int h = 0; h < kMaxPathHops && dist < kMaxLookahead; ++h) {
+    // Beyond the current lane, a connection that leads on along the route, found without the later edges'
+    // best lanes (asking for them would evict the current edge's from the slot's two-entry cache).
+    int32_t c = -1;
+    if (h == 0)
+      c = current_lane_connection(s, r, l, rp);
+    else if (rp + 2 < len)
+      c = conn_through(net, l, route_edge(s, r, rp + 1), route_edge(s, r, rp + 2), vclass);
+    if (h > 0 && c < 0) c = conn_onto(net, l, route_edge(s, r, rp + 1), vclass);
+    if (c < 0) break;
+    int32_t nxt =
+        net.conn_via_lane[c] >= 0 ? net.conn_via_lane[c] : static_cast<int32_t>(net.conn_to_lane[c]);
+    while (nxt >= 0 && net.lane_internal[nxt]) {
+      dist += net.lane_length[nxt];
+      const uint32_t cb = net.lane_conn_begin[nxt];
+      nxt = cb < net.lane_conn_begin[nxt + 1]
+                ? (net.conn_via_lane[cb] >= 0 ? net.conn_via_lane[cb]
+                                              : static_cast<int32_t>(net.conn_to_lane[cb]))
+                : -1;
+    }
+    if (nxt < 0) break;
+    ++rp;
+    l = nxt;
+    dist += net.lane_length[l];
+    if (rp + 1 >= len) break;
+  }
+  return dist - lane_occupation(s.map_now, net, target, min_gap);
+}
 
 /// Approach pass: the first vehicle on its lane (nothing ahead until the lane end) publishes itself, and
-/// a vehicle stuck on a wrong lane near its end asks the followers on the target lane to open a gap (as
-/// SUMO's cooperative lane changing does), so queues cannot lock it out forever.
+/// a slow vehicle on a wrong lane whose usable distance is short asks the follower on the target lane to
+/// open a gap (as SUMO's cooperative lane changing does), so queues cannot lock it out forever.
 LPSIM_HD void approach_vehicle(StepContext& s, uint32_t i, uint32_t slot) {
   const VehicleRef r{slot, s.veh.vehicle[slot]};
   if (s.veh.status[slot] != kRunning) return;
   const int32_t lane = s.veh.lane[slot];
   const float pos = s.veh.pos[slot];
   int32_t to_cross = 0;
-  // Cheap tests first (both, as one branch): only slow vehicles near their lane's end can be stuck on a wrong
-  // lane.
-  const bool may_request =
-      (s.veh.speed[slot] < 2.0f) & (s.net.lane_length[lane] - pos < kMergeRequestZone * kMaxLanesToCross);
-  const int32_t target = may_request ? mandatory_target(s, r, lane, &to_cross) : -1;
-  if (target >= 0 && s.net.lane_length[lane] - pos < kMergeRequestZone * static_cast<float>(to_cross)) {
-    const float rear = pos - s.types.length[s.veh.trip_type[slot]];
+  // Only slow vehicles can be stuck on a wrong lane (the cheap test first).
+  const int32_t target = s.veh.speed[slot] < 2.0f ? mandatory_target(s, r, lane, &to_cross) : -1;
+  const float rear = pos - s.types.length[s.veh.trip_type[slot]];
+  if (target >= 0 && rear > 0.0f &&
+      usable_distance(s, r, lane, pos, target, idm_of(s, s.veh.trip_type[slot]).min_gap) <
+          kMergeRequestZone * static_cast<float>(to_cross)) {
     // target is this lane's right neighbour when this lane is on its left.
     const bool from_left = target == s.net.lane_right[lane];
-    if (rear > 0.0f) atomic_max_u64(&s.merge_requests[target], merge_key(s.params.step, from_left, rear));
+    atomic_max_u64(&s.merge_requests[static_cast<uint32_t>(target) * kMergeSlots +
+                                     merge_slot(s.net.lane_length[target], rear)],
+                   merge_key(s.params.step, from_left, rear));
   }
   // A vehicle farther from the lane end than its reach is ignored by foes (may_enter): it need not publish,
   // which also spares scanning the rest of long lanes for every vehicle.
@@ -586,9 +670,11 @@ struct LaneChangeResult {
   bool near_start;   // the changer's rear is within reach of vehicles entering the target lane this step
 };
 
+/// A mandatory change (to_cross > 0: lanes still to cross) takes its urgency from the usable distance, found
+/// only once the cheap tests let the change through to gap acceptance.
 LPSIM_HD LaneChangeResult try_lane_change(const StepContext& s, VehicleRef me, int32_t lane, int32_t target,
-                                          bool mandatory, float urgency, float cand_here,
-                                          float own_leader_gap, float own_leader_speed, bool own_has_leader) {
+                                          int32_t to_cross, float cand_here, float own_leader_gap,
+                                          float own_leader_speed, bool own_has_leader) {
   LaneChangeResult r{false, 0.0f, 1e30f, false};
   const NetView& net = s.net;
   const uint32_t type = s.veh.trip_type[me.slot];
@@ -638,8 +724,10 @@ LPSIM_HD LaneChangeResult try_lane_change(const StepContext& s, VehicleRef me, i
   }
   const LaneChangeParams lcp = lane_change_default_params();
   bool ok;
-  if (mandatory) {
-    ok = lc_gaps_acceptable(p, speed, v0, lead, lag, urgency, lcp, dt);
+  if (to_cross > 0) {
+    const float usable = usable_distance(s, me, lane, pos, target, p.min_gap);
+    ok = lc_gaps_acceptable(p, speed, v0, lead, lag, mandatory_lc_urgency(usable, to_cross, speed, lcp), lcp,
+                            dt);
   } else {
     LcNeighbor cur_lead = lc_no_neighbor();
     if (own_has_leader) cur_lead = LcNeighbor{true, own_leader_gap, own_leader_speed, v0, p};
@@ -662,11 +750,14 @@ LPSIM_HD LaneChangeResult try_lane_change(const StepContext& s, VehicleRef me, i
 LPSIM_HD bool swap_with_neighbour(const StepContext& s, VehicleRef r, int32_t lane, int32_t target) {
   const NetView& net = s.net;
   const uint32_t step = s.params.step & 0xFFFFFFu;
-  const uint64_t mine = s.merge_requests[target], theirs = s.merge_requests[lane];
-  if ((mine >> 40) != step || (theirs >> 40) != step) return false;
   const float length = s.types.length[s.veh.trip_type[r.slot]];
   const float pos = s.veh.pos[r.slot];
   const float my_rear = pos - length;
+  // Both stand at their lanes' ends: their requests are in the slots nearest the ends.
+  const uint64_t mine = s.merge_requests[static_cast<uint32_t>(target) * kMergeSlots +
+                                         merge_slot(net.lane_length[target], my_rear)];
+  const uint64_t theirs = s.merge_requests[static_cast<uint32_t>(lane) * kMergeSlots];
+  if ((mine >> 40) != step || (theirs >> 40) != step) return false;
   const bool target_is_right = target == net.lane_right[lane];
   if (mine != merge_key(s.params.step, target_is_right, my_rear)) return false;  // another request won
   // Theirs must come from the target lane's side of this lane.
@@ -1134,35 +1225,77 @@ LPSIM_HD_INLINED PathBounds walk_path_ahead(const StepContext& s, const PlanInpu
   return b;
 }
 
-/// Open a gap for a blocked lane changer waiting beside this lane ahead of us.
+/// Open a gap for the nearest blocked lane changer waiting beside this lane ahead of us.
 LPSIM_HD_INLINED void open_gap_for_merge(const StepContext& s, const PlanInput& in, float budget,
                                          PathBounds& b) {
-  const uint64_t mr = s.merge_requests[in.lane];
-  if (!s.net.lane_internal[in.lane] && (mr >> 40) == (s.params.step & 0xFFFFFFu)) {
-    const float rear = merge_rear(mr);
-    // Stop a minimum gap (plus room for the changer's lag check) short of the changer's rear. A vehicle
-    // already closer than that drives on past it; the gap then opens behind it.
-    const float lag_reach = (0.25f + s.params.max_accel * in.dt) * in.dt + 0.5f;  // the changer's lag check
-    const float gap = rear - in.pos - lp_fmaxf(in.p.min_gap, lag_reach) - 1.5f;   // + cell rounding
-    if (gap > 0.0f && gap < budget) {
-      const float vs = cf_stop_speed(in.p, in.speed, in.v0, gap, in.dt, s.params.substeps);
-      if (vs < b.cand) b.cand = vs, b.reason = kMergeGap;
-    }
+  if (s.net.lane_internal[in.lane]) return;
+  const uint64_t* mr = s.merge_requests + static_cast<uint32_t>(in.lane) * kMergeSlots;
+  const uint32_t step = s.params.step & 0xFFFFFFu;
+  // Stop a minimum gap (plus room for the changer's lag check) short of the changer's rear. A vehicle
+  // already closer than that drives on past it; the gap then opens behind it.
+  const float lag_reach = (0.25f + s.params.max_accel * in.dt) * in.dt + 0.5f;  // the changer's lag check
+  const float margin = lp_fmaxf(in.p.min_gap, lag_reach) + 1.5f;                // + cell rounding
+  float gap = budget;
+  for (uint32_t k = 0; k < kMergeSlots; ++k) {
+    if ((mr[k] >> 40) != step) continue;
+    const float g = merge_rear(mr[k]) - in.pos - margin;
+    if (g > 0.0f && g < gap) gap = g;
+  }
+  if (gap < budget) {
+    const float vs = cf_stop_speed(in.p, in.speed, in.v0, gap, in.dt, s.params.substeps);
+    if (vs < b.cand) b.cand = vs, b.reason = kMergeGap;
   }
 }
 
-/// A lane change to try this step: to `target` (-1: none), mandatory (toward the route's lanes) or not.
+/// A vehicle that must change lanes soon and finds the target lane's vehicle beside it, one it cannot
+/// overtake before the lane ends, slows to drop in behind it (SUMO's informLeader for a blocked strategic
+/// change) instead of running on beside the target queue to its lane's end, where it would stand and block
+/// its own lane's through traffic. Once slow it asks for a gap (approach_vehicle). "Soon": its usable
+/// distance is within the mandatory zone.
+LPSIM_HD_INLINED void fall_behind_target_leader(const StepContext& s, const PlanInput& in, PathBounds& b) {
+  const NetView& net = s.net;
+  if (net.lane_internal[in.lane] || in.rp + 1 >= in.route_size) return;
+  if (lane_bit(net, static_cast<uint32_t>(in.lane)) & current_best_mask(s, in.r)) return;
+  int32_t to_cross = 0;
+  const int32_t target = mandatory_target(s, in.r, in.lane, &to_cross);
+  const float rear = in.pos - in.length;
+  if (target < 0 || rear <= 0.0f) return;
+  const int32_t rear_cell = static_cast<int32_t>(cell_of(net, target, rear));
+  const int32_t front_cell = static_cast<int32_t>(cell_of(net, target, in.pos));
+  const int32_t hit = first_occupied(s.map_now, net, target, rear_cell, front_cell);
+  if (hit < 0) return;
+  const float gap = static_cast<float>(hit) - in.pos;  // <= 0: the target lane's vehicle is beside it
+  if (gap > 0.0f) return;
+  if (usable_distance(s, in.r, in.lane, in.pos, target, in.p.min_gap) >
+      mandatory_lc_zone(to_cross, in.speed, lane_change_default_params()))
+    return;
+  const float dt = in.dt;
+  const float vl = decode_cell_speed(s.map_now[net.lane_cell_begin[target] + static_cast<uint32_t>(hit)]);
+  const float left = net.lane_length[in.lane] - in.pos;
+  const float remaining_s = left / lp_fmaxf(in.speed, 1.0f);
+  // The other vehicle's type is not in the lane map: its length and gaps are taken to be the changer's own.
+  if (lc_can_overtake(in.speed, vl, gap, in.length + in.p.min_gap, in.length,
+                      cf_secure_gap(in.p, vl, in.speed, dt), left,
+                      stopping_distance(in.speed, in.p.decel, dt), remaining_s))
+    return;
+  // Measured: braking towards a stop beside it lets more changers in than matching its speed less the
+  // overlap (docs/VALIDATION.md): the slow changer asks for a gap, and the queue beside moves past.
+  const float v = lc_fall_behind_speed(in.speed, 0.0f, in.p.decel, remaining_s, dt);
+  if (v < b.cand) b.cand = v, b.reason = kWrongLane;
+}
+
+/// A lane change to try this step: to `target` (-1: none), mandatory (toward the route's lanes, with
+/// to_cross > 0 lanes still to cross) or not (to_cross 0).
 struct LaneChangeAttempt {
   int32_t target;
-  bool mandatory;
-  float urgency;
+  int32_t to_cross;
 };
 
 /// Lane changes on normal lanes only, left on even steps and right on odd ones, so that no lane receives
 /// changers from both sides in one step.
 LPSIM_HD_INLINED LaneChangeAttempt lane_change_attempt(const StepContext& s, const PlanInput& in) {
   const NetView& net = s.net;
-  const LaneChangeAttempt none{-1, false, 0.0f};
+  const LaneChangeAttempt none{-1, 0};
   const bool last_edge_here = in.rp + 1 >= in.route_size;
   // A scheduled stop on this edge: its lane must be reached before the stop, even on the route's last edge.
   const uint32_t k = s.veh.next_stop[in.r.slot];
@@ -1176,16 +1309,11 @@ LPSIM_HD_INLINED LaneChangeAttempt lane_change_attempt(const StepContext& s, con
   const bool here_good = (lane_bit(net, static_cast<uint32_t>(in.lane)) & good) != 0;
   const bool target_good = (lane_bit(net, static_cast<uint32_t>(target)) & good) != 0;
   int32_t to_cross = 0;
-  if (!here_good && mandatory_target_in(net, in.lane, good, &to_cross) == target) {
-    float dist_to_lane_end = net.lane_length[in.lane] - in.pos;
-    if (stop_here) dist_to_lane_end = lp_fminf(dist_to_lane_end, s.trips.stop_end[k] - in.pos);
-    return LaneChangeAttempt{
-        target, true,
-        mandatory_lc_urgency(dist_to_lane_end, to_cross, in.speed, lane_change_default_params())};
-  }
+  if (!here_good && mandatory_target_in(net, in.lane, good, &to_cross) == target)
+    return LaneChangeAttempt{target, to_cross};
   if (here_good && target_good && !last_edge_here &&
       lc_attempt_allowed(s.params.seed, in.r.id, s.params.step, 0.5f))
-    return LaneChangeAttempt{target, false, 0.0f};
+    return LaneChangeAttempt{target, 0};
   return none;
 }
 
@@ -1204,8 +1332,8 @@ LPSIM_HD_INLINED void plan_lane_change(const StepContext& s, const PlanInput& in
   const LaneChangeAttempt attempt = lane_change_attempt(s, in);
   if (attempt.target < 0) return;
   const int32_t target = attempt.target;
-  const LaneChangeResult lc = try_lane_change(s, in.r, in.lane, target, attempt.mandatory, attempt.urgency,
-                                              m.speed, b.leader_gap, b.leader_speed, b.has_leader);
+  const LaneChangeResult lc = try_lane_change(s, in.r, in.lane, target, attempt.to_cross, m.speed,
+                                              b.leader_gap, b.leader_speed, b.has_leader);
   if (!lc.change) return;
   m.lane = target;
   m.change_claim = lc.near_start;
@@ -1342,6 +1470,7 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t i, uint32_t slot) {
   // junction now: foes need not yield to it (SUMO's approaching vehicles that will not pass).
   s.veh.held_at_line[slot] = bounds.stop_at_own_line ? 1 : 0;
   open_gap_for_merge(s, in, budget, bounds);
+  fall_behind_target_leader(s, in, bounds);
   s.veh.limit_reason[slot] = bounds.reason;
   MovePlan move{cf_finalize_speed(in.p, in.speed, bounds.cand, in.dt, s.params.seed, r.id, s.params.step),
                 in.lane, bounds.hard_limit, bounds.hops, false};

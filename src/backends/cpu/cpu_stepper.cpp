@@ -46,7 +46,7 @@ class CpuStepper final : public Stepper {
     det_last_ms_.assign(setup.signals.actuated.signal_det_begin[ns], kNeverDetected);
     approach_.assign(nl, LaneApproach{0xFFFFFFFFu, -1, 0, 0, 0, 0, 0, 0});
     claims_.assign(nl, 0);
-    merge_requests_.assign(nl, 0);
+    merge_requests_.assign(static_cast<size_t>(kMergeSlots) * nl, 0);
     if (setup.lane_counters) counters_.assign(static_cast<size_t>(kNumLaneCounters) * nl, 0);
     trips_ = setup.trips;
   }
@@ -87,7 +87,7 @@ class CpuStepper final : public Stepper {
     // The plan also reads the lane's neighbours (lane changes), kind and merge request.
     auto plan_lane_columns = [&](int32_t l) {
       prefetch_lane_columns(c.net, l);
-      __builtin_prefetch(&c.merge_requests[l]);
+      __builtin_prefetch(&c.merge_requests[static_cast<size_t>(l) * kMergeSlots]);
       __builtin_prefetch(&c.net.lane_left[l]);
       __builtin_prefetch(&c.net.lane_right[l]);
       __builtin_prefetch(&c.net.lane_internal[l]);

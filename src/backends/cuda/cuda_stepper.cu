@@ -347,8 +347,8 @@ class CudaStepper final : public Stepper {
     dev_.approach = upload(approach.data(), nl);
     dev_.claims = allocate<uint64_t>(nl);
     LPSIM_CUDA_CHECK(cudaMemset(dev_.claims, 0, nl * sizeof(uint64_t)));
-    dev_.merge_requests = allocate<uint64_t>(nl);
-    LPSIM_CUDA_CHECK(cudaMemset(dev_.merge_requests, 0, nl * sizeof(uint64_t)));
+    dev_.merge_requests = allocate<uint64_t>(kMergeSlots * nl);
+    LPSIM_CUDA_CHECK(cudaMemset(dev_.merge_requests, 0, kMergeSlots * nl * sizeof(uint64_t)));
     const size_t nc = setup.num_connections;
     dev_.yielder_begin = upload(setup.yielder_begin, nc + 1);
     dev_.yielder = upload(setup.yielder, setup.yielder_begin[nc]);
