@@ -668,6 +668,7 @@ struct LaneChangeResult {
   float speed_cap;   // max next speed behind the target lane's leader
   float leader_gap;  // distance to the first occupied cell ahead on the target lane (1e30: none)
   bool near_start;   // the changer's rear is within reach of vehicles entering the target lane this step
+  bool tail_behind;  // its rear is still on the lanes before: the front changes, the tail stays there
 };
 
 /// A mandatory change (to_cross > 0: lanes still to cross) takes its urgency from the usable distance, found
@@ -675,7 +676,7 @@ struct LaneChangeResult {
 LPSIM_HD LaneChangeResult try_lane_change(const StepContext& s, VehicleRef me, int32_t lane, int32_t target,
                                           int32_t to_cross, float cand_here, float own_leader_gap,
                                           float own_leader_speed, bool own_has_leader) {
-  LaneChangeResult r{false, 0.0f, 1e30f, false};
+  LaneChangeResult r{false, 0.0f, 1e30f, false, false};
   const NetView& net = s.net;
   const uint32_t type = s.veh.trip_type[me.slot];
   const IdmParams p = idm_of(s, type);
@@ -688,12 +689,16 @@ LPSIM_HD LaneChangeResult try_lane_change(const StepContext& s, VehicleRef me, i
   // Vehicles entering the target lane this step do not see the changer: near the start it claims the lane
   // entry with the lowest priority, so any entrant wins and the changer then stays in its lane.
   const float upstream_reach = (net.lane_speed[target] * 1.5f + s.params.max_accel * dt) * dt + p.min_gap;
-  if (rear <= 0.0f) return r;
+  // A rear still on the lanes before: only a mandatory change on a lane too short for the body to be on it
+  // ever (real nets split junction approaches into edges of a few metres), where SUMO changes the front's
+  // lane and leaves the back on the lanes before (its further lanes).
+  r.tail_behind = rear <= 0.0f;
+  if (r.tail_behind && !(to_cross > 0 && net.lane_length[lane] < length)) return r;
   r.near_start = rear < upstream_reach;
   if (pos + cand_here * dt > net.lane_length[target] - kClampEps)
     return r;  // never cross the end while changing
   const int32_t cells = static_cast<int32_t>(lane_cells(net, target));
-  const int32_t rear_cell = static_cast<int32_t>(cell_of(net, target, rear));
+  const int32_t rear_cell = r.tail_behind ? 0 : static_cast<int32_t>(cell_of(net, target, rear));
   const int32_t front_cell = static_cast<int32_t>(cell_of(net, target, pos));
   if (first_occupied(s.map_now, net, target, rear_cell, front_cell) >= 0) return r;
   const float v0 =
@@ -1324,6 +1329,7 @@ struct MovePlan {
   float hard_limit;   // the front must stay short of this distance
   int32_t hops;       // path lanes the move may pass into
   bool change_claim;  // the lane change claims the target lane's entry (the changer's rear is near its start)
+  bool tail_behind;   // the lane change moves the front only: the tail stays on the lanes before
 };
 
 /// Changes lanes where the attempt is safe and wanted, bounding speed and move on the target lane.
@@ -1337,6 +1343,7 @@ LPSIM_HD_INLINED void plan_lane_change(const StepContext& s, const PlanInput& in
   if (!lc.change) return;
   m.lane = target;
   m.change_claim = lc.near_start;
+  m.tail_behind = lc.tail_behind;
   m.speed = cf_finalize_speed(in.p, in.speed, lp_fminf(b.cand, lc.speed_cap), in.dt, s.params.seed, in.r.id,
                               s.params.step);
   m.hard_limit = lp_fminf(m.hard_limit, lc.leader_gap - kClampEps);
@@ -1364,7 +1371,7 @@ LPSIM_HD_INLINED PlannedMove move_clamped_to_hard_limit(StepContext& s, const Pl
   float new_speed = advance / dt;
   float npos = in.pos + advance;
   int32_t nlane = m.lane, nprev = s.veh.prev[in.r.slot], nprev2 = s.veh.prev2[in.r.slot];
-  if (m.lane != in.lane) {
+  if (m.lane != in.lane && !m.tail_behind) {
     nprev = -1;  // a lane change moves the whole body across
     nprev2 = -1;
   }
@@ -1473,7 +1480,11 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t i, uint32_t slot) {
   fall_behind_target_leader(s, in, bounds);
   s.veh.limit_reason[slot] = bounds.reason;
   MovePlan move{cf_finalize_speed(in.p, in.speed, bounds.cand, in.dt, s.params.seed, r.id, s.params.step),
-                in.lane, bounds.hard_limit, bounds.hops, false};
+                in.lane,
+                bounds.hard_limit,
+                bounds.hops,
+                false,
+                false};
   plan_lane_change(s, in, bounds, move);
   const PlannedMove planned = move_clamped_to_hard_limit(s, in, path, move);
   if (reaches_arrival(s, in, planned)) s.plan.arrives[i] = 1;
