@@ -244,6 +244,16 @@ class RouteFileReader {
     return t.seconds;
   }
 
+  // A time attribute of the current element (by name), or nullopt when absent; InputError when not a time.
+  std::optional<double> named_time_attr(const char* key, const SourceLoc& loc, std::string_view element,
+                                        std::string_view id) const {
+    auto text = xs_.attr(key);
+    if (!text) return std::nullopt;
+    const TimeValue t = parse_time_value(key, *text);
+    if (!t.problem.empty()) fail(loc, element, id, t.problem);
+    return t.seconds;
+  }
+
   double positive_attr(Key key, const SourceLoc& loc, std::string_view element, std::string_view id) const {
     const std::string& v = attrs_.value[key];
     auto d = parse_double(v);
@@ -388,15 +398,8 @@ class RouteFileReader {
     if (number_attr("speed", element, 0) > 0) return skip_as("waypoint");
     if (xs_.has("startPos")) st.start_pos = number_attr("startPos", element, 0);
     if (xs_.has("endPos")) st.end_pos = number_attr("endPos", element, 0);
-    auto time = [&](const char* key) {
-      auto text = xs_.attr(key);
-      if (!text) return -1.0;
-      const TimeValue t = parse_time_value(key, *text);
-      if (!t.problem.empty()) fail(st.loc, element, "", t.problem);
-      return t.seconds;
-    };
-    st.duration = time("duration");
-    st.until = time("until");
+    st.duration = named_time_attr("duration", st.loc, element, "").value_or(-1);
+    st.until = named_time_attr("until", st.loc, element, "").value_or(-1);
     // SUMO waits for a person or container there, which never comes in a scenario without them.
     if (st.duration < 0 && st.until < 0) return skip_as("neither duration nor until");
     stops.push_back(std::move(st));
@@ -674,17 +677,11 @@ class RouteFileReader {
     if (!file || trim(*file).empty()) fail(m.loc, element, m.id, "missing attribute 'file'");
     std::filesystem::path out(std::string(trim(*file)));
     m.file = out.is_absolute() || folder_.empty() ? out.string() : (folder_ / out).string();
-    auto time = [&](const char* key, double fallback) {
-      auto text = xs_.attr(key);
-      if (!text) return fallback;
-      const TimeValue t = parse_time_value(key, *text);
-      if (!t.problem.empty()) fail(m.loc, element, m.id, t.problem);
-      return t.seconds;
-    };
-    m.period = time(xs_.has("period") ? "period" : "freq", -1);
+    auto time = [&](const char* key) { return named_time_attr(key, m.loc, element, m.id).value_or(-1); };
+    m.period = time(xs_.has("period") ? "period" : "freq");
     if (m.period == 0) fail(m.loc, element, m.id, "period must be positive");
-    m.begin = time("begin", -1);
-    m.end = time("end", -1);
+    m.begin = time("begin");
+    m.end = time("end");
     if (m.begin >= 0 && m.end >= 0 && m.end < m.begin) fail(m.loc, element, m.id, "end lies before begin");
     auto flag = [&](const char* key) {
       auto text = xs_.attr(key);
@@ -705,13 +702,8 @@ class RouteFileReader {
   // <interval begin end> wraps flows (and other demand) and gives them its begin and end as defaults.
   void read_interval() {
     const SourceLoc loc = xs_.loc();
-    auto bound = [&](const char* key) -> std::optional<double> {
-      auto text = xs_.attr(key);
-      if (!text) return std::nullopt;
-      const TimeValue t = parse_time_value(key, *text);
-      if (!t.problem.empty()) fail(loc, "interval", xs_.get("id", ""), t.problem);
-      return t.seconds;
-    };
+    const std::string id = xs_.get("id", "");
+    auto bound = [&](const char* key) { return named_time_attr(key, loc, "interval", id); };
     auto saved_begin = interval_begin_, saved_end = interval_end_;
     interval_begin_ = bound("begin");
     interval_end_ = bound("end");

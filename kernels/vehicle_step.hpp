@@ -188,6 +188,12 @@ LPSIM_HD void clear_route_caches(const VehicleView& veh, uint32_t k) {
   veh.conn[k] = -1;
 }
 
+/// The next scheduled stop of the vehicle in `slot` when it lies on its route edge `rp`, else -1.
+LPSIM_HD int32_t stop_on_edge(const StepContext& s, uint32_t slot, uint32_t rp) {
+  const uint32_t k = s.veh.next_stop[slot];
+  return k < s.veh.stops_end[slot] && s.trips.stop_route_pos[k] == rp ? static_cast<int32_t>(k) : -1;
+}
+
 /// Best lanes of route edge rp of vehicle r, cached in kBestLaneEntries entries per slot, direct-mapped by
 /// route position so the two edges a step mostly asks for (the current one and the next) never evict each
 /// other. Only the vehicle's own thread reads or writes its entries; the value does not depend on when it
@@ -586,9 +592,8 @@ LPSIM_HD float usable_distance(const StepContext& s, VehicleRef r, int32_t lane,
   const uint32_t len = s.veh.trip_route_size[r.slot];
   const uint32_t vclass = vclass_of(s, r);
   // A scheduled stop on this edge: its lane must be reached before the stop.
-  const uint32_t k = s.veh.next_stop[r.slot];
-  if (k < s.veh.stops_end[r.slot] && s.trips.stop_route_pos[k] == rp)
-    return s.trips.stop_end[k] - pos - lane_occupation(s.map_now, net, target, min_gap);
+  const int32_t stop = stop_on_edge(s, r.slot, rp);
+  if (stop >= 0) return s.trips.stop_end[stop] - pos - lane_occupation(s.map_now, net, target, min_gap);
   for (int h = 0; h < kMaxPathHops && dist < kMaxLookahead; ++h) {
     // Beyond the current lane, a connection that leads on along the route, found without the later edges'
     // best lanes (asking for them would evict the current edge's from the slot's two-entry cache).
@@ -1146,10 +1151,9 @@ LPSIM_HD_INLINED void join_free_speed(const StepContext& s, const PlanInput& in,
 /// lane (as SUMO's vehicles do not drive past their stop).
 LPSIM_HD_INLINED float scheduled_stop_distance(const StepContext& s, const PlanInput& in, int32_t lane,
                                                uint32_t rp, float lane_start) {
-  const uint32_t k = s.veh.next_stop[in.r.slot];
-  if (k >= s.veh.stops_end[in.r.slot] || s.trips.stop_route_pos[k] != rp || s.net.lane_internal[lane])
-    return -1.0f;
-  return lp_fmaxf(lane_start + s.trips.stop_end[k], 0.0f);
+  const int32_t stop = stop_on_edge(s, in.r.slot, rp);
+  if (stop < 0 || s.net.lane_internal[lane]) return -1.0f;
+  return lp_fmaxf(lane_start + s.trips.stop_end[stop], 0.0f);
 }
 
 /// Walk the path ahead: current lane, then the lanes the route leads through, up to the budget. Bounds the
@@ -1303,9 +1307,7 @@ LPSIM_HD_INLINED LaneChangeAttempt lane_change_attempt(const StepContext& s, con
   const LaneChangeAttempt none{-1, 0};
   const bool last_edge_here = in.rp + 1 >= in.route_size;
   // A scheduled stop on this edge: its lane must be reached before the stop, even on the route's last edge.
-  const uint32_t k = s.veh.next_stop[in.r.slot];
-  const bool stop_here = k < s.veh.stops_end[in.r.slot] && s.trips.stop_route_pos[k] == in.rp;
-  if (net.lane_internal[in.lane] || (last_edge_here && !stop_here)) return none;
+  if (net.lane_internal[in.lane] || (last_edge_here && stop_on_edge(s, in.r.slot, in.rp) < 0)) return none;
   const bool left_step = (s.params.step & 1u) == 0;
   const int32_t target = left_step ? net.lane_left[in.lane] : net.lane_right[in.lane];
   // Never onto a lane the vehicle's class may not use (a car beside a bus lane).
@@ -1427,6 +1429,13 @@ LPSIM_HD_INLINED bool reaches_arrival(const StepContext& s, const PlanInput& in,
   return m.pos >= arrival - kClampEps;
 }
 
+/// The stop made (or dropped): the vehicle in `slot` goes on to its next one, to whose lane its cached best
+/// lanes must now lead.
+LPSIM_HD_INLINED void go_on_to_next_stop(const VehicleView& veh, uint32_t slot) {
+  ++veh.next_stop[slot];
+  clear_route_caches(veh, slot);
+}
+
 /// A vehicle standing out a scheduled stop keeps its place (its whole plan is written: true). Once its
 /// stop is over it goes on towards the next one; a stop it can no longer make (its edge behind it, or its
 /// place passed) is dropped.
@@ -1446,15 +1455,13 @@ LPSIM_HD_INLINED bool stand_at_scheduled_stop(StepContext& s, const PlanInput& i
       return true;
     }
     veh.stop_release[slot] = 0;
-    ++veh.next_stop[slot];
-    clear_route_caches(veh, slot);
+    go_on_to_next_stop(veh, slot);
   }
   while (veh.next_stop[slot] < veh.stops_end[slot] && !s.net.lane_internal[in.lane]) {
     const uint32_t k = veh.next_stop[slot];
     const uint32_t rp = s.trips.stop_route_pos[k];
     if (rp > in.rp || (rp == in.rp && in.pos <= s.trips.stop_end[k] + kStopReachTolerance)) break;
-    ++veh.next_stop[slot];
-    clear_route_caches(veh, slot);
+    go_on_to_next_stop(veh, slot);
   }
   return false;
 }
@@ -1510,10 +1517,8 @@ LPSIM_HD bool first_on_lane(const StepContext& s, int32_t lane, float pos) {
 /// stretch, below SUMO's halting speed): it stands there until the stop's release step.
 LPSIM_HD_INLINED bool begin_scheduled_stop(const StepContext& s, uint32_t slot, uint32_t rp, int32_t lane,
                                            float pos, float speed, float length) {
-  const uint32_t k = s.veh.next_stop[slot];
-  if (k >= s.veh.stops_end[slot] || s.trips.stop_route_pos[k] != rp ||
-      lane != static_cast<int32_t>(s.trips.stop_lane[k]) || speed >= kHaltingSpeed)
-    return false;
+  const int32_t k = stop_on_edge(s, slot, rp);
+  if (k < 0 || lane != static_cast<int32_t>(s.trips.stop_lane[k]) || speed >= kHaltingSpeed) return false;
   if (!stop_reached(pos, length, s.trips.stop_start[k], s.trips.stop_end[k])) return false;
   s.veh.stop_release[slot] =
       stop_release_step(s.params.step, s.trips.stop_duration_steps[k], s.trips.stop_until_step[k]);

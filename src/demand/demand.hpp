@@ -37,6 +37,10 @@ struct StopTable {
   /// Vehicle v's stops: [first, last).
   uint32_t first(uint32_t v) const { return vehicle_begin.empty() ? 0 : vehicle_begin[v]; }
   uint32_t last(uint32_t v) const { return vehicle_begin.empty() ? 0 : vehicle_begin[v + 1]; }
+  /// Keeps the first n stops (vehicle_begin untouched).
+  void truncate(uint32_t n);
+  /// Appends stops [first, last) of `from` (vehicle_begin untouched).
+  void append(const StopTable& from, uint32_t first, uint32_t last);
 };
 
 struct Demand {

@@ -149,27 +149,9 @@ class Builder {
                                     types_.types().vclass_mask[p.type], shift, staged_);
     if (!why.empty()) {
       why = "vehicle '" + ids_[k] + "': " + why;
-      staged_.route_pos.resize(staged_begin_[k]);
-      staged_.lane.resize(staged_begin_[k]);
-      staged_.start_pos.resize(staged_begin_[k]);
-      staged_.end_pos.resize(staged_begin_[k]);
-      staged_.duration.resize(staged_begin_[k]);
-      staged_.until.resize(staged_begin_[k]);
+      staged_.truncate(staged_begin_[k]);
     }
     return why;
-  }
-
-  // Appends vehicle k's staged stops to the demand's table (vehicle by vehicle, in the final order).
-  void take_staged_stops(uint32_t k) {
-    StopTable& t = demand_.stops;
-    for (uint32_t i = staged_begin_[k]; i < staged_begin_[k + 1]; ++i) {
-      t.route_pos.push_back(staged_.route_pos[i]);
-      t.lane.push_back(staged_.lane[i]);
-      t.start_pos.push_back(staged_.start_pos[i]);
-      t.end_pos.push_back(staged_.end_pos[i]);
-      t.duration.push_back(staged_.duration[i]);
-      t.until.push_back(staged_.until[i]);
-    }
   }
 
   const SourceLoc& loc_of(const PendingVehicle& p) const {
@@ -283,7 +265,7 @@ class Builder {
       d.stops.vehicle_begin.resize(n + 1);
       for (size_t v = 0; v < n; ++v) {
         d.stops.vehicle_begin[v] = d.stops.size();
-        take_staged_stops(order[v]);
+        d.stops.append(staged_, staged_begin_[order[v]], staged_begin_[order[v] + 1]);
       }
       d.stops.vehicle_begin[n] = d.stops.size();
       staged_ = StopTable{};

@@ -5,11 +5,11 @@
 #include <gtest/gtest.h>
 
 #include <map>
-#include <regex>
 #include <string>
 #include <vector>
 
 #include "lpsim_cli.hpp"
+#include "sumo_comparison.hpp"
 #include "temp_dir.hpp"
 
 namespace lpsim {
@@ -41,14 +41,7 @@ void write_t_junction(const TempDir& dir) {
 
 // Mean trip duration of the flow `id` (`count` trips) in a tripinfo file.
 double mean_duration(const std::string& tripinfo, const std::string& id, int count = 60) {
-  const std::regex trip("<tripinfo id=\"" + id + R"re(\.[0-9]+"[^>]*duration="([0-9.]+)")re");
-  double sum = 0;
-  int n = 0;
-  for (auto it = std::sregex_iterator(tripinfo.begin(), tripinfo.end(), trip); it != std::sregex_iterator();
-       ++it, ++n)
-    sum += std::stod((*it)[1]);
-  EXPECT_EQ(n, count) << id;
-  return n > 0 ? sum / n : 0;
+  return test::flow_mean_duration(tripinfo, id, count);
 }
 
 // The side road's and the main road's mean trips with `model` (IDM or Krauss), run by the real sumo and by
@@ -59,19 +52,12 @@ void expect_side_road_as_in_sumo(const std::string& model) {
     GTEST_SKIP() << "SUMO not installed";
   TempDir dir("lpsim_impatience_" + model);
   ASSERT_NO_FATAL_FAILURE(write_t_junction(dir));
-  const std::vector<std::string> common{
-      "-n", "n.net.xml", "-r", "r.rou.xml", "--end", "3600", "--default.carfollowmodel", model};
-  std::vector<std::string> sumo_args = common;
-  sumo_args.insert(sumo_args.end(), {"--tripinfo-output", "s.xml", "--no-step-log"});
-  const CliResult sumo = test::run_program(dir.path(), {"sumo"}, sumo_args);
-  ASSERT_EQ(sumo.exit_code, 0) << sumo.err;
-  std::vector<std::string> lpsim_args{"run"};
-  lpsim_args.insert(lpsim_args.end(), common.begin(), common.end());
-  lpsim_args.insert(lpsim_args.end(), {"--tripinfo-output", "l.xml"});
-  const CliResult lpsim = test::run_lpsim(dir.path(), lpsim_args);
-  ASSERT_EQ(lpsim.exit_code, 0) << lpsim.err;
+  const test::SumoAndLpsim r = test::run_sumo_and_lpsim(
+      dir, {"-n", "n.net.xml", "-r", "r.rou.xml", "--end", "3600", "--default.carfollowmodel", model});
+  ASSERT_EQ(r.sumo.exit_code, 0) << r.sumo.err;
+  ASSERT_EQ(r.lpsim.exit_code, 0) << r.lpsim.err;
 
-  const std::string s = read_file(dir.path() / "s.xml"), l = read_file(dir.path() / "l.xml");
+  const std::string &s = r.sumo_tripinfo, &l = r.lpsim_tripinfo;
   const double sumo_side = mean_duration(s, "side"), lpsim_side = mean_duration(l, "side");
   EXPECT_NEAR(lpsim_side, sumo_side, 0.15 * sumo_side) << "SUMO " << sumo_side << " s, LPSim " << lpsim_side;
   const double sumo_main = mean_duration(s, "main", 750);

@@ -8,18 +8,17 @@
 // SUMO's (166 s against 74 s, Krauss) and straight ones 1.7 times.
 #include <gtest/gtest.h>
 
-#include <regex>
 #include <string>
 #include <vector>
 
 #include "lpsim_cli.hpp"
+#include "sumo_comparison.hpp"
 #include "temp_dir.hpp"
 
 namespace lpsim {
 namespace {
 
 using test::CliResult;
-using test::read_file;
 using test::TempDir;
 
 void write_turn_lanes(const TempDir& dir) {
@@ -52,42 +51,24 @@ void write_turn_lanes(const TempDir& dir) {
   ASSERT_EQ(net.exit_code, 0) << net.err;
 }
 
-// Mean trip duration of the flow `id` (`count` trips) in a tripinfo file.
-double mean_duration(const std::string& tripinfo, const std::string& id, int count) {
-  const std::regex trip("<tripinfo id=\"" + id + R"re(\.[0-9]+"[^>]*duration="([0-9.]+)")re");
-  double sum = 0;
-  int n = 0;
-  for (auto it = std::sregex_iterator(tripinfo.begin(), tripinfo.end(), trip); it != std::sregex_iterator();
-       ++it, ++n)
-    sum += std::stod((*it)[1]);
-  EXPECT_EQ(n, count) << id;
-  return n > 0 ? sum / n : 0;
-}
-
 TEST(LaneChangeQueueTest, ChangersIntoAStandingQueueLeaveTheTurnLaneFreeAsInSumo) {
   if (!test::have_sumo_tool("sumo") || !test::have_sumo_tool("netconvert"))
     GTEST_SKIP() << "SUMO not installed";
   TempDir dir("lpsim_lane_change_queue");
   ASSERT_NO_FATAL_FAILURE(write_turn_lanes(dir));
-  const std::vector<std::string> common{
-      "-n", "n.net.xml", "-r", "r.rou.xml", "--end", "3600", "--default.carfollowmodel", "Krauss"};
-  std::vector<std::string> sumo_args = common;
-  sumo_args.insert(sumo_args.end(), {"--tripinfo-output", "s.xml", "--no-step-log"});
-  const CliResult sumo = test::run_program(dir.path(), {"sumo"}, sumo_args);
-  ASSERT_EQ(sumo.exit_code, 0) << sumo.err;
-  std::vector<std::string> lpsim_args{"run"};
-  lpsim_args.insert(lpsim_args.end(), common.begin(), common.end());
-  lpsim_args.insert(lpsim_args.end(), {"--tripinfo-output", "l.xml"});
-  const CliResult lpsim = test::run_lpsim(dir.path(), lpsim_args);
-  ASSERT_EQ(lpsim.exit_code, 0) << lpsim.err;
+  const test::SumoAndLpsim r = test::run_sumo_and_lpsim(
+      dir, {"-n", "n.net.xml", "-r", "r.rou.xml", "--end", "3600", "--default.carfollowmodel", "Krauss"});
+  ASSERT_EQ(r.sumo.exit_code, 0) << r.sumo.err;
+  ASSERT_EQ(r.lpsim.exit_code, 0) << r.lpsim.err;
 
-  const std::string s = read_file(dir.path() / "s.xml"), l = read_file(dir.path() / "l.xml");
+  const std::string &s = r.sumo_tripinfo, &l = r.lpsim_tripinfo;
   // SUMO 1.15: right 74.1 s, straight 134.0 s. The bounds leave room for the queue's own dynamics, which
   // differ (LPSim's straight vehicles still change later than SUMO's), but not for the blocked turn lane.
-  const double sumo_right = mean_duration(s, "right", 150), lpsim_right = mean_duration(l, "right", 150);
+  const double sumo_right = test::flow_mean_duration(s, "right", 150),
+               lpsim_right = test::flow_mean_duration(l, "right", 150);
   EXPECT_LT(lpsim_right, 1.5 * sumo_right) << "SUMO " << sumo_right << " s, LPSim " << lpsim_right;
-  const double sumo_straight = mean_duration(s, "straight", 450);
-  const double lpsim_straight = mean_duration(l, "straight", 450);
+  const double sumo_straight = test::flow_mean_duration(s, "straight", 450);
+  const double lpsim_straight = test::flow_mean_duration(l, "straight", 450);
   EXPECT_LT(lpsim_straight, 1.4 * sumo_straight)
       << "SUMO " << sumo_straight << " s, LPSim " << lpsim_straight;
 }

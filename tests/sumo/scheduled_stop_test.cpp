@@ -13,13 +13,13 @@
 #include <vector>
 
 #include "lpsim_cli.hpp"
+#include "sumo_comparison.hpp"
 #include "temp_dir.hpp"
 
 namespace lpsim {
 namespace {
 
 using test::CliResult;
-using test::read_file;
 using test::TempDir;
 
 void write_scenario(const TempDir& dir) {
@@ -74,20 +74,14 @@ TEST(ScheduledStopTest, BusesStopAsInSumo) {
     GTEST_SKIP() << "SUMO not installed";
   TempDir dir("lpsim_scheduled_stop");
   ASSERT_NO_FATAL_FAILURE(write_scenario(dir));
-  const std::vector<std::string> common{"-n", "n.net.xml", "-r", "r.rou.xml", "-a", "s.add.xml"};
-  std::vector<std::string> sumo_args = common;
-  sumo_args.insert(sumo_args.end(), {"--tripinfo-output", "s.xml", "--no-step-log"});
-  const CliResult sumo = test::run_program(dir.path(), {"sumo"}, sumo_args);
-  ASSERT_EQ(sumo.exit_code, 0) << sumo.err;
-  std::vector<std::string> lpsim_args{"run"};
-  lpsim_args.insert(lpsim_args.end(), common.begin(), common.end());
-  lpsim_args.insert(lpsim_args.end(), {"--tripinfo-output", "l.xml"});
-  const CliResult lpsim = test::run_lpsim(dir.path(), lpsim_args);
-  ASSERT_EQ(lpsim.exit_code, 0) << lpsim.err;
-  EXPECT_EQ(lpsim.err.find("stop"), std::string::npos) << "no stop is skipped: " << lpsim.err;
+  const test::SumoAndLpsim r =
+      test::run_sumo_and_lpsim(dir, {"-n", "n.net.xml", "-r", "r.rou.xml", "-a", "s.add.xml"});
+  ASSERT_EQ(r.sumo.exit_code, 0) << r.sumo.err;
+  ASSERT_EQ(r.lpsim.exit_code, 0) << r.lpsim.err;
+  EXPECT_EQ(r.lpsim.err.find("stop"), std::string::npos) << "no stop is skipped: " << r.lpsim.err;
 
-  const auto s = trips_of(read_file(dir.path() / "s.xml"));
-  const auto l = trips_of(read_file(dir.path() / "l.xml"));
+  const auto s = trips_of(r.sumo_tripinfo);
+  const auto l = trips_of(r.lpsim_tripinfo);
   for (const char* id : {"bus0", "bus1", "trip", "named", "f.0", "f.1", "f.2"}) {
     ASSERT_TRUE(s.count(id) && l.count(id)) << id;
     const Trip& a = s.at(id);

@@ -6,18 +6,17 @@
 // right-turners' mean trip is SUMO's within 25 % and nobody teleports.
 #include <gtest/gtest.h>
 
-#include <regex>
 #include <string>
 #include <vector>
 
 #include "lpsim_cli.hpp"
+#include "sumo_comparison.hpp"
 #include "temp_dir.hpp"
 
 namespace lpsim {
 namespace {
 
 using test::CliResult;
-using test::read_file;
 using test::TempDir;
 
 void write_scenario(const TempDir& dir) {
@@ -44,37 +43,22 @@ void write_scenario(const TempDir& dir) {
   ASSERT_EQ(net.exit_code, 0) << net.err;
 }
 
-// Mean duration and count of the trips of flow `id`.
-std::pair<double, int> trips_of(const std::string& tripinfo, const std::string& id) {
-  const std::regex trip("<tripinfo id=\"" + id + R"re(\.[0-9]+"[^>]* duration="([0-9.]+)")re");
-  double sum = 0;
-  int n = 0;
-  for (auto it = std::sregex_iterator(tripinfo.begin(), tripinfo.end(), trip); it != std::sregex_iterator();
-       ++it, ++n)
-    sum += std::stod((*it)[1]);
-  return {n > 0 ? sum / n : 0, n};
-}
-
 TEST(ShortEdgeLaneChangeTest, ChangesOnAnEdgeShorterThanTheVehicleAsInSumo) {
   if (!test::have_sumo_tool("sumo") || !test::have_sumo_tool("netconvert"))
     GTEST_SKIP() << "SUMO not installed";
   TempDir dir("lpsim_short_edge_lc");
   ASSERT_NO_FATAL_FAILURE(write_scenario(dir));
-  const CliResult sumo = test::run_program(
-      dir.path(), {"sumo"},
-      {"-n", "n.net.xml", "-r", "r.rou.xml", "--tripinfo-output", "s.xml", "--no-step-log"});
-  ASSERT_EQ(sumo.exit_code, 0) << sumo.err;
-  const CliResult lpsim = test::run_lpsim(
-      dir.path(), {"run", "-n", "n.net.xml", "-r", "r.rou.xml", "--tripinfo-output", "l.xml"});
-  ASSERT_EQ(lpsim.exit_code, 0) << lpsim.err;
-  EXPECT_EQ(lpsim.err.find("Teleporting"), std::string::npos) << lpsim.err;
+  const test::SumoAndLpsim r = test::run_sumo_and_lpsim(dir, {"-n", "n.net.xml", "-r", "r.rou.xml"});
+  ASSERT_EQ(r.sumo.exit_code, 0) << r.sumo.err;
+  ASSERT_EQ(r.lpsim.exit_code, 0) << r.lpsim.err;
+  EXPECT_EQ(r.lpsim.err.find("Teleporting"), std::string::npos) << r.lpsim.err;
 
-  const std::string s = read_file(dir.path() / "s.xml"), l = read_file(dir.path() / "l.xml");
   for (const char* flow : {"r", "s"}) {
-    const auto [sumo_mean, sumo_n] = trips_of(s, flow);
-    const auto [lpsim_mean, lpsim_n] = trips_of(l, flow);
-    EXPECT_EQ(lpsim_n, sumo_n) << flow;
-    EXPECT_NEAR(lpsim_mean, sumo_mean, 0.25 * sumo_mean) << flow << ": SUMO " << sumo_mean << " s";
+    const test::FlowTrips sumo = test::flow_trips(r.sumo_tripinfo, flow);
+    const test::FlowTrips lpsim = test::flow_trips(r.lpsim_tripinfo, flow);
+    EXPECT_EQ(lpsim.count, sumo.count) << flow;
+    EXPECT_NEAR(lpsim.mean_duration, sumo.mean_duration, 0.25 * sumo.mean_duration)
+        << flow << ": SUMO " << sumo.mean_duration << " s";
   }
 }
 

@@ -1,0 +1,59 @@
+#pragma once
+// The real sumo and lpsim run on the same files, and the flows' trips read from their tripinfo outputs: what
+// the tests that compare LPSim with SUMO (tests/sumo/) share.
+#include <gtest/gtest.h>
+
+#include <regex>
+#include <string>
+#include <vector>
+
+#include "lpsim_cli.hpp"
+#include "temp_dir.hpp"
+
+namespace lpsim::test {
+
+struct SumoAndLpsim {
+  CliResult sumo, lpsim;
+  std::string sumo_tripinfo, lpsim_tripinfo;  // their tripinfo outputs (s.xml, l.xml in the folder)
+};
+
+/// Runs `sumo` and `lpsim run` in `dir` with the same `args`, each writing its tripinfo output.
+inline SumoAndLpsim run_sumo_and_lpsim(const TempDir& dir, const std::vector<std::string>& args) {
+  SumoAndLpsim r;
+  std::vector<std::string> sumo_args = args;
+  sumo_args.insert(sumo_args.end(), {"--tripinfo-output", "s.xml", "--no-step-log"});
+  r.sumo = run_program(dir.path(), {"sumo"}, sumo_args);
+  std::vector<std::string> lpsim_args{"run"};
+  lpsim_args.insert(lpsim_args.end(), args.begin(), args.end());
+  lpsim_args.insert(lpsim_args.end(), {"--tripinfo-output", "l.xml"});
+  r.lpsim = run_lpsim(dir.path(), lpsim_args);
+  r.sumo_tripinfo = read_file(dir.path() / "s.xml");
+  r.lpsim_tripinfo = read_file(dir.path() / "l.xml");
+  return r;
+}
+
+struct FlowTrips {
+  double mean_duration = 0;  // s; 0 without trips
+  int count = 0;
+};
+
+/// The trips of flow `id` (vehicles "<id>.<n>") in a tripinfo output.
+inline FlowTrips flow_trips(const std::string& tripinfo, const std::string& id) {
+  const std::regex trip("<tripinfo id=\"" + id + R"re(\.[0-9]+"[^>]* duration="([0-9.]+)")re");
+  double sum = 0;
+  FlowTrips f;
+  for (auto it = std::sregex_iterator(tripinfo.begin(), tripinfo.end(), trip); it != std::sregex_iterator();
+       ++it, ++f.count)
+    sum += std::stod((*it)[1]);
+  if (f.count > 0) f.mean_duration = sum / f.count;
+  return f;
+}
+
+/// The mean trip duration of flow `id`, expecting `count` trips of it.
+inline double flow_mean_duration(const std::string& tripinfo, const std::string& id, int count) {
+  const FlowTrips f = flow_trips(tripinfo, id);
+  EXPECT_EQ(f.count, count) << id;
+  return f.mean_duration;
+}
+
+}  // namespace lpsim::test
