@@ -700,8 +700,8 @@ LPSIM_HD LaneChangeResult try_lane_change(const StepContext& s, VehicleRef me, i
   r.tail_behind = rear <= 0.0f;
   if (r.tail_behind && !(to_cross > 0 && net.lane_length[lane] < length)) return r;
   r.near_start = rear < upstream_reach;
-  if (pos + cand_here * dt > net.lane_length[target] - kClampEps)
-    return r;  // never cross the end while changing
+  // Never cross the end while changing; one standing at the very end (inserted there) may change.
+  if (cand_here > 0.0f && pos + cand_here * dt > net.lane_length[target] - kClampEps) return r;
   const int32_t cells = static_cast<int32_t>(lane_cells(net, target));
   const int32_t rear_cell = r.tail_behind ? 0 : static_cast<int32_t>(cell_of(net, target, rear));
   const int32_t front_cell = static_cast<int32_t>(cell_of(net, target, pos));
@@ -1042,9 +1042,10 @@ LPSIM_HD bool waits_ahead(const StepContext& s, const PlanInput& in, RoomPath& p
 /// vehicle reaches `end_dist` ahead with route position `rp`: a link with foes is not entered when the room
 /// after it is less than the vehicle's length and gap, the room being what the lanes after the link hold
 /// (the internal lanes' vehicles count against it, each normal lane gives what it holds before a standing
-/// vehicle) up to the first lane whose last vehicle stands or will have to wait, or the first link that
-/// does not let the vehicle through. When nothing stops within the look-ahead (kRoomLookAheadLengths
-/// vehicle lengths of normal lane), the vehicle enters and follows whoever is ahead.
+/// vehicle) up to the first lane whose last vehicle stands or will have to wait, or the first link without
+/// priority that does not let the vehicle through. When nothing stops within the look-ahead (a signal the
+/// vehicle will stop at ends it, or kRoomLookAheadLengths vehicle lengths of normal lane), the vehicle
+/// enters and follows whoever is ahead.
 LPSIM_HD bool junction_exit_blocked(const StepContext& s, const PlanInput& in, uint32_t c, uint32_t rp,
                                     float end_dist) {
   const NetView& net = s.net;
@@ -1076,6 +1077,11 @@ LPSIM_HD bool junction_exit_blocked(const StepContext& s, const PlanInput& in, u
     dist += net.lane_length[lane];
     if (seen_normal > lp_fmaxf(kRoomLookAheadLengths * in.length, in.length + seen_internal)) return false;
     if (p.exit[k] < 0) return false;
+    // SUMO's look-ahead ends at a signal the vehicle will stop at; unlike a link it may not pass yet, that
+    // signal does not end the room (MSVehicle::checkRewindLinkLanes never asks whether its last link opens).
+    if (signal_must_stop(link_state_of(s, static_cast<uint32_t>(p.exit[k])), dist, in.speed, in.p.decel,
+                         in.dt))
+      return false;
     if (!link_lets_through(s, static_cast<uint32_t>(p.exit[k]), dist, in.speed, in.v0, in.p, in.length,
                            in.impatience))
       return space < need;

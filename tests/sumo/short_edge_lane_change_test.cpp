@@ -62,5 +62,28 @@ TEST(ShortEdgeLaneChangeTest, ChangesOnAnEdgeShorterThanTheVehicleAsInSumo) {
   }
 }
 
+// A vehicle inserted on the short edge stands at its very end (departPos base = its length, beyond the lane)
+// on the first lane and must change to the other: SUMO changes it the next step; LPSim let no vehicle change
+// at the lane's end, so it stood there until teleported.
+TEST(ShortEdgeLaneChangeTest, ChangesWhenInsertedAtTheEndOfAnEdgeShorterThanTheVehicle) {
+  if (!test::have_sumo_tool("sumo") || !test::have_sumo_tool("netconvert"))
+    GTEST_SKIP() << "SUMO not installed";
+  TempDir dir("lpsim_short_edge_depart_lc");
+  ASSERT_NO_FATAL_FAILURE(write_scenario(dir));
+  dir.write("d.rou.xml",
+            "<routes><flow id=\"d\" begin=\"0\" end=\"600\" vehsPerHour=\"60\"><route edges=\"short "
+            "straight\"/></flow></routes>\n");
+  const test::SumoAndLpsim r = test::run_sumo_and_lpsim(dir, {"-n", "n.net.xml", "-r", "d.rou.xml"});
+  ASSERT_EQ(r.sumo.exit_code, 0) << r.sumo.err;
+  ASSERT_EQ(r.lpsim.exit_code, 0) << r.lpsim.err;
+  EXPECT_EQ(r.lpsim.err.find("Teleporting"), std::string::npos) << r.lpsim.err;
+  const test::FlowTrips sumo = test::flow_trips(r.sumo_tripinfo, "d");
+  const test::FlowTrips lpsim = test::flow_trips(r.lpsim_tripinfo, "d");
+  EXPECT_EQ(sumo.count, 10);
+  EXPECT_EQ(lpsim.count, sumo.count);
+  EXPECT_NEAR(lpsim.mean_duration, sumo.mean_duration, 0.25 * sumo.mean_duration)
+      << "SUMO " << sumo.mean_duration << " s";
+}
+
 }  // namespace
 }  // namespace lpsim
