@@ -25,9 +25,18 @@ simulate and write SUMO outputs
   lpsim run -c scenario.sumocfg [--end T] [--fcd-output f.xml] [--tripinfo-output f.xml]
 )";
 
+constexpr const char* kPartitionUsage = R"(usage: lpsim partition [options] --parts K -o parts.txt
+split the network into K parts for a partitioned run: a part per junction, each road in the part of the
+junction it leads to; weights from the demand (vehicle-steps per junction's roads, vehicles per road).
+Prints a table per part; --map draws the parts.
+  lpsim partition -c scenario.sumocfg --parts 4 [--partition-method metis|leiden|random] -o parts.txt
+  lpsim partition -c scenario.sumocfg --partition-file parts.txt [--map parts.png]   (summarize a file)
+)";
+
 constexpr const char* kTrailer = R"(
 Options take SUMO's names and may also come from the .sumocfg (except -c, -o, --device,
---max-lane-map-gb, --progress-interval and --jam-report*, which are LPSim's own). Other SUMO options:
+--max-lane-map-gb, --progress-interval, --jam-report*, --parts, --partition-* and --map, which are
+LPSim's own). Other SUMO options:
 those that cannot change the results (verbose, log, gui-settings-file, ...) are ignored with a warning;
 those that could (scale, mesosim, ...) are refused unless set to SUMO's default. No output may be the
 same file as an input or another output.
@@ -47,6 +56,9 @@ std::string command_help(const std::string& command) {
   } else if (command == "run") {
     usage = kRunUsage;
     c = CliCommand::Run;
+  } else if (command == "partition") {
+    usage = kPartitionUsage;
+    c = CliCommand::Partition;
   } else {
     return "";
   }

@@ -30,6 +30,7 @@ std::vector<NamedPath> inputs_of(const ConfigSpec& c) {
   add("--lpsim-nodes", c.lpsim_nodes_csv);
   add("--lpsim-edges", c.lpsim_edges_csv);
   add("--lpsim-od", c.lpsim_od_csv);
+  add("--partition-file", c.partition_file);
   return in;
 }
 
@@ -39,7 +40,8 @@ std::vector<NamedPath> outputs_of(const Scenario& sc, CliCommand command) {
     if (!path.empty()) out.push_back({what, path, {}});
   };
   const ConfigSpec& c = sc.config;
-  if (command == CliCommand::Convert) add("-o (output)", c.output_file);
+  if (command == CliCommand::Convert || command == CliCommand::Partition) add("-o (output)", c.output_file);
+  if (command == CliCommand::Partition) add("--map", c.partition_map);
   if (command != CliCommand::Run) return out;
   add("--fcd-output", c.outputs.fcd);
   add("--tripinfo-output", c.outputs.tripinfo);

@@ -22,6 +22,8 @@ commands:
   run      simulate and write SUMO outputs
            lpsim run -c scenario.sumocfg [--threads N] [--end T] [--fcd-output f.xml] [--tripinfo-output f.xml]
            [--edgedata-output f.xml] [--summary-output f.xml] [--device cpu|auto|gpu]
+  partition  split the network into K parts (METIS, Leiden + k-means, random) for a partitioned run
+           lpsim partition -c scenario.sumocfg --parts 4 -o parts.txt [--map parts.png]
   version  print the version
 
 options follow SUMO's names; `lpsim <command> --help` lists those a command takes.
@@ -57,6 +59,7 @@ int main(int argc, char** argv) {
     if (command == "info") return lpsim::command_info(args);
     if (command == "convert") return lpsim::command_convert(args);
     if (command == "run") return lpsim::command_run(args);
+    if (command == "partition") return lpsim::command_partition(args);
     if (command == "version" || command == "--version") {
       std::printf("lpsim %s\n", LPSIM_VERSION);
       return 0;

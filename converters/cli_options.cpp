@@ -13,7 +13,7 @@ namespace lpsim {
 
 namespace {
 
-enum class Kind { Path, PathList, Time, Bool, Integer, Number, Device, Name };
+enum class Kind { Path, PathList, Time, Bool, Integer, Number, Device, Name, Method };
 
 // A checked value, handed to the option's store function.
 struct Value {
@@ -31,13 +31,14 @@ struct Value {
 enum class Check { None, NonNegative, Positive, StepLength, ThreadCount };
 constexpr double kMinStepLength = 0.001, kMaxStepLength = 86400;
 constexpr long long kMaxThreads = 1024;
+constexpr long long kMaxParts = 1000000;
 
 // Which commands use an option: a bit per CliCommand.
-constexpr unsigned kInfo = 1, kConvert = 2, kRun = 4;
+constexpr unsigned kInfo = 1, kConvert = 2, kRun = 4, kPartition = 8;
 // Loading uses these (the demand is built with begin, end, step, seed, routing threads and penalties), so
 // every command takes them. Outputs, teleports and the device are `run`'s, -o is `convert`'s: given to
 // another command on its command line, they are refused rather than ignored.
-constexpr unsigned kLoad = kInfo | kConvert | kRun;
+constexpr unsigned kLoad = kInfo | kConvert | kRun | kPartition;
 
 unsigned command_bit(CliCommand c) {
   switch (c) {
@@ -47,6 +48,8 @@ unsigned command_bit(CliCommand c) {
       return kConvert;
     case CliCommand::Run:
       return kRun;
+    case CliCommand::Partition:
+      return kPartition;
   }
   return 0;
 }
@@ -57,7 +60,7 @@ struct OptionDef {
   Kind kind;
   Check check;
   bool command_line_only;
-  unsigned commands;      // kInfo | kConvert | kRun: the commands that use it
+  unsigned commands;      // kInfo | kConvert | kRun | kPartition: the commands that use it
   std::string_view help;  // one line for --help
   void (*store)(ConfigSpec&, Value&&);
 };
@@ -100,7 +103,11 @@ const OptionDef kOptions[] = {
   {"lpsim-nodes", "", 0, Kind::Path, Check::None, false, kLoad, "LPSim CSV nodes (with --lpsim-edges, instead of a SUMO network)", [](ConfigSpec& c, Value&& v) { c.lpsim_nodes_csv = std::move(v.text); }},
   {"lpsim-edges", "", 0, Kind::Path, Check::None, false, kLoad, "LPSim CSV edges (with --lpsim-nodes)", [](ConfigSpec& c, Value&& v) { c.lpsim_edges_csv = std::move(v.text); }},
   {"lpsim-od", "", 0, Kind::Path, Check::None, false, kLoad, "LPSim CSV origin-destination demand", [](ConfigSpec& c, Value&& v) { c.lpsim_od_csv = std::move(v.text); }},
-  {"output", "", 'o', Kind::Path, Check::None, true, kConvert, "the snapshot to write (.lpsim)", [](ConfigSpec& c, Value&& v) { c.output_file = std::move(v.text); }},
+  {"output", "", 'o', Kind::Path, Check::None, true, kConvert | kPartition, "the file to write: the snapshot (convert, .lpsim) or the partition file (partition)", [](ConfigSpec& c, Value&& v) { c.output_file = std::move(v.text); }},
+  {"parts", "", 0, Kind::Integer, Check::Positive, true, kPartition, "the number of parts K", [](ConfigSpec& c, Value&& v) { c.parts = static_cast<int>(v.integer); }},
+  {"partition-method", "", 0, Kind::Method, Check::None, true, kPartition, "metis (default: balanced k-way), leiden (communities merged into K parts by k-means) or random", [](ConfigSpec& c, Value&& v) { c.partition_method = std::move(v.text); }},
+  {"partition-file", "", 0, Kind::Path, Check::None, true, kPartition, "a partition file to summarize (and map) instead of computing one", [](ConfigSpec& c, Value&& v) { c.partition_file = std::move(v.text); }},
+  {"map", "", 0, Kind::Path, Check::None, true, kPartition, "a PNG map of the network coloured by part", [](ConfigSpec& c, Value&& v) { c.partition_map = std::move(v.text); }},
 };
 // clang-format on
 
@@ -175,6 +182,8 @@ Value convert(const OptionDef& def, std::string_view name, const std::string& va
       if (!n) bad_value(where, name, value, "expected an integer");
       if (def.check == Check::ThreadCount && (*n < 0 || *n > kMaxThreads))
         bad_value(where, name, value, "expected a thread count from 0 to 1024");
+      if (def.check == Check::Positive && !(*n > 0 && *n <= kMaxParts))
+        bad_value(where, name, value, "expected a whole number from 1 to 1000000");
       v.integer = *n;
       break;
     }
@@ -188,6 +197,11 @@ Value convert(const OptionDef& def, std::string_view name, const std::string& va
     case Kind::Name:
       if (value.empty() || value.find_first_of(" \t\r\n,") != std::string::npos)
         bad_value(where, name, value, "expected a model name");
+      v.text = value;
+      break;
+    case Kind::Method:
+      if (value != "metis" && value != "leiden" && value != "random")
+        bad_value(where, name, value, "expected metis, leiden or random");
       v.text = value;
       break;
     case Kind::Device:
@@ -284,6 +298,9 @@ std::string describe_options(CliCommand command) {
         break;
       case Kind::Name:
         left += " MODEL";
+        break;
+      case Kind::Method:
+        left += " METHOD";
         break;
     }
     if (!d.synonym.empty()) left += " (or --" + std::string(d.synonym) + ")";

@@ -8,6 +8,7 @@ packages=(
   libxml2-dev libxml2-utils zlib1g-dev
   libgtest-dev googletest
   sumo sumo-tools python3
+  libmetis-dev libigraph-dev libcairo2-dev
 )
 
 missing=()

@@ -45,6 +45,11 @@ struct ConfigSpec {
   ComputeDevice device = ComputeDevice::Cpu;
   OutputSpec outputs;
   std::string output_file;  // -o/--output on the command line: LPSim's own result file
+  // `lpsim partition`: K, the method (metis, leiden, random), a partition file to summarize instead of
+  // computing one, and the PNG map to draw.
+  int parts = 0;
+  std::string partition_method = "metis";
+  std::string partition_file, partition_map;
   // SUMO options given that cannot change LPSim's results (verbose, log, gui-settings-file, ...), in the
   // order first given, for the one warning that names them.
   std::vector<std::string> inert_options;

@@ -1,0 +1,62 @@
+#include "partition/junction_graph.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+namespace lpsim {
+
+int64_t free_flow_steps(const Network& net, uint32_t e, double dt) {
+  const double speed = std::max<double>(net.edge_speed[e], 0.1);
+  return std::max<int64_t>(1, static_cast<int64_t>(std::ceil(net.edge_length[e] / speed / dt)));
+}
+
+JunctionGraph build_junction_graph(const Network& net, const Demand& demand, double dt) {
+  const uint32_t nj = net.num_junctions(), ne = net.num_edges();
+  // Vehicles per normal edge, from every loaded route.
+  std::vector<int64_t> uses(ne, 0);
+  for (uint32_t v = 0; v < demand.size(); ++v)
+    for (uint32_t k = 0; k < demand.route_length[v]; ++k)
+      ++uses[demand.route_edges[demand.route_begin[v] + k]];
+
+  JunctionGraph g;
+  g.vertex_weight.assign(nj, 1);
+  g.x.assign(net.junction_x.begin(), net.junction_x.end());
+  g.y.assign(net.junction_y.begin(), net.junction_y.end());
+  std::vector<std::vector<std::pair<int32_t, int64_t>>> links(nj);
+  for (uint32_t e = 0; e < ne; ++e) {
+    if (net.edge_is_internal[e]) continue;
+    const int32_t from = net.edge_from_junction[e], to = net.edge_to_junction[e];
+    if (to >= 0) g.vertex_weight[static_cast<uint32_t>(to)] += uses[e] * free_flow_steps(net, e, dt);
+    if (from < 0 || to < 0 || from == to) continue;
+    links[static_cast<uint32_t>(from)].emplace_back(to, uses[e]);
+    links[static_cast<uint32_t>(to)].emplace_back(from, uses[e]);
+  }
+  g.adj_begin.assign(nj + 1, 0);
+  for (uint32_t j = 0; j < nj; ++j) {
+    auto& l = links[j];
+    std::sort(l.begin(), l.end());
+    for (size_t i = 0; i < l.size(); ++i) {
+      if (i > 0 && l[i].first == l[i - 1].first) {
+        g.adj_weight.back() += l[i].second;  // the other direction, or a parallel road
+        continue;
+      }
+      g.adj.push_back(l[i].first);
+      g.adj_weight.push_back(1 + l[i].second);
+    }
+    g.adj_begin[j + 1] = static_cast<int32_t>(g.adj.size());
+  }
+  return g;
+}
+
+std::vector<int32_t> edge_parts_from_junctions(const Network& net,
+                                               const std::vector<int32_t>& junction_part) {
+  std::vector<int32_t> parts(net.num_edges(), kNone);
+  for (uint32_t e = 0; e < net.num_edges(); ++e) {
+    const int32_t to = net.edge_to_junction[e];
+    if (!net.edge_is_internal[e] && to >= 0) parts[e] = junction_part[static_cast<uint32_t>(to)];
+  }
+  return parts;
+}
+
+}  // namespace lpsim

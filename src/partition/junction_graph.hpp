@@ -1,0 +1,39 @@
+#pragma once
+// The graph a network is partitioned on, as the original LPSim did: a vertex per junction, an undirected
+// edge per pair of junctions a road joins (both directions together), weighted by the demand. A road belongs
+// to the part of the junction it leads to, so every approach to a junction, and the junction's signals and
+// right of way, stay in one part; a vehicle changes part only where it leaves a junction onto a road of
+// another part, so the vehicles using a road are what cutting it costs.
+#include <stdint.h>
+
+#include <vector>
+
+#include "demand/demand.hpp"
+#include "net/network.hpp"
+
+namespace lpsim {
+
+struct JunctionGraph {
+  // CSR adjacency (each undirected edge listed from both ends, neighbours ascending, no self-loops).
+  std::vector<int32_t> adj_begin;   // size junctions + 1
+  std::vector<int32_t> adj;         // neighbour junctions
+  std::vector<int64_t> adj_weight;  // 1 + vehicles whose route uses a road between the two junctions
+  // Per junction: expected vehicle-steps on the roads leading to it (each route's free-flow traversal of
+  // each road, in whole steps, at least one), plus one so that empty junctions weigh something.
+  std::vector<int64_t> vertex_weight;
+  std::vector<float> x, y;  // junction positions (net coordinates)
+
+  uint32_t num_vertices() const { return static_cast<uint32_t>(vertex_weight.size()); }
+};
+
+/// Builds the junction graph of `net` weighted by the routes of `demand` (dt: the step length, s).
+JunctionGraph build_junction_graph(const Network& net, const Demand& demand, double dt);
+
+/// Whole steps a vehicle takes to cross normal edge e at its free-flow speed (at least one).
+int64_t free_flow_steps(const Network& net, uint32_t e, double dt);
+
+/// The part each normal edge belongs to (that of the junction it leads to); kNone for internal edges and
+/// edges without a junction.
+std::vector<int32_t> edge_parts_from_junctions(const Network& net, const std::vector<int32_t>& junction_part);
+
+}  // namespace lpsim

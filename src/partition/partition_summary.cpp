@@ -1,0 +1,78 @@
+#include "partition/partition_summary.hpp"
+
+#include <algorithm>
+#include <set>
+
+namespace lpsim {
+
+std::vector<int32_t> lane_parts(const Network& net, const std::vector<int32_t>& edge_part) {
+  std::vector<int32_t> part(net.num_lanes(), kNone);
+  for (uint32_t l = 0; l < net.num_lanes(); ++l) part[l] = edge_part[net.lane_edge[l]];
+  // Internal lanes follow the lane that leads into them; chains through internal junctions take a few
+  // passes (each pass reaches one internal lane further).
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (uint32_t l = 0; l < net.num_lanes(); ++l) {
+      if (part[l] == kNone) continue;
+      for (uint32_t c = net.lane_conn_begin[l]; c < net.lane_conn_begin[l + 1]; ++c) {
+        const int32_t via = net.conn_via_lane[c];
+        const uint32_t to = net.conn_to_lane[c];
+        const int32_t next =
+            via >= 0 ? via : (net.edge_is_internal[net.lane_edge[to]] ? static_cast<int32_t>(to) : kNone);
+        if (next >= 0 && part[static_cast<uint32_t>(next)] == kNone) {
+          part[static_cast<uint32_t>(next)] = part[l];
+          changed = true;
+        }
+      }
+    }
+  }
+  return part;
+}
+
+PartitionSummary summarize_partition(const Network& net, const Demand& demand,
+                                     const std::vector<int32_t>& junction_part, int32_t k, double dt) {
+  PartitionSummary s;
+  s.parts.resize(static_cast<size_t>(k));
+  for (int32_t p : junction_part) ++s.parts[static_cast<size_t>(p)].junctions;
+  std::vector<int64_t> uses(net.num_edges(), 0);
+  for (uint32_t v = 0; v < demand.size(); ++v)
+    for (uint32_t i = 0; i < demand.route_length[v]; ++i)
+      ++uses[demand.route_edges[demand.route_begin[v] + i]];
+  const std::vector<int32_t> edge_part = edge_parts_from_junctions(net, junction_part);
+  const std::vector<int32_t> lane_part = lane_parts(net, edge_part);
+  for (uint32_t l = 0; l < net.num_lanes(); ++l) {
+    if (lane_part[l] == kNone) continue;
+    PartSummary& ps = s.parts[static_cast<size_t>(lane_part[l])];
+    ++ps.lanes;
+    ps.lane_km += net.lane_length[l] / 1000.0;
+  }
+  std::vector<std::set<int32_t>> neighbours(static_cast<size_t>(k));
+  for (uint32_t e = 0; e < net.num_edges(); ++e) {
+    if (edge_part[e] == kNone) continue;
+    PartSummary& ps = s.parts[static_cast<size_t>(edge_part[e])];
+    ps.vehicle_steps += uses[e] * free_flow_steps(net, e, dt);
+    const int32_t from = net.edge_from_junction[e];
+    if (from < 0 || junction_part[static_cast<uint32_t>(from)] == edge_part[e]) continue;
+    const int32_t other = junction_part[static_cast<uint32_t>(from)];
+    ps.cut_lanes_in += net.edge_num_lanes[e];
+    ps.vehicles_in += uses[e];
+    s.parts[static_cast<size_t>(other)].cut_lanes_out += net.edge_num_lanes[e];
+    neighbours[static_cast<size_t>(edge_part[e])].insert(other);
+    neighbours[static_cast<size_t>(other)].insert(edge_part[e]);
+    ++s.cut_roads;
+    s.cut_lanes += net.edge_num_lanes[e];
+    s.migrations += uses[e];
+  }
+  int64_t total = 0, largest = 0;
+  for (int32_t p = 0; p < k; ++p) {
+    PartSummary& ps = s.parts[static_cast<size_t>(p)];
+    ps.neighbours.assign(neighbours[static_cast<size_t>(p)].begin(),
+                         neighbours[static_cast<size_t>(p)].end());
+    total += ps.vehicle_steps;
+    largest = std::max(largest, ps.vehicle_steps);
+  }
+  s.imbalance = total > 0 ? static_cast<double>(largest) * k / static_cast<double>(total) : 1.0;
+  return s;
+}
+
+}  // namespace lpsim

@@ -1,0 +1,41 @@
+#pragma once
+// What a partition of a network gives each part: its share of the road and of the expected work, and what it
+// must exchange with the others (the lanes its vehicles enter from other parts, its neighbours).
+#include <stdint.h>
+
+#include <vector>
+
+#include "demand/demand.hpp"
+#include "net/network.hpp"
+#include "partition/junction_graph.hpp"
+
+namespace lpsim {
+
+struct PartSummary {
+  uint32_t junctions = 0;
+  uint32_t lanes = 0;  // lanes of its roads and of its junctions (internal lanes)
+  double lane_km = 0;
+  int64_t vehicle_steps = 0;   // expected: each route's free-flow traversal of its roads, in steps
+  uint32_t cut_lanes_in = 0;   // its lanes whose road starts at a junction of another part
+  uint32_t cut_lanes_out = 0;  // lanes of other parts whose road starts at one of its junctions
+  int64_t vehicles_in = 0;     // expected vehicles entering it from another part (route uses of cut roads)
+  std::vector<int32_t> neighbours;  // parts it shares a road with, ascending
+};
+
+struct PartitionSummary {
+  std::vector<PartSummary> parts;
+  int64_t cut_roads = 0;   // normal edges whose two junctions lie in different parts
+  int64_t cut_lanes = 0;   // their lanes
+  int64_t migrations = 0;  // expected vehicles crossing a cut (route uses of cut roads)
+  double imbalance = 1;    // largest part's vehicle-steps over the mean part's (1: balanced)
+};
+
+/// The summary of junction_part (a part per junction of net) under the demand's routes.
+PartitionSummary summarize_partition(const Network& net, const Demand& demand,
+                                     const std::vector<int32_t>& junction_part, int32_t k, double dt);
+
+/// The part of every lane, normal and internal: a road's lanes are its to-junction's, a junction's internal
+/// lanes are that junction's (the part of the road that leads into them). kNone where no part is known.
+std::vector<int32_t> lane_parts(const Network& net, const std::vector<int32_t>& edge_part);
+
+}  // namespace lpsim

@@ -1,0 +1,218 @@
+// The partitioners of `lpsim partition` on a bundled scenario: the junction graph and its weights, each
+// method's parts (in range, none empty, the same for the same seed), the partition file read back, and
+// every bad partition file refused with file:line.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <fstream>
+#include <set>
+#include <string>
+
+#include "app/partition_resolution.hpp"
+#include "app/scenario.hpp"
+#include "converters/cli_options.hpp"
+#include "converters/partition_file.hpp"
+#include "core/error.hpp"
+#include "lpsim_cli.hpp"
+#include "partition/junction_graph.hpp"
+#include "partition/kmeans.hpp"
+#include "partition/partition_method.hpp"
+#include "partition/partition_summary.hpp"
+#include "temp_dir.hpp"
+
+namespace lpsim {
+namespace {
+
+using test::TempDir;
+
+const std::string kConfig = std::string(LPSIM_SCENARIOS_DIR) + "/grid_tls/grid_tls.sumocfg";
+
+const Scenario& grid() {
+  static const Scenario sc = load_scenario(parse_cli_options({"-c", kConfig}));
+  return sc;
+}
+
+TEST(PartitionTest, JunctionGraphIsSymmetricAndWeighsTheDemand) {
+  const Scenario& sc = grid();
+  const JunctionGraph g = build_junction_graph(sc.network, sc.demand, 1.0);
+  ASSERT_EQ(g.num_vertices(), sc.network.num_junctions());
+  std::set<std::pair<int32_t, int32_t>> pairs;
+  for (uint32_t u = 0; u < g.num_vertices(); ++u)
+    for (int32_t a = g.adj_begin[u]; a < g.adj_begin[u + 1]; ++a) {
+      EXPECT_NE(g.adj[static_cast<size_t>(a)], static_cast<int32_t>(u));
+      EXPECT_GE(g.adj_weight[static_cast<size_t>(a)], 1);
+      pairs.insert({static_cast<int32_t>(u), g.adj[static_cast<size_t>(a)]});
+    }
+  for (const auto& [u, v] : pairs) EXPECT_TRUE(pairs.count({v, u})) << u << " " << v;
+  // Every route's every edge adds its free-flow steps to the junction it leads to.
+  int64_t expected = g.num_vertices(), total = 0;
+  for (uint32_t v = 0; v < sc.demand.size(); ++v)
+    for (uint32_t i = 0; i < sc.demand.route_length[v]; ++i)
+      expected += free_flow_steps(sc.network, sc.demand.route_edges[sc.demand.route_begin[v] + i], 1.0);
+  for (int64_t w : g.vertex_weight) total += w;
+  EXPECT_EQ(total, expected);
+}
+
+TEST(PartitionTest, EveryMethodGivesKNonEmptyPartsDeterministically) {
+  const Scenario& sc = grid();
+  const JunctionGraph g = build_junction_graph(sc.network, sc.demand, 1.0);
+  for (PartitionMethod m : {PartitionMethod::Metis, PartitionMethod::Leiden, PartitionMethod::Random}) {
+    for (int32_t k : {1, 2, 4}) {
+      const std::vector<int32_t> a = partition_junctions(g, k, m, 7), b = partition_junctions(g, k, m, 7);
+      EXPECT_EQ(a, b) << partition_method_name(m) << " K=" << k;
+      std::vector<int> count(static_cast<size_t>(k), 0);
+      for (int32_t p : a) {
+        ASSERT_GE(p, 0);
+        ASSERT_LT(p, k);
+        ++count[static_cast<size_t>(p)];
+      }
+      for (int32_t p = 0; p < k; ++p) EXPECT_GT(count[static_cast<size_t>(p)], 0) << partition_method_name(m);
+    }
+  }
+  EXPECT_THROW(partition_junctions(g, 0, PartitionMethod::Metis, 1), InputError);
+  EXPECT_THROW(partition_junctions(g, static_cast<int32_t>(g.num_vertices()) + 1, PartitionMethod::Metis, 1),
+               InputError);
+}
+
+TEST(PartitionTest, MetisBalancesAndCutsLessThanRandom) {
+  const Scenario& sc = grid();
+  const JunctionGraph g = build_junction_graph(sc.network, sc.demand, 1.0);
+  const PartitionSummary metis = summarize_partition(
+      sc.network, sc.demand, partition_junctions(g, 4, PartitionMethod::Metis, 1), 4, 1.0);
+  const PartitionSummary random = summarize_partition(
+      sc.network, sc.demand, partition_junctions(g, 4, PartitionMethod::Random, 1), 4, 1.0);
+  EXPECT_LT(metis.imbalance, 1.15);
+  EXPECT_LT(metis.cut_roads, random.cut_roads);
+  EXPECT_LT(metis.migrations, random.migrations);
+  // Every lane of the network is in exactly one part.
+  uint32_t lanes = 0;
+  for (const auto& p : metis.parts) lanes += p.lanes;
+  EXPECT_EQ(lanes, sc.network.num_lanes());
+}
+
+TEST(PartitionTest, KmeansGivesEveryClusterAPoint) {
+  const std::vector<double> x{0, 0, 0, 0, 10, 10, 50}, y{0, 1, 0, 1, 0, 0, 50};
+  const std::vector<int32_t> c = kmeans(x, y, 3, 5);
+  EXPECT_EQ(c, kmeans(x, y, 3, 5));
+  EXPECT_EQ(std::set<int32_t>(c.begin(), c.end()).size(), 3u);
+  EXPECT_EQ(c[0], c[1]);
+  EXPECT_NE(c[0], c[6]);
+}
+
+class PartitionFileTest : public ::testing::Test {
+ protected:
+  TempDir dir{"lpsim_partition_file"};
+  // The METIS partition of the grid as a file, and its lines after the header.
+  std::string written() {
+    const Scenario& sc = grid();
+    const JunctionGraph g = build_junction_graph(sc.network, sc.demand, 1.0);
+    parts_ = partition_junctions(g, 3, PartitionMethod::Metis, 3);
+    const std::vector<int32_t> edge_part = edge_parts_from_junctions(sc.network, parts_);
+    std::vector<std::string> ids;
+    std::vector<int32_t> part;
+    for (uint32_t e = 0; e < sc.network.num_edges(); ++e)
+      if (!sc.network.edge_is_internal[e]) ids.push_back(sc.network.edge_id[e]), part.push_back(edge_part[e]);
+    const std::string path = (dir.path() / "p.txt").string();
+    write_partition_file(path, {"a comment"}, 3, ids, part);
+    return test::read_file(path);
+  }
+  std::string write(const std::string& text) {
+    const std::string path = (dir.path() / "q.txt").string();
+    std::ofstream(path) << text;
+    return path;
+  }
+  std::string error_of(const std::string& text, int32_t expected_parts = 0) {
+    try {
+      resolve_partition(read_partition_file(write(text)), grid().network, expected_parts);
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "";
+  }
+  std::vector<int32_t> parts_;
+};
+
+TEST_F(PartitionFileTest, ReadsBackWhatWasWritten) {
+  const std::string text = written();
+  ASSERT_EQ(text.rfind("# a comment\nparts 3\n", 0), 0u) << text.substr(0, 80);
+  const PartitionSpec spec = read_partition_file((dir.path() / "p.txt").string());
+  EXPECT_EQ(spec.parts, 3);
+  const std::vector<int32_t> junction_part = resolve_partition(spec, grid().network, 3);
+  // Junctions with a road into them get their part back exactly.
+  const Network& net = grid().network;
+  for (uint32_t e = 0; e < net.num_edges(); ++e) {
+    if (net.edge_is_internal[e] || net.edge_to_junction[e] < 0) continue;
+    const uint32_t j = static_cast<uint32_t>(net.edge_to_junction[e]);
+    EXPECT_EQ(junction_part[j], parts_[j]);
+  }
+}
+
+TEST_F(PartitionFileTest, RefusesBadFilesWithFileAndLine) {
+  const std::string good = written();
+  const size_t first_edge = good.find("parts 3\n") + 8;
+  const std::string head = good.substr(0, first_edge), body = good.substr(first_edge);
+  const std::string first_line = body.substr(0, body.find('\n') + 1);
+  const std::string first_id = first_line.substr(0, first_line.find(' '));
+  // Line numbers: 1 comment, 2 parts, 3 the first edge.
+  EXPECT_NE(error_of(head + "nosuchedge 0\n" + body).find("q.txt:3: edge 'nosuchedge' is not a normal edge"),
+            std::string::npos)
+      << error_of(head + "nosuchedge 0\n" + body);
+  EXPECT_NE(error_of(head + body + first_line).find("listed twice (first at line 3)"), std::string::npos);
+  EXPECT_NE(error_of(head + first_id + " 7\n" + body.substr(first_line.size())).find("q.txt:3: part 7"),
+            std::string::npos);
+  EXPECT_NE(
+      error_of(head + body.substr(first_line.size())).find("have no part (the first: '" + first_id + "')"),
+      std::string::npos);
+  EXPECT_NE(error_of(good, 2).find("has 3 parts, the run asks for 2"), std::string::npos);
+  EXPECT_NE(error_of("parts 2\nx y\n").find("q.txt:2: 'y' is not a whole number"), std::string::npos);
+  EXPECT_NE(error_of("a 1\n").find("q.txt:1: the file must declare 'parts K'"), std::string::npos);
+  EXPECT_NE(error_of("# nothing\n").find("no 'parts K' line"), std::string::npos);
+  // Two roads into one junction in different parts: the second road into the first junction with two.
+  const Network& net = grid().network;
+  std::vector<int> into(net.num_junctions(), 0);
+  for (uint32_t e = 0; e < net.num_edges(); ++e)
+    if (!net.edge_is_internal[e] && net.edge_to_junction[e] >= 0)
+      ++into[static_cast<size_t>(net.edge_to_junction[e])];
+  const int32_t busy = static_cast<int32_t>(
+      std::find_if(into.begin(), into.end(), [](int n) { return n >= 2; }) - into.begin());
+  std::string split = head;
+  bool moved = false;
+  int seen = 0;
+  for (uint32_t e = 0; e < net.num_edges(); ++e) {
+    if (net.edge_is_internal[e]) continue;
+    int32_t part = parts_[static_cast<uint32_t>(net.edge_to_junction[e])];
+    if (net.edge_to_junction[e] == busy && seen++ == 1) {
+      part = (part + 1) % 3;
+      moved = true;
+    }
+    split += net.edge_id[e] + " " + std::to_string(part) + "\n";
+  }
+  ASSERT_TRUE(moved);
+  EXPECT_NE(error_of(split).find("the roads into a junction must share its part"), std::string::npos);
+}
+
+TEST_F(PartitionFileTest, CliWritesFileAndMapAndRefusesABadFile) {
+  const test::CliResult ok =
+      test::run_lpsim(dir.path(), {"partition", "-c", kConfig, "--parts", "3", "--partition-method", "leiden",
+                                   "-o", "p.txt", "--map", "p.png"});
+  ASSERT_EQ(ok.exit_code, 0) << ok.err;
+  EXPECT_NE(ok.out.find("| part | junctions |"), std::string::npos) << ok.out;
+  EXPECT_EQ(test::read_file(dir.path() / "p.png").substr(1, 3), "PNG");
+  const test::CliResult again =
+      test::run_lpsim(dir.path(), {"partition", "-c", kConfig, "--partition-file", "p.txt", "--parts", "3"});
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  write("parts 3\nnosuchedge 0\n");
+  const test::CliResult bad =
+      test::run_lpsim(dir.path(), {"partition", "-c", kConfig, "--partition-file", "q.txt"});
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("q.txt:2: edge 'nosuchedge' is not a normal edge"), std::string::npos) << bad.err;
+  const test::CliResult no_k = test::run_lpsim(dir.path(), {"partition", "-c", kConfig, "-o", "r.txt"});
+  EXPECT_EQ(no_k.exit_code, 2);
+  const test::CliResult bad_method = test::run_lpsim(
+      dir.path(), {"partition", "-c", kConfig, "--parts", "2", "--partition-method", "kahip", "-o", "r.txt"});
+  EXPECT_EQ(bad_method.exit_code, 2);
+  EXPECT_NE(bad_method.err.find("expected metis, leiden or random"), std::string::npos) << bad_method.err;
+}
+
+}  // namespace
+}  // namespace lpsim
