@@ -29,10 +29,10 @@ std::string describe_partition(const PartitionSummary& s, const std::string& tit
   }
   std::snprintf(
       buf, sizeof buf,
-      "\nparts %zu, cut roads %lld, cut lanes %lld, expected migrations %lld, imbalance %.3f (largest part's "
-      "vehicle-steps over the mean)\n",
+      "\nparts %zu, cut roads %lld, cut lanes %lld (%lld cells), expected migrations %lld, imbalance %.3f "
+      "(largest part's vehicle-steps over the mean)\n",
       s.parts.size(), static_cast<long long>(s.cut_roads), static_cast<long long>(s.cut_lanes),
-      static_cast<long long>(s.migrations), s.imbalance);
+      static_cast<long long>(s.cut_cells), static_cast<long long>(s.migrations), s.imbalance);
   out += buf;
   return out;
 }

@@ -2,8 +2,8 @@
 # Runs the GPU checks and benchmarks on a lent GPU machine that has CUDA but no package registry, from a
 # CUDA build made elsewhere and carried along (bench/prepare_gpu_build.sh makes it and lists what to carry):
 #   build-gpu/: cmake -DLPSIM_CUDA=ON -DCMAKE_CUDA_ARCHITECTURES=90, Ninja, Release;
-#   build-gpu/libs/: the shared libraries lpsim needs that such a machine may lack (libxml2, its ICU and lzma, zlib)
-#                    and GNU time as gnu-time;  build-gpu/bayarea/lpsim_bayarea_tertiary: the base network.
+#   build-gpu/libs.tar.xz: the shared libraries lpsim needs that such a machine may lack (all but the C and
+#                    C++ runtimes) and GNU time as gnu-time, unpacked into build-gpu/libs/;  build-gpu/bayarea/lpsim_bayarea_tertiary: the base network.
 # The tests have the repository's absolute path compiled in: where the copy lies elsewhere, a link stands in.
 #
 # Usage: bench/gpu_machine.sh tests|bench [regional_bench.sh options...]
@@ -17,6 +17,8 @@ set -uo pipefail
 cd "$(dirname "$0")/.."
 here=$PWD
 build=${BUILD:-build-gpu}
+# prepare_gpu_build.sh packs the libraries: unpack them once.
+[[ -f "$build/libs.tar.xz" && ! -d "$build/libs" ]] && tar -C "$build" -xJf "$build/libs.tar.xz"
 export LD_LIBRARY_PATH=$here/$build/libs${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
 export GNU_TIME=$here/$build/libs/gnu-time
 # The device copy's git metadata is not this build's: prepare_gpu_build.sh wrote the commit it built.

@@ -61,6 +61,8 @@ PartitionSummary summarize_partition(const Network& net, const Demand& demand,
     neighbours[static_cast<size_t>(other)].insert(edge_part[e]);
     ++s.cut_roads;
     s.cut_lanes += net.edge_num_lanes[e];
+    for (uint32_t l = net.edge_first_lane[e]; l < net.edge_first_lane[e] + net.edge_num_lanes[e]; ++l)
+      s.cut_cells += static_cast<int64_t>(net.lane_cell_begin[l + 1] - net.lane_cell_begin[l]);
     s.migrations += uses[e];
   }
   int64_t total = 0, largest = 0;

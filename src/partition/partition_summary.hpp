@@ -26,6 +26,7 @@ struct PartitionSummary {
   std::vector<PartSummary> parts;
   int64_t cut_roads = 0;   // normal edges whose two junctions lie in different parts
   int64_t cut_lanes = 0;   // their lanes
+  int64_t cut_cells = 0;   // their lanes' lane-map cells: the least ghost zone (the first lanes across a cut)
   int64_t migrations = 0;  // expected vehicles crossing a cut (route uses of cut roads)
   double imbalance = 1;    // largest part's vehicle-steps over the mean part's (1: balanced)
 };
