@@ -8,11 +8,12 @@ std::string describe_partition(const PartitionSummary& s, const std::string& tit
   std::string out = title + "\n\n";
   out +=
       "| part | junctions | lanes | lane-km | vehicle-steps | share | cut lanes in | cut lanes out | "
-      "vehicles in | neighbours |\n";
-  out += "|---|---|---|---|---|---|---|---|---|---|\n";
+      "vehicles in | "
+      "ghost lanes | cells (own + ghost) | neighbours |\n";
+  out += "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   int64_t total = 0;
   for (const auto& p : s.parts) total += p.vehicle_steps;
-  char buf[256];
+  char buf[320];
   for (size_t i = 0; i < s.parts.size(); ++i) {
     const PartSummary& p = s.parts[i];
     std::string nb;
@@ -20,19 +21,24 @@ std::string describe_partition(const PartitionSummary& s, const std::string& tit
       if (!nb.empty()) nb += ' ';
       nb += std::to_string(n);
     }
-    std::snprintf(buf, sizeof buf, "| %zu | %u | %u | %.1f | %lld | %.3f | %u | %u | %lld | %s |\n", i,
+    std::snprintf(buf, sizeof buf,
+                  "| %zu | %u | %u | %.1f | %lld | %.3f | %u | %u | %lld | %u | %llu + %llu | %s |\n", i,
                   p.junctions, p.lanes, p.lane_km, static_cast<long long>(p.vehicle_steps),
                   total > 0 ? static_cast<double>(p.vehicle_steps) / static_cast<double>(total) : 0.0,
-                  p.cut_lanes_in, p.cut_lanes_out, static_cast<long long>(p.vehicles_in),
+                  p.cut_lanes_in, p.cut_lanes_out, static_cast<long long>(p.vehicles_in), p.ghost_lanes,
+                  static_cast<unsigned long long>(p.cells), static_cast<unsigned long long>(p.ghost_cells),
                   nb.empty() ? "-" : nb.c_str());
     out += buf;
   }
+  uint64_t ghost_cells = 0;
+  for (const auto& p : s.parts) ghost_cells += p.ghost_cells;
   std::snprintf(
       buf, sizeof buf,
-      "\nparts %zu, cut roads %lld, cut lanes %lld (%lld cells), expected migrations %lld, imbalance %.3f "
-      "(largest part's vehicle-steps over the mean)\n",
+      "\nparts %zu, cut roads %lld, cut lanes %lld, ghost cells %llu, largest part %.3f of the network's "
+      "cells, expected migrations %lld, imbalance %.3f (largest part's vehicle-steps over the mean)\n",
       s.parts.size(), static_cast<long long>(s.cut_roads), static_cast<long long>(s.cut_lanes),
-      static_cast<long long>(s.cut_cells), static_cast<long long>(s.migrations), s.imbalance);
+      static_cast<unsigned long long>(ghost_cells), s.largest_share, static_cast<long long>(s.migrations),
+      s.imbalance);
   out += buf;
   return out;
 }

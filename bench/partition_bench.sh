@@ -2,7 +2,9 @@
 # Partition quality (partitioned-engine issue): `lpsim partition` with METIS, Leiden + k-means and the random
 # baseline for each K on one scenario (default the regional 529k-edge network with 1M trips, a snapshot from
 # bench/regional_bench.sh or `lpsim convert`). Per method and K: cut roads and lanes (the roads whose two
-# junctions lie in different parts), the least ghost zone in lane-map cells (the lanes of the cut roads),
+# junctions lie in different parts), ghost cells (the lane-map cells of the lanes of other parts each part must
+# see: 1,000 m downstream, the longest vehicle upstream; src/partition/partition_layout.hpp) and the largest
+# part's cells, ghosts included, over the network's (what a rank's lane map would hold),
 # expected migrations (route uses of cut roads: vehicles crossing a cut over the demand) and per simulated
 # step, imbalance (the largest part's expected vehicle-steps over the mean part's), the partitioner's wall time
 # (graph building included, loading excluded) and the run's peak RSS. Writes bench/work/partition/results.md.
@@ -44,18 +46,19 @@ for k in $parts_list; do
     line=$(grep '^parts ' "$work/$m-$k.log")
     roads=$(sed 's/.*cut roads \([0-9]*\),.*/\1/' <<<"$line")
     lanes=$(sed 's/.*cut lanes \([0-9]*\) .*/\1/' <<<"$line")
-    cells=$(sed 's/.*(\([0-9]*\) cells).*/\1/' <<<"$line")
+    cells=$(sed 's/.*ghost cells \([0-9]*\),.*/\1/' <<<"$line")
+    share=$(sed 's/.*largest part \([0-9.]*\) of.*/\1/' <<<"$line")
     mig=$(sed 's/.*expected migrations \([0-9]*\),.*/\1/' <<<"$line")
     imb=$(sed 's/.*imbalance \([0-9.]*\) .*/\1/' <<<"$line")
     per_step=$(awk -v m="$mig" -v s="$steps" 'BEGIN { printf "%.1f", m / s }')
-    rows+=("| $k | $m | $roads | $lanes | $cells | $mig | $per_step | $imb | $secs | $rss |")
+    rows+=("| $k | $m | $roads | $lanes | $cells | $share | $mig | $per_step | $imb | $secs | $rss |")
   done
 done
 {
   echo "Partition quality: \`bench/partition_bench.sh --scenario $scenario --parts \"$parts_list\"\`,"
   echo "$(date -u '+%Y-%m-%d %H:%M UTC'), commit $(git rev-parse --short HEAD), $(nproc) cores."
   echo
-  echo "| K | method | cut roads | cut lanes | ghost cells (cut lanes) | expected migrations | per step ($steps steps) | imbalance | partition wall s | peak RSS MiB |"
-  echo "|---|---|---|---|---|---|---|---|---|---|"
+  echo "| K | method | cut roads | cut lanes | ghost cells | largest part's cells / network's | expected migrations | per step ($steps steps) | imbalance | partition wall s | peak RSS MiB |"
+  echo "|---|---|---|---|---|---|---|---|---|---|---|"
   printf '%s\n' "${rows[@]}"
 } | tee "$work/results.md"

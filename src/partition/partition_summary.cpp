@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <set>
 
+#include "partition/partition_layout.hpp"
+
 namespace lpsim {
 
 std::vector<int32_t> lane_parts(const Network& net, const std::vector<int32_t>& edge_part) {
@@ -61,10 +63,22 @@ PartitionSummary summarize_partition(const Network& net, const Demand& demand,
     neighbours[static_cast<size_t>(other)].insert(edge_part[e]);
     ++s.cut_roads;
     s.cut_lanes += net.edge_num_lanes[e];
-    for (uint32_t l = net.edge_first_lane[e]; l < net.edge_first_lane[e] + net.edge_num_lanes[e]; ++l)
-      s.cut_cells += static_cast<int64_t>(net.lane_cell_begin[l + 1] - net.lane_cell_begin[l]);
     s.migrations += uses[e];
   }
+  float tail = 0;  // the longest vehicle: how far back a vehicle that crossed a cut may still reach
+  for (float length : demand.types.length) tail = std::max(tail, length);
+  const std::vector<PartLayout> layout = partition_layout(net, lane_part, k, kGhostLookAhead, tail);
+  s.total_cells = net.lane_cell_begin.empty() ? 0 : net.lane_cell_begin.back();
+  uint64_t most = 0;
+  for (int32_t p = 0; p < k; ++p) {
+    PartSummary& ps = s.parts[static_cast<size_t>(p)];
+    const PartLayout& pl = layout[static_cast<size_t>(p)];
+    ps.ghost_lanes = static_cast<uint32_t>(pl.ghosts.size());
+    ps.cells = pl.owned_cells;
+    ps.ghost_cells = pl.ghost_cells;
+    most = std::max(most, pl.owned_cells + pl.ghost_cells);
+  }
+  s.largest_share = s.total_cells > 0 ? static_cast<double>(most) / static_cast<double>(s.total_cells) : 1.0;
   int64_t total = 0, largest = 0;
   for (int32_t p = 0; p < k; ++p) {
     PartSummary& ps = s.parts[static_cast<size_t>(p)];

@@ -19,16 +19,23 @@ struct PartSummary {
   uint32_t cut_lanes_in = 0;   // its lanes whose road starts at a junction of another part
   uint32_t cut_lanes_out = 0;  // lanes of other parts whose road starts at one of its junctions
   int64_t vehicles_in = 0;     // expected vehicles entering it from another part (route uses of cut roads)
-  std::vector<int32_t> neighbours;  // parts it shares a road with, ascending
+  uint32_t ghost_lanes = 0;    // lanes of other parts it must see (partition_layout)
+  uint64_t cells = 0, ghost_cells = 0;  // lane-map cells of its own lanes and of its ghosts
+  std::vector<int32_t> neighbours;      // parts it shares a road with, ascending
 };
+
+// How far past a cut a vehicle looks (kernels' kMaxLookahead, 1,000 m): the ghost lanes of a part are those
+// of other parts within this distance downstream of its lanes (partition_layout.hpp).
+constexpr double kGhostLookAhead = 1000.0;
 
 struct PartitionSummary {
   std::vector<PartSummary> parts;
-  int64_t cut_roads = 0;   // normal edges whose two junctions lie in different parts
-  int64_t cut_lanes = 0;   // their lanes
-  int64_t cut_cells = 0;   // their lanes' lane-map cells: the least ghost zone (the first lanes across a cut)
-  int64_t migrations = 0;  // expected vehicles crossing a cut (route uses of cut roads)
-  double imbalance = 1;    // largest part's vehicle-steps over the mean part's (1: balanced)
+  int64_t cut_roads = 0;     // normal edges whose two junctions lie in different parts
+  int64_t cut_lanes = 0;     // their lanes
+  uint64_t total_cells = 0;  // the whole network's lane-map cells
+  double largest_share = 1;  // the most lane-map cells a part holds, ghosts included, over total_cells
+  int64_t migrations = 0;    // expected vehicles crossing a cut (route uses of cut roads)
+  double imbalance = 1;      // largest part's vehicle-steps over the mean part's (1: balanced)
 };
 
 /// The summary of junction_part (a part per junction of net) under the demand's routes.

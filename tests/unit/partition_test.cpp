@@ -16,6 +16,7 @@
 #include "lpsim_cli.hpp"
 #include "partition/junction_graph.hpp"
 #include "partition/kmeans.hpp"
+#include "partition/partition_layout.hpp"
 #include "partition/partition_method.hpp"
 #include "partition/partition_summary.hpp"
 #include "temp_dir.hpp"
@@ -88,6 +89,39 @@ TEST(PartitionTest, MetisBalancesAndCutsLessThanRandom) {
   uint32_t lanes = 0;
   for (const auto& p : metis.parts) lanes += p.lanes;
   EXPECT_EQ(lanes, sc.network.num_lanes());
+}
+
+// Ghosts: the lanes of other parts just past each of a part's lanes are among its ghosts, its own never are,
+// and more look-ahead never sees fewer.
+TEST(PartitionTest, LayoutOwnsEveryLaneOnceAndSeesAcrossTheCuts) {
+  const Scenario& sc = grid();
+  const Network& net = sc.network;
+  const JunctionGraph g = build_junction_graph(net, sc.demand, 1.0);
+  const std::vector<int32_t> lane_part =
+      lane_parts(net, edge_parts_from_junctions(net, partition_junctions(g, 3, PartitionMethod::Metis, 2)));
+  const std::vector<PartLayout> near = partition_layout(net, lane_part, 3, 1.0, 0.0);
+  const std::vector<PartLayout> far = partition_layout(net, lane_part, 3, 400.0, 7.5);
+  std::vector<int> owners(net.num_lanes(), 0);
+  for (int32_t p = 0; p < 3; ++p) {
+    const std::set<uint32_t> ghosts(near[static_cast<size_t>(p)].ghosts.begin(),
+                                    near[static_cast<size_t>(p)].ghosts.end());
+    const std::set<uint32_t> more(far[static_cast<size_t>(p)].ghosts.begin(),
+                                  far[static_cast<size_t>(p)].ghosts.end());
+    EXPECT_TRUE(std::includes(more.begin(), more.end(), ghosts.begin(), ghosts.end()));
+    EXPECT_GT(more.size(), ghosts.size());
+    for (uint32_t l : near[static_cast<size_t>(p)].owned) {
+      ++owners[l];
+      EXPECT_EQ(lane_part[l], p);
+      EXPECT_FALSE(more.count(l));
+      for (uint32_t c = net.lane_conn_begin[l]; c < net.lane_conn_begin[l + 1]; ++c) {
+        const uint32_t next =
+            net.conn_via_lane[c] >= 0 ? static_cast<uint32_t>(net.conn_via_lane[c]) : net.conn_to_lane[c];
+        if (lane_part[next] == p) continue;
+        EXPECT_TRUE(ghosts.count(next)) << net.lane_id[next] << " after " << net.lane_id[l];
+      }
+    }
+  }
+  for (int n : owners) EXPECT_EQ(n, 1);
 }
 
 TEST(PartitionTest, KmeansGivesEveryClusterAPoint) {
