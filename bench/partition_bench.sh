@@ -45,7 +45,7 @@ for k in $parts_list; do
     secs=$(sed -n 's/.*, \([0-9.]*\) s (graph and partitioner).*/\1/p' "$work/$m-$k.log")
     line=$(grep '^parts ' "$work/$m-$k.log")
     roads=$(sed 's/.*cut roads \([0-9]*\),.*/\1/' <<<"$line")
-    lanes=$(sed 's/.*cut lanes \([0-9]*\) .*/\1/' <<<"$line")
+    lanes=$(sed 's/.*cut lanes \([0-9]*\),.*/\1/' <<<"$line")
     cells=$(sed 's/.*ghost cells \([0-9]*\),.*/\1/' <<<"$line")
     share=$(sed 's/.*largest part \([0-9.]*\) of.*/\1/' <<<"$line")
     mig=$(sed 's/.*expected migrations \([0-9]*\),.*/\1/' <<<"$line")

@@ -9,6 +9,7 @@ packages=(
   libgtest-dev googletest
   sumo sumo-tools python3
   libmetis-dev libigraph-dev libcairo2-dev
+  libopenmpi-dev openmpi-bin
 )
 
 missing=()

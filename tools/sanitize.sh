@@ -25,4 +25,6 @@ cd build-sanitize
 # The format check does not depend on the build; the GPU tests skip without a GPU anyway. The emulated GPU
 # tests (label gpu_emulation) run: each emulated device allocation is its own heap block, so the sanitizers
 # see the CUDA backend's host logic overrun or reuse one.
-ctest --output-on-failure -j "$(nproc)" -E '^clang_format_clean$' -LE '^gpu$' "$@"
+# Label mpi is left out: LeakSanitizer reports OpenMPI's own allocations, which MPI_Finalize keeps, as leaks;
+# the transport's logic runs under the sanitizers in its in-process form (label unit).
+ctest --output-on-failure -j "$(nproc)" -E '^clang_format_clean$' -LE '^(gpu|mpi)$' "$@"

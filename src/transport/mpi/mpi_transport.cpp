@@ -1,0 +1,75 @@
+#include "transport/mpi/mpi_transport.hpp"
+
+#include <mpi.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <thread>
+
+namespace lpsim {
+
+namespace {
+
+// Rounds go in lock-step, so a tag that wraps after 32,768 rounds (the least MPI_TAG_UB MPI allows) never
+// meets a message of another round still in flight.
+int round_tag(uint64_t round) { return static_cast<int>(round % 32768); }
+
+}  // namespace
+
+MpiSession::MpiSession(int* argc, char*** argv) { MPI_Init(argc, argv); }
+
+MpiSession::~MpiSession() { MPI_Finalize(); }
+
+void MpiSession::abort_job(int code) {
+  MPI_Abort(MPI_COMM_WORLD, code);
+  std::exit(code);  // not reached: MPI_Abort ends the process
+}
+
+MpiTransport::MpiTransport(double timeout_s) : timeout_s_(timeout_s) {
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
+  MPI_Comm_size(MPI_COMM_WORLD, &size_);
+}
+
+std::vector<Bytes> MpiTransport::exchange(const std::vector<int>& to, const std::vector<Bytes>& send,
+                                          const std::vector<int>& from, const std::string& what) {
+  const int tag = round_tag(round_);
+  const uint64_t round = round_++;
+  std::vector<MPI_Request> sends(to.size());
+  for (size_t i = 0; i < to.size(); ++i)
+    MPI_Isend(send[i].data(), static_cast<int>(send[i].size()), MPI_BYTE, to[i], tag, MPI_COMM_WORLD,
+              &sends[i]);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s_);
+  auto timed_out = [&](const std::string& doing, int peer) {
+    return TransportError("rank " + std::to_string(rank_) + ": " + doing + " rank " + std::to_string(peer) +
+                          " in round '" + what + "' (#" + std::to_string(round) + ") took more than " +
+                          seconds_text(timeout_s_) + " s: has it stopped?");
+  };
+  std::vector<Bytes> got(from.size());
+  for (size_t j = 0; j < from.size(); ++j) {
+    int flag = 0;
+    MPI_Message message;
+    MPI_Status status;
+    while (true) {
+      MPI_Improbe(from[j], tag, MPI_COMM_WORLD, &flag, &message, &status);
+      if (flag) break;
+      if (std::chrono::steady_clock::now() > deadline) throw timed_out("receiving from", from[j]);
+      std::this_thread::sleep_for(std::chrono::microseconds(20));
+    }
+    int count = 0;
+    MPI_Get_count(&status, MPI_BYTE, &count);
+    got[j].resize(static_cast<size_t>(count));
+    MPI_Mrecv(got[j].data(), count, MPI_BYTE, &message, MPI_STATUS_IGNORE);
+  }
+  for (size_t i = 0; i < sends.size(); ++i) {
+    int done = 0;
+    while (true) {
+      MPI_Test(&sends[i], &done, MPI_STATUS_IGNORE);
+      if (done) break;
+      if (std::chrono::steady_clock::now() > deadline) throw timed_out("sending to", to[i]);
+      std::this_thread::sleep_for(std::chrono::microseconds(20));
+    }
+  }
+  return got;
+}
+
+}  // namespace lpsim

@@ -1,0 +1,38 @@
+#pragma once
+// The MPI transport: one rank per process under `mpirun -n K` (Debian's OpenMPI, not CUDA-aware: buffers
+// are host memory). Rounds are non-blocking sends and probed receives of any size, polled against a timeout,
+// so that a stalled peer becomes an error naming it instead of a hang; a peer that dies is reported by
+// mpirun, which ends the job.
+#include <string>
+
+#include "transport/transport.hpp"
+
+namespace lpsim {
+
+/// MPI_Init / MPI_Finalize around a run (one per process).
+class MpiSession {
+ public:
+  MpiSession(int* argc, char*** argv);
+  ~MpiSession();
+  MpiSession(const MpiSession&) = delete;
+  MpiSession& operator=(const MpiSession&) = delete;
+  /// Ends every rank of the job with `code` (after an error on this one, so the others do not wait).
+  [[noreturn]] static void abort_job(int code);
+};
+
+class MpiTransport : public Transport {
+ public:
+  /// A round waits at most timeout_s seconds for each peer.
+  explicit MpiTransport(double timeout_s);
+  int rank() const override { return rank_; }
+  int size() const override { return size_; }
+  std::vector<Bytes> exchange(const std::vector<int>& to, const std::vector<Bytes>& send,
+                              const std::vector<int>& from, const std::string& what) override;
+
+ private:
+  int rank_ = 0, size_ = 1;
+  double timeout_s_;
+  uint64_t round_ = 0;
+};
+
+}  // namespace lpsim
