@@ -12,6 +12,15 @@
 
 namespace lpsim::test {
 
+/// Whether sumo and netconvert are installed (the tests against SUMO skip without them).
+inline bool have_sumo_and_netconvert() { return have_sumo_tool("sumo") && have_sumo_tool("netconvert"); }
+
+/// Runs netconvert in `dir` with `args`; a failure fails the test (call it through ASSERT_NO_FATAL_FAILURE).
+inline void netconvert(const TempDir& dir, const std::vector<std::string>& args) {
+  const CliResult r = run_program(dir.path(), {"netconvert"}, args);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+}
+
 struct SumoAndLpsim {
   CliResult sumo, lpsim;
   std::string sumo_tripinfo, lpsim_tripinfo;  // their tripinfo outputs (s.xml, l.xml in the folder)

@@ -48,8 +48,7 @@ double mean_duration(const std::string& tripinfo, const std::string& id, int cou
 // lpsim: the side road's within 15 % of SUMO's, the main road's within 5 % (not held up by vehicles pushing
 // in).
 void expect_side_road_as_in_sumo(const std::string& model) {
-  if (!test::have_sumo_tool("sumo") || !test::have_sumo_tool("netconvert"))
-    GTEST_SKIP() << "SUMO not installed";
+  if (!test::have_sumo_and_netconvert()) GTEST_SKIP() << "SUMO not installed";
   TempDir dir("lpsim_impatience_" + model);
   ASSERT_NO_FATAL_FAILURE(write_t_junction(dir));
   const test::SumoAndLpsim r = test::run_sumo_and_lpsim(

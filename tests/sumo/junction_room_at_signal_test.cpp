@@ -16,7 +16,6 @@
 namespace lpsim {
 namespace {
 
-using test::CliResult;
 using test::TempDir;
 
 void write_scenario(const TempDir& dir) {
@@ -43,15 +42,12 @@ void write_scenario(const TempDir& dir) {
   dir.write("r.rou.xml",
             "<routes><flow id=\"m\" begin=\"0\" end=\"900\" vehsPerHour=\"40\"><route edges=\"in mid out\"/>"
             "</flow></routes>\n");
-  const CliResult net = test::run_program(
-      dir.path(), {"netconvert"},
-      {"-n", "n.nod.xml", "-e", "n.edg.xml", "-i", "n.tll.xml", "--no-turnarounds", "-o", "n.net.xml"});
-  ASSERT_EQ(net.exit_code, 0) << net.err;
+  ASSERT_NO_FATAL_FAILURE(test::netconvert(
+      dir, {"-n", "n.nod.xml", "-e", "n.edg.xml", "-i", "n.tll.xml", "--no-turnarounds", "-o", "n.net.xml"}));
 }
 
 TEST(JunctionRoomAtSignalTest, EntersTheJunctionWhenOnlyARedLightLiesAheadAsSumoDoes) {
-  if (!test::have_sumo_tool("sumo") || !test::have_sumo_tool("netconvert"))
-    GTEST_SKIP() << "SUMO not installed";
+  if (!test::have_sumo_and_netconvert()) GTEST_SKIP() << "SUMO not installed";
   TempDir dir("lpsim_junction_room_signal");
   ASSERT_NO_FATAL_FAILURE(write_scenario(dir));
   for (const char* model : {"Krauss", "IDM"}) {

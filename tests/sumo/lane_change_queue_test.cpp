@@ -18,7 +18,6 @@
 namespace lpsim {
 namespace {
 
-using test::CliResult;
 using test::TempDir;
 
 void write_turn_lanes(const TempDir& dir) {
@@ -45,15 +44,12 @@ void write_turn_lanes(const TempDir& dir) {
       "<flow id=\"right\" from=\"WJ\" to=\"JS\" begin=\"0\" end=\"1800\" vehsPerHour=\"300\" "
       "departLane=\"first\"/>"
       "<flow id=\"cross\" from=\"NJ\" to=\"JE\" begin=\"0\" end=\"1800\" vehsPerHour=\"200\"/></routes>\n");
-  const CliResult net = test::run_program(
-      dir.path(), {"netconvert"},
-      {"-n", "n.nod.xml", "-e", "n.edg.xml", "-x", "n.con.xml", "--no-turnarounds", "-o", "n.net.xml"});
-  ASSERT_EQ(net.exit_code, 0) << net.err;
+  ASSERT_NO_FATAL_FAILURE(test::netconvert(
+      dir, {"-n", "n.nod.xml", "-e", "n.edg.xml", "-x", "n.con.xml", "--no-turnarounds", "-o", "n.net.xml"}));
 }
 
 TEST(LaneChangeQueueTest, ChangersIntoAStandingQueueLeaveTheTurnLaneFreeAsInSumo) {
-  if (!test::have_sumo_tool("sumo") || !test::have_sumo_tool("netconvert"))
-    GTEST_SKIP() << "SUMO not installed";
+  if (!test::have_sumo_and_netconvert()) GTEST_SKIP() << "SUMO not installed";
   TempDir dir("lpsim_lane_change_queue");
   ASSERT_NO_FATAL_FAILURE(write_turn_lanes(dir));
   const test::SumoAndLpsim r = test::run_sumo_and_lpsim(

@@ -19,7 +19,6 @@
 namespace lpsim {
 namespace {
 
-using test::CliResult;
 using test::TempDir;
 
 void write_scenario(const TempDir& dir) {
@@ -50,9 +49,7 @@ void write_scenario(const TempDir& dir) {
   <flow id="f" type="bus" begin="400" end="430" period="10" route="R"><stop lane="bc_0" endPos="300" until="450"/></flow>
 </routes>
 )X");
-  const CliResult net = test::run_program(dir.path(), {"netconvert"},
-                                          {"-n", "n.nod.xml", "-e", "n.edg.xml", "-o", "n.net.xml"});
-  ASSERT_EQ(net.exit_code, 0) << net.err;
+  ASSERT_NO_FATAL_FAILURE(test::netconvert(dir, {"-n", "n.nod.xml", "-e", "n.edg.xml", "-o", "n.net.xml"}));
 }
 
 struct Trip {
@@ -70,8 +67,7 @@ std::map<std::string, Trip> trips_of(const std::string& tripinfo) {
 }
 
 TEST(ScheduledStopTest, BusesStopAsInSumo) {
-  if (!test::have_sumo_tool("sumo") || !test::have_sumo_tool("netconvert"))
-    GTEST_SKIP() << "SUMO not installed";
+  if (!test::have_sumo_and_netconvert()) GTEST_SKIP() << "SUMO not installed";
   TempDir dir("lpsim_scheduled_stop");
   ASSERT_NO_FATAL_FAILURE(write_scenario(dir));
   const test::SumoAndLpsim r =

@@ -16,7 +16,6 @@
 namespace lpsim {
 namespace {
 
-using test::CliResult;
 using test::TempDir;
 
 void write_scenario(const TempDir& dir) {
@@ -37,15 +36,12 @@ void write_scenario(const TempDir& dir) {
             "<routes><flow id=\"r\" begin=\"0\" end=\"900\" vehsPerHour=\"300\"><route edges=\"in short "
             "right\"/></flow><flow id=\"s\" begin=\"0\" end=\"900\" vehsPerHour=\"300\"><route edges=\"in "
             "short straight\"/></flow></routes>\n");
-  const CliResult net = test::run_program(
-      dir.path(), {"netconvert"},
-      {"-n", "n.nod.xml", "-e", "n.edg.xml", "-x", "n.con.xml", "--no-turnarounds", "-o", "n.net.xml"});
-  ASSERT_EQ(net.exit_code, 0) << net.err;
+  ASSERT_NO_FATAL_FAILURE(test::netconvert(
+      dir, {"-n", "n.nod.xml", "-e", "n.edg.xml", "-x", "n.con.xml", "--no-turnarounds", "-o", "n.net.xml"}));
 }
 
 TEST(ShortEdgeLaneChangeTest, ChangesOnAnEdgeShorterThanTheVehicleAsInSumo) {
-  if (!test::have_sumo_tool("sumo") || !test::have_sumo_tool("netconvert"))
-    GTEST_SKIP() << "SUMO not installed";
+  if (!test::have_sumo_and_netconvert()) GTEST_SKIP() << "SUMO not installed";
   TempDir dir("lpsim_short_edge_lc");
   ASSERT_NO_FATAL_FAILURE(write_scenario(dir));
   const test::SumoAndLpsim r = test::run_sumo_and_lpsim(dir, {"-n", "n.net.xml", "-r", "r.rou.xml"});
@@ -66,8 +62,7 @@ TEST(ShortEdgeLaneChangeTest, ChangesOnAnEdgeShorterThanTheVehicleAsInSumo) {
 // on the first lane and must change to the other: SUMO changes it the next step; LPSim let no vehicle change
 // at the lane's end, so it stood there until teleported.
 TEST(ShortEdgeLaneChangeTest, ChangesWhenInsertedAtTheEndOfAnEdgeShorterThanTheVehicle) {
-  if (!test::have_sumo_tool("sumo") || !test::have_sumo_tool("netconvert"))
-    GTEST_SKIP() << "SUMO not installed";
+  if (!test::have_sumo_and_netconvert()) GTEST_SKIP() << "SUMO not installed";
   TempDir dir("lpsim_short_edge_depart_lc");
   ASSERT_NO_FATAL_FAILURE(write_scenario(dir));
   dir.write("d.rou.xml",
