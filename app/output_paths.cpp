@@ -31,6 +31,7 @@ std::vector<NamedPath> inputs_of(const ConfigSpec& c) {
   add("--lpsim-edges", c.lpsim_edges_csv);
   add("--lpsim-od", c.lpsim_od_csv);
   add("--partition-file", c.partition_file);
+  add("--migrations-from", c.migrations_from);
   return in;
 }
 

@@ -9,6 +9,7 @@
 #include "app/partition_report.hpp"
 #include "app/partition_resolution.hpp"
 #include "app/scenario_args.hpp"
+#include "converters/edge_entries_reader.hpp"
 #include "converters/partition_file.hpp"
 #include "converters/partition_map_writer.hpp"
 #include "core/error.hpp"
@@ -62,7 +63,18 @@ int command_partition(const std::vector<std::string>& args) {
             std::to_string(k) + " parts, seed " + std::to_string(config.seed) + ", " + buf +
             " s (graph and partitioner)";
   }
-  const PartitionSummary summary = summarize_partition(net, sc.demand, junction_part, k, config.step_length);
+  PartitionSummary summary = summarize_partition(net, sc.demand, junction_part, k, config.step_length);
+  if (!config.migrations_from.empty()) {
+    std::vector<int64_t> entered(net.num_edges(), 0);
+    for (const auto& [id, n] : read_edge_entries(config.migrations_from)) {
+      const auto it = net.edge_index.find(id);
+      if (it == net.edge_index.end())
+        throw InputError(SourceLoc{config.migrations_from, 0},
+                         "edge '" + id + "' is not in the network: an edgeData output of another scenario?");
+      entered[it->second] = n;
+    }
+    add_measured_migrations(summary, net, junction_part, entered);
+  }
   std::fputs(describe_partition(summary, title).c_str(), stdout);
   if (!config.partition_map.empty())
     write_partition_map(config.partition_map, net,

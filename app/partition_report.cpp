@@ -40,6 +40,11 @@ std::string describe_partition(const PartitionSummary& s, const std::string& tit
       static_cast<unsigned long long>(ghost_cells), s.largest_share, static_cast<long long>(s.migrations),
       s.imbalance);
   out += buf;
+  if (s.measured_migrations >= 0) {
+    std::snprintf(buf, sizeof buf, "measured migrations %lld (vehicles of the run that entered a cut road)\n",
+                  static_cast<long long>(s.measured_migrations));
+    out += buf;
+  }
   return out;
 }
 

@@ -9,7 +9,11 @@
 # step, imbalance (the largest part's expected vehicle-steps over the mean part's), the partitioner's wall time
 # (graph building included, loading excluded) and the run's peak RSS. Writes bench/work/partition/results.md.
 #
-# Usage: bench/partition_bench.sh [--scenario FILE.lpsim|FILE.sumocfg] [--parts "2 4 8 16 32 64"]
+# With --run-end T, the scenario is first run for T simulated seconds (K = 1, edgeData output) and the
+# migrations that run made across each partition's cuts are counted too (trajectories do not depend on the
+# partition), per step of that run.
+#
+# Usage: bench/partition_bench.sh [--scenario FILE.lpsim|FILE.sumocfg] [--parts "2 4 8 16 32 64"] [--run-end T [--run-step 0.5]]
 #          [--methods "metis leiden random"] [--steps N (simulated steps the demand spans, for migrations per
 #          step; default 86400: 12 h at 0.5 s)] [--lpsim PATH]
 set -euo pipefail
@@ -20,6 +24,8 @@ parts_list="2 4 8 16 32 64"
 methods="metis leiden random"
 steps=86400
 lpsim=build/lpsim
+run_end=
+run_step=0.5
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --scenario) scenario="$2"; shift 2 ;;
@@ -27,6 +33,8 @@ while [[ $# -gt 0 ]]; do
     --methods) methods="$2"; shift 2 ;;
     --steps) steps="$2"; shift 2 ;;
     --lpsim) lpsim="$2"; shift 2 ;;
+    --run-end) run_end="$2"; shift 2 ;;
+    --run-step) run_step="$2"; shift 2 ;;
     *) echo "partition_bench: unknown argument $1" >&2; exit 2 ;;
   esac
 done
@@ -36,11 +44,20 @@ mkdir -p "$work"
 input=(-c "$scenario")
 [[ "$scenario" == *.lpsim ]] && input=("$scenario")
 rows=()
+measured_args=()
+run_steps=
+if [[ -n "$run_end" ]]; then
+  log "running $scenario to $run_end s for the measured migrations"
+  "$lpsim" run "${input[@]}" --end "$run_end" --step-length "$run_step" --threads "$(nproc)" \
+    --edgedata-output "$work/run-edgedata.xml" --no-step-log --no-warnings >"$work/run.log" 2>&1
+  measured_args=(--migrations-from "$work/run-edgedata.xml")
+  run_steps=$(awk -v e="$run_end" -v s="$run_step" 'BEGIN { printf "%d", e / s }')
+fi
 for k in $parts_list; do
   for m in $methods; do
     log "K=$k $m"
     measured=$(measure "$work/$m-$k.log" "$lpsim" partition "${input[@]}" --parts "$k" --partition-method "$m" \
-      -o "$work/$m-$k.txt") || { log "failed, see $work/$m-$k.log"; continue; }
+      -o "$work/$m-$k.txt" "${measured_args[@]}") || { log "failed, see $work/$m-$k.log"; continue; }
     read -r _ _ rss <<<"$measured"
     secs=$(sed -n 's/.*, \([0-9.]*\) s (graph and partitioner).*/\1/p' "$work/$m-$k.log")
     line=$(grep '^parts ' "$work/$m-$k.log")
@@ -51,14 +68,19 @@ for k in $parts_list; do
     mig=$(sed 's/.*expected migrations \([0-9]*\),.*/\1/' <<<"$line")
     imb=$(sed 's/.*imbalance \([0-9.]*\) .*/\1/' <<<"$line")
     per_step=$(awk -v m="$mig" -v s="$steps" 'BEGIN { printf "%.1f", m / s }')
-    rows+=("| $k | $m | $roads | $lanes | $cells | $share | $mig | $per_step | $imb | $secs | $rss |")
+    measured=-
+    if [[ -n "$run_end" ]]; then
+      n=$(sed -n 's/^measured migrations \([0-9]*\) .*/\1/p' "$work/$m-$k.log")
+      measured="$n ($(awk -v n="$n" -v s="$run_steps" 'BEGIN { printf "%.2f", n / s }') per step)"
+    fi
+    rows+=("| $k | $m | $roads | $lanes | $cells | $share | $mig | $per_step | $measured | $imb | $secs | $rss |")
   done
 done
 {
   echo "Partition quality: \`bench/partition_bench.sh --scenario $scenario --parts \"$parts_list\"\`,"
   echo "$(date -u '+%Y-%m-%d %H:%M UTC'), commit $(git rev-parse --short HEAD), $(nproc) cores."
   echo
-  echo "| K | method | cut roads | cut lanes | ghost cells | largest part's cells / network's | expected migrations | per step ($steps steps) | imbalance | partition wall s | peak RSS MiB |"
-  echo "|---|---|---|---|---|---|---|---|---|---|---|"
+  echo "| K | method | cut roads | cut lanes | ghost cells | largest part's cells / network's | expected migrations | per step ($steps steps) | measured in a run to ${run_end:-(none)} s | imbalance | partition wall s | peak RSS MiB |"
+  echo "|---|---|---|---|---|---|---|---|---|---|---|---|"
   printf '%s\n' "${rows[@]}"
 } | tee "$work/results.md"

@@ -107,6 +107,7 @@ const OptionDef kOptions[] = {
   {"parts", "", 0, Kind::Integer, Check::Positive, true, kPartition, "the number of parts K", [](ConfigSpec& c, Value&& v) { c.parts = static_cast<int>(v.integer); }},
   {"partition-method", "", 0, Kind::Method, Check::None, true, kPartition, "metis (default: balanced k-way), leiden (communities merged into K parts by k-means) or random", [](ConfigSpec& c, Value&& v) { c.partition_method = std::move(v.text); }},
   {"partition-file", "", 0, Kind::Path, Check::None, true, kPartition, "a partition file to summarize (and map) instead of computing one", [](ConfigSpec& c, Value&& v) { c.partition_file = std::move(v.text); }},
+  {"migrations-from", "", 0, Kind::Path, Check::None, true, kPartition, "an edgeData output of a run of the scenario: the vehicles of that run that crossed a cut", [](ConfigSpec& c, Value&& v) { c.migrations_from = std::move(v.text); }},
   {"map", "", 0, Kind::Path, Check::None, true, kPartition, "a PNG map of the network coloured by part", [](ConfigSpec& c, Value&& v) { c.partition_map = std::move(v.text); }},
 };
 // clang-format on

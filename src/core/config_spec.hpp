@@ -46,10 +46,11 @@ struct ConfigSpec {
   OutputSpec outputs;
   std::string output_file;  // -o/--output on the command line: LPSim's own result file
   // `lpsim partition`: K, the method (metis, leiden, random), a partition file to summarize instead of
-  // computing one, and the PNG map to draw.
+  // computing one, the PNG map to draw, and a run's edgeData to count migrations from.
   int parts = 0;
   std::string partition_method = "metis";
   std::string partition_file, partition_map;
+  std::string migrations_from;  // an edgeData output whose entries count the vehicles crossing the cuts
   // SUMO options given that cannot change LPSim's results (verbose, log, gui-settings-file, ...), in the
   // order first given, for the one warning that names them.
   std::vector<std::string> inert_options;

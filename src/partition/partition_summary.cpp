@@ -36,10 +36,14 @@ PartitionSummary summarize_partition(const Network& net, const Demand& demand,
   PartitionSummary s;
   s.parts.resize(static_cast<size_t>(k));
   for (int32_t p : junction_part) ++s.parts[static_cast<size_t>(p)].junctions;
-  std::vector<int64_t> uses(net.num_edges(), 0);
+  // Vehicles per edge, and of them those that enter it from the edge before (a departure is no migration).
+  std::vector<int64_t> uses(net.num_edges(), 0), entries(net.num_edges(), 0);
   for (uint32_t v = 0; v < demand.size(); ++v)
-    for (uint32_t i = 0; i < demand.route_length[v]; ++i)
-      ++uses[demand.route_edges[demand.route_begin[v] + i]];
+    for (uint32_t i = 0; i < demand.route_length[v]; ++i) {
+      const uint32_t e = demand.route_edges[demand.route_begin[v] + i];
+      ++uses[e];
+      if (i > 0) ++entries[e];
+    }
   const std::vector<int32_t> edge_part = edge_parts_from_junctions(net, junction_part);
   const std::vector<int32_t> lane_part = lane_parts(net, edge_part);
   for (uint32_t l = 0; l < net.num_lanes(); ++l) {
@@ -57,13 +61,13 @@ PartitionSummary summarize_partition(const Network& net, const Demand& demand,
     if (from < 0 || junction_part[static_cast<uint32_t>(from)] == edge_part[e]) continue;
     const int32_t other = junction_part[static_cast<uint32_t>(from)];
     ps.cut_lanes_in += net.edge_num_lanes[e];
-    ps.vehicles_in += uses[e];
+    ps.vehicles_in += entries[e];
     s.parts[static_cast<size_t>(other)].cut_lanes_out += net.edge_num_lanes[e];
     neighbours[static_cast<size_t>(edge_part[e])].insert(other);
     neighbours[static_cast<size_t>(other)].insert(edge_part[e]);
     ++s.cut_roads;
     s.cut_lanes += net.edge_num_lanes[e];
-    s.migrations += uses[e];
+    s.migrations += entries[e];
   }
   float tail = 0;  // the longest vehicle: how far back a vehicle that crossed a cut may still reach
   for (float length : demand.types.length) tail = std::max(tail, length);
@@ -89,6 +93,19 @@ PartitionSummary summarize_partition(const Network& net, const Demand& demand,
   }
   s.imbalance = total > 0 ? static_cast<double>(largest) * k / static_cast<double>(total) : 1.0;
   return s;
+}
+
+void add_measured_migrations(PartitionSummary& s, const Network& net,
+                             const std::vector<int32_t>& junction_part,
+                             const std::vector<int64_t>& entered_per_edge) {
+  const std::vector<int32_t> edge_part = edge_parts_from_junctions(net, junction_part);
+  s.measured_migrations = 0;
+  for (uint32_t e = 0; e < net.num_edges(); ++e) {
+    const int32_t from = net.edge_from_junction[e];
+    if (edge_part[e] == kNone || from < 0 || junction_part[static_cast<uint32_t>(from)] == edge_part[e])
+      continue;
+    s.measured_migrations += entered_per_edge[e];
+  }
 }
 
 }  // namespace lpsim

@@ -248,5 +248,25 @@ TEST_F(PartitionFileTest, CliWritesFileAndMapAndRefusesABadFile) {
   EXPECT_NE(bad_method.err.find("expected metis, leiden or random"), std::string::npos) << bad_method.err;
 }
 
+// The vehicles of a run that cross a cut, counted from its edgeData: on the grid every vehicle completes
+// its route, so they are the routes' entries of cut roads (the expected migrations), and a partition without
+// cuts has none.
+TEST_F(PartitionFileTest, MigrationsMeasuredFromARunAreTheRoutesCrossings) {
+  const test::CliResult run =
+      test::run_lpsim(dir.path(), {"run", "-c", kConfig, "--edgedata-output", "e.xml"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const test::CliResult three = test::run_lpsim(
+      dir.path(), {"partition", "-c", kConfig, "--parts", "3", "-o", "p3.txt", "--migrations-from", "e.xml"});
+  ASSERT_EQ(three.exit_code, 0) << three.err;
+  const size_t at = three.out.find("expected migrations ");
+  ASSERT_NE(at, std::string::npos) << three.out;
+  const std::string expected = three.out.substr(at + 20, three.out.find(',', at) - at - 20);
+  EXPECT_GT(std::stoll(expected), 0);
+  EXPECT_NE(three.out.find("measured migrations " + expected + " "), std::string::npos) << three.out;
+  const test::CliResult one = test::run_lpsim(
+      dir.path(), {"partition", "-c", kConfig, "--parts", "1", "-o", "p1.txt", "--migrations-from", "e.xml"});
+  EXPECT_NE(one.out.find("measured migrations 0 "), std::string::npos) << one.out;
+}
+
 }  // namespace
 }  // namespace lpsim
