@@ -58,6 +58,13 @@ std::vector<PartLayout> partition_layout(const Network& net, const std::vector<i
     std::vector<uint8_t> ghost(n, 0);
     add_within(net, lane_part, p, next, look_ahead, ghost);
     add_within(net, lane_part, p, prev, tail, ghost);
+    // A ghost edge comes whole: the step's lane logic (best lanes, neighbours) assumes an edge's every lane.
+    for (uint32_t l = 0; l < n; ++l) {
+      if (!ghost[l]) continue;
+      const uint32_t e = net.lane_edge[l];
+      for (uint32_t m = net.edge_first_lane[e]; m < net.edge_first_lane[e] + net.edge_num_lanes[e]; ++m)
+        ghost[m] = 1;
+    }
     PartLayout& part = layout[static_cast<size_t>(p)];
     for (uint32_t l = 0; l < n; ++l) {
       const uint64_t cells = net.lane_cell_begin[l + 1] - net.lane_cell_begin[l];

@@ -18,7 +18,8 @@ struct PartLayout {
 /// For lane_part (a part per lane, lane_parts()): each part's owned lanes and its ghosts, the lanes of other
 /// parts that lie within `look_ahead` metres downstream of the end of one of its lanes (its vehicles' path
 /// ahead and the room behind a junction), and within `tail` metres upstream of the start of one (the lanes a
-/// vehicle that just crossed into the part still covers with its body).
+/// vehicle that just crossed into the part still covers with its body), each with the other lanes of its
+/// edge.
 std::vector<PartLayout> partition_layout(const Network& net, const std::vector<int32_t>& lane_part,
                                          int32_t parts, double look_ahead, double tail);
 

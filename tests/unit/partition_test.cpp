@@ -122,6 +122,13 @@ TEST(PartitionTest, LayoutOwnsEveryLaneOnceAndSeesAcrossTheCuts) {
     }
   }
   for (int n : owners) EXPECT_EQ(n, 1);
+  // A ghost edge comes whole.
+  for (const PartLayout& part : far)
+    for (uint32_t l : part.ghosts) {
+      const uint32_t e = net.lane_edge[l];
+      for (uint32_t m = net.edge_first_lane[e]; m < net.edge_first_lane[e] + net.edge_num_lanes[e]; ++m)
+        EXPECT_TRUE(std::binary_search(part.ghosts.begin(), part.ghosts.end(), m)) << net.lane_id[m];
+    }
 }
 
 TEST(PartitionTest, KmeansGivesEveryClusterAPoint) {
