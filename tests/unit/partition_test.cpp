@@ -13,7 +13,9 @@
 #include "converters/cli_options.hpp"
 #include "converters/partition_file.hpp"
 #include "core/error.hpp"
+#include "kernels/rng.hpp"
 #include "lpsim_cli.hpp"
+#include "partition/exchange_plan.hpp"
 #include "partition/junction_graph.hpp"
 #include "partition/kmeans.hpp"
 #include "partition/partition_layout.hpp"
@@ -129,6 +131,50 @@ TEST(PartitionTest, LayoutOwnsEveryLaneOnceAndSeesAcrossTheCuts) {
       for (uint32_t m = net.edge_first_lane[e]; m < net.edge_first_lane[e] + net.edge_num_lanes[e]; ++m)
         EXPECT_TRUE(std::binary_search(part.ghosts.begin(), part.ghosts.end(), m)) << net.lane_id[m];
     }
+}
+
+// Each part's map holds its owned lanes' cells then its ghosts'; after the forward feeds from the owners,
+// every lane it holds reads as in the whole network's map.
+TEST(PartitionTest, ForwardFeedsBringEveryGhostLaneUpToDate) {
+  const Scenario& sc = grid();
+  const Network& net = sc.network;
+  const JunctionGraph g = build_junction_graph(net, sc.demand, 1.0);
+  const std::vector<int32_t> lane_part =
+      lane_parts(net, edge_parts_from_junctions(net, partition_junctions(g, 3, PartitionMethod::Metis, 2)));
+  const std::vector<PartLayout> layout = partition_layout(net, lane_part, 3, 300.0, 7.5);
+  std::vector<PartCells> cells;
+  for (const PartLayout& part : layout) cells.push_back(part_cells(net, part));
+  std::vector<uint8_t> whole(net.num_cells());
+  for (uint64_t i = 0; i < whole.size(); ++i) whole[i] = static_cast<uint8_t>(1 + 200 * rng_uniform(9, i, 0));
+  // Each part's own cells, as its commit would leave them; its ghost cells stale (zero).
+  std::vector<std::vector<uint8_t>> maps;
+  uint64_t owned_total = 0;
+  for (size_t p = 0; p < layout.size(); ++p) {
+    EXPECT_EQ(cells[p].owned_cells, layout[p].owned_cells);
+    EXPECT_EQ(cells[p].cells, layout[p].owned_cells + layout[p].ghost_cells);
+    owned_total += cells[p].owned_cells;
+    maps.emplace_back(cells[p].cells, 0);
+    for (uint32_t l : layout[p].owned)
+      std::copy(whole.begin() + static_cast<int64_t>(net.lane_cell_begin[l]),
+                whole.begin() + static_cast<int64_t>(net.lane_cell_begin[l + 1]),
+                maps[p].begin() + static_cast<int64_t>(cells[p].cell_begin[l]));
+  }
+  EXPECT_EQ(owned_total, net.num_cells());
+  const auto plan = forward_plan(layout, cells, lane_part, net);
+  for (size_t p = 0; p < layout.size(); ++p) {
+    uint64_t fed = 0;
+    for (const GhostFeed& f : plan[p]) {
+      EXPECT_NE(f.owner, static_cast<int32_t>(p));
+      apply_feed(f, maps[static_cast<size_t>(f.owner)].data(), maps[p].data());
+      fed += f.cells;
+    }
+    EXPECT_EQ(fed, layout[p].ghost_cells);
+    for (uint32_t l = 0; l < net.num_lanes(); ++l) {
+      if (cells[p].cell_begin[l] == kNoCells) continue;
+      for (uint64_t i = 0; i < net.lane_cell_begin[l + 1] - net.lane_cell_begin[l]; ++i)
+        ASSERT_EQ(maps[p][cells[p].cell_begin[l] + i], whole[net.lane_cell_begin[l] + i]) << net.lane_id[l];
+    }
+  }
 }
 
 TEST(PartitionTest, KmeansGivesEveryClusterAPoint) {
