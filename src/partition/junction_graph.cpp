@@ -11,13 +11,20 @@ int64_t free_flow_steps(const Network& net, uint32_t e, double dt) {
   return std::max<int64_t>(1, static_cast<int64_t>(std::ceil(net.edge_length[e] / speed / dt)));
 }
 
+EdgeRouteUses count_route_uses(const Demand& demand, uint32_t num_edges) {
+  EdgeRouteUses u{std::vector<int64_t>(num_edges, 0), std::vector<int64_t>(num_edges, 0)};
+  for (uint32_t v = 0; v < demand.size(); ++v)
+    for (uint32_t i = 0; i < demand.route_length[v]; ++i) {
+      const uint32_t e = demand.route_edges[demand.route_begin[v] + i];
+      ++u.uses[e];
+      if (i > 0) ++u.entries[e];
+    }
+  return u;
+}
+
 JunctionGraph build_junction_graph(const Network& net, const Demand& demand, double dt) {
   const uint32_t nj = net.num_junctions(), ne = net.num_edges();
-  // Vehicles per normal edge, from every loaded route.
-  std::vector<int64_t> uses(ne, 0);
-  for (uint32_t v = 0; v < demand.size(); ++v)
-    for (uint32_t k = 0; k < demand.route_length[v]; ++k)
-      ++uses[demand.route_edges[demand.route_begin[v] + k]];
+  const std::vector<int64_t> uses = count_route_uses(demand, ne).uses;
 
   JunctionGraph g;
   g.vertex_weight.assign(nj, 1);

@@ -26,6 +26,13 @@ struct JunctionGraph {
   uint32_t num_vertices() const { return static_cast<uint32_t>(vertex_weight.size()); }
 };
 
+/// Per edge, the loaded routes that use it, and of them those that enter it from the edge before (a route's
+/// first edge is where its vehicle departs, not entered).
+struct EdgeRouteUses {
+  std::vector<int64_t> uses, entries;
+};
+EdgeRouteUses count_route_uses(const Demand& demand, uint32_t num_edges);
+
 /// Builds the junction graph of `net` weighted by the routes of `demand` (dt: the step length, s).
 JunctionGraph build_junction_graph(const Network& net, const Demand& demand, double dt);
 

@@ -31,19 +31,21 @@ std::vector<int32_t> lane_parts(const Network& net, const std::vector<int32_t>& 
   return part;
 }
 
+int32_t cut_source_part(const Network& net, const std::vector<int32_t>& junction_part,
+                        const std::vector<int32_t>& edge_part, uint32_t e) {
+  const int32_t from = net.edge_from_junction[e];
+  if (edge_part[e] == kNone || from < 0) return kNone;
+  const int32_t source = junction_part[static_cast<uint32_t>(from)];
+  return source == edge_part[e] ? kNone : source;
+}
+
 PartitionSummary summarize_partition(const Network& net, const Demand& demand,
                                      const std::vector<int32_t>& junction_part, int32_t k, double dt) {
   PartitionSummary s;
   s.parts.resize(static_cast<size_t>(k));
   for (int32_t p : junction_part) ++s.parts[static_cast<size_t>(p)].junctions;
-  // Vehicles per edge, and of them those that enter it from the edge before (a departure is no migration).
-  std::vector<int64_t> uses(net.num_edges(), 0), entries(net.num_edges(), 0);
-  for (uint32_t v = 0; v < demand.size(); ++v)
-    for (uint32_t i = 0; i < demand.route_length[v]; ++i) {
-      const uint32_t e = demand.route_edges[demand.route_begin[v] + i];
-      ++uses[e];
-      if (i > 0) ++entries[e];
-    }
+  // A departure is no migration: a cut road's entries are.
+  const auto [uses, entries] = count_route_uses(demand, net.num_edges());
   const std::vector<int32_t> edge_part = edge_parts_from_junctions(net, junction_part);
   const std::vector<int32_t> lane_part = lane_parts(net, edge_part);
   for (uint32_t l = 0; l < net.num_lanes(); ++l) {
@@ -57,9 +59,8 @@ PartitionSummary summarize_partition(const Network& net, const Demand& demand,
     if (edge_part[e] == kNone) continue;
     PartSummary& ps = s.parts[static_cast<size_t>(edge_part[e])];
     ps.vehicle_steps += uses[e] * free_flow_steps(net, e, dt);
-    const int32_t from = net.edge_from_junction[e];
-    if (from < 0 || junction_part[static_cast<uint32_t>(from)] == edge_part[e]) continue;
-    const int32_t other = junction_part[static_cast<uint32_t>(from)];
+    const int32_t other = cut_source_part(net, junction_part, edge_part, e);
+    if (other == kNone) continue;
     ps.cut_lanes_in += net.edge_num_lanes[e];
     ps.vehicles_in += entries[e];
     s.parts[static_cast<size_t>(other)].cut_lanes_out += net.edge_num_lanes[e];
@@ -100,12 +101,9 @@ void add_measured_migrations(PartitionSummary& s, const Network& net,
                              const std::vector<int64_t>& entered_per_edge) {
   const std::vector<int32_t> edge_part = edge_parts_from_junctions(net, junction_part);
   s.measured_migrations = 0;
-  for (uint32_t e = 0; e < net.num_edges(); ++e) {
-    const int32_t from = net.edge_from_junction[e];
-    if (edge_part[e] == kNone || from < 0 || junction_part[static_cast<uint32_t>(from)] == edge_part[e])
-      continue;
-    s.measured_migrations += entered_per_edge[e];
-  }
+  for (uint32_t e = 0; e < net.num_edges(); ++e)
+    if (cut_source_part(net, junction_part, edge_part, e) != kNone)
+      s.measured_migrations += entered_per_edge[e];
 }
 
 }  // namespace lpsim

@@ -50,6 +50,11 @@ void add_measured_migrations(PartitionSummary& s, const Network& net,
                              const std::vector<int32_t>& junction_part,
                              const std::vector<int64_t>& entered_per_edge);
 
+/// For road e of edge_part (edge_parts_from_junctions), the part its vehicles come from when the road is
+/// cut (its from-junction lies in another part), else kNone.
+int32_t cut_source_part(const Network& net, const std::vector<int32_t>& junction_part,
+                        const std::vector<int32_t>& edge_part, uint32_t e);
+
 /// The part of every lane, normal and internal: a road's lanes are its to-junction's, a junction's internal
 /// lanes are that junction's (the part of the road that leads into them). kNone where no part is known.
 std::vector<int32_t> lane_parts(const Network& net, const std::vector<int32_t>& edge_part);

@@ -35,6 +35,14 @@ const Scenario& grid() {
   return sc;
 }
 
+// The lane parts of the grid's METIS partition into k parts.
+std::vector<int32_t> metis_lane_parts(int32_t k, uint64_t seed) {
+  const Scenario& sc = grid();
+  const JunctionGraph g = build_junction_graph(sc.network, sc.demand, 1.0);
+  return lane_parts(sc.network, edge_parts_from_junctions(
+                                    sc.network, partition_junctions(g, k, PartitionMethod::Metis, seed)));
+}
+
 TEST(PartitionTest, JunctionGraphIsSymmetricAndWeighsTheDemand) {
   const Scenario& sc = grid();
   const JunctionGraph g = build_junction_graph(sc.network, sc.demand, 1.0);
@@ -98,9 +106,7 @@ TEST(PartitionTest, MetisBalancesAndCutsLessThanRandom) {
 TEST(PartitionTest, LayoutOwnsEveryLaneOnceAndSeesAcrossTheCuts) {
   const Scenario& sc = grid();
   const Network& net = sc.network;
-  const JunctionGraph g = build_junction_graph(net, sc.demand, 1.0);
-  const std::vector<int32_t> lane_part =
-      lane_parts(net, edge_parts_from_junctions(net, partition_junctions(g, 3, PartitionMethod::Metis, 2)));
+  const std::vector<int32_t> lane_part = metis_lane_parts(3, 2);
   const std::vector<PartLayout> near = partition_layout(net, lane_part, 3, 1.0, 0.0);
   const std::vector<PartLayout> far = partition_layout(net, lane_part, 3, 400.0, 7.5);
   std::vector<int> owners(net.num_lanes(), 0);
@@ -138,9 +144,7 @@ TEST(PartitionTest, LayoutOwnsEveryLaneOnceAndSeesAcrossTheCuts) {
 TEST(PartitionTest, ForwardFeedsBringEveryGhostLaneUpToDate) {
   const Scenario& sc = grid();
   const Network& net = sc.network;
-  const JunctionGraph g = build_junction_graph(net, sc.demand, 1.0);
-  const std::vector<int32_t> lane_part =
-      lane_parts(net, edge_parts_from_junctions(net, partition_junctions(g, 3, PartitionMethod::Metis, 2)));
+  const std::vector<int32_t> lane_part = metis_lane_parts(3, 2);
   const std::vector<PartLayout> layout = partition_layout(net, lane_part, 3, 300.0, 7.5);
   std::vector<PartCells> cells;
   for (const PartLayout& part : layout) cells.push_back(part_cells(net, part));
