@@ -5,16 +5,11 @@
 #include <string_view>
 
 #include "converters/output_file.hpp"
+#include "converters/route_attributes.hpp"
 
 namespace lpsim {
 
 namespace {
-
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
-  return s;
-}
 
 bool parse_int(std::string_view s, int32_t& out) {
   const auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), out);
