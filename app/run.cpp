@@ -208,6 +208,23 @@ void print_run_report(std::FILE* out, const Run& run, double wall, double load_s
                static_cast<unsigned long long>(c.vehicle_updates),
                static_cast<unsigned long long>(totals.peak_running));
   std::fprintf(out, " Threads: %d\n", run.options().threads);
+  const std::vector<PartStats> parts = sim.part_stats();
+  if (!parts.empty()) {
+    // Per part: its share of the work, what crossed its cuts, and the time its exchanges took (waiting for
+    // slower parts included) against its steps' wall time.
+    std::fprintf(out, "Partitions: %zu parts (threads per part: %d)\n", parts.size(), run.options().threads);
+    for (size_t p = 0; p < parts.size(); ++p) {
+      const PartStats& ps = parts[p];
+      std::fprintf(out,
+                   " Part %zu: vehicle updates %llu, migrations out %llu, exchanged %.3f MB in %llu rounds, "
+                   "step %.3fs of which exchanges %.3fs (%.1f%%), outputs %.3fs\n",
+                   p, static_cast<unsigned long long>(ps.vehicle_updates),
+                   static_cast<unsigned long long>(ps.migrations), static_cast<double>(ps.bytes_sent) / 1e6,
+                   static_cast<unsigned long long>(ps.rounds), ps.step_seconds, ps.exchange_seconds,
+                   ps.step_seconds > 0 ? 100.0 * ps.exchange_seconds / ps.step_seconds : 0.0,
+                   ps.gather_seconds);
+    }
+  }
   std::fprintf(out,
                "Vehicles:\n Inserted: %llu (Loaded: %llu)\n Running: %llu\n Waiting: %llu\n Arrived: %llu\n",
                static_cast<unsigned long long>(c.inserted), static_cast<unsigned long long>(c.loaded),

@@ -10,12 +10,30 @@
 #include "app/device_select.hpp"
 #include "app/interrupt.hpp"
 #include "app/output_paths.hpp"
+#include "app/partitioned_parts.hpp"
 #include "app/progress_log.hpp"
 #include "app/run.hpp"
 #include "app/scenario_args.hpp"
 #include "app/simulation_options.hpp"
+#include "core/error.hpp"
+#include "transport/mpi/mpi_transport.hpp"
 
 namespace lpsim {
+
+namespace {
+
+// How long a part waits for another in one round: a part's step, or its start (building its tables), takes
+// far less; past this the other part has stopped.
+constexpr double kPartTimeout = 600;
+
+// What ranks of one job must share to exchange their state as bytes: the version, the build, and the sizes
+// of what crosses between them.
+std::string build_id() {
+  return std::string(LPSIM_BUILD_ID) + " vehicle " + std::to_string(sizeof(VehicleView)) + "/" +
+         std::to_string(sizeof(TripRecord)) + "/" + std::to_string(sizeof(PartStats));
+}
+
+}  // namespace
 
 int command_run(const std::vector<std::string>& args) {
   ConfigSpec config;
@@ -29,6 +47,40 @@ int command_run(const std::vector<std::string>& args) {
   if (config.device != ComputeDevice::Cpu)
     std::fprintf(stderr, "lpsim: device %s\n", device.description.c_str());
 
+  // A partitioned run: under mpirun one part per rank, part 0 (rank 0) running the outputs and the others
+  // serving it; else parts 1..K-1 on threads of this process, started before part 0's Run, as they build
+  // alongside it.
+  int32_t parts = 1;
+  const std::vector<int32_t> edge_part = run_edge_parts(config, sc, &parts);
+  const int ranks = MpiSession::world_size();
+  if (ranks > 1 && parts != ranks)
+    throw InputError("mpirun -n " + std::to_string(ranks) + " runs one part per rank: give --parts " +
+                     std::to_string(ranks) + " or a partition file of " + std::to_string(ranks) +
+                     " parts (not " + std::to_string(parts) + ")");
+  if (parts > 1 && !config.jam_report.empty())
+    throw InputError("--jam-report reads one part's vehicles: leave out --parts and --partition-file");
+  std::unique_ptr<InProcessParts> others;
+  std::unique_ptr<Transport> mpi;
+  PartPlan rank_plan;
+  if (ranks > 1) {
+    mpi = std::make_unique<MpiTransport>(kPartTimeout);
+    mpi->check_same_build(build_id());
+    std::vector<PartPlan> plans = part_plans(sc.network, edge_part, parts, longest_vehicle(sc.demand));
+    rank_plan = std::move(plans[static_cast<size_t>(mpi->rank())]);
+    plans.clear();
+    options.part = &rank_plan;
+    options.transport = mpi.get();
+    if (mpi->rank() != 0) {
+      Simulation sim(sc.network, std::move(sc.demand), options);
+      sim.serve_part();
+      return 0;
+    }
+  } else if (parts > 1) {
+    others = std::make_unique<InProcessParts>(
+        sc, options, part_plans(sc.network, edge_part, parts, longest_vehicle(sc.demand)), kPartTimeout);
+    options = others->part0_options(options);
+  }
+
   using Clock = std::chrono::steady_clock;
   const auto wall0 = Clock::now();
   const double load_seconds = sc.load_seconds;
@@ -37,19 +89,30 @@ int command_run(const std::vector<std::string>& args) {
   const InterruptGuard interrupt;
   ProgressLog progress(stderr, isatty(fileno(stderr)) != 0, config.no_step_log, config.progress_interval,
                        config.end);
-  Run run(std::move(sc), config, options);
-  while (!run.done() && interrupt.received() == 0) {
-    run.step();
-    progress.after_step(run.simulation());
+  int signal = 0;
+  try {
+    Run run(std::move(sc), config, options);
+    while (!run.done() && interrupt.received() == 0) {
+      run.step();
+      progress.after_step(run.simulation());
+    }
+    run.finish();
+    const double wall = std::chrono::duration<double>(Clock::now() - wall0).count();
+    progress.end_line();
+    signal = interrupt.received();
+    if (signal != 0)
+      std::fprintf(stderr, "lpsim: interrupted by %s at time %.2f; outputs closed\n", signal_name(signal),
+                   run.end_time());
+    print_run_report(stdout, run, wall, load_seconds, signal != 0 ? signal_name(signal) : nullptr);
+  } catch (const std::exception&) {
+    // Part 0's error names another part's failure when that is what stopped it (the transport's error).
+    if (others) others->finish(true);
+    throw;
   }
-  run.finish();
-  const double wall = std::chrono::duration<double>(Clock::now() - wall0).count();
-  progress.end_line();
-  const int signal = interrupt.received();
-  if (signal != 0)
-    std::fprintf(stderr, "lpsim: interrupted by %s at time %.2f; outputs closed\n", signal_name(signal),
-                 run.end_time());
-  print_run_report(stdout, run, wall, load_seconds, signal != 0 ? signal_name(signal) : nullptr);
+  if (others) {
+    const std::string cause = others->finish(false);
+    if (!cause.empty()) throw std::runtime_error(cause);
+  }
   return signal != 0 ? 128 + signal : 0;
 }
 

@@ -2,11 +2,13 @@
 // (2: bad input or usage, 1: internal failure).
 #include <cstdio>
 #include <exception>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "app/commands.hpp"
 #include "core/error.hpp"
+#include "transport/mpi/mpi_transport.hpp"
 
 namespace {
 
@@ -38,23 +40,8 @@ bool asks_for_help(const std::vector<std::string>& args) {
   return false;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  std::vector<std::string> args(argv + 1, argv + argc);
-  if (args.empty() || args[0] == "-h" || args[0] == "--help" || args[0] == "help") {
-    std::fputs(kUsage, args.empty() ? stderr : stdout);
-    return args.empty() ? lpsim::kExitBadInput : 0;
-  }
-  const std::string command = args[0];
-  args.erase(args.begin());
-  if (asks_for_help(args)) {
-    const std::string help = lpsim::command_help(command);
-    if (!help.empty()) {
-      std::fputs(help.c_str(), stdout);
-      return 0;
-    }
-  }
+// Runs a command: its exit status, errors printed as one line.
+int dispatch(const std::string& command, const std::vector<std::string>& args) {
   try {
     if (command == "info") return lpsim::command_info(args);
     if (command == "convert") return lpsim::command_convert(args);
@@ -76,4 +63,30 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "lpsim: internal error: %s\n", e.what());
     return 1;
   }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // Under mpirun every rank runs one part of a partitioned run: MPI is up for the whole process.
+  std::unique_ptr<lpsim::MpiSession> mpi;
+  if (lpsim::MpiSession::launched_by_mpirun()) mpi = std::make_unique<lpsim::MpiSession>(&argc, &argv);
+  std::vector<std::string> args(argv + 1, argv + argc);
+  if (args.empty() || args[0] == "-h" || args[0] == "--help" || args[0] == "help") {
+    std::fputs(kUsage, args.empty() ? stderr : stdout);
+    return args.empty() ? lpsim::kExitBadInput : 0;
+  }
+  const std::string command = args[0];
+  args.erase(args.begin());
+  if (asks_for_help(args)) {
+    const std::string help = lpsim::command_help(command);
+    if (!help.empty()) {
+      std::fputs(help.c_str(), stdout);
+      return 0;
+    }
+  }
+  const int code = dispatch(command, args);
+  // A rank that failed ends the job: the others would wait for it until their rounds time out.
+  if (code != 0 && mpi && lpsim::MpiSession::world_size() > 1) lpsim::MpiSession::abort_job(code);
+  return code;
 }

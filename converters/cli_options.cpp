@@ -104,9 +104,9 @@ const OptionDef kOptions[] = {
   {"lpsim-edges", "", 0, Kind::Path, Check::None, false, kLoad, "LPSim CSV edges (with --lpsim-nodes)", [](ConfigSpec& c, Value&& v) { c.lpsim_edges_csv = std::move(v.text); }},
   {"lpsim-od", "", 0, Kind::Path, Check::None, false, kLoad, "LPSim CSV origin-destination demand", [](ConfigSpec& c, Value&& v) { c.lpsim_od_csv = std::move(v.text); }},
   {"output", "", 'o', Kind::Path, Check::None, true, kConvert | kPartition, "the file to write: the snapshot (convert, .lpsim) or the partition file (partition)", [](ConfigSpec& c, Value&& v) { c.output_file = std::move(v.text); }},
-  {"parts", "", 0, Kind::Integer, Check::Positive, true, kPartition, "the number of parts K", [](ConfigSpec& c, Value&& v) { c.parts = static_cast<int>(v.integer); }},
-  {"partition-method", "", 0, Kind::Method, Check::None, true, kPartition, "metis (default: balanced k-way), leiden (communities merged into K parts by k-means) or random", [](ConfigSpec& c, Value&& v) { c.partition_method = std::move(v.text); }},
-  {"partition-file", "", 0, Kind::Path, Check::None, true, kPartition, "a partition file to summarize (and map) instead of computing one", [](ConfigSpec& c, Value&& v) { c.partition_file = std::move(v.text); }},
+  {"parts", "", 0, Kind::Integer, Check::Positive, true, kPartition | kRun, "the number of parts K (run: the network split into K parts, each stepped by its own threads)", [](ConfigSpec& c, Value&& v) { c.parts = static_cast<int>(v.integer); }},
+  {"partition-method", "", 0, Kind::Method, Check::None, true, kPartition | kRun, "metis (default: balanced k-way), leiden (communities merged into K parts by k-means) or random", [](ConfigSpec& c, Value&& v) { c.partition_method = std::move(v.text); }},
+  {"partition-file", "", 0, Kind::Path, Check::None, true, kPartition | kRun, "a partition file: to summarize (and map) instead of computing one; run: the parts to run in", [](ConfigSpec& c, Value&& v) { c.partition_file = std::move(v.text); }},
   {"migrations-from", "", 0, Kind::Path, Check::None, true, kPartition, "an edgeData output of a run of the scenario: the vehicles of that run that crossed a cut", [](ConfigSpec& c, Value&& v) { c.migrations_from = std::move(v.text); }},
   {"map", "", 0, Kind::Path, Check::None, true, kPartition, "a PNG map of the network coloured by part", [](ConfigSpec& c, Value&& v) { c.partition_map = std::move(v.text); }},
 };

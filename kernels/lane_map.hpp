@@ -35,9 +35,7 @@ LPSIM_HD float decode_cell_speed(uint8_t cell) { return static_cast<float>(cell 
 /// encoding floors v*4, and scaling by 4 is exact).
 LPSIM_HD bool encodes_as_standing(float v) { return v * 4.0f < 1.0f; }
 
-LPSIM_HD uint32_t lane_cells(const NetView& net, int32_t lane) {
-  return net.lane_cell_begin[lane + 1] - net.lane_cell_begin[lane];
-}
+LPSIM_HD uint32_t lane_cells(const NetView& net, int32_t lane) { return net.lane_num_cells[lane]; }
 
 /// Longest lane, in cells, the network builder accepts: with a look-ahead clamped to kMaxCellSpan, cell
 /// arithmetic (front cell + 1 + reach) stays within int32.
@@ -92,20 +90,30 @@ LPSIM_HD void fill_cells(uint8_t* map, const NetView& net, int32_t lane, uint32_
 #endif
 }
 
-/// Writes `value` into every cell of a footprint of a vehicle `length` metres long.
-LPSIM_HD_INLINED void apply_footprint(uint8_t* map, const NetView& net, const Footprint& fp, float length,
-                                      uint8_t value) {
+/// Calls cells(lane, first, last) for each lane a vehicle `length` metres long covers with footprint `fp`:
+/// the cells [first, last] of that lane it covers.
+template <class Cells>
+LPSIM_HD_INLINED void for_each_footprint_piece(const NetView& net, const Footprint& fp, float length,
+                                               Cells cells) {
   if (fp.lane < 0) return;
   const float rear = fp.pos - length;
-  fill_cells(map, net, fp.lane, cell_of(net, fp.lane, rear), cell_of(net, fp.lane, fp.pos), value);
+  cells(fp.lane, cell_of(net, fp.lane, rear), cell_of(net, fp.lane, fp.pos));
   float remaining = -rear;  // body length still to place behind this lane's start
   const int32_t behind[2] = {fp.prev, fp.prev2};
   for (int k = 0; k < 2 && remaining > 0.0f && behind[k] >= 0; ++k) {
     const int32_t l = behind[k];
     const float len = net.lane_length[l];
-    fill_cells(map, net, l, cell_of(net, l, len - remaining), lane_cells(net, l) - 1, value);
+    cells(l, cell_of(net, l, len - remaining), lane_cells(net, l) - 1);
     remaining -= len;
   }
+}
+
+/// Writes `value` into every cell of a footprint of a vehicle `length` metres long.
+LPSIM_HD_INLINED void apply_footprint(uint8_t* map, const NetView& net, const Footprint& fp, float length,
+                                      uint8_t value) {
+  for_each_footprint_piece(net, fp, length, [&](int32_t lane, uint32_t first, uint32_t last) {
+    fill_cells(map, net, lane, first, last, value);
+  });
 }
 
 /// First occupied cell in [first, last] of a lane, or -1. On the host `map` needs kLaneMapPadding readable

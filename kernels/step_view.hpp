@@ -11,9 +11,12 @@ namespace lpsim {
 /// The network, read-only during a run.
 struct NetView {
   uint32_t num_lanes;
-  const uint32_t* lane_cell_begin;  // [num_lanes+1] first cell of each lane in the lane map
-  const float* lane_length;         // m
-  const float* lane_speed;          // m/s
+  // [num_lanes+1] first cell of each lane in the lane map; [num_lanes]: the map's cells. A part of a
+  // partitioned run holds only some lanes' cells (its own, then its ghosts'): the others are never read.
+  const uint32_t* lane_cell_begin;
+  const uint32_t* lane_num_cells;  // cells of each lane
+  const float* lane_length;        // m
+  const float* lane_speed;         // m/s
   const uint32_t* lane_edge;
   const uint8_t* lane_internal;     // 1: junction-internal lane
   const int32_t* lane_left;         // lane to the left on the same edge (index+1), -1 if none
@@ -73,7 +76,9 @@ struct TripView {
   const uint32_t* stop_until_step;      // step before which it does not leave (0: none)
 };
 
-enum VehicleStatus : uint8_t { kPending = 0, kRunning = 1, kArrived = 2, kTeleporting = 3 };
+// kMigrated: the vehicle drove into another part of a partitioned run, which runs it from there on; its
+// slot here stays one more step to clear its last footprint, as after an arrival.
+enum VehicleStatus : uint8_t { kPending = 0, kRunning = 1, kArrived = 2, kTeleporting = 3, kMigrated = 4 };
 
 /// Where a vehicle's body lies: front bumper `pos` on `lane`, the tail continuing back over `prev` and
 /// `prev2` (the lanes driven before) when the vehicle is longer than what lies ahead of their ends.

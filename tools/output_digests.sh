@@ -10,12 +10,18 @@
 # The scenarios are copied to a scratch folder first (their add-files may name outputs of their own).
 # The summary's duration attribute (wall time) is masked. Options: --end T (default: each scenario's own);
 # --model M: --default.carfollowmodel M for every run (default: LPSim's, Krauss; IDM gives the outputs of
-# commits before Krauss was implemented, when every vehicle ran the IDM).
+# commits before Krauss was implemented, when every vehicle ran the IDM); --parts "2 3 4 8": also runs the
+# network split into each of these numbers of parts (METIS, in one process, one thread per part), labelled
+# cpu-kK (and emulated-kK on the second binary); tools/check_digests.py says whether every run of a scenario
+# gave the same bytes.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 end_args=()
-while [[ "${1:-}" == --end || "${1:-}" == --model ]]; do
-  if [[ $1 == --end ]]; then end_args+=(--end "$2"); else end_args+=(--default.carfollowmodel "$2"); fi
+parts=()
+while [[ "${1:-}" == --end || "${1:-}" == --model || "${1:-}" == --parts ]]; do
+  if [[ $1 == --end ]]; then end_args+=(--end "$2");
+  elif [[ $1 == --parts ]]; then read -r -a parts <<< "$2";
+  else end_args+=(--default.carfollowmodel "$2"); fi
   shift 2
 done
 lpsim=$(realpath "${1:?usage: tools/output_digests.sh [--end T] [--model M] LPSIM [LPSIM_EMULATED]}")
@@ -33,8 +39,8 @@ if [ -d "$shared/scenarios" ]; then
   done
 fi
 
-run_case() {  # binary label name folder config
-  local bin=$1 label=$2 name=$3 folder=$4 config=$5 threads=$6
+run_case() {  # binary label name folder config threads [parts]
+  local bin=$1 label=$2 name=$3 folder=$4 config=$5 threads=$6 k=${7:-1}
   local dir=$work/$name/$label
   mkdir -p "$dir"
   cp -r "$folder"/. "$dir"/
@@ -42,9 +48,16 @@ run_case() {  # binary label name folder config
   if [[ $config == csv ]]; then
     input=(--lpsim-nodes "$dir/nodes.csv" --lpsim-edges "$dir/edges.csv" --lpsim-od "$dir/od.csv")
   fi
-  (cd "$dir" && "$bin" run "${input[@]}" "${end_args[@]}" --threads "$threads" --no-warnings \
+  local part_args=()
+  if (( k > 1 )); then part_args=(--parts "$k"); fi
+  (cd "$dir" && "$bin" run "${input[@]}" "${end_args[@]}" "${part_args[@]}" --threads "$threads" --no-warnings \
     --tripinfo-output out_tripinfo.xml --fcd-output out_fcd.xml --edgedata-output out_edgedata.xml \
     --summary-output out_summary.xml > out_stdout.txt 2> out_stderr.txt) || {
+    if (( k > 1 )) && grep -q "parts need at least as many junctions" "$dir/out_stderr.txt"; then
+      echo "$name $label: skipped, the network has fewer junctions than parts" >&2
+      rm -rf "$dir"
+      return 0
+    fi
     echo "$name $label: lpsim failed" >&2
     cat "$dir/out_stderr.txt" >&2
     return 1
@@ -60,4 +73,8 @@ for c in "${cases[@]}"; do
   IFS='|' read -r name folder config <<< "$c"
   for t in 1 2 4; do run_case "$lpsim" "cpu-t$t" "$name" "$folder" "$config" "$t"; done
   if [ -n "$emulated" ]; then run_case "$emulated" "emulated" "$name" "$folder" "$config" 1; fi
+  for k in "${parts[@]}"; do
+    run_case "$lpsim" "cpu-k$k" "$name" "$folder" "$config" 1 "$k"
+    if [ -n "$emulated" ]; then run_case "$emulated" "emulated-k$k" "$name" "$folder" "$config" 1 "$k"; fi
+  done
 done

@@ -89,6 +89,14 @@ struct HostState {
   const char* link_state = nullptr;  // Full: every signal link's character now
 };
 
+/// A footprint written into (value > 0: 1 + the speed code) or cleared from (value 0) a lane map: what one
+/// part of a partitioned run sends the others that hold its lanes.
+struct FootprintWrite {
+  Footprint fp;
+  float length;
+  uint8_t value;
+};
+
 enum class StateParts {
   Sample,  // what outputs read every step: the active list and each active slot's vehicle, status, lane,
            // position, speed and stop_release (the summary's stopped vehicles)
@@ -136,6 +144,26 @@ class Stepper {
 
   /// The state for the host to read. `num_slots`: the slots handed out (Full copies that many).
   virtual const HostState& fetch(StateParts parts, uint32_t num_slots) = 0;
+  // Partitioned runs (src/engine/part_link.hpp): what the exchanges between the parts read and write.
+  /// Writes `writes` into lane map `map`, on the lanes `held` marks only (the others have no cells here).
+  virtual void write_footprints(int map, const std::vector<FootprintWrite>& writes, const uint8_t* held) = 0;
+  /// This step's entries of `lanes` in the approach table (written by the approach pass) and in the claim
+  /// table (by the plan pass).
+  virtual void read_approaches(const std::vector<uint32_t>& lanes, std::vector<LaneApproach>& out) = 0;
+  virtual void read_claims(const std::vector<uint32_t>& lanes, std::vector<uint64_t>& out) = 0;
+  /// Sets the approach entries of `lanes`; merges claims into theirs (the larger wins, as among vehicles).
+  virtual void write_approaches(const std::vector<uint32_t>& lanes, const std::vector<LaneApproach>& in) = 0;
+  virtual void merge_claims(const std::vector<uint32_t>& lanes, const std::vector<uint64_t>& in) = 0;
+  /// Signal link characters [begin, begin + count) of the link table.
+  virtual void read_link_states(uint32_t begin, uint32_t count, char* out) = 0;
+  virtual void write_link_states(uint32_t begin, uint32_t count, const char* in) = 0;
+  /// Vehicles that drove in from another part take `slots` (growing the slot columns): their columns as
+  /// pack_vehicle wrote them, one after another; their last footprint is the part's they left to clear.
+  /// start_vehicles then adds the slots to the active list.
+  virtual void adopt_vehicles(const std::vector<uint32_t>& slots, const std::vector<uint8_t>& packed) = 0;
+  /// Vehicles that drove into another part: their slots only clear their last footprint in the next step.
+  virtual void mark_migrated(const std::vector<uint32_t>& slots) = 0;
+
   /// Adds the counters counted since the last call to `columns` (kNumLaneCounters columns of num_lanes, in
   /// LaneCounters' order) and starts counting from zero.
   virtual void drain_counters(int64_t* const* columns) = 0;

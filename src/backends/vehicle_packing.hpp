@@ -11,6 +11,16 @@
 
 namespace lpsim {
 
+/// Bytes of one packed vehicle.
+inline size_t packed_vehicle_bytes() {
+  VehicleView none{};
+  size_t bytes = 0;
+  visit_vehicle_columns(
+      [&](uint32_t per, auto*& column) { bytes += per * sizeof(std::remove_reference_t<decltype(*column)>); },
+      none);
+  return bytes;
+}
+
 /// Appends the columns of slot `slot` of `v` to `out`.
 inline void pack_vehicle(const VehicleView& v, uint32_t slot, std::vector<uint8_t>& out) {
   VehicleView view = v;

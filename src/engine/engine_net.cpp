@@ -8,12 +8,24 @@
 
 namespace lpsim {
 
-EngineNet::EngineNet(const Network& net) {
+EngineNet::EngineNet(const Network& net, const PartPlan* plan) {
+  const PartCells* part = plan != nullptr ? &plan->cells : nullptr;
   const uint32_t nl = net.num_lanes();
   if (net.num_cells() >= (uint64_t{1} << 32))
     throw std::length_error("lane map of " + std::to_string(net.num_cells()) +
                             " cells exceeds 32-bit offsets");
-  lane_cell_begin.assign(net.lane_cell_begin.begin(), net.lane_cell_begin.end());
+  lane_num_cells.resize(nl);
+  for (uint32_t l = 0; l < nl; ++l)
+    lane_num_cells[l] = static_cast<uint32_t>(net.lane_cell_begin[l + 1] - net.lane_cell_begin[l]);
+  if (part == nullptr) {
+    lane_cell_begin.assign(net.lane_cell_begin.begin(), net.lane_cell_begin.end());
+  } else {
+    lane_cell_begin.resize(nl + 1);
+    for (uint32_t l = 0; l < nl; ++l)
+      lane_cell_begin[l] =
+          static_cast<uint32_t>(part->cell_begin[l] == kNoCells ? part->cells : part->cell_begin[l]);
+    lane_cell_begin[nl] = static_cast<uint32_t>(part->cells);
+  }
   lane_internal.resize(nl);
   lane_left.assign(nl, -1);
   lane_right.assign(nl, -1);
@@ -63,14 +75,14 @@ EngineNet::EngineNet(const Network& net) {
     offset_ms[s] = std::lround(static_cast<double>(net.signal_offset[s]) * 1000.0);
     link_begin[s + 1] = link_begin[s] + static_cast<uint32_t>(num_links[s]);
   }
-  build_actuated(net);
+  build_actuated(net, plan);
 }
 
 namespace {
 int32_t to_ms(double s) { return static_cast<int32_t>(std::lround(s * 1000.0)); }
 }  // namespace
 
-void EngineNet::build_actuated(const Network& net) {
+void EngineNet::build_actuated(const Network& net, const PartPlan* part) {
   const uint32_t ns = net.num_signals();
   const size_t np = net.phase_duration.size();
   detector_gap_ms.assign(ns, 0);
@@ -94,6 +106,9 @@ void EngineNet::build_actuated(const Network& net) {
   const bool placed = net.signal_det_begin.size() == ns + 1 && net.phase_det_begin.size() == np + 1 &&
                       net.signal_actuated.size() == ns;
   signal_actuated = placed ? net.signal_actuated : std::vector<uint8_t>(ns, 0);
+  if (part != nullptr)
+    for (uint32_t s = 0; s < ns; ++s)
+      if (part->signal_owner[s] >= 0 && part->signal_owner[s] != part->part) signal_actuated[s] = 0;
   signal_det_begin = placed ? net.signal_det_begin : std::vector<uint32_t>(ns + 1, 0);
   phase_det_begin = placed ? net.phase_det_begin : std::vector<uint32_t>(np + 1, 0);
   phase_det = placed ? net.phase_det : std::vector<uint32_t>{};
@@ -105,7 +120,7 @@ void EngineNet::build_actuated(const Network& net) {
   for (uint32_t s = 0; s < ns; ++s)
     for (uint32_t d = signal_det_begin[s]; d < signal_det_begin[s + 1]; ++d) {
       const uint32_t lane = net.det_lane[d];
-      const uint32_t cells = lane_cell_begin[lane + 1] - lane_cell_begin[lane];
+      const uint32_t cells = lane_num_cells[lane];
       const float pos = net.det_pos[d];
       const uint32_t c = std::min(static_cast<uint32_t>(pos), cells - 1);
       det_cell[d] = lane_cell_begin[lane] + c;
@@ -119,6 +134,7 @@ NetView EngineNet::view(const Network& net) const {
   NetView v{};
   v.num_lanes = net.num_lanes();
   v.lane_cell_begin = lane_cell_begin.data();
+  v.lane_num_cells = lane_num_cells.data();
   v.lane_length = net.lane_length.data();
   v.lane_speed = net.lane_speed.data();
   v.lane_edge = net.lane_edge.data();

@@ -7,11 +7,13 @@
 #include "kernels/signal_step.hpp"
 #include "kernels/step_view.hpp"
 #include "net/network.hpp"
+#include "partition/part_plan.hpp"
 
 namespace lpsim {
 
 struct EngineNet {
-  std::vector<uint32_t> lane_cell_begin;
+  std::vector<uint32_t> lane_cell_begin;  // the network's map, or one part's (its lanes' cells only)
+  std::vector<uint32_t> lane_num_cells;
   std::vector<uint8_t> lane_internal;
   std::vector<int32_t> lane_left, lane_right;
   std::vector<uint8_t> lane_rank;  // so that a lane's rank costs one load, not two dependent ones
@@ -30,12 +32,15 @@ struct EngineNet {
   std::vector<uint32_t> det_cell, det_last_cell;
   std::vector<float> det_offset;
 
-  explicit EngineNet(const Network& net);
+  /// The columns of `net` with its whole lane map, or, given `part`, as one part of a partitioned run sees
+  /// them: its map holds the cells of some lanes only (the others begin past its last cell), and the actuated
+  /// signals another part runs are computed as fixed-time programs here (their owner sends their state).
+  explicit EngineNet(const Network& net, const PartPlan* part = nullptr);
   NetView view(const Network& net) const;
   SignalTable signal_table(const Network& net) const;
 
  private:
-  void build_actuated(const Network& net);
+  void build_actuated(const Network& net, const PartPlan* part);
 };
 
 }  // namespace lpsim

@@ -31,4 +31,11 @@ LaneCounters counters_since(const LaneCounters& now, const LaneCounters& start) 
   return d;
 }
 
+std::vector<int64_t>& counter_column(LaneCounters& c, int k) {
+  std::vector<int64_t>* columns[] = {&c.sampled_steps, &c.travelled_mm,      &c.waiting_steps,
+                                     &c.time_loss_ms,  &c.occupied_mm_steps, &c.entered,
+                                     &c.left,          &c.arrived,           &c.departed};
+  return *columns[k];
+}
+
 }  // namespace lpsim

@@ -75,6 +75,9 @@ struct SummaryRow {
 
 namespace lpsim {
 
+/// Column k of the counters, in the order the backends keep them (backends/stepper.hpp's LaneCounter).
+std::vector<int64_t>& counter_column(LaneCounters& c, int k);
+
 /// Counters accumulated between two snapshots of cumulative counters (now - start), for intervals.
 LaneCounters counters_since(const LaneCounters& now, const LaneCounters& start);
 

@@ -1,12 +1,14 @@
 #include "engine/simulation.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 
 #include "backends/cpu/cpu_stepper.hpp"
 #include "backends/cuda/cuda_stepper.hpp"
+#include "engine/part_state.hpp"
 #include "kernels/idm.hpp"
 #include "kernels/insert_vehicle.hpp"
 #include "kernels/vehicle_step.hpp"
@@ -50,20 +52,12 @@ TeleportCause teleport_cause(uint8_t limit_reason) {
   return TeleportCause::Jam;
 }
 
-// The LaneCounters columns in the order the backends keep them (kNumLaneCounters).
-std::vector<int64_t>* counter_columns(LaneCounters& c, int k) {
-  std::vector<int64_t>* columns[kNumLaneCounters] = {&c.sampled_steps, &c.travelled_mm,      &c.waiting_steps,
-                                                     &c.time_loss_ms,  &c.occupied_mm_steps, &c.entered,
-                                                     &c.left,          &c.arrived,           &c.departed};
-  return columns[k];
-}
-
 int64_t depart_ms(double depart) { return std::llround(depart * 1000.0); }
 
 }  // namespace
 
 Simulation::Simulation(const Network& net, Demand demand, const SimulationOptions& options)
-    : net_(net), trips_(std::move(demand)), opt_(options), engine_net_(net), queues_(net) {
+    : net_(net), trips_(std::move(demand)), opt_(options), engine_net_(net, options.part), queues_(net) {
   if (opt_.step_ms <= 0) throw std::invalid_argument("step length must be a positive number of milliseconds");
   const Demand& d = trips_.demand();
   if (d.size() >= kMaxVehicles)
@@ -92,6 +86,10 @@ Simulation::Simulation(const Network& net, Demand demand, const SimulationOption
   impatience_steps_ = stopped_steps_for(opt_.time_to_impatience, step_length());
   stop_steps_from_times();
 
+  if ((opt_.part == nullptr) != (opt_.transport == nullptr))
+    throw std::invalid_argument("a part of a partitioned run needs both its plan and its transport");
+  if (opt_.part != nullptr) init_parts();
+
   StepperSetup setup;
   setup.net = engine_net_.view(net_);
   setup.signals = engine_net_.signal_table(net_);
@@ -110,16 +108,28 @@ Simulation::Simulation(const Network& net, Demand demand, const SimulationOption
 
   // The state at the begin time: its signals and its first insertions.
   stepper_->update_signals(time_ms_, time_ms_, cur_);
+  if (parts_) share_signals();
   enqueue_due(time_ms_);
   insert_waiting(cur_);
+  if (parts_) share_insertions(cur_);
   check_kept(0);
   start_inserted(0, 0);
+  if (parts_) report_to_root();
 }
 
-Simulation::~Simulation() = default;
+// Part 0 of a partitioned run ends the other parts' serve_part().
+Simulation::~Simulation() {
+  if (!parts_ || parts_->plan.part != 0 || parts_->stopped) return;
+  try {
+    request(kRequestStop);
+  } catch (const std::exception&) {
+    // A part that failed has ended its serve_part() already; its error was reported where it failed.
+  }
+}
 
 bool Simulation::finished() const {
-  return num_active_ == 0 && queues_.waiting() == 0 && next_departure_ >= num_loaded_ && added_due_.empty();
+  const bool idle = parts_ ? parts_->all_idle : num_active_ == 0 && queues_.waiting() == 0;
+  return idle && next_departure_ >= num_loaded_ && added_due_.empty();
 }
 
 // The stops' times as the step counts them: steps stood at least, and the step from which `until` lets a
@@ -190,15 +200,20 @@ StepParams Simulation::step_params() const {
 }
 
 void Simulation::step() {
+  if (parts_ && parts_->plan.part == 0) request(kRequestStep);
+  const auto t0 = std::chrono::steady_clock::now();
   sync_trips();
   ++version_;
   Stepper& s = *stepper_;
   const StepParams params = step_params();
   s.update_signals(params.signal_time_ms, time_ms_, cur_);
+  if (parts_) share_signals();
   s.start_step(params, cur_);
   s.clear_footprints();
   s.approach();
+  if (parts_) share_clears_and_approaches();
   s.plan();
+  if (parts_) share_claims();
   s.commit();
   s.start_end_of_step(step_ + 1);
   // While a device runs the passes: the departures due by the end of the step join their queues. Nothing
@@ -213,9 +228,19 @@ void Simulation::step() {
   ++step_;
   handle_vehicle_ends(out.ends);
   if (!moves_.empty()) s.apply_teleports(moves_, step_);
+  if (parts_) exchange_vehicles();
   insert_waiting(1 - cur_);
+  if (parts_) share_insertions(1 - cur_);
   cur_ = 1 - cur_;
+  const uint32_t updated = num_active_;
   start_inserted(out.kept, out.running);
+  if (parts_) {
+    PartStats& st = parts_->stats;
+    ++st.steps;
+    st.vehicle_updates += updated;
+    st.step_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    report_to_root();
+  }
   if (opt_.slot_sort_interval > 0 && step_ % opt_.slot_sort_interval == 0) sort_slots();
 }
 
@@ -255,8 +280,12 @@ void Simulation::handle_vehicle_ends(std::vector<VehicleEnd>& ends) {
       continue;
     }
     moves_.push_back(TeleportMove{v, e.slot, 0});
-    ledger_.teleporting(e, e.route_pos + 1);
     const uint32_t edge = d.route_edges[d.route_begin[v] + e.route_pos + 1];
+    if (parts_) {  // the edge's owner queues it (exchange_vehicles)
+      parts_->teleports.push_back(TeleportHandOver{e, e.route_pos + 1, edge, ledger_.departure(v)});
+      continue;
+    }
+    ledger_.teleporting(e, e.route_pos + 1);
     queues_.push_front(edge, queue_entry(v, true));
   }
 }
@@ -286,7 +315,9 @@ void Simulation::enqueue(uint32_t v) {
     ++counts_.removed;
     return;
   }
-  queues_.push_back(d.route_edges[d.route_begin[v]], queue_entry(v, false));
+  const uint32_t edge = d.route_edges[d.route_begin[v]];
+  if (parts_ && parts_->plan.edge_owner[edge] != parts_->plan.part) return;  // another part inserts it
+  queues_.push_back(edge, queue_entry(v, false));
 }
 
 void Simulation::insert_waiting(int map_index) {
@@ -305,6 +336,11 @@ void Simulation::insert_waiting(int map_index) {
   // departures, in the order of the batch.
   const Demand& d = trips_.demand();
   inits_.clear();
+  // Each entry's edge, for a partitioned run's report of the departures in the order one part inserts.
+  entry_edge_.resize(queues_.offered_entries());
+  for (uint32_t slot = 0; slot < batch.num_slots; ++slot)
+    std::fill(entry_edge_.begin() + batch.begin[slot], entry_edge_.begin() + batch.begin[slot + 1],
+              batch.edge[slot]);
   queues_.take_inserted([&](uint32_t i) {
     const uint32_t v = batch.entry[i] & ~kInsertTeleported;
     SlotInit init{0,
@@ -325,6 +361,8 @@ void Simulation::insert_waiting(int map_index) {
     } else {
       ++counts_.inserted;
       ledger_.departed(v, time(), d.depart[v], init);
+      if (parts_)
+        parts_->departures.push_back(DepartDelay{uint64_t{entry_edge_[i]} << 32 | i, time() - d.depart[v]});
       set_stops(init, d.stops.first(v));
     }
     init.slot = slots_.take();
@@ -337,11 +375,20 @@ void Simulation::insert_waiting(int map_index) {
 void Simulation::start_inserted(uint32_t kept, uint32_t running) {
   added_.clear();
   for (const SlotInit& in : inits_) added_.push_back(in.slot);
+  // In a partitioned run, also the vehicles that drove in from other parts; those that drove out ran.
+  uint32_t adopted = 0, migrated = 0;
+  if (parts_) {
+    adopted = static_cast<uint32_t>(parts_->adopted.size());
+    migrated = parts_->migrated;
+    added_.insert(added_.end(), parts_->adopted.begin(), parts_->adopted.end());
+    parts_->adopted.clear();
+    parts_->migrated = 0;
+  }
   std::sort(added_.begin(), added_.end());
   stepper_->start_vehicles(inits_, added_);
   num_active_ = kept + static_cast<uint32_t>(added_.size());
   // Running vehicles: those of the step's active list, and every one inserted.
-  counts_.running = running + inits_.size();
+  counts_.running = running + inits_.size() + adopted - migrated;
   counts_.waiting = queues_.waiting();
   inits_.clear();
   for (const uint32_t k : retiring_) slots_.release(k);
@@ -423,13 +470,19 @@ void Simulation::set_route(uint32_t v, const std::vector<uint32_t>& edges) {
 }
 
 const LaneCounters& Simulation::lane_counters() const {
+  if (parts_ && parts_->plan.part == 0) request(kRequestCounters);
+  if (parts_ && parts_->plan.part != 0) {
+    gather_counters();
+    return lane_counters_;
+  }
   if (opt_.lane_counters) {
     // Drained from the backend's counters: const, as the totals it reports do not change.
     auto* self = const_cast<Simulation*>(this);
     int64_t* columns[kNumLaneCounters];
-    for (int k = 0; k < kNumLaneCounters; ++k) columns[k] = counter_columns(self->lane_counters_, k)->data();
+    for (int k = 0; k < kNumLaneCounters; ++k) columns[k] = counter_column(self->lane_counters_, k).data();
     stepper_->drain_counters(columns);
   }
+  if (parts_) gather_counters();
   return lane_counters_;
 }
 
@@ -454,6 +507,16 @@ void Simulation::sample_fcd(FcdFrame& frame) const {
   frame.lane.clear();
   frame.pos.clear();
   frame.speed.clear();
+  if (parts_) {
+    gather_sample();
+    for (const SampleEntry& e : parts_->sample) {
+      frame.vehicle.push_back(e.vehicle);
+      frame.lane.push_back(static_cast<uint32_t>(e.lane));
+      frame.pos.push_back(e.pos);
+      frame.speed.push_back(e.speed);
+    }
+    return;
+  }
   const HostState& s = state(StateParts::Sample);
   for (const uint64_t key : active_by_vehicle()) {
     const uint32_t v = static_cast<uint32_t>(key >> 32), k = static_cast<uint32_t>(key);
@@ -509,33 +572,39 @@ const std::vector<uint32_t>& Simulation::active() const {
 
 SummaryRow Simulation::summary_row() const {
   SummaryRow r;
+  const Counts& c = counts();
   r.time = time();
-  r.loaded = counts_.loaded;
-  r.inserted = counts_.inserted;
-  r.running = counts_.running;
-  r.waiting = counts_.waiting;
-  r.arrived = counts_.arrived;
-  r.ended = counts_.arrived;
-  r.teleports = counts_.teleports;
+  r.loaded = c.loaded;
+  r.inserted = c.inserted;
+  r.running = c.running;
+  r.waiting = c.waiting;
+  r.arrived = c.arrived;
+  r.ended = c.arrived;
+  r.teleports = c.teleports;
   // Summed in units of 2^-24 (integers: the sums do not depend on the order of the slots, which sort_slots
   // changes; each term is off by at most 3e-8).
   int64_t speed_sum = 0, rel_sum = 0;
   uint64_t running = 0, halting = 0, stopped = 0;
   const Demand& d = trips_.demand();
   const VehicleTypes& t = d.types;
-  const HostState& s = state(StateParts::Sample);
-  for (uint32_t i = 0; i < s.num_active; ++i) {
-    const uint32_t k = s.active[i];
-    if (s.veh.status[k] != kRunning) continue;
-    const uint32_t v = s.veh.vehicle[k];
-    const float speed = s.veh.speed[k];
+  auto add = [&](uint32_t v, int32_t lane, float speed, uint32_t stop_release) {
     ++running;
     speed_sum += std::llround(static_cast<double>(speed) * kSummaryUnits);
-    const float v0 =
-        desired_speed(net_.lane_speed[s.veh.lane[k]], d.speed_factor[v], t.max_speed[d.vehicle_type[v]]);
+    const float v0 = desired_speed(net_.lane_speed[lane], d.speed_factor[v], t.max_speed[d.vehicle_type[v]]);
     if (v0 > 0) rel_sum += std::llround(static_cast<double>(speed / v0) * kSummaryUnits);
     if (speed < kHaltingSpeed) ++halting;
-    if (s.veh.stop_release[k] != 0) ++stopped;  // standing at a scheduled stop
+    if (stop_release != 0) ++stopped;  // standing at a scheduled stop
+  };
+  if (parts_) {
+    gather_sample();
+    for (const SampleEntry& e : parts_->sample) add(e.vehicle, e.lane, e.speed, e.stop_release);
+  } else {
+    const HostState& s = state(StateParts::Sample);
+    for (uint32_t i = 0; i < s.num_active; ++i) {
+      const uint32_t k = s.active[i];
+      if (s.veh.status[k] == kRunning)
+        add(s.veh.vehicle[k], s.veh.lane[k], s.veh.speed[k], s.veh.stop_release[k]);
+    }
   }
   r.halting = halting;
   r.stopped = stopped;
@@ -545,10 +614,10 @@ SummaryRow Simulation::summary_row() const {
   }
   // As SUMO: meanWaitingTime is the mean insertion delay of the vehicles inserted so far, meanTravelTime
   // the mean trip duration of the vehicles that arrived so far.
-  if (counts_.inserted > 0)
-    r.mean_waiting_time = ledger_.depart_delay_sum() / static_cast<double>(counts_.inserted);
-  if (counts_.arrived > 0)
-    r.mean_travel_time = ledger_.travel_time_sum() / static_cast<double>(counts_.arrived);
+  const double delay_sum = parts_ ? parts_->depart_delay_sum : ledger_.depart_delay_sum();
+  const double travel_sum = parts_ ? parts_->travel_time_sum : ledger_.travel_time_sum();
+  if (c.inserted > 0) r.mean_waiting_time = delay_sum / static_cast<double>(c.inserted);
+  if (c.arrived > 0) r.mean_travel_time = travel_sum / static_cast<double>(c.arrived);
   return r;
 }
 

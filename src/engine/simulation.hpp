@@ -17,6 +17,8 @@
 #include "engine/slot_pool.hpp"
 #include "engine/trip_ledger.hpp"
 #include "net/network.hpp"
+#include "partition/part_plan.hpp"
+#include "transport/transport.hpp"
 
 namespace lpsim {
 
@@ -36,6 +38,25 @@ struct SimulationOptions {
   // Every this many steps the vehicles on the road are renumbered by lane (slot_order), so that the passes
   // visit the vehicles of a lane, and neighbouring lanes, together; 0: never. Results do not depend on it.
   uint32_t slot_sort_interval = 16;
+  // One part of a partitioned run (both set, or neither: the whole network in one part). The plan and the
+  // transport outlive the Simulation. Part 0 is the one the outputs read (it gathers the others' samples);
+  // every other part runs serve_part() until part 0's Simulation is destroyed.
+  const PartPlan* part = nullptr;
+  Transport* transport = nullptr;
+};
+
+struct PartState;  // src/engine/part_state.hpp
+
+/// What one part of a partitioned run spent and sent, cumulative.
+struct PartStats {
+  uint64_t steps = 0;
+  uint64_t vehicle_updates = 0;
+  uint64_t migrations = 0;      // vehicles that drove out of it into another part
+  uint64_t bytes_sent = 0;      // by the step's exchanges
+  uint64_t rounds = 0;          // the step's exchanges
+  double step_seconds = 0;      // wall time of its steps, exchanges included
+  double exchange_seconds = 0;  // of that, in the step's exchanges (waiting for the others included)
+  double gather_seconds = 0;    // wall time answering part 0's requests and reporting to it
 };
 
 class Simulation {
@@ -45,6 +66,9 @@ class Simulation {
   ~Simulation();
 
   void step();
+  /// A part other than part 0 of a partitioned run: steps and answers part 0's requests until part 0 ends
+  /// the run (its Simulation is destroyed). A TransportError when part 0 or another part fails.
+  void serve_part();
   double time() const { return static_cast<double>(time_ms_) / 1000.0; }
   int64_t time_ms() const { return time_ms_; }
   /// The step length in seconds (options.step_ms / 1000).
@@ -71,14 +95,17 @@ class Simulation {
     uint64_t removed = 0;  // never inserted for a reason (departure before begin, route without car lanes)
     uint64_t vehicle_updates = 0;
   };
-  const Counts& counts() const { return counts_; }
+  /// The run's counts (in a partitioned run, part 0 sums the parts').
+  const Counts& counts() const;
 
   /// Positions of running vehicles now.
   void sample_fcd(FcdFrame& frame) const;
   /// edgeData/laneData counters accumulated since the start.
   const LaneCounters& lane_counters() const;
+  /// Part 0 of a partitioned run: every part's stats as of the last step (empty in a run of one part).
+  std::vector<PartStats> part_stats() const;
   /// Trips that ended since the last call, in order of arrival then vehicle index.
-  std::vector<TripRecord> take_finished_trips() { return ledger_.take_finished(); }
+  std::vector<TripRecord> take_finished_trips();
   SummaryRow summary_row() const;
 
   /// Test support: recomputes the lane map from every running vehicle's footprint and reports the first
@@ -103,7 +130,7 @@ class Simulation {
   /// Test support: the vehicles that teleported in the last step (and whether that ended their trip).
   const std::vector<TeleportMove>& teleports_of_last_step() const { return moves_; }
   /// The teleports that started in the last step, in vehicle order (the runner warns of each, as SUMO).
-  const std::vector<TeleportEvent>& teleport_events() const { return teleport_events_; }
+  const std::vector<TeleportEvent>& teleport_events() const;
 
  private:
   StepParams step_params() const;
@@ -118,6 +145,18 @@ class Simulation {
   void start_inserted(uint32_t kept, uint32_t running);
   void sort_slots();
   void check_kept(uint32_t kept) const;
+  // A partitioned run's rounds (simulation_parts.cpp), in the order the step makes them.
+  void share_signals();
+  void share_clears_and_approaches();
+  void share_claims();
+  void exchange_vehicles();
+  void share_insertions(int map);
+  void init_parts();
+  void gather_counters() const;
+  void report_to_root();
+  void request(uint8_t what) const;
+  std::vector<Bytes> gather_at_root(const Bytes& mine, const char* what) const;
+  void gather_sample() const;
   /// The backend's state (a device backend copies it at most once per change of its state).
   const HostState& state(StateParts parts) const { return stepper_->fetch(parts, slots_.size()); }
   int32_t slot_of(uint32_t v) const;
@@ -156,12 +195,14 @@ class Simulation {
   // The stop table's durations and until times in steps (TripView::stop_duration_steps, stop_until_step).
   std::vector<uint32_t> stop_duration_steps_, stop_until_step_;
   std::vector<uint32_t> added_;
+  std::vector<uint32_t> entry_edge_;  // insert_waiting's scratch: the edge of each entry of the batch
   uint32_t num_active_ = 0;
   std::vector<TeleportMove> moves_;
   std::vector<TeleportEvent> teleport_events_;
   LaneCounters lane_counters_;
 
   std::unique_ptr<Stepper> stepper_;  // last: made from the members above, gone before them
+  std::unique_ptr<PartState> parts_;  // a partitioned run's state (null: one part)
 
   // What outputs and tests derive from the backend's state, kept per version of it: the state changes in
   // step() and set_route(), each counting a new version.

@@ -21,6 +21,13 @@ void TripLedger::departed(uint32_t v, double now, double depart_due, const SlotI
   depart_speed_[v] = init.speed;
 }
 
+void TripLedger::set_departure(uint32_t v, const DepartRecord& d) {
+  depart_time_[v] = d.time;
+  depart_pos_[v] = d.pos;
+  depart_speed_[v] = d.speed;
+  depart_lane_[v] = d.lane;
+}
+
 void TripLedger::teleporting(const VehicleEnd& e, uint32_t rp) {
   status_[e.vehicle] = kTeleporting;
   resume_rp_[e.vehicle] = rp;

@@ -11,6 +11,13 @@
 
 namespace lpsim {
 
+/// Where and when a vehicle entered the road (its trip record's depart fields): what travels with a vehicle
+/// that drives into another part of a partitioned run.
+struct DepartRecord {
+  float time = 0, pos = 0, speed = 0;
+  int32_t lane = -1;
+};
+
 class TripLedger {
  public:
   /// Room for trips [0, n) (the trip table grows during a run); new trips are pending.
@@ -30,6 +37,11 @@ class TripLedger {
   /// A teleported vehicle re-enters: `init` takes the counters it carried. Returns the first of its
   /// scheduled stops it had not made.
   uint32_t reentering(SlotInit& init);
+
+  DepartRecord departure(uint32_t v) const {
+    return DepartRecord{depart_time_[v], depart_pos_[v], depart_speed_[v], depart_lane_[v]};
+  }
+  void set_departure(uint32_t v, const DepartRecord& d);
 
   /// A trip ended at time `now`: its record joins those taken by take_finished().
   void ended(const VehicleEnd& end, bool teleported, double now, double depart_due, double step_length,

@@ -14,10 +14,11 @@ namespace {
 
 // One lane of `cells` metres in a padded map.
 struct OneLane {
-  explicit OneLane(uint32_t cells) : begin{0, cells}, length{static_cast<float>(cells)} {
+  explicit OneLane(uint32_t cells) : begin{0, cells}, num_cells{cells}, length{static_cast<float>(cells)} {
     map.assign(cells + kLaneMapPadding, 0);
     net.num_lanes = 1;
     net.lane_cell_begin = begin.data();
+    net.lane_num_cells = num_cells.data();
     net.lane_length = length.data();
   }
   // A vehicle's body over cells [rear, front] at `speed`.
@@ -27,7 +28,7 @@ struct OneLane {
   LaneRoom room(float min_gap, bool count_standing = true) const {
     return room_on_lane(map.data(), net, 0, min_gap, count_standing);
   }
-  std::vector<uint32_t> begin;
+  std::vector<uint32_t> begin, num_cells;
   std::vector<float> length;
   std::vector<uint8_t> map;
   NetView net{};

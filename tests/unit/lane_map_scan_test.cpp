@@ -28,10 +28,11 @@ int32_t naive_last(const std::vector<uint8_t>& cells, int32_t first, int32_t las
 
 TEST(LaneMapScan, WordScansEqualCellByCellScans) {
   // Two lanes of 37 and 70 cells behind a 3-cell lane, so lane starts are not word-aligned either.
-  const std::vector<uint32_t> begin = {0, 3, 40, 110};
+  const std::vector<uint32_t> begin = {0, 3, 40, 110}, cells_of = {3, 37, 70};
   NetView net{};
   net.num_lanes = 3;
   net.lane_cell_begin = begin.data();
+  net.lane_num_cells = cells_of.data();
   int checked = 0, found = 0;
   for (uint64_t trial = 0; trial < 60; ++trial) {
     // Occupancy from very sparse (one cell in 40) to dense (one in 2).
@@ -60,10 +61,11 @@ TEST(LaneMapScan, WordScansEqualCellByCellScans) {
 }
 
 TEST(LaneMapScan, FillWritesExactlyItsRange) {
-  const std::vector<uint32_t> begin = {0, 5, 45, 90};
+  const std::vector<uint32_t> begin = {0, 5, 45, 90}, cells_of = {5, 40, 45};
   NetView net{};
   net.num_lanes = 3;
   net.lane_cell_begin = begin.data();
+  net.lane_num_cells = cells_of.data();
   int filled = 0;
   for (int32_t lane = 0; lane < 3; ++lane) {
     const int32_t cells = static_cast<int32_t>(begin[lane + 1] - begin[lane]);

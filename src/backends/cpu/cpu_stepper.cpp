@@ -6,6 +6,7 @@
 #include "backends/cpu/parallel_for.hpp"
 #include "backends/cpu/pass_prefetch.hpp"
 #include "backends/host_columns.hpp"
+#include "backends/vehicle_packing.hpp"
 #include "kernels/insert_vehicle.hpp"
 #include "kernels/signal_step.hpp"
 #include "kernels/vehicle_step.hpp"
@@ -193,6 +194,56 @@ class CpuStepper final : public Stepper {
     state_.map = map_[state_map_].data();
     state_.link_state = link_state_.data();
     return state_;
+  }
+
+  void write_footprints(int map, const std::vector<FootprintWrite>& writes, const uint8_t* held) override {
+    uint8_t* m = map_[map].data();
+    const NetView& net = setup_.net;
+    for (const FootprintWrite& w : writes)
+      for_each_footprint_piece(net, w.fp, w.length, [&](int32_t lane, uint32_t first, uint32_t last) {
+        if (held[lane]) fill_cells(m, net, lane, first, last, w.value);
+      });
+  }
+
+  void read_approaches(const std::vector<uint32_t>& lanes, std::vector<LaneApproach>& out) override {
+    out.resize(lanes.size());
+    for (size_t i = 0; i < lanes.size(); ++i) out[i] = approach_[lanes[i]];
+  }
+
+  void read_claims(const std::vector<uint32_t>& lanes, std::vector<uint64_t>& out) override {
+    out.resize(lanes.size());
+    for (size_t i = 0; i < lanes.size(); ++i) out[i] = claims_[lanes[i]];
+  }
+
+  void write_approaches(const std::vector<uint32_t>& lanes, const std::vector<LaneApproach>& in) override {
+    for (size_t i = 0; i < lanes.size(); ++i) approach_[lanes[i]] = in[i];
+  }
+
+  void merge_claims(const std::vector<uint32_t>& lanes, const std::vector<uint64_t>& in) override {
+    for (size_t i = 0; i < lanes.size(); ++i) claims_[lanes[i]] = std::max(claims_[lanes[i]], in[i]);
+  }
+
+  void read_link_states(uint32_t begin, uint32_t count, char* out) override {
+    std::copy_n(link_state_.data() + begin, count, out);
+  }
+
+  void write_link_states(uint32_t begin, uint32_t count, const char* in) override {
+    std::copy_n(in, count, link_state_.data() + begin);
+  }
+
+  void adopt_vehicles(const std::vector<uint32_t>& slots, const std::vector<uint8_t>& packed) override {
+    if (slots.empty()) return;
+    veh_.reserve(size_t{*std::max_element(slots.begin(), slots.end())} + 1, true);
+    size_t at = 0;
+    for (const uint32_t k : slots) {
+      at += unpack_vehicle(packed.data() + at, veh_.view(), k);
+      // The part they left clears their last footprint (their slot there stays one more step for it).
+      veh_.view().old_lane[k] = -1;
+    }
+  }
+
+  void mark_migrated(const std::vector<uint32_t>& slots) override {
+    for (const uint32_t k : slots) veh_.view().status[k] = kMigrated;
   }
 
   void drain_counters(int64_t* const* columns) override {

@@ -104,7 +104,7 @@ void copy_to_host(T* dst, const T* src, size_t n) {
 
 // The stepper lists the columns of these views by hand: a column added to one of them must be added here.
 // (The slot and plan columns are walked through their column lists.)
-static_assert(sizeof(NetView) == 24 * sizeof(void*) + sizeof(void*),
+static_assert(sizeof(NetView) == 25 * sizeof(void*) + sizeof(void*),
               "NetView changed: update upload_network");
 static_assert(sizeof(TypeView) == 11 * sizeof(void*) && sizeof(TripView) == 13 * sizeof(void*),
               "TypeView or TripView changed: update upload_types and DeviceTrips");
@@ -335,7 +335,7 @@ class DeviceTrips {
 
 class CudaStepper final : public Stepper {
  public:
-  explicit CudaStepper(const StepperSetup& setup) {
+  explicit CudaStepper(const StepperSetup& setup) : host_net_(setup.net) {
     const uint32_t nl = setup.net.num_lanes;
     upload_network(setup);
     upload_signals(setup.signals);
@@ -661,6 +661,71 @@ class CudaStepper final : public Stepper {
     return state_;
   }
 
+  // The exchanges of a partitioned run touch the few lanes and vehicles at the parts' borders: entry by
+  // entry, between steps' passes.
+  void write_footprints(int map, const std::vector<FootprintWrite>& writes, const uint8_t* held) override {
+    ++version_;
+    for (const FootprintWrite& w : writes)
+      for_each_footprint_piece(host_net_, w.fp, w.length, [&](int32_t lane, uint32_t first, uint32_t last) {
+        if (held[lane] && last >= first)
+          LPSIM_CUDA_CHECK(
+              cudaMemset(map_[map] + host_net_.lane_cell_begin[lane] + first, w.value, last - first + 1));
+      });
+  }
+
+  void read_approaches(const std::vector<uint32_t>& lanes, std::vector<LaneApproach>& out) override {
+    out.resize(lanes.size());
+    for (size_t i = 0; i < lanes.size(); ++i) copy_to_host(&out[i], dev_.approach + lanes[i], 1);
+  }
+
+  void read_claims(const std::vector<uint32_t>& lanes, std::vector<uint64_t>& out) override {
+    out.resize(lanes.size());
+    for (size_t i = 0; i < lanes.size(); ++i) copy_to_host(&out[i], dev_.claims + lanes[i], 1);
+  }
+
+  void write_approaches(const std::vector<uint32_t>& lanes, const std::vector<LaneApproach>& in) override {
+    for (size_t i = 0; i < lanes.size(); ++i) copy_to_device(dev_.approach + lanes[i], &in[i], 1);
+  }
+
+  void merge_claims(const std::vector<uint32_t>& lanes, const std::vector<uint64_t>& in) override {
+    std::vector<uint64_t> now;
+    read_claims(lanes, now);
+    for (size_t i = 0; i < lanes.size(); ++i)
+      if (in[i] > now[i]) copy_to_device(dev_.claims + lanes[i], &in[i], 1);
+  }
+
+  void read_link_states(uint32_t begin, uint32_t count, char* out) override {
+    copy_to_host(out, link_state_ + begin, count);
+  }
+
+  void write_link_states(uint32_t begin, uint32_t count, const char* in) override {
+    ++version_;
+    copy_to_device(link_state_ + begin, in, count);
+  }
+
+  void adopt_vehicles(const std::vector<uint32_t>& slots, const std::vector<uint8_t>& packed) override {
+    if (slots.empty()) return;
+    ++version_;
+    grow_slots(size_t{*std::max_element(slots.begin(), slots.end())} + 1);
+    size_t at = 0;
+    for (const uint32_t k : slots)
+      visit_vehicle_columns(
+          [&](uint32_t per, auto* column) {
+            using T = std::remove_pointer_t<decltype(column)>;
+            copy_to_device(reinterpret_cast<uint8_t*>(column + size_t{k} * per), packed.data() + at,
+                           per * sizeof(T));
+            at += per * sizeof(T);
+          },
+          dev_.veh);
+    // The part they left clears their last footprint (their slot there stays one more step for it).
+    for (const uint32_t k : slots) LPSIM_CUDA_CHECK(cudaMemset(dev_.veh.old_lane + k, 0xFF, sizeof(int32_t)));
+  }
+
+  void mark_migrated(const std::vector<uint32_t>& slots) override {
+    ++version_;
+    for (const uint32_t k : slots) LPSIM_CUDA_CHECK(cudaMemset(dev_.veh.status + k, kMigrated, 1));
+  }
+
   void drain_counters(int64_t* const* columns) override {
     if (counters_ == nullptr) return;
     const size_t nl = num_lanes_;
@@ -776,6 +841,7 @@ class CudaStepper final : public Stepper {
     NetView& d = dev_.net;
     d.num_lanes = nl;
     d.lane_cell_begin = upload(h.lane_cell_begin, nl + 1);
+    d.lane_num_cells = upload(h.lane_num_cells, nl);
     d.lane_length = upload(h.lane_length, nl);
     d.lane_speed = upload(h.lane_speed, nl);
     d.lane_edge = upload(h.lane_edge, nl);
@@ -878,6 +944,7 @@ class CudaStepper final : public Stepper {
   int64_t* cnt_departed_ = nullptr;
   uint64_t cells_ = 0;
   uint8_t* map_[2] = {nullptr, nullptr};
+  NetView host_net_;   // the host's columns (the Simulation's), for the exchanges' host-side work
   int state_map_ = 0;  // the lane map the state is in: the one the last step wrote
   // The active list, ping-ponged between two buffers by rebuild.
   uint32_t* active_[2] = {nullptr, nullptr};

@@ -25,6 +25,17 @@ void MpiSession::abort_job(int code) {
   std::exit(code);  // not reached: MPI_Abort ends the process
 }
 
+bool MpiSession::launched_by_mpirun() { return std::getenv("OMPI_COMM_WORLD_SIZE") != nullptr; }
+
+int MpiSession::world_size() {
+  int initialised = 0;
+  MPI_Initialized(&initialised);
+  if (!initialised) return 1;
+  int size = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  return size;
+}
+
 MpiTransport::MpiTransport(double timeout_s) : timeout_s_(timeout_s) {
   MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
   MPI_Comm_size(MPI_COMM_WORLD, &size_);

@@ -18,6 +18,10 @@ class MpiSession {
   MpiSession& operator=(const MpiSession&) = delete;
   /// Ends every rank of the job with `code` (after an error on this one, so the others do not wait).
   [[noreturn]] static void abort_job(int code);
+  /// This process was started by OpenMPI's mpirun (its environment says so): MPI is to be initialised.
+  static bool launched_by_mpirun();
+  /// Ranks of the job; 1 where MPI is not initialised.
+  static int world_size();
 };
 
 class MpiTransport : public Transport {

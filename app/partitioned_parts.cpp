@@ -1,0 +1,86 @@
+#include "app/partitioned_parts.hpp"
+
+#include <algorithm>
+
+#include "app/partition_resolution.hpp"
+#include "converters/partition_file.hpp"
+#include "core/error.hpp"
+#include "partition/junction_graph.hpp"
+#include "partition/partition_method.hpp"
+
+namespace lpsim {
+
+std::vector<int32_t> run_edge_parts(const ConfigSpec& config, const Scenario& sc, int32_t* parts) {
+  const Network& net = sc.network;
+  std::vector<int32_t> junction_part;
+  int32_t k = config.parts;
+  if (!config.partition_file.empty()) {
+    const PartitionSpec spec = read_partition_file(config.partition_file);
+    junction_part = resolve_partition(spec, net, k);
+    k = spec.parts;
+  } else {
+    if (k <= 1) {
+      *parts = 1;
+      return {};
+    }
+    const PartitionMethod method = *partition_method_from_name(config.partition_method);
+    const JunctionGraph g = build_junction_graph(net, sc.demand, config.step_length);
+    junction_part = partition_junctions(g, k, method, static_cast<uint64_t>(config.seed));
+  }
+  *parts = k;
+  std::vector<int32_t> edge_part = edge_parts_from_junctions(net, junction_part);
+  for (uint32_t e = 0; e < net.num_edges(); ++e)
+    if (!net.edge_is_internal[e] && edge_part[e] < 0) edge_part[e] = 0;
+  return edge_part;
+}
+
+double longest_vehicle(const Demand& demand) {
+  double longest = 0;
+  for (const float l : demand.types.length) longest = std::max(longest, static_cast<double>(l));
+  return longest;
+}
+
+InProcessParts::InProcessParts(const Scenario& sc, const SimulationOptions& options,
+                               std::vector<PartPlan> plans, double timeout_s)
+    : plans_(std::move(plans)), fabric_(static_cast<int>(plans_.size()), timeout_s) {
+  const int k = static_cast<int>(plans_.size());
+  for (int p = 0; p < k; ++p) endpoints_.push_back(fabric_.endpoint(p));
+  errors_.resize(static_cast<size_t>(k));
+  for (int p = 1; p < k; ++p) {
+    // Each part its own copies: the scenario is moved into part 0's Run while they start.
+    auto network = std::make_shared<Network>(sc.network);
+    auto demand = std::make_shared<Demand>(sc.demand);
+    SimulationOptions o = options;
+    o.part = &plans_[static_cast<size_t>(p)];
+    o.transport = endpoints_[static_cast<size_t>(p)].get();
+    threads_.emplace_back([this, p, o, network, demand]() {
+      try {
+        Simulation sim(*network, std::move(*demand), o);
+        sim.serve_part();
+      } catch (const std::exception& e) {
+        errors_[static_cast<size_t>(p)] = e.what();
+        fabric_.fail(p, e.what());
+      }
+    });
+  }
+}
+
+SimulationOptions InProcessParts::part0_options(SimulationOptions options) const {
+  options.part = &plans_[0];
+  options.transport = endpoints_[0].get();
+  return options;
+}
+
+std::string InProcessParts::finish(bool part0_failed) {
+  if (finished_) return "";
+  finished_ = true;
+  if (part0_failed) fabric_.fail(0, "part 0 stopped");
+  for (std::thread& t : threads_) t.join();
+  for (size_t p = 1; p < errors_.size(); ++p)
+    if (!errors_[p].empty()) return "part " + std::to_string(p) + ": " + errors_[p];
+  return "";
+}
+
+InProcessParts::~InProcessParts() { finish(true); }
+
+}  // namespace lpsim

@@ -1,0 +1,116 @@
+// `mpirun -n K lpsim run ... --parts K` (label mpi): one part per rank writes the outputs of the run in one
+// part byte for byte; a rank count other than the part count is bad input; a rank killed mid-run ends the
+// job with a non-zero status, never a hang. As root, OpenMPI needs --allow-run-as-root; --oversubscribe lets
+// 4 ranks share 2 cores.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <filesystem>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include "lpsim_cli.hpp"
+#include "temp_dir.hpp"
+
+namespace lpsim {
+namespace {
+
+namespace fs = std::filesystem;
+
+bool have_mpirun() { return fs::exists(LPSIM_MPIEXEC); }
+
+std::string scenario(const std::string& name) {
+  return std::string(LPSIM_SOURCE_DIR) + "/scenarios/" + name + "/" + name + ".sumocfg";
+}
+
+std::vector<std::string> output_args() {
+  return {"--tripinfo-output", "trip.xml",         "--fcd-output", "fcd.xml",      "--edgedata-output",
+          "edge.xml",          "--summary-output", "summary.xml",  "--no-step-log"};
+}
+
+struct Outputs {
+  std::string trip, fcd, edge, summary;
+};
+
+Outputs read_outputs(const fs::path& dir) {
+  static const std::regex duration(" duration=\"[^\"]*\"");
+  return Outputs{test::read_file(dir / "trip.xml"), test::read_file(dir / "fcd.xml"),
+                 test::read_file(dir / "edge.xml"),
+                 std::regex_replace(test::read_file(dir / "summary.xml"), duration, "")};
+}
+
+test::CliResult mpirun_lpsim(const fs::path& dir, int ranks, std::vector<std::string> args) {
+  std::vector<std::string> all{"-n", std::to_string(ranks), "--allow-run-as-root", "--oversubscribe",
+                               LPSIM_BINARY};
+  all.insert(all.end(), args.begin(), args.end());
+  return test::run_program(dir, {LPSIM_MPIEXEC}, all);
+}
+
+TEST(MpiPartitionedRunTest, RanksWriteTheOutputsOfOnePart) {
+  if (!have_mpirun()) GTEST_SKIP() << "mpirun not installed";
+  test::TempDir tmp("lpsim_mpi_run");
+  for (const std::string name : {"grid_tls", "actuated_cross"}) {
+    const fs::path one = tmp.path() / (name + "_1");
+    fs::create_directories(one);
+    std::vector<std::string> args{"run", scenario(name)};
+    for (const auto& a : output_args()) args.push_back(a);
+    const test::CliResult r1 = test::run_lpsim(one, args);
+    ASSERT_EQ(r1.exit_code, 0) << r1.err;
+    const Outputs ref = read_outputs(one);
+    ASSERT_GT(ref.trip.size(), 10000u);
+    for (const int ranks : {2, 4}) {
+      const fs::path dir = tmp.path() / (name + "_" + std::to_string(ranks));
+      fs::create_directories(dir);
+      std::vector<std::string> part_args = args;
+      part_args.push_back("--parts");
+      part_args.push_back(std::to_string(ranks));
+      const test::CliResult r = mpirun_lpsim(dir, ranks, part_args);
+      ASSERT_EQ(r.exit_code, 0) << r.err;
+      const Outputs got = read_outputs(dir);
+      EXPECT_TRUE(got.trip == ref.trip) << name << " " << ranks << " ranks: tripinfo differs";
+      EXPECT_TRUE(got.fcd == ref.fcd) << name << " " << ranks << " ranks: FCD differs";
+      EXPECT_TRUE(got.edge == ref.edge) << name << " " << ranks << " ranks: edgeData differs";
+      EXPECT_TRUE(got.summary == ref.summary) << name << " " << ranks << " ranks: summary differs";
+      // Part 0 reports every part, and vehicles crossed the cuts.
+      EXPECT_NE(r.out.find("Part " + std::to_string(ranks - 1) + ": vehicle updates"), std::string::npos)
+          << r.out;
+      static const std::regex migrations("migrations out ([0-9]+)");
+      uint64_t crossed = 0;
+      for (auto it = std::sregex_iterator(r.out.begin(), r.out.end(), migrations);
+           it != std::sregex_iterator(); ++it)
+        crossed += std::stoull((*it)[1]);
+      EXPECT_GT(crossed, 100u) << r.out;
+    }
+  }
+}
+
+TEST(MpiPartitionedRunTest, PartsOtherThanRanksIsBadInput) {
+  if (!have_mpirun()) GTEST_SKIP() << "mpirun not installed";
+  test::TempDir tmp("lpsim_mpi_parts");
+  const test::CliResult r =
+      mpirun_lpsim(tmp.path(), 2, {"run", scenario("grid_tls"), "--parts", "3", "--end", "10"});
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("mpirun -n 2 runs one part per rank: give --parts 2"), std::string::npos) << r.err;
+}
+
+TEST(MpiPartitionedRunTest, ARankKilledMidRunEndsTheJob) {
+  if (!have_mpirun()) GTEST_SKIP() << "mpirun not installed";
+  test::TempDir tmp("lpsim_mpi_kill");
+  // Rank 1 is killed once the run has started (found by its MPI rank in its environment).
+  std::string cmd = "cd " + test::shell_quote(tmp.path().string()) + " && (" +
+                    test::shell_quote(LPSIM_MPIEXEC) + " -n 2 --allow-run-as-root --oversubscribe " +
+                    test::shell_quote(LPSIM_BINARY) + " run " + test::shell_quote(scenario("grid_tls")) +
+                    " --parts 2 --fcd-output fcd.xml --no-step-log > out.txt 2> err.txt & job=$!; "
+                    "sleep 2; for p in $(pgrep -x lpsim); do "
+                    "grep -qz '^OMPI_COMM_WORLD_RANK=1$' /proc/$p/environ && kill -9 $p; done; "
+                    "wait $job; echo $? > status.txt)";
+  const auto t0 = std::chrono::steady_clock::now();
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  const std::string status = test::read_file(tmp.path() / "status.txt");
+  EXPECT_NE(std::stoi(status), 0) << test::read_file(tmp.path() / "err.txt");
+  EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(60));
+}
+
+}  // namespace
+}  // namespace lpsim
