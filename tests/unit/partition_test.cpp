@@ -305,6 +305,43 @@ TEST_F(PartitionFileTest, CliWritesFileAndMapAndRefusesABadFile) {
   EXPECT_NE(bad_method.err.find("expected metis, leiden or random"), std::string::npos) << bad_method.err;
 }
 
+// `lpsim run --partition-file`: a Leiden partition runs to the same trips as one part; a file of another part
+// count than --parts, or naming an unknown edge, or missing one, is one error line and exit 2.
+TEST_F(PartitionFileTest, RunTakesAPartitionFileAndRefusesABadOne) {
+  const test::CliResult made = test::run_lpsim(dir.path(), {"partition", "-c", kConfig, "--parts", "3",
+                                                            "--partition-method", "leiden", "-o", "p.txt"});
+  ASSERT_EQ(made.exit_code, 0) << made.err;
+  const test::CliResult one =
+      test::run_lpsim(dir.path(), {"run", "-c", kConfig, "--end", "600", "--tripinfo-output", "one.xml"});
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  const test::CliResult three = test::run_lpsim(
+      dir.path(),
+      {"run", "-c", kConfig, "--end", "600", "--partition-file", "p.txt", "--tripinfo-output", "three.xml"});
+  ASSERT_EQ(three.exit_code, 0) << three.err;
+  EXPECT_NE(three.out.find("Partitions: 3 parts"), std::string::npos) << three.out;
+  const std::string trips = test::read_file(dir.path() / "one.xml");
+  EXPECT_GT(trips.size(), 10000u);
+  EXPECT_TRUE(trips == test::read_file(dir.path() / "three.xml"));
+
+  const test::CliResult other_count = test::run_lpsim(
+      dir.path(), {"run", "-c", kConfig, "--end", "60", "--partition-file", "p.txt", "--parts", "2"});
+  EXPECT_EQ(other_count.exit_code, 2);
+  EXPECT_EQ(test::lines_of(other_count.err).size(), 1u) << other_count.err;
+  EXPECT_NE(other_count.err.find("p.txt"), std::string::npos) << other_count.err;
+  write("parts 3\nnosuchedge 0\n");
+  const test::CliResult unknown =
+      test::run_lpsim(dir.path(), {"run", "-c", kConfig, "--end", "60", "--partition-file", "q.txt"});
+  EXPECT_EQ(unknown.exit_code, 2);
+  EXPECT_NE(unknown.err.find("q.txt:2: edge 'nosuchedge' is not a normal edge"), std::string::npos)
+      << unknown.err;
+  const std::string all = written();
+  write(all.substr(0, all.rfind('\n', all.size() - 2) + 1));  // the last edge left out
+  const test::CliResult missing =
+      test::run_lpsim(dir.path(), {"run", "-c", kConfig, "--end", "60", "--partition-file", "q.txt"});
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.err.find("q.txt"), std::string::npos) << missing.err;
+}
+
 // The vehicles of a run that cross a cut, counted from its edgeData: on the grid every vehicle completes
 // its route, so they are the routes' entries of cut roads (the expected migrations), and a partition without
 // cuts has none.
