@@ -32,7 +32,13 @@ struct SampleEntry {
 };
 
 /// What part 0 asks the other parts for (serve_part).
-enum PartRequest : uint8_t { kRequestStep = 1, kRequestSample = 2, kRequestCounters = 3, kRequestStop = 4 };
+enum PartRequest : uint8_t {
+  kRequestStep = 1,
+  kRequestSample = 2,
+  kRequestCounters = 3,
+  kRequestSpeedSums = 4,
+  kRequestStop = 5
+};
 
 struct PartState {
   PartState(const PartPlan& p, Transport& t) : plan(p), transport(t) {}
@@ -49,6 +55,7 @@ struct PartState {
   // signals this one reads.
   std::vector<uint32_t> signals_sent;
   std::vector<int> signal_readers, signal_owners;
+  bool signal_round = false;  // some part runs an actuated signal another reads (the same in every part)
   std::vector<uint32_t> owned_shared;  // its lanes that other parts hold too, ascending
 
   // Handed on within a step.

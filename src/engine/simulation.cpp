@@ -570,6 +570,30 @@ const std::vector<uint32_t>& Simulation::active() const {
   return active_vehicles_;
 }
 
+// Summed in units of 2^-24 (integers: the sums do not depend on the order of the slots, which sort_slots
+// changes, nor on how the vehicles are split among the parts of a partitioned run; each term is off by at
+// most 3e-8).
+SpeedSums Simulation::speed_sums() const {
+  SpeedSums sums;
+  const Demand& d = trips_.demand();
+  const VehicleTypes& t = d.types;
+  const HostState& s = state(StateParts::Sample);
+  for (uint32_t i = 0; i < s.num_active; ++i) {
+    const uint32_t k = s.active[i];
+    if (s.veh.status[k] != kRunning) continue;
+    const uint32_t v = s.veh.vehicle[k];
+    const float speed = s.veh.speed[k];
+    ++sums.running;
+    sums.speed += std::llround(static_cast<double>(speed) * kSummaryUnits);
+    const float v0 =
+        desired_speed(net_.lane_speed[s.veh.lane[k]], d.speed_factor[v], t.max_speed[d.vehicle_type[v]]);
+    if (v0 > 0) sums.relative += std::llround(static_cast<double>(speed / v0) * kSummaryUnits);
+    if (speed < kHaltingSpeed) ++sums.halting;
+    if (s.veh.stop_release[k] != 0) ++sums.stopped;  // standing at a scheduled stop
+  }
+  return sums;
+}
+
 SummaryRow Simulation::summary_row() const {
   SummaryRow r;
   const Counts& c = counts();
@@ -581,31 +605,10 @@ SummaryRow Simulation::summary_row() const {
   r.arrived = c.arrived;
   r.ended = c.arrived;
   r.teleports = c.teleports;
-  // Summed in units of 2^-24 (integers: the sums do not depend on the order of the slots, which sort_slots
-  // changes; each term is off by at most 3e-8).
-  int64_t speed_sum = 0, rel_sum = 0;
-  uint64_t running = 0, halting = 0, stopped = 0;
-  const Demand& d = trips_.demand();
-  const VehicleTypes& t = d.types;
-  auto add = [&](uint32_t v, int32_t lane, float speed, uint32_t stop_release) {
-    ++running;
-    speed_sum += std::llround(static_cast<double>(speed) * kSummaryUnits);
-    const float v0 = desired_speed(net_.lane_speed[lane], d.speed_factor[v], t.max_speed[d.vehicle_type[v]]);
-    if (v0 > 0) rel_sum += std::llround(static_cast<double>(speed / v0) * kSummaryUnits);
-    if (speed < kHaltingSpeed) ++halting;
-    if (stop_release != 0) ++stopped;  // standing at a scheduled stop
-  };
-  if (parts_) {
-    gather_sample();
-    for (const SampleEntry& e : parts_->sample) add(e.vehicle, e.lane, e.speed, e.stop_release);
-  } else {
-    const HostState& s = state(StateParts::Sample);
-    for (uint32_t i = 0; i < s.num_active; ++i) {
-      const uint32_t k = s.active[i];
-      if (s.veh.status[k] == kRunning)
-        add(s.veh.vehicle[k], s.veh.lane[k], s.veh.speed[k], s.veh.stop_release[k]);
-    }
-  }
+  const SpeedSums sums = parts_ ? gather_speed_sums() : speed_sums();
+  const uint64_t running = sums.running;
+  const int64_t speed_sum = sums.speed, rel_sum = sums.relative;
+  const uint64_t halting = sums.halting, stopped = sums.stopped;
   r.halting = halting;
   r.stopped = stopped;
   if (running > 0) {

@@ -47,6 +47,12 @@ struct SimulationOptions {
 
 struct PartState;  // src/engine/part_state.hpp
 
+/// The summary's sums over the running vehicles (speeds in units of 2^-24 m/s, and of the desired speed).
+struct SpeedSums {
+  uint64_t running = 0, halting = 0, stopped = 0;
+  int64_t speed = 0, relative = 0;
+};
+
 /// What one part of a partitioned run spent and sent, cumulative.
 struct PartStats {
   uint64_t steps = 0;
@@ -157,6 +163,8 @@ class Simulation {
   void request(uint8_t what) const;
   std::vector<Bytes> gather_at_root(const Bytes& mine, const char* what) const;
   void gather_sample() const;
+  SpeedSums speed_sums() const;
+  SpeedSums gather_speed_sums() const;
   /// The backend's state (a device backend copies it at most once per change of its state).
   const HostState& state(StateParts parts) const { return stepper_->fetch(parts, slots_.size()); }
   int32_t slot_of(uint32_t v) const;

@@ -116,6 +116,7 @@ void Simulation::init_parts() {
       if (p == plan.part) owners[static_cast<size_t>(owner)] = 1;
     }
     if (owner == plan.part && read_elsewhere) ps.signals_sent.push_back(sig);
+    ps.signal_round = ps.signal_round || read_elsewhere;
   }
   for (int p = 0; p < plan.parts; ++p) {
     if (readers[static_cast<size_t>(p)]) ps.signal_readers.push_back(p);
@@ -125,6 +126,7 @@ void Simulation::init_parts() {
 
 void Simulation::share_signals() {
   PartState& ps = *parts_;
+  if (!ps.signal_round) return;  // every part knows this alike: no part sends or waits
   Bytes mine;
   ByteWriter w(mine);
   std::vector<char> chars;
@@ -432,6 +434,8 @@ void Simulation::serve_part() {
       gather_sample();
     } else if (what == kRequestCounters) {
       lane_counters();
+    } else if (what == kRequestSpeedSums) {
+      gather_speed_sums();
     } else if (what == kRequestStop) {
       return;
     } else {
@@ -439,6 +443,23 @@ void Simulation::serve_part() {
                              std::to_string(what));
     }
   }
+}
+
+// The summary's sums of every part, added at part 0 (integers: exact in any order).
+SpeedSums Simulation::gather_speed_sums() const {
+  if (parts_->plan.part == 0) request(kRequestSpeedSums);
+  Bytes b;
+  ByteWriter(b).put(speed_sums());
+  SpeedSums total;
+  for (const Bytes& x : gather_at_root(b, "speed sums")) {
+    const SpeedSums s = ByteReader(x).get<SpeedSums>();
+    total.running += s.running;
+    total.halting += s.halting;
+    total.stopped += s.stopped;
+    total.speed += s.speed;
+    total.relative += s.relative;
+  }
+  return total;
 }
 
 // The running vehicles of every part, at part 0, ascending by vehicle.

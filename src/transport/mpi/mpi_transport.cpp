@@ -10,6 +10,18 @@ namespace lpsim {
 
 namespace {
 
+// A peer's buffer usually arrives within microseconds of the round starting (the step's passes are balanced):
+// poll, yielding the core, for this long before sleeping between polls.
+constexpr auto kPollBeforeSleep = std::chrono::microseconds(500);
+
+// Waits between two polls of a round started at `start`.
+void pause(std::chrono::steady_clock::time_point start) {
+  if (std::chrono::steady_clock::now() - start < kPollBeforeSleep)
+    std::this_thread::yield();
+  else
+    std::this_thread::sleep_for(std::chrono::microseconds(20));
+}
+
 // Rounds go in lock-step, so a tag that wraps after 32,768 rounds (the least MPI_TAG_UB MPI allows) never
 // meets a message of another round still in flight.
 int round_tag(uint64_t round) { return static_cast<int>(round % 32768); }
@@ -49,7 +61,8 @@ std::vector<Bytes> MpiTransport::exchange(const std::vector<int>& to, const std:
   for (size_t i = 0; i < to.size(); ++i)
     MPI_Isend(send[i].data(), static_cast<int>(send[i].size()), MPI_BYTE, to[i], tag, MPI_COMM_WORLD,
               &sends[i]);
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s_);
+  const auto start = std::chrono::steady_clock::now();
+  const auto deadline = start + std::chrono::duration<double>(timeout_s_);
   auto timed_out = [&](const std::string& doing, int peer) {
     return TransportError("rank " + std::to_string(rank_) + ": " + doing + " rank " + std::to_string(peer) +
                           " in round '" + what + "' (#" + std::to_string(round) + ") took more than " +
@@ -64,7 +77,7 @@ std::vector<Bytes> MpiTransport::exchange(const std::vector<int>& to, const std:
       MPI_Improbe(from[j], tag, MPI_COMM_WORLD, &flag, &message, &status);
       if (flag) break;
       if (std::chrono::steady_clock::now() > deadline) throw timed_out("receiving from", from[j]);
-      std::this_thread::sleep_for(std::chrono::microseconds(20));
+      pause(start);
     }
     int count = 0;
     MPI_Get_count(&status, MPI_BYTE, &count);
@@ -77,7 +90,7 @@ std::vector<Bytes> MpiTransport::exchange(const std::vector<int>& to, const std:
       MPI_Test(&sends[i], &done, MPI_STATUS_IGNORE);
       if (done) break;
       if (std::chrono::steady_clock::now() > deadline) throw timed_out("sending to", to[i]);
-      std::this_thread::sleep_for(std::chrono::microseconds(20));
+      pause(start);
     }
   }
   return got;
