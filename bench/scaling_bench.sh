@@ -54,8 +54,10 @@ done
 
 log "memory: one part, and $memory_parts MPI ranks"
 measure "$out/memory_one.log" "$lpsim" "${common[@]}" > "$out/memory_one.measure"
-"${mpirun[@]}" -n "$memory_parts" /usr/bin/time -f "rank_rss_kib %M" "$lpsim" "${common[@]}" \
-  --parts "$memory_parts" > "$out/memory_mpi.log" 2>&1
+rm -f "$out"/memory_rank.*
+# Each rank's peak RSS in a file of its own (ranks' stderr lines interleave).
+"${mpirun[@]}" -n "$memory_parts" sh -c "/usr/bin/time -f '%M' -o $out/memory_rank.\$OMPI_COMM_WORLD_RANK \"\$0\" \"\$@\"" \
+  "$lpsim" "${common[@]}" --parts "$memory_parts" > "$out/memory_mpi.log" 2>&1
 
 python3 - "$out" "$rounds" "$parts" "$memory_parts" "$scenario" "$end" <<'PY'
 import re, statistics, sys
@@ -85,7 +87,7 @@ for v, name in (("one", "1 part"), ("inprocess", f"{parts} parts in one process"
     if ds[0]["parts"]:
         steps = ds[0]["parts"][0]["rounds"]
 rss_one = float(open(f"{out}/memory_one.measure").read().split()[2])
-rss_ranks = [int(x) / 1024 for x in re.findall(r"rank_rss_kib (\d+)", open(f"{out}/memory_mpi.log").read())]
+rss_ranks = [int(open(f"{out}/memory_rank.{r}").read().split()[-1]) / 1024 for r in range(memory_parts)]
 lines += ["", f"Peak RSS: one part {rss_one:.0f} MiB; {memory_parts} MPI ranks " + ", ".join(f"{x:.0f}" for x in rss_ranks) +
           f" MiB (largest {max(rss_ranks) / rss_one:.2f}× one part's)."]
 open(f"{out}/results.md", "w").write("\n".join(lines) + "\n")

@@ -2,6 +2,7 @@
 // A partitioned run's state in one part's Simulation (simulation_parts.cpp): whom it exchanges with, what a
 // step hands on between its rounds, and, in part 0, the run's totals gathered from every part.
 #include <cstdint>
+#include <map>
 #include <vector>
 
 #include "engine/simulation.hpp"
@@ -56,7 +57,17 @@ struct PartState {
   std::vector<uint32_t> signals_sent;
   std::vector<int> signal_readers, signal_owners;
   bool signal_round = false;  // some part runs an actuated signal another reads (the same in every part)
+  // Some actuated signal reads a loop on a lane its part does not own: insertions go in a round of their own
+  // before the next step's signals (the same in every part).
+  bool insertion_round = false;
   std::vector<uint32_t> owned_shared;  // its lanes that other parts hold too, ascending
+
+  // What this part clears from each lane map when the step next writes it, besides its own vehicles' last
+  // footprints: the other parts' footprints written into it, and the last footprint of each vehicle that left
+  // for another part (as value-0 writes).
+  std::vector<FootprintWrite> remote_footprints[2];
+  // Footprints of the last insertions on lanes others hold, by part, until they are sent.
+  std::map<int, std::vector<FootprintWrite>> inserted;
 
   // Handed on within a step.
   std::vector<TeleportHandOver> teleports;  // this step's teleports, whoever owns their re-entry edge

@@ -210,8 +210,9 @@ void Simulation::step() {
   if (parts_) share_signals();
   s.start_step(params, cur_);
   s.clear_footprints();
+  if (parts_) forget_remote_footprints(1 - cur_);
   s.approach();
-  if (parts_) share_clears_and_approaches();
+  if (parts_) share_approaches();
   s.plan();
   if (parts_) share_claims();
   s.commit();

@@ -153,7 +153,9 @@ class Simulation {
   void check_kept(uint32_t kept) const;
   // A partitioned run's rounds (simulation_parts.cpp), in the order the step makes them.
   void share_signals();
-  void share_clears_and_approaches();
+  void share_approaches();
+  void apply_remote_footprints(int map, const std::vector<FootprintWrite>& writes);
+  void forget_remote_footprints(int map);
   void share_claims();
   void exchange_vehicles();
   void share_insertions(int map);

@@ -118,6 +118,11 @@ void Simulation::init_parts() {
     if (owner == plan.part && read_elsewhere) ps.signals_sent.push_back(sig);
     ps.signal_round = ps.signal_round || read_elsewhere;
   }
+  if (!net_.det_lane.empty())
+    for (uint32_t sig = 0; sig < net_.num_signals(); ++sig)
+      for (uint32_t d = net_.signal_det_begin[sig]; d < net_.signal_det_begin[sig + 1]; ++d)
+        if (plan.signal_owner[sig] >= 0 && plan.lane_owner[net_.det_lane[d]] != plan.signal_owner[sig])
+          ps.insertion_round = true;
   for (int p = 0; p < plan.parts; ++p) {
     if (readers[static_cast<size_t>(p)]) ps.signal_readers.push_back(p);
     if (owners[static_cast<size_t>(p)]) ps.signal_owners.push_back(p);
@@ -150,28 +155,36 @@ void Simulation::share_signals() {
   }
 }
 
-void Simulation::share_clears_and_approaches() {
+// Writes footprints other parts sent into lane map `map` and keeps them: the step that writes that map again
+// clears them (forget_remote_footprints), as the parts of their vehicles clear them in theirs, so that no
+// part needs to be told what another cleared.
+void Simulation::apply_remote_footprints(int map, const std::vector<FootprintWrite>& writes) {
+  if (writes.empty()) return;
+  stepper_->write_footprints(map, writes, parts_->plan.held.data());
+  std::vector<FootprintWrite>& kept = parts_->remote_footprints[map];
+  for (const FootprintWrite& w : writes) kept.push_back(FootprintWrite{w.fp, w.length, 0});
+}
+
+// Before the step writes lane map `map`: the footprints kept for it (apply_remote_footprints, and those of
+// the vehicles that left for another part) are gone, as each part's clear pass erases its own vehicles'.
+void Simulation::forget_remote_footprints(int map) {
+  std::vector<FootprintWrite>& kept = parts_->remote_footprints[map];
+  if (!kept.empty()) stepper_->write_footprints(map, kept, parts_->plan.held.data());
+  kept.clear();
+}
+
+// After approach: the first vehicles of the lanes each part owns that others hold (right of way at the
+// junctions those see), and, unless they went in their own round, the footprints of the vehicles it
+// inserted at the end of the last step on lanes others hold (the approach pass reads only a vehicle's own
+// edge; the plan reads ghosts).
+void Simulation::share_approaches() {
   PartState& ps = *parts_;
   const PartPlan& plan = ps.plan;
-  const NetView net = engine_net_.view(net_);
-  const float* length = trips_.demand().types.length.data();
-  const HostState& st = stepper_->fetch(StateParts::Full, slots_.size());
-  std::map<int, std::vector<FootprintWrite>> clears;
-  for (uint32_t i = 0; i < st.num_active; ++i) {
-    const uint32_t k = st.active[i];
-    const Footprint fp{st.veh.old_lane[k], st.veh.old_prev[k], st.veh.old_prev2[k], st.veh.old_pos[k]};
-    if (fp.lane < 0) continue;
-    const float len = length[st.veh.trip_type[k]];
-    for_each_other_holder(plan, net, fp, len, [&](int p) {
-      clears[p].push_back(FootprintWrite{fp, len, 0});
-    });
-  }
   std::vector<LaneApproach> entries;
   stepper_->read_approaches(ps.owned_shared, entries);
   Outbox out(ps.neighbours);
   for (const int p : ps.neighbours) {
     ByteWriter w(out.to(p));
-    w.put_array(clears[p]);
     std::vector<uint32_t> lanes;
     std::vector<LaneApproach> sent;
     for (size_t i = 0; i < ps.owned_shared.size(); ++i) {
@@ -182,13 +195,15 @@ void Simulation::share_clears_and_approaches() {
     }
     w.put_array(lanes);
     w.put_array(sent);
+    if (!ps.insertion_round) w.put_array(ps.inserted[p]);
   }
-  const std::vector<Bytes> got = ps.round(ps.neighbours, out.all(), ps.neighbours, "clears", true);
+  ps.inserted.clear();
+  const std::vector<Bytes> got = ps.round(ps.neighbours, out.all(), ps.neighbours, "approaches", true);
   for (const Bytes& b : got) {
     ByteReader r(b);
-    stepper_->write_footprints(1 - cur_, r.get_array<FootprintWrite>(), plan.held.data());
     const std::vector<uint32_t> lanes = r.get_array<uint32_t>();
     stepper_->write_approaches(lanes, r.get_array<LaneApproach>());
+    if (!ps.insertion_round) apply_remote_footprints(cur_, r.get_array<FootprintWrite>());
   }
 }
 
@@ -249,6 +264,9 @@ void Simulation::exchange_vehicles() {
     const int32_t owner = plan.lane_owner[static_cast<uint32_t>(fp.lane)];
     if (owner == plan.part) continue;
     const uint32_t v = st.veh.vehicle[k];
+    // Its footprint now is this part's to clear when this map is next written (its slot here stops after
+    // clearing the one before; its new part clears this one in its own map).
+    ps.remote_footprints[1 - cur_].push_back(FootprintWrite{fp, len, 0});
     pack_vehicle(st.veh, k, migrants[owner]);
     migrant_ids[owner].push_back(v);
     migrant_departures[owner].push_back(ledger_.departure(v));
@@ -287,7 +305,7 @@ void Simulation::exchange_vehicles() {
   std::vector<std::vector<uint8_t>> columns(got.size());
   for (size_t g = 0; g < got.size(); ++g) {
     ByteReader r(got[g]);
-    stepper_->write_footprints(1 - cur_, r.get_array<FootprintWrite>(), plan.held.data());
+    apply_remote_footprints(1 - cur_, r.get_array<FootprintWrite>());
     const std::vector<uint32_t> ids = r.get_array<uint32_t>();
     const std::vector<DepartRecord> deps = r.get_array<DepartRecord>();
     columns[g] = r.get_array<uint8_t>();
@@ -323,25 +341,28 @@ void Simulation::exchange_vehicles() {
 
 namespace lpsim {
 
-// After insertion: the footprints of the vehicles this part inserted on lanes others hold.
+// After insertion into lane map `map`: the footprints of the vehicles this part inserted on lanes others
+// hold, sent with the next step's approaches, or at once in a round of their own where an actuated signal
+// reads a loop on another part's lane (the signals are updated before the approaches go).
 void Simulation::share_insertions(int map) {
   PartState& ps = *parts_;
   const PartPlan& plan = ps.plan;
   const NetView net = engine_net_.view(net_);
   const Demand& d = trips_.demand();
-  std::map<int, std::vector<FootprintWrite>> writes;
   for (const SlotInit& in : inits_) {
     const Footprint fp{in.lane, -1, -1, in.pos};
     const float len = d.types.length[d.vehicle_type[in.vehicle]];
     const FootprintWrite fw{fp, len, encode_cell_speed(in.speed)};
-    for_each_other_holder(plan, net, fp, len, [&](int p) { writes[p].push_back(fw); });
+    for_each_other_holder(plan, net, fp, len, [&](int p) { ps.inserted[p].push_back(fw); });
   }
+  if (!ps.insertion_round) return;
   Outbox out(ps.neighbours);
-  for (const int p : ps.neighbours) ByteWriter(out.to(p)).put_array(writes[p]);
+  for (const int p : ps.neighbours) ByteWriter(out.to(p)).put_array(ps.inserted[p]);
+  ps.inserted.clear();
   const std::vector<Bytes> got = ps.round(ps.neighbours, out.all(), ps.neighbours, "insertions", true);
   for (const Bytes& b : got) {
     ByteReader r(b);
-    stepper_->write_footprints(map, r.get_array<FootprintWrite>(), plan.held.data());
+    apply_remote_footprints(map, r.get_array<FootprintWrite>());
   }
 }
 
