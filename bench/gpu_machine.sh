@@ -8,6 +8,11 @@
 #
 # Usage: bench/gpu_machine.sh tests|bench [regional_bench.sh options...]
 #        bench/gpu_machine.sh all [seconds, default 360]
+#        bench/gpu_machine.sh parts [end, default 3600]
+# `parts` runs the partitioned engine on the GPU (the parts in one process share it): grid_tls and the regional
+# 1M trips' first hour (bench/work/regional/1000000/regional.lpsim, made by `bench` when missing) in 1, 2 and
+# 4 parts with --device gpu, and prints each run's wall time, updates/s and per-part line, and whether the
+# tripinfo of 2 and 4 parts equals 1 part's.
 # `all` is the whole device check in one call, in order of value, each part started only while the budget
 # leaves room for it: the GPU tests; the 9M-trip day on the GPU with the CPU backend on the same snapshot
 # (first 600 s); the 1M and 3M days on the GPU. Its reports and logs go to $OUT (8 files at most), else to
@@ -68,5 +73,23 @@ case "$what" in
     # Each regional report names its runs' logs; the bench logs hold their progress lines.
     tail -n 40 "$out"/regional_*.md 2>/dev/null
     ;;
-  *) echo "usage: $0 tests|bench|all [options]" >&2; exit 2 ;;
+  parts)
+    end=${1:-3600}
+    out=${OUT:-bench/work/gpu_parts}
+    mkdir -p "$out"
+    snapshot=bench/work/regional/1000000/regional.lpsim
+    [[ -f $snapshot ]] || "$0" bench --trips 1000000 --devices gpu --runs 1 --warmup 0 >"$out/make_regional.log" 2>&1
+    for input in "-c scenarios/grid_tls/grid_tls.sumocfg" "$snapshot --end $end"; do
+      for k in 1 2 4; do
+        # shellcheck disable=SC2086
+        "$build/lpsim" run $input --device gpu --parts "$k" --no-step-log --no-warnings \
+          --tripinfo-output "$out/trip_$k.xml" >"$out/run_$k.log" 2>&1
+        echo "== $input, $k parts: exit $?"
+        grep -E "Duration|UPS|Part " "$out/run_$k.log"
+      done
+      for k in 2 4; do cmp -s "$out/trip_1.xml" "$out/trip_$k.xml" && echo "$k parts: tripinfo identical" ||
+        echo "$k parts: tripinfo DIFFERS"; done
+    done
+    ;;
+  *) echo "usage: $0 tests|bench|all|parts [options]" >&2; exit 2 ;;
 esac

@@ -84,8 +84,8 @@ struct StepOutcome {
 struct HostState {
   const uint32_t* active = nullptr;
   uint32_t num_active = 0;
-  VehicleView veh{};  // Sample: vehicle, status, lane, pos, speed and stop_release only; Full: every column
-  const uint8_t* map = nullptr;      // Full: the lane map now
+  VehicleView veh{};  // Sample: vehicle, status, lane, pos, speed and stop_release only; else every column
+  const uint8_t* map = nullptr;      // Full: the lane map now (the CPU backend gives it whatever was asked)
   const char* link_state = nullptr;  // Full: every signal link's character now
 };
 
@@ -98,9 +98,10 @@ struct FootprintWrite {
 };
 
 enum class StateParts {
-  Sample,  // what outputs read every step: the active list and each active slot's vehicle, status, lane,
-           // position, speed and stop_release (the summary's stopped vehicles)
-  Full,    // everything (tests): every slot column up to the slots in use, the lane map, the signals
+  Sample,   // what outputs read every step: the active list and each active slot's vehicle, status, lane,
+            // position, speed and stop_release (the summary's stopped vehicles)
+  Columns,  // every slot column up to the slots in use (a partitioned run's exchanges)
+  Full,     // everything (tests): every slot column, the lane map, the signals
 };
 
 class Stepper {

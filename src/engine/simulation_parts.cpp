@@ -246,7 +246,7 @@ void Simulation::exchange_vehicles() {
   const PartPlan& plan = ps.plan;
   const NetView net = engine_net_.view(net_);
   const float* length = trips_.demand().types.length.data();
-  const HostState& st = stepper_->fetch(StateParts::Full, slots_.size());
+  const HostState& st = stepper_->fetch(StateParts::Columns, slots_.size());
   std::map<int, std::vector<FootprintWrite>> writes;
   std::map<int, Bytes> migrants;
   std::map<int, std::vector<uint32_t>> migrant_ids;

@@ -600,12 +600,13 @@ class CudaStepper final : public Stepper {
 
   // A host copy of what is asked for, made at most once per state version (a Full copy serves a Sample).
   const HostState& fetch(StateParts parts, uint32_t num_slots) override {
-    const bool full = parts == StateParts::Full;
-    if (fetched_version_ == version_ && (fetched_full_ || !full)) return state_;
+    const bool full = parts == StateParts::Full, columns = parts != StateParts::Sample;
+    const int level = full ? 2 : (columns ? 1 : 0);  // a copy serves any request of its level or below
+    if (fetched_version_ == version_ && fetched_level_ >= level) return state_;
     const uint32_t n = num_active_;
     host_active_.resize(n);
     copy_to_host(host_active_.data(), active_[cur_active_], n);
-    if (full) {
+    if (columns) {
       host_.reserve(std::max<size_t>(num_slots, 1), false);
       VehicleView h = host_.view();
       visit_vehicle_columns(
@@ -613,11 +614,13 @@ class CudaStepper final : public Stepper {
             copy_to_host(host, dev, static_cast<size_t>(num_slots) * per);
           },
           dev_.veh, h);
+    }
+    if (full) {
       host_map_.resize(cells_);
       copy_to_host(host_map_.data(), map_[state_map_], cells_);
       host_link_state_.resize(num_links_);
       copy_to_host(host_link_state_.data(), link_state_, num_links_);
-    } else if (n > 0) {
+    } else if (!columns && n > 0) {
       // Only what outputs read, gathered on the device, scattered into the host columns by slot.
       uint32_t max_slot = *std::max_element(host_active_.begin(), host_active_.end());
       host_.reserve(size_t{max_slot} + 1, false);
@@ -652,7 +655,7 @@ class CudaStepper final : public Stepper {
       }
     }
     fetched_version_ = version_;
-    fetched_full_ = full;
+    fetched_level_ = level;
     state_.active = host_active_.data();
     state_.num_active = n;
     state_.veh = host_.view();
@@ -988,7 +991,7 @@ class CudaStepper final : public Stepper {
   std::vector<char> host_link_state_;
   HostState state_;
   uint64_t version_ = 0, fetched_version_ = ~uint64_t{0};
-  bool fetched_full_ = false;
+  int fetched_level_ = 0;  // the last copy: 0 Sample, 1 Columns, 2 Full
   PhaseTimer timer_;
 };
 
