@@ -204,6 +204,11 @@ void print_run_report(std::FILE* out, const Run& run, double wall, double load_s
   std::fprintf(out, " Real time factor: %.6g\n",
                wall > 0 ? (run.end_time() - run.options().begin) / wall : 0.0);
   std::fprintf(out, " UPS: %.6f\n", wall > 0 ? static_cast<double>(c.vehicle_updates) / wall : 0.0);
+  // The steps alone, without building the simulation and its first insertions (which do not shrink with
+  // more threads or parts).
+  const double steps = sim.step_seconds();
+  std::fprintf(out, " Steps: %.3fs (UPS of the steps %.6f)\n", steps,
+               steps > 0 ? static_cast<double>(c.vehicle_updates) / steps : 0.0);
   std::fprintf(out, " Vehicle updates: %llu (peak running %llu)\n",
                static_cast<unsigned long long>(c.vehicle_updates),
                static_cast<unsigned long long>(totals.peak_running));

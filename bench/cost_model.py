@@ -13,7 +13,7 @@ compute imbalance of the parts, the cost of a round in-process and over MPI (the
 that waits least, per round: the exchange cost on the critical path), and bytes per part and step, which are
 scaled with the cut lanes per part at K (the partition benchmark's METIS cut lanes) and with the demand.
 
-Usage: bench/cost_model.py [--logs bench/work/scaling] [--gpu-rate 5.06e8] [--updates 4.99e10] [--steps 86400]
+Usage: bench/cost_model.py [--logs bench/work/scaling] [--fitted-steps 3600] [--gpu-rate 5.06e8] [--updates 4.99e10] [--steps 86400]
        [--demand-scale 9] [--latency 5e-6] [--staging 2e-5] [--bandwidth 1e10]
 """
 import argparse
@@ -27,7 +27,7 @@ PART = re.compile(r"Part (\d+): vehicle updates (\d+), migrations out (\d+), exc
                   r"rounds, step ([0-9.]+)s of which exchanges ([0-9.]+)s")
 
 
-def fit(paths):
+def fit(paths, fitted_steps):
     compute_per_update, imbalance, round_cost, bytes_per_step, rounds_per_step = [], [], [], [], []
     for path in paths:
         parts = [dict(updates=int(m[2]), mb=float(m[4]), rounds=int(m[5]), step=float(m[6]), exchange=float(m[7]))
@@ -39,7 +39,7 @@ def fit(paths):
         imbalance.append(max(compute) / statistics.mean(compute))
         least = min(parts, key=lambda p: p["exchange"])
         round_cost.append(least["exchange"] / least["rounds"])
-        steps = parts[0]["rounds"] / 4  # four rounds per step without actuated signals across a cut
+        steps = fitted_steps
         rounds_per_step.append(parts[0]["rounds"] / steps)
         bytes_per_step.append(statistics.mean(p["mb"] for p in parts) * 1e6 / steps)
     med = statistics.median
@@ -50,6 +50,7 @@ def fit(paths):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--logs", default="bench/work/scaling")
+    ap.add_argument("--fitted-steps", type=int, default=3600, help="steps of the benchmark's runs")
     ap.add_argument("--gpu-rate", type=float, default=5.06e8, help="one H100's vehicle-updates/s (9M day)")
     ap.add_argument("--updates", type=float, default=4.99e10, help="vehicle-updates of the 9M day")
     ap.add_argument("--steps", type=int, default=86400, help="steps of the 9M day (12 h at 0.5 s)")
@@ -58,7 +59,7 @@ def main():
     ap.add_argument("--staging", type=float, default=2e-5, help="device-host copies per round of a GPU rank, s")
     ap.add_argument("--bandwidth", type=float, default=1e10, help="interconnect bytes/s")
     a = ap.parse_args()
-    fits = {v: fit(sorted(glob.glob(f"{a.logs}/{v}.*.log"))) for v in ("inprocess", "mpi")}
+    fits = {v: fit(sorted(glob.glob(f"{a.logs}/{v}.*.log")), a.fitted_steps) for v in ("inprocess", "mpi")}
     for v, f in fits.items():
         print(f"fitted ({v}, 2 parts, CPU): {f['compute_per_update'] * 1e9:.0f} ns per vehicle-update, "
               f"compute imbalance {f['imbalance']:.3f}, {f['round_cost'] * 1e6:.1f} us per round, "

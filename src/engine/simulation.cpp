@@ -200,8 +200,8 @@ StepParams Simulation::step_params() const {
 }
 
 void Simulation::step() {
-  if (parts_ && parts_->plan.part == 0) request(kRequestStep);
   const auto t0 = std::chrono::steady_clock::now();
+  if (parts_ && parts_->plan.part == 0) request(kRequestStep);
   sync_trips();
   ++version_;
   Stepper& s = *stepper_;
@@ -243,6 +243,7 @@ void Simulation::step() {
     report_to_root();
   }
   if (opt_.slot_sort_interval > 0 && step_ % opt_.slot_sort_interval == 0) sort_slots();
+  step_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 // Exactly the slots whose vehicles left the road in the previous step drop out of the active list

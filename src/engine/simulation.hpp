@@ -108,6 +108,8 @@ class Simulation {
   void sample_fcd(FcdFrame& frame) const;
   /// edgeData/laneData counters accumulated since the start.
   const LaneCounters& lane_counters() const;
+  /// Wall time spent in step() so far (in a partitioned run part 0's, which waits for the others).
+  double step_seconds() const { return step_seconds_; }
   /// Part 0 of a partitioned run: every part's stats as of the last step (empty in a run of one part).
   std::vector<PartStats> part_stats() const;
   /// Trips that ended since the last call, in order of arrival then vehicle index.
@@ -184,6 +186,7 @@ class Simulation {
   EngineNet engine_net_;
   int64_t time_ms_ = 0, dt_ms_ = 1000;
   uint32_t step_ = 0;
+  double step_seconds_ = 0;
   Counts counts_;
   float max_accel_ = 2.6f, max_emergency_decel_ = 9.0f, min_decel_ = 4.5f;
   uint32_t teleport_steps_ = 0;    // stopped steps before a teleport (0: never)

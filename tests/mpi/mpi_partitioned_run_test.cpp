@@ -97,18 +97,23 @@ TEST(MpiPartitionedRunTest, PartsOtherThanRanksIsBadInput) {
 TEST(MpiPartitionedRunTest, ARankKilledMidRunEndsTheJob) {
   if (!have_mpirun()) GTEST_SKIP() << "mpirun not installed";
   test::TempDir tmp("lpsim_mpi_kill");
-  // Rank 1 is killed once the run has started (found by its MPI rank in its environment).
-  std::string cmd = "cd " + test::shell_quote(tmp.path().string()) + " && (" +
-                    test::shell_quote(LPSIM_MPIEXEC) + " -n 2 --allow-run-as-root --oversubscribe " +
-                    test::shell_quote(LPSIM_BINARY) + " run " + test::shell_quote(scenario("grid_tls")) +
-                    " --parts 2 --fcd-output fcd.xml --no-step-log > out.txt 2> err.txt & job=$!; "
-                    "sleep 2; for p in $(pgrep -x lpsim); do "
-                    "grep -qz '^OMPI_COMM_WORLD_RANK=1$' /proc/$p/environ && kill -9 $p; done; "
-                    "wait $job; echo $? > status.txt)";
+  // Rank 1 (found by its MPI rank in its environment) is killed once the run is under way: rank 0 has written
+  // the first steps of the FCD.
+  std::string cmd =
+      "cd " + test::shell_quote(tmp.path().string()) + " && (" + test::shell_quote(LPSIM_MPIEXEC) +
+      " -n 2 --allow-run-as-root --oversubscribe " + test::shell_quote(LPSIM_BINARY) + " run " +
+      test::shell_quote(scenario("grid_tls")) +
+      " --parts 2 --fcd-output fcd.xml --no-step-log > out.txt 2> err.txt & job=$!; "
+      "for i in $(seq 2000); do [ $(stat -c %s fcd.xml 2>/dev/null || echo 0) -gt 20000 ] && break; "
+      "sleep 0.005; done; for p in $(pgrep -x lpsim); do "
+      "grep -qz '^OMPI_COMM_WORLD_RANK=1$' /proc/$p/environ && kill -9 $p; done; "
+      "wait $job; echo $? > status.txt)";
   const auto t0 = std::chrono::steady_clock::now();
   ASSERT_EQ(std::system(cmd.c_str()), 0);
   const std::string status = test::read_file(tmp.path() / "status.txt");
   EXPECT_NE(std::stoi(status), 0) << test::read_file(tmp.path() / "err.txt");
+  // Killed before the end: the FCD stops short of the last step.
+  EXPECT_EQ(test::read_file(tmp.path() / "fcd.xml").find("time=\"3599.00\""), std::string::npos);
   EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(60));
 }
 

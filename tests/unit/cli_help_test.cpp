@@ -97,6 +97,7 @@ TEST(CliHelpTest, EveryListedOptionIsAcceptedByItsCommandAndHasADescription) {
           line.substr(at + name.size() + 1, line.find(' ', at + name.size() + 1) - at - name.size() - 1);
       const std::string value = meta == "FILE" || meta == "FILE[,FILE]" ? "x.xml"
                                 : meta == "DEVICE"                      ? "cpu"
+                                : meta == "METHOD"                      ? "metis"
                                 : meta == "[BOOL]"                      ? "true"
                                                                         : "1";
       if (name == "--configuration-file") continue;  // reads the file

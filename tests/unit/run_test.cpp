@@ -78,7 +78,8 @@ std::string mask_wall_time(const std::string& text) {
   std::string masked;
   for (std::string line; std::getline(lines, line);) {
     const bool wall = (line.starts_with(" Duration: ") && line.find("(load ") != std::string::npos) ||
-                      line.starts_with(" Real time factor: ") || line.starts_with(" UPS: ");
+                      line.starts_with(" Real time factor: ") || line.starts_with(" UPS: ") ||
+                      line.starts_with(" Steps: ");
     masked += wall ? std::string(" (wall time)") : line;
     masked += '\n';
   }
