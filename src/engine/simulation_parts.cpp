@@ -1,8 +1,9 @@
 // The rounds a part of a partitioned run makes with the other parts at the points of its step where their
 // states meet (docs/ARCHITECTURE.md, "Partitions"), and part 0's gathering of what the outputs read. Every
 // part makes the same rounds in the same order, each with the parts that share a lane with it; whatever
-// crosses a cut is merged by an order-free rule (cells cleared before any are written, the largest claim,
-// vehicles and teleports taken in vehicle order), so every part's lanes read as in one whole network.
+// crosses a cut is merged by an order-free rule (footprints others wrote are erased before the map is written
+// again, the largest claim wins, vehicles and teleports are taken in vehicle order), so every part's lanes
+// read as in one whole network.
 #include <algorithm>
 #include <chrono>
 #include <map>
