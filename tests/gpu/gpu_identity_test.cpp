@@ -72,10 +72,11 @@ Outputs run_on(const fs::path& root, const std::string& scenario, const std::str
 
 struct IdentityCase {
   friend void PrintTo(const IdentityCase& c, std::ostream* os) { *os << c.name; }
-  const char* name;      // test name
-  const char* scenario;  // bundled scenario
-  const char* args;      // extra lpsim run options
-  bool teleports;        // the case must teleport vehicles (checks that path too)
+  const char* name;           // test name
+  const char* scenario;       // bundled scenario
+  const char* args;           // extra lpsim run options
+  bool teleports;             // the case must teleport vehicles (checks that path too)
+  const char* gpu_args = "";  // options of the device's run only (its network split into parts)
 };
 
 class GpuIdentityTest : public ::testing::TestWithParam<IdentityCase> {};
@@ -87,7 +88,7 @@ TEST_P(GpuIdentityTest, GpuOutputsEqualCpuOutputsByteForByte) {
   const test::TempDir tmp("lpsim_gpu");
   const IdentityCase& c = GetParam();
   const Outputs cpu = run_on(tmp.path(), c.scenario, c.args, "cpu");
-  const Outputs dev = run_on(tmp.path(), c.scenario, c.args, "gpu");
+  const Outputs dev = run_on(tmp.path(), c.scenario, std::string(c.args) + " " + c.gpu_args, "gpu");
   if (c.teleports) {
     EXPECT_TRUE(std::regex_search(cpu.summary, std::regex(" teleports=\"[1-9]")))
         << "no teleport in the CPU run";
@@ -106,14 +107,19 @@ TEST_P(GpuIdentityTest, GpuOutputsEqualCpuOutputsByteForByte) {
 }
 
 // Signals (grid_tls), right of way (random_net), random departures and flows (flows), 0.5 s steps with
-// edgeData intervals, and teleports with re-insertion (a short time-to-teleport on the signalised grid).
+// edgeData intervals, teleports with re-insertion (a short time-to-teleport on the signalised grid), and the
+// device's run split into parts (their exchanges read and write the device's state; teleported vehicles
+// re-enter in the part that owns their next edge) against the CPU in one part.
 INSTANTIATE_TEST_SUITE_P(
     BundledScenarios, GpuIdentityTest,
     ::testing::Values(IdentityCase{"grid_tls", "grid_tls", "", false},
                       IdentityCase{"random_net", "random_net", "", false},
                       IdentityCase{"flows", "flows", "", false},
                       IdentityCase{"grid_tls_half_step", "grid_tls", "--step-length 0.5", false},
-                      IdentityCase{"grid_tls_teleports", "grid_tls", "--time-to-teleport 20", true}),
+                      IdentityCase{"grid_tls_teleports", "grid_tls", "--time-to-teleport 20", true},
+                      IdentityCase{"grid_tls_in_3_parts", "grid_tls", "", false, "--parts 3"},
+                      IdentityCase{"grid_tls_teleports_in_4_parts", "grid_tls", "--time-to-teleport 20", true,
+                                   "--parts 4"}),
     [](const ::testing::TestParamInfo<IdentityCase>& info) { return std::string(info.param.name); });
 
 TEST(DeviceSelectTest, CpuIsAlwaysTheCpu) {
