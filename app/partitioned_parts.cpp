@@ -53,6 +53,7 @@ InProcessParts::InProcessParts(const Scenario& sc, const SimulationOptions& opti
     SimulationOptions o = options;
     o.part = &plans_[static_cast<size_t>(p)];
     o.transport = endpoints_[static_cast<size_t>(p)].get();
+    o.gpu_device = p;  // the machine's GPUs dealt out to the parts in turn
     threads_.emplace_back([this, p, o, network, demand]() {
       try {
         Simulation sim(*network, std::move(*demand), o);

@@ -70,6 +70,7 @@ int command_run(const std::vector<std::string>& args) {
     plans.clear();
     options.part = &rank_plan;
     options.transport = mpi.get();
+    options.gpu_device = MpiSession::local_rank();  // ranks on one machine take its GPUs in turn
     if (mpi->rank() != 0) {
       Simulation sim(sc.network, std::move(sc.demand), options);
       sim.serve_part();

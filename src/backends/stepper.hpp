@@ -63,6 +63,7 @@ struct StepperSetup {
   // Accumulate the per-lane edgeData/laneData counters; without them the passes skip their atomics.
   bool lane_counters = true;
   int threads = 1;  // CPU backend: threads of its team
+  int device = 0;   // CUDA backend: the device, counted modulo the devices present (ranks share them)
 };
 
 /// What changed in the trip table since the backend last saw it (Stepper::update_trips).

@@ -104,6 +104,7 @@ Simulation::Simulation(const Network& net, Demand demand, const SimulationOption
   setup.trips = trip_table_view();
   setup.lane_counters = opt_.lane_counters;
   setup.threads = opt_.threads;
+  setup.device = opt_.gpu_device;
   stepper_ = opt_.gpu ? make_cuda_stepper(setup) : make_cpu_stepper(setup);
 
   // The state at the begin time: its signals and its first insertions.

@@ -32,6 +32,7 @@ struct SimulationOptions {
   // Run the step on the CUDA device (backends/cuda). The device then owns the run state; the host keeps the
   // insertion queues and the trip ledger and fetches only what outputs and teleports need.
   bool gpu = false;
+  int gpu_device = 0;  // which of the machine's GPUs (modulo their count): a part's local rank
   // Accumulate the per-lane edgeData/laneData counters (lane_counters()). Off when no such output is
   // requested: the passes then skip their atomics.
   bool lane_counters = true;

@@ -1,12 +1,12 @@
 #pragma once
-// Host emulation of the part of the CUDA runtime that backends/cuda/cuda_stepper.cu uses, so that the host compiler
-// builds that file unchanged and the tests run the CUDA backend's own host logic (buffers, copies, launches,
-// compaction, merges, the slot sort, its growth) on a machine without a GPU. "Device" memory is host memory
-// filled with a poison byte when allocated (a read of what was never written shows up as a difference from
-// the CPU backend, or under AddressSanitizer); copies and launches run at once, in the order issued, as on
-// CUDA's default stream; a launch runs every thread of its grid one after another in a shuffled order (the
-// kernels must not depend on thread order). What it cannot check: device arithmetic, real concurrency
-// between threads, and stream timing — those need a GPU (tests/gpu on the real build).
+// Host emulation of the part of the CUDA runtime that backends/cuda/cuda_stepper.cu uses, so that the host
+// compiler builds that file unchanged and the tests run the CUDA backend's own host logic (buffers, copies,
+// launches, compaction, merges, the slot sort, its growth) on a machine without a GPU. "Device" memory is
+// host memory filled with a poison byte when allocated (a read of what was never written shows up as a
+// difference from the CPU backend, or under AddressSanitizer); copies and launches run at once, in the order
+// issued, as on CUDA's default stream; a launch runs every thread of its grid one after another in a shuffled
+// order (the kernels must not depend on thread order). What it cannot check: device arithmetic, real
+// concurrency between threads, and stream timing — those need a GPU (tests/gpu on the real build).
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
@@ -25,7 +25,8 @@ enum cudaError {
   cudaSuccess = 0,
   cudaErrorInvalidValue = 1,
   cudaErrorMemoryAllocation = 2,
-  cudaErrorInsufficientDriver = 35
+  cudaErrorInsufficientDriver = 35,
+  cudaErrorInvalidDevice = 101
 };
 using cudaError_t = cudaError;
 enum cudaMemcpyKind {
@@ -151,6 +152,7 @@ inline cudaError_t cudaGetDeviceCount(int* count) {
   *count = 1;
   return cudaSuccess;
 }
+inline cudaError_t cudaSetDevice(int device) { return device == 0 ? cudaSuccess : cudaErrorInvalidDevice; }
 inline cudaError_t cudaGetDeviceProperties(cudaDeviceProp* prop, int) {
   *prop = cudaDeviceProp{};
   std::strcpy(prop->name, "CUDA emulated on the host");

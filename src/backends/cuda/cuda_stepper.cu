@@ -336,6 +336,9 @@ class DeviceTrips {
 class CudaStepper final : public Stepper {
  public:
   explicit CudaStepper(const StepperSetup& setup) : host_net_(setup.net) {
+    int devices = 1;
+    LPSIM_CUDA_CHECK(cudaGetDeviceCount(&devices));
+    LPSIM_CUDA_CHECK(cudaSetDevice(setup.device % std::max(devices, 1)));
     const uint32_t nl = setup.net.num_lanes;
     upload_network(setup);
     upload_signals(setup.signals);

@@ -48,6 +48,16 @@ int MpiSession::world_size() {
   return size;
 }
 
+int MpiSession::local_rank() {
+  if (world_size() == 1) return 0;
+  MPI_Comm local;
+  MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &local);
+  int rank = 0;
+  MPI_Comm_rank(local, &rank);
+  MPI_Comm_free(&local);
+  return rank;
+}
+
 MpiTransport::MpiTransport(double timeout_s) : timeout_s_(timeout_s) {
   MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
   MPI_Comm_size(MPI_COMM_WORLD, &size_);
