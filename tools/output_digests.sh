@@ -12,15 +12,18 @@
 # --model M: --default.carfollowmodel M for every run (default: LPSim's, Krauss; IDM gives the outputs of
 # commits before Krauss was implemented, when every vehicle ran the IDM); --parts "2 3 4 8": also runs the
 # network split into each of these numbers of parts (METIS, in one process, one thread per part), labelled
-# cpu-kK (and emulated-kK on the second binary); tools/check_digests.py says whether every run of a scenario
-# gave the same bytes.
+# cpu-kK (and emulated-kK on the second binary); --mpi "2 4": also as that many MPI ranks (mpirun, one part
+# per rank), labelled cpu-mpiK; tools/check_digests.py says whether every run of a scenario gave the same
+# bytes.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 end_args=()
 parts=()
-while [[ "${1:-}" == --end || "${1:-}" == --model || "${1:-}" == --parts ]]; do
+ranks=()
+while [[ "${1:-}" == --end || "${1:-}" == --model || "${1:-}" == --parts || "${1:-}" == --mpi ]]; do
   if [[ $1 == --end ]]; then end_args+=(--end "$2");
   elif [[ $1 == --parts ]]; then read -r -a parts <<< "$2";
+  elif [[ $1 == --mpi ]]; then read -r -a ranks <<< "$2";
   else end_args+=(--default.carfollowmodel "$2"); fi
   shift 2
 done
@@ -39,8 +42,8 @@ if [ -d "$shared/scenarios" ]; then
   done
 fi
 
-run_case() {  # binary label name folder config threads [parts]
-  local bin=$1 label=$2 name=$3 folder=$4 config=$5 threads=$6 k=${7:-1}
+run_case() {  # binary label name folder config threads [parts [mpi ranks]]
+  local bin=$1 label=$2 name=$3 folder=$4 config=$5 threads=$6 k=${7:-1} mpi=${8:-0}
   local dir=$work/$name/$label
   mkdir -p "$dir"
   cp -r "$folder"/. "$dir"/
@@ -48,9 +51,10 @@ run_case() {  # binary label name folder config threads [parts]
   if [[ $config == csv ]]; then
     input=(--lpsim-nodes "$dir/nodes.csv" --lpsim-edges "$dir/edges.csv" --lpsim-od "$dir/od.csv")
   fi
-  local part_args=()
+  local part_args=() launch=()
   if (( k > 1 )); then part_args=(--parts "$k"); fi
-  (cd "$dir" && "$bin" run "${input[@]}" "${end_args[@]}" "${part_args[@]}" --threads "$threads" --no-warnings \
+  if (( mpi > 0 )); then launch=(mpirun --allow-run-as-root --oversubscribe -n "$mpi"); fi
+  (cd "$dir" && "${launch[@]}" "$bin" run "${input[@]}" "${end_args[@]}" "${part_args[@]}" --threads "$threads" --no-warnings \
     --tripinfo-output out_tripinfo.xml --fcd-output out_fcd.xml --edgedata-output out_edgedata.xml \
     --summary-output out_summary.xml > out_stdout.txt 2> out_stderr.txt) || {
     if (( k > 1 )) && grep -q "parts need at least as many junctions" "$dir/out_stderr.txt"; then
@@ -77,4 +81,5 @@ for c in "${cases[@]}"; do
     run_case "$lpsim" "cpu-k$k" "$name" "$folder" "$config" 1 "$k"
     if [ -n "$emulated" ]; then run_case "$emulated" "emulated-k$k" "$name" "$folder" "$config" 1 "$k"; fi
   done
+  for r in "${ranks[@]}"; do run_case "$lpsim" "cpu-mpi$r" "$name" "$folder" "$config" 1 "$r" "$r"; done
 done

@@ -97,8 +97,9 @@ TEST(MpiPartitionedRunTest, PartsOtherThanRanksIsBadInput) {
 TEST(MpiPartitionedRunTest, ARankKilledMidRunEndsTheJob) {
   if (!have_mpirun()) GTEST_SKIP() << "mpirun not installed";
   test::TempDir tmp("lpsim_mpi_kill");
-  // Rank 1 (found by its MPI rank in its environment) is killed once the run is under way: rank 0 has written
-  // the first steps of the FCD.
+  // Rank 1 of this job (found by its MPI rank in its environment and its working directory, this test's:
+  // other tests run lpsim at the same time) is killed once the run is under way: rank 0 has written the first
+  // steps of the FCD.
   std::string cmd =
       "cd " + test::shell_quote(tmp.path().string()) + " && (" + test::shell_quote(LPSIM_MPIEXEC) +
       " -n 2 --allow-run-as-root --oversubscribe " + test::shell_quote(LPSIM_BINARY) + " run " +
@@ -106,6 +107,7 @@ TEST(MpiPartitionedRunTest, ARankKilledMidRunEndsTheJob) {
       " --parts 2 --fcd-output fcd.xml --no-step-log > out.txt 2> err.txt & job=$!; "
       "for i in $(seq 2000); do [ $(stat -c %s fcd.xml 2>/dev/null || echo 0) -gt 20000 ] && break; "
       "sleep 0.005; done; for p in $(pgrep -x lpsim); do "
+      "[ \"$(readlink /proc/$p/cwd)\" = \"$PWD\" ] && "
       "grep -qz '^OMPI_COMM_WORLD_RANK=1$' /proc/$p/environ && kill -9 $p; done; "
       "wait $job; echo $? > status.txt)";
   const auto t0 = std::chrono::steady_clock::now();
