@@ -85,7 +85,6 @@ struct PartState {
   bool all_idle = false;                   // no part has a vehicle on the road or waiting to be inserted
   std::vector<SampleEntry> sample;         // gathered by gather_sample(), ascending by vehicle
   uint64_t sample_version = ~uint64_t{0};  // the Simulation's state version it was gathered at
-  bool stopped = false;
 };
 
 }  // namespace lpsim

@@ -120,7 +120,7 @@ Simulation::Simulation(const Network& net, Demand demand, const SimulationOption
 
 // Part 0 of a partitioned run ends the other parts' serve_part().
 Simulation::~Simulation() {
-  if (!parts_ || parts_->plan.part != 0 || parts_->stopped) return;
+  if (!parts_ || parts_->plan.part != 0) return;
   try {
     request(kRequestStop);
   } catch (const std::exception&) {
@@ -234,12 +234,11 @@ void Simulation::step() {
   insert_waiting(1 - cur_);
   if (parts_) share_insertions(1 - cur_);
   cur_ = 1 - cur_;
-  const uint32_t updated = num_active_;
   start_inserted(out.kept, out.running);
   if (parts_) {
     PartStats& st = parts_->stats;
     ++st.steps;
-    st.vehicle_updates += updated;
+    st.vehicle_updates = counts_.vehicle_updates;
     st.step_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     report_to_root();
   }
@@ -340,10 +339,12 @@ void Simulation::insert_waiting(int map_index) {
   const Demand& d = trips_.demand();
   inits_.clear();
   // Each entry's edge, for a partitioned run's report of the departures in the order one part inserts.
-  entry_edge_.resize(queues_.offered_entries());
-  for (uint32_t slot = 0; slot < batch.num_slots; ++slot)
-    std::fill(entry_edge_.begin() + batch.begin[slot], entry_edge_.begin() + batch.begin[slot + 1],
-              batch.edge[slot]);
+  if (parts_) {
+    entry_edge_.resize(queues_.offered_entries());
+    for (uint32_t slot = 0; slot < batch.num_slots; ++slot)
+      std::fill(entry_edge_.begin() + batch.begin[slot], entry_edge_.begin() + batch.begin[slot + 1],
+                batch.edge[slot]);
+  }
   queues_.take_inserted([&](uint32_t i) {
     const uint32_t v = batch.entry[i] & ~kInsertTeleported;
     SlotInit init{0,
