@@ -42,6 +42,10 @@ std::vector<Run::MeanDataOutput> Run::mean_data_outputs(const Scenario& scenario
   return out;
 }
 
+bool Run::needs_lane_counters(const Scenario& scenario, const OutputSpec& outputs) {
+  return !mean_data_outputs(scenario, outputs).empty();
+}
+
 SimulationOptions Run::counting_lanes(SimulationOptions options, bool lane_counters) {
   options.lane_counters = lane_counters;
   return options;

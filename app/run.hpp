@@ -39,6 +39,9 @@ class Run {
   /// itself: on exactly when an edgeData/laneData output needs them (the engine skips their atomics
   /// otherwise).
   Run(Scenario scenario, const ConfigSpec& config, SimulationOptions options);
+  /// Whether a run of `scenario` with `outputs` counts per lane (what Run sets options.lane_counters to): the
+  /// other parts of a partitioned run, which build their simulations without a Run, count alike.
+  static bool needs_lane_counters(const Scenario& scenario, const OutputSpec& outputs);
   /// Without finish(), the writers close their files but the open edgeData/laneData intervals and the
   /// statistics are lost.
   ~Run();

@@ -1,6 +1,7 @@
 // `lpsim run`: load, simulate, write SUMO outputs, print a SUMO-like summary. SIGINT, SIGTERM and SIGHUP
 // stop it at the end of the current step with every output closed well-formed (as SUMO does on Ctrl-C), one
 // line on stderr and exit status 128 + the signal.
+#include <malloc.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -44,6 +45,7 @@ int command_run(const std::vector<std::string>& args) {
   SimulationOptions options = simulation_options(config);
   const DeviceChoice device = select_device(config.device);
   options.gpu = device.gpu;
+  options.lane_counters = Run::needs_lane_counters(sc, config.outputs);
   if (config.device != ComputeDevice::Cpu)
     std::fprintf(stderr, "lpsim: device %s\n", device.description.c_str());
 
@@ -65,9 +67,11 @@ int command_run(const std::vector<std::string>& args) {
   if (ranks > 1) {
     mpi = std::make_unique<MpiTransport>(kPartTimeout);
     mpi->check_same_build(build_id());
-    std::vector<PartPlan> plans = part_plans(sc.network, edge_part, parts, longest_vehicle(sc.demand));
-    rank_plan = std::move(plans[static_cast<size_t>(mpi->rank())]);
-    plans.clear();
+    rank_plan = part_plan(sc.network, edge_part, parts, longest_vehicle(sc.demand), mpi->rank());
+    if (mpi->rank() != 0) release_name_indexes(sc.network);
+    // What loading and partitioning freed goes back to the system before the part's tables are allocated:
+    // a rank's peak is its tables on top of what it loaded.
+    malloc_trim(0);
     options.part = &rank_plan;
     options.transport = mpi.get();
     options.gpu_device = MpiSession::local_rank();  // ranks on one machine take its GPUs in turn

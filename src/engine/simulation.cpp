@@ -68,7 +68,9 @@ Simulation::Simulation(const Network& net, Demand demand, const SimulationOption
   num_loaded_ = d.size();
   counts_.loaded = num_loaded_;
   ledger_.resize(num_loaded_);
-  lane_counters_.resize(net.num_lanes());
+  // kNumLaneCounters columns over every lane: kept only for edgeData/laneData (lane_counters() sizes them
+  // when asked without).
+  if (opt_.lane_counters) lane_counters_.resize(net.num_lanes());
 
   const VehicleTypes& t = d.types;
   for (uint32_t k = 0; k < t.size(); ++k) {
@@ -474,6 +476,8 @@ void Simulation::set_route(uint32_t v, const std::vector<uint32_t>& edges) {
 }
 
 const LaneCounters& Simulation::lane_counters() const {
+  if (lane_counters_.sampled_steps.size() != net_.num_lanes())
+    const_cast<LaneCounters&>(lane_counters_).resize(net_.num_lanes());  // all zero: nothing counted
   if (parts_ && parts_->plan.part == 0) request(kRequestCounters);
   if (parts_ && parts_->plan.part != 0) {
     gather_counters();

@@ -22,4 +22,12 @@ double Network::shape_segment_length(uint32_t i) const {
   return std::hypot(double(shape_x[i]) - shape_x[i - 1], double(shape_y[i]) - shape_y[i - 1]);
 }
 
+void release_name_indexes(Network& net) {
+  // swap, not clear(): clear() keeps an unordered_map's bucket array
+  decltype(net.edge_index)().swap(net.edge_index);
+  decltype(net.lane_index_by_id)().swap(net.lane_index_by_id);
+  decltype(net.junction_index)().swap(net.junction_index);
+  decltype(net.signal_index)().swap(net.signal_index);
+}
+
 }  // namespace lpsim

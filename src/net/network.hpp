@@ -125,4 +125,8 @@ struct Network {
   double shape_segment_length(uint32_t i) const;
 };
 
+/// Frees the name lookups (edge_index ... signal_index): a process that resolves no more names after loading
+/// (an MPI rank other than 0, which writes no outputs) need not keep them.
+void release_name_indexes(Network& net);
+
 }  // namespace lpsim

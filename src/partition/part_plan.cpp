@@ -34,8 +34,12 @@ double ghost_look_ahead(double longest_vehicle) {
   return kLookAhead + 2.0 * kRoomLengths * longest_vehicle + kJunctionInsides;
 }
 
-std::vector<PartPlan> part_plans(const Network& net, const std::vector<int32_t>& edge_part, int32_t parts,
-                                 double longest_vehicle) {
+namespace {
+
+// The plans of the parts `wanted` names (every part's holdings are worked out: a plan lists the holders of
+// each lane).
+std::vector<PartPlan> plans_of(const Network& net, const std::vector<int32_t>& edge_part, int32_t parts,
+                               double longest_vehicle, const std::vector<int32_t>& wanted) {
   const uint32_t nl = net.num_lanes();
   std::vector<int32_t> owner = lane_parts(net, edge_part);
   for (int32_t& p : owner)
@@ -108,9 +112,10 @@ std::vector<PartPlan> part_plans(const Network& net, const std::vector<int32_t>&
   for (uint32_t e = 0; e < net.num_edges(); ++e)
     if (net.edge_num_lanes[e] > 0) edge_owner[e] = owner[net.edge_first_lane[e]];
 
-  std::vector<PartPlan> plans(static_cast<size_t>(parts));
-  for (int32_t p = 0; p < parts; ++p) {
-    PartPlan& plan = plans[static_cast<size_t>(p)];
+  std::vector<PartPlan> plans(wanted.size());
+  for (size_t w = 0; w < wanted.size(); ++w) {
+    const int32_t p = wanted[w];
+    PartPlan& plan = plans[w];
     plan.part = p;
     plan.parts = parts;
     plan.lane_owner = owner;
@@ -127,6 +132,20 @@ std::vector<PartPlan> part_plans(const Network& net, const std::vector<int32_t>&
     plan.signal_owner = signal_owner;
   }
   return plans;
+}
+
+}  // namespace
+
+std::vector<PartPlan> part_plans(const Network& net, const std::vector<int32_t>& edge_part, int32_t parts,
+                                 double longest_vehicle) {
+  std::vector<int32_t> all(static_cast<size_t>(parts));
+  for (int32_t p = 0; p < parts; ++p) all[static_cast<size_t>(p)] = p;
+  return plans_of(net, edge_part, parts, longest_vehicle, all);
+}
+
+PartPlan part_plan(const Network& net, const std::vector<int32_t>& edge_part, int32_t parts,
+                   double longest_vehicle, int32_t part) {
+  return std::move(plans_of(net, edge_part, parts, longest_vehicle, {part}).front());
 }
 
 }  // namespace lpsim

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "net/network.hpp"
-#include "partition/exchange_plan.hpp"
+#include "partition/part_cells.hpp"
 
 namespace lpsim {
 
@@ -41,6 +41,10 @@ struct PartPlan {
 /// each with the other lanes of its edge.
 std::vector<PartPlan> part_plans(const Network& net, const std::vector<int32_t>& edge_part, int32_t parts,
                                  double longest_vehicle);
+
+/// The plan of part `part` alone (what one rank of an MPI run keeps), as part_plans(...)[part].
+PartPlan part_plan(const Network& net, const std::vector<int32_t>& edge_part, int32_t parts,
+                   double longest_vehicle, int32_t part);
 
 /// Metres downstream of a part's lanes that its ghosts reach, for a run whose longest vehicle is
 /// `longest_vehicle` metres.

@@ -13,11 +13,11 @@
 #include "converters/cli_options.hpp"
 #include "converters/partition_file.hpp"
 #include "core/error.hpp"
-#include "kernels/rng.hpp"
 #include "lpsim_cli.hpp"
-#include "partition/exchange_plan.hpp"
 #include "partition/junction_graph.hpp"
 #include "partition/kmeans.hpp"
+#include "partition/part_cells.hpp"
+#include "partition/part_plan.hpp"
 #include "partition/partition_layout.hpp"
 #include "partition/partition_method.hpp"
 #include "partition/partition_summary.hpp"
@@ -139,44 +139,65 @@ TEST(PartitionTest, LayoutOwnsEveryLaneOnceAndSeesAcrossTheCuts) {
     }
 }
 
-// Each part's map holds its owned lanes' cells then its ghosts'; after the forward feeds from the owners,
-// every lane it holds reads as in the whole network's map.
-TEST(PartitionTest, ForwardFeedsBringEveryGhostLaneUpToDate) {
+// Each part's map holds its owned lanes' cells, then its ghosts', each lane's cells together and no two
+// lanes' overlapping; the owned cells of all parts are the whole network's.
+TEST(PartitionTest, PartCellsHoldOwnedLanesFirstThenGhosts) {
   const Scenario& sc = grid();
   const Network& net = sc.network;
   const std::vector<int32_t> lane_part = metis_lane_parts(3, 2);
   const std::vector<PartLayout> layout = partition_layout(net, lane_part, 3, 300.0, 7.5);
-  std::vector<PartCells> cells;
-  for (const PartLayout& part : layout) cells.push_back(part_cells(net, part));
-  std::vector<uint8_t> whole(net.num_cells());
-  for (uint64_t i = 0; i < whole.size(); ++i) whole[i] = static_cast<uint8_t>(1 + 200 * rng_uniform(9, i, 0));
-  // Each part's own cells, as its commit would leave them; its ghost cells stale (zero).
-  std::vector<std::vector<uint8_t>> maps;
   uint64_t owned_total = 0;
-  for (size_t p = 0; p < layout.size(); ++p) {
-    EXPECT_EQ(cells[p].owned_cells, layout[p].owned_cells);
-    EXPECT_EQ(cells[p].cells, layout[p].owned_cells + layout[p].ghost_cells);
-    owned_total += cells[p].owned_cells;
-    maps.emplace_back(cells[p].cells, 0);
-    for (uint32_t l : layout[p].owned)
-      std::copy(whole.begin() + static_cast<int64_t>(net.lane_cell_begin[l]),
-                whole.begin() + static_cast<int64_t>(net.lane_cell_begin[l + 1]),
-                maps[p].begin() + static_cast<int64_t>(cells[p].cell_begin[l]));
+  for (const PartLayout& part : layout) {
+    const PartCells cells = part_cells(net, part);
+    EXPECT_EQ(cells.owned_cells, part.owned_cells);
+    EXPECT_EQ(cells.cells, part.owned_cells + part.ghost_cells);
+    owned_total += cells.owned_cells;
+    std::vector<uint8_t> used(cells.cells, 0);
+    auto check = [&](uint32_t l, uint64_t from, uint64_t to) {
+      ASSERT_NE(cells.cell_begin[l], kNoCells) << net.lane_id[l];
+      EXPECT_GE(cells.cell_begin[l], from) << net.lane_id[l];
+      const uint64_t n = net.lane_cell_begin[l + 1] - net.lane_cell_begin[l];
+      EXPECT_LE(cells.cell_begin[l] + n, to) << net.lane_id[l];
+      for (uint64_t i = 0; i < n; ++i) EXPECT_EQ(used[cells.cell_begin[l] + i]++, 0) << net.lane_id[l];
+    };
+    for (uint32_t l : part.owned) check(l, 0, cells.owned_cells);
+    for (uint32_t l : part.ghosts) check(l, cells.owned_cells, cells.cells);
+    EXPECT_EQ(std::count(used.begin(), used.end(), 1), static_cast<int64_t>(cells.cells));
+    uint32_t held = 0;
+    for (uint32_t l = 0; l < net.num_lanes(); ++l) held += cells.cell_begin[l] != kNoCells ? 1u : 0u;
+    EXPECT_EQ(held, part.owned.size() + part.ghosts.size());
   }
   EXPECT_EQ(owned_total, net.num_cells());
-  const auto plan = forward_plan(layout, cells, lane_part, net);
-  for (size_t p = 0; p < layout.size(); ++p) {
-    uint64_t fed = 0;
-    for (const GhostFeed& f : plan[p]) {
-      EXPECT_NE(f.owner, static_cast<int32_t>(p));
-      apply_feed(f, maps[static_cast<size_t>(f.owner)].data(), maps[p].data());
-      fed += f.cells;
-    }
-    EXPECT_EQ(fed, layout[p].ghost_cells);
+}
+
+// One rank's plan (part_plan: what an MPI rank works out for itself) is that part's of all the plans, and
+// every lane a part holds lists it among the lane's holders.
+TEST(PartitionTest, OneRanksPlanIsItsPartOfEveryPlan) {
+  const Scenario& sc = grid();
+  const Network& net = sc.network;
+  const std::vector<int32_t> edge_part = edge_parts_from_junctions(
+      net, partition_junctions(build_junction_graph(net, sc.demand, 1.0), 3, PartitionMethod::Metis, 2));
+  const std::vector<PartPlan> all = part_plans(net, edge_part, 3, 7.5);
+  ASSERT_EQ(all.size(), 3u);
+  for (int32_t p = 0; p < 3; ++p) {
+    const PartPlan one = part_plan(net, edge_part, 3, 7.5, p);
+    const PartPlan& of_all = all[static_cast<size_t>(p)];
+    EXPECT_EQ(one.part, p);
+    EXPECT_EQ(one.parts, 3);
+    EXPECT_EQ(one.lane_owner, of_all.lane_owner);
+    EXPECT_EQ(one.edge_owner, of_all.edge_owner);
+    EXPECT_EQ(one.held, of_all.held);
+    EXPECT_EQ(one.cells.cell_begin, of_all.cells.cell_begin);
+    EXPECT_EQ(one.cells.owned_cells, of_all.cells.owned_cells);
+    EXPECT_EQ(one.holder_begin, of_all.holder_begin);
+    EXPECT_EQ(one.holders, of_all.holders);
+    EXPECT_EQ(one.shared_lanes, of_all.shared_lanes);
+    EXPECT_EQ(one.signal_owner, of_all.signal_owner);
+    EXPECT_FALSE(one.shared_lanes.empty());
     for (uint32_t l = 0; l < net.num_lanes(); ++l) {
-      if (cells[p].cell_begin[l] == kNoCells) continue;
-      for (uint64_t i = 0; i < net.lane_cell_begin[l + 1] - net.lane_cell_begin[l]; ++i)
-        ASSERT_EQ(maps[p][cells[p].cell_begin[l] + i], whole[net.lane_cell_begin[l] + i]) << net.lane_id[l];
+      const auto* b = one.holders.data() + one.holder_begin[l];
+      const auto* e = one.holders.data() + one.holder_begin[l + 1];
+      EXPECT_EQ(std::find(b, e, p) != e, one.held[l] != 0) << net.lane_id[l];
     }
   }
 }
