@@ -1,0 +1,105 @@
+#pragma once
+// SumoLink over one of SUMO's two C++ client libraries, which offer the same classes in two namespaces
+// (libsumo:: in process, libtraci:: over a socket): Api names them (libsumo_link.cpp, traci_link.cpp). Every
+// call's exception becomes a SumoError naming the call.
+#include <cstdio>
+#include <exception>
+#include <memory>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "sumo_bridge/sumo_link.hpp"
+#include "sumo_bridge/sumo_start.hpp"
+
+namespace lpsim {
+
+template <class Api>
+class ApiLink final : public SumoLink {
+ public:
+  /// Over a SUMO already started and connected (in process: `process` null).
+  explicit ApiLink(std::unique_ptr<SumoProcess> process) : process_(std::move(process)) {}
+  ~ApiLink() override {
+    try {
+      close();
+    } catch (const std::exception&) {
+      // SUMO already gone: nothing left to close (the process, if any, is killed below).
+    }
+  }
+
+  SumoMode mode() const override { return Api::kMode; }
+  std::string version() override {
+    return call("getVersion", [] { return Api::Simulation::getVersion().second; });
+  }
+  double step_length() override {
+    return call("getDeltaT", [] { return Api::Simulation::getDeltaT(); });
+  }
+  double time() override {
+    return call("getTime", [] { return Api::Simulation::getTime(); });
+  }
+  void step_to(double t) override {
+    call("simulationStep", [&] { Api::Simulation::step(t); });
+  }
+
+  void add(const SumoEntry& e) override {
+    const std::string& first = e.route.front();
+    // SUMO 1.15 cannot remove a route: one one-edge route per entry edge serves every vehicle entering there,
+    // and setRoute gives each its own edges before it is inserted.
+    const std::string route = "lpsim_entry_" + first;
+    if (entry_routes_.insert(first).second)
+      call("route.add " + route, [&] { Api::Route::add(route, {first}); });
+    call("vehicle.add " + e.id, [&] {
+      Api::Vehicle::add(e.id, route, e.type, "now", std::to_string(e.lane), number(e.pos), number(e.speed));
+    });
+    if (e.route.size() > 1) call("vehicle.setRoute " + e.id, [&] { Api::Vehicle::setRoute(e.id, e.route); });
+  }
+  std::vector<std::string> pending() override {
+    return call("getPendingVehicles", [] { return Api::Simulation::getPendingVehicles(); });
+  }
+  std::vector<std::string> arrived() override {
+    return call("getArrivedIDList", [] { return Api::Simulation::getArrivedIDList(); });
+  }
+  SumoVehicle vehicle(const std::string& id) override {
+    return call("vehicle " + id, [&] {
+      return SumoVehicle{Api::Vehicle::getRoadID(id), Api::Vehicle::getLaneIndex(id),
+                         Api::Vehicle::getLanePosition(id), Api::Vehicle::getSpeed(id)};
+    });
+  }
+  void remove(const std::string& id) override {
+    call("vehicle.remove " + id, [&] { Api::Vehicle::remove(id); });
+  }
+  void close() override {
+    if (!open_) return;
+    open_ = false;
+    call("close", [] { Api::Simulation::close(); });
+    if (process_) process_->finish(kCloseSeconds);
+  }
+
+ private:
+  // Exactly the value, as SUMO parses attribute text (no locale, no rounding to six digits).
+  static std::string number(double x) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.17g", x);
+    return buf;
+  }
+
+  template <class F>
+  auto call(const std::string& what, F f) -> decltype(f()) {
+    try {
+      return f();
+    } catch (const std::exception& e) {
+      throw SumoError(std::string("SUMO (") + (Api::kMode == SumoMode::Libsumo ? "libsumo" : "TraCI") +
+                      ") refused " + what + ": " + e.what());
+    }
+  }
+
+  // How long SUMO may take to write and close its outputs after the client closed it.
+  static constexpr double kCloseSeconds = 60;
+
+  std::unique_ptr<SumoProcess> process_;
+  bool open_ = true;
+  std::set<std::string> entry_routes_;
+};
+
+}  // namespace lpsim

@@ -1,0 +1,66 @@
+#pragma once
+// A running SUMO that the co-simulation drives: in this process through libsumo (Debian's libsumocpp), or a
+// `sumo`/`sumo-gui` process over a TraCI socket (libtracicpp). The bridge needs the same few calls of both;
+// each call's failure (SUMO refused it, or died) is a SumoError naming the call.
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace lpsim {
+
+enum class SumoMode { Libsumo, Traci };
+
+struct SumoError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// A vehicle handed into SUMO: it enters at `pos` metres of lane `lane` of route.front() with `speed`, then
+/// drives the rest of the route.
+struct SumoEntry {
+  std::string id, type;
+  std::vector<std::string> route;  // SUMO edge ids, each reachable from the one before
+  int lane = 0;
+  double pos = 0, speed = 0;
+};
+
+/// Where a vehicle is in SUMO.
+struct SumoVehicle {
+  std::string edge;  // SUMO's road id (an internal edge's starts with ':')
+  int lane = 0;
+  double pos = 0, speed = 0;
+};
+
+class SumoLink {
+ public:
+  virtual ~SumoLink() = default;
+  virtual SumoMode mode() const = 0;
+  /// SUMO's version string ("SUMO 1.15.0").
+  virtual std::string version() = 0;
+  /// SUMO's step length and time, s.
+  virtual double step_length() = 0;
+  virtual double time() = 0;
+  /// Runs SUMO's steps up to time t (the first step boundary at or after it).
+  virtual void step_to(double t) = 0;
+  /// Adds a vehicle (an id in use is a SumoError). It is inserted in SUMO's next step where its insertion
+  /// checks pass, else it stays pending (pending()).
+  virtual void add(const SumoEntry& entry) = 0;
+  /// Vehicles added and not yet inserted.
+  virtual std::vector<std::string> pending() = 0;
+  /// Vehicles that ended their route in SUMO's last step (those remove() took out are not among them).
+  virtual std::vector<std::string> arrived() = 0;
+  virtual SumoVehicle vehicle(const std::string& id) = 0;
+  /// Takes a vehicle out of SUMO (running or pending), as a hand-over out of the corridor does.
+  virtual void remove(const std::string& id) = 0;
+  /// Ends SUMO (it writes and closes its outputs). Idempotent; the destructor calls it.
+  virtual void close() = 0;
+};
+
+/// Starts SUMO with `args` (its options, as on its command line): in this process (libsumo; `binary` is not
+/// used, and only one libsumo simulation may run in a process at a time), or `binary` (a path, or a name
+/// looked up on PATH: "sumo", "sumo-gui") as a process on a free local port. A SumoError when it cannot start
+/// (binary missing, options or input files SUMO refuses).
+std::unique_ptr<SumoLink> start_sumo(SumoMode mode, const std::string& binary,
+                                     const std::vector<std::string>& args);
+
+}  // namespace lpsim

@@ -1,0 +1,47 @@
+// SumoLink over a TraCI socket to a sumo/sumo-gui process: Debian's libtracicpp.
+#include <libsumo/libtraci.h>
+
+#include <chrono>
+#include <thread>
+
+#include "sumo_bridge/api_link.hpp"
+
+namespace lpsim {
+
+namespace {
+
+struct TraciApi {
+  using Simulation = libtraci::Simulation;
+  using Vehicle = libtraci::Vehicle;
+  using Route = libtraci::Route;
+  static constexpr SumoMode kMode = SumoMode::Traci;
+};
+
+// How long SUMO may take to load its network and open its port (a region's network takes seconds).
+constexpr double kStartSeconds = 300;
+
+}  // namespace
+
+std::unique_ptr<SumoLink> start_traci(const std::string& binary, const std::vector<std::string>& args) {
+  auto process = std::make_unique<SumoProcess>(binary, args);
+  const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(kStartSeconds);
+  for (;;) {
+    int status = 0;
+    if (process->ended(&status))
+      throw SumoError("SUMO (" + binary + ") ended with status " + std::to_string(status) +
+                      " while starting (SUMO's messages above)");
+    try {
+      // One attempt each time: between them, whether SUMO is still starting or has failed is checked here.
+      libtraci::Simulation::init(process->port(), 0, "127.0.0.1");
+      break;
+    } catch (const std::exception&) {
+      if (std::chrono::steady_clock::now() > until)
+        throw SumoError("SUMO (" + binary + ") did not accept a TraCI connection within " +
+                        std::to_string(static_cast<int>(kStartSeconds)) + " s");
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+  }
+  return std::make_unique<ApiLink<TraciApi>>(std::move(process));
+}
+
+}  // namespace lpsim

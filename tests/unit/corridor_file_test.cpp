@@ -1,0 +1,93 @@
+// The corridor file of `lpsim cosim`: a sumo-gui selection (edge:, lane:, other kinds counted) or plain edge
+// ids read in, every malformed line refused with file:line, and the edges resolved against a bundled
+// network (unknown or internal ones refused with file:line).
+#include "converters/corridor_file.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <string>
+
+#include "app/corridor_resolution.hpp"
+#include "app/scenario.hpp"
+#include "converters/cli_options.hpp"
+#include "core/error.hpp"
+#include "temp_dir.hpp"
+
+namespace lpsim {
+namespace {
+
+using test::TempDir;
+
+const Scenario& grid() {
+  static const Scenario sc = load_scenario(
+      parse_cli_options({"-c", std::string(LPSIM_SCENARIOS_DIR) + "/grid_tls/grid_tls.sumocfg"}));
+  return sc;
+}
+
+class CorridorFileTest : public ::testing::Test {
+ protected:
+  TempDir dir{"lpsim_corridor_file"};
+  std::string file(const std::string& text) {
+    const std::string path = dir.path().string() + "/corridor.txt";
+    std::ofstream(path) << text;
+    return path;
+  }
+  // The message of the InputError that reading and resolving `text` raises ("" if none).
+  std::string error(const std::string& text) {
+    try {
+      resolve_corridor(read_corridor_file(file(text)), grid().network);
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "";
+  }
+};
+
+TEST_F(CorridorFileTest, ReadsASumoGuiSelectionAndPlainIds) {
+  const CorridorSpec spec =
+      read_corridor_file(file("# saved by sumo-gui\nedge:A0B0\n\n  lane:B0C0_1 \njunction:B0\njunction:C0\n"
+                              "vehicle:x\nB1C1\n"));
+  ASSERT_EQ(spec.items.size(), 3u);
+  EXPECT_EQ(spec.items[0].id, "A0B0");
+  EXPECT_FALSE(spec.items[0].lane);
+  EXPECT_EQ(spec.items[0].line, 2);
+  EXPECT_EQ(spec.items[1].id, "B0C0_1");
+  EXPECT_TRUE(spec.items[1].lane);
+  EXPECT_EQ(spec.items[1].line, 4);
+  EXPECT_EQ(spec.items[2].id, "B1C1");
+  EXPECT_EQ(spec.items[2].line, 8);
+  const std::vector<std::pair<std::string, int>> others{{"junction", 2}, {"vehicle", 1}};
+  EXPECT_EQ(spec.other_kinds, others);
+
+  const Network& net = grid().network;
+  const std::vector<uint32_t> edges = resolve_corridor(spec, net);
+  ASSERT_EQ(edges.size(), 3u);
+  EXPECT_EQ(net.edge_id[edges[0]], "A0B0");
+  EXPECT_EQ(net.edge_id[edges[1]], "B0C0");
+  EXPECT_EQ(net.edge_id[edges[2]], "B1C1");
+  // An edge named twice (itself, and through a lane) is one corridor edge.
+  EXPECT_EQ(resolve_corridor(read_corridor_file(file("edge:A0B0\nlane:A0B0_0\nA0B0\n")), net).size(), 1u);
+}
+
+TEST_F(CorridorFileTest, RefusesWhatIsNotACorridorWithFileAndLine) {
+  const std::string at = dir.path().string() + "/corridor.txt:";
+  EXPECT_EQ(error("edge:A0B0\nedge:NOPE\n"), at + "2: edge 'NOPE' is not in the network");
+  EXPECT_EQ(error("lane:A0B0_9\n"), at + "1: lane 'A0B0_9' is not a vehicle lane of the network");
+  EXPECT_EQ(error("A0B0 B0C0\n"),
+            at + "1: one object per line expected (edge:ID or an edge id), got 'A0B0 B0C0'");
+  EXPECT_EQ(error("\nedge:\n"), at + "2: no id after 'edge:'");
+  EXPECT_EQ(error("# nothing\njunction:B0\n"),
+            dir.path().string() + "/corridor.txt: the corridor file names no edge");
+  EXPECT_NE(error(":B0_0\n").find("1: ':B0_0' is inside a junction"), std::string::npos) << error(":B0_0\n");
+  EXPECT_NE(error("").find("names no edge"), std::string::npos);
+  try {
+    read_corridor_file(dir.path().string() + "/missing.txt");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("missing.txt: cannot open corridor file"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace lpsim
