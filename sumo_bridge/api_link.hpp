@@ -2,11 +2,14 @@
 // SumoLink over one of SUMO's two C++ client libraries, which offer the same classes in two namespaces
 // (libsumo:: in process, libtraci:: over a socket): Api names them (libsumo_link.cpp, traci_link.cpp). Every
 // call's exception becomes a SumoError naming the call.
+#include <chrono>
 #include <cstdio>
 #include <exception>
 #include <memory>
+#include <optional>
 #include <set>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -29,6 +32,7 @@ class ApiLink final : public SumoLink {
   }
 
   SumoMode mode() const override { return Api::kMode; }
+  int process_id() const override { return process_ ? static_cast<int>(process_->pid()) : 0; }
   std::string version() override {
     return call("getVersion", [] { return Api::Simulation::getVersion().second; });
   }
@@ -86,12 +90,30 @@ class ApiLink final : public SumoLink {
 
   template <class F>
   auto call(const std::string& what, F f) -> decltype(f()) {
+    std::optional<SumoProcess::Call> watched;
+    if (process_) watched.emplace(*process_, process_->answer_timeout());
     try {
       return f();
     } catch (const std::exception& e) {
-      throw SumoError(std::string("SUMO (") + (Api::kMode == SumoMode::Libsumo ? "libsumo" : "TraCI") +
-                      ") refused " + what + ": " + e.what());
+      watched.reset();
+      const std::string who = Api::kMode == SumoMode::Libsumo ? "SUMO (libsumo)" : "SUMO (TraCI)";
+      int status = 0;
+      if (process_ && process_->timed_out())
+        throw SumoError(who + " did not answer " + what + " within " + number(process_->answer_timeout()) +
+                        " s: stopped");
+      if (process_ && (process_->ended(&status) || wait_for_end(&status)))
+        throw SumoError(who + " ended (status " + std::to_string(status) + ") during " + what);
+      throw SumoError(who + " refused " + what + ": " + e.what());
     }
+  }
+
+  // A call that failed because SUMO is going away: the process ends a moment after its socket closes.
+  bool wait_for_end(int* status) {
+    for (int i = 0; i < 50; ++i) {
+      if (process_->ended(status)) return true;
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return false;
   }
 
   // How long SUMO may take to write and close its outputs after the client closed it.

@@ -35,6 +35,8 @@ class SumoLink {
  public:
   virtual ~SumoLink() = default;
   virtual SumoMode mode() const = 0;
+  /// The SUMO process's id over TraCI (0 in process): what a fault test stops or kills.
+  virtual int process_id() const = 0;
   /// SUMO's version string ("SUMO 1.15.0").
   virtual std::string version() = 0;
   /// SUMO's step length and time, s.
@@ -59,8 +61,10 @@ class SumoLink {
 /// Starts SUMO with `args` (its options, as on its command line): in this process (libsumo; `binary` is not
 /// used, and only one libsumo simulation may run in a process at a time), or `binary` (a path, or a name
 /// looked up on PATH: "sumo", "sumo-gui") as a process on a free local port. A SumoError when it cannot start
-/// (binary missing, options or input files SUMO refuses).
+/// (binary missing, options or input files SUMO refuses). Over TraCI, a SUMO process that does not answer a
+/// call within `answer_timeout_s` is killed and the call is a SumoError (in process, a call cannot hang
+/// apart from this process).
 std::unique_ptr<SumoLink> start_sumo(SumoMode mode, const std::string& binary,
-                                     const std::vector<std::string>& args);
+                                     const std::vector<std::string>& args, double answer_timeout_s = 300);
 
 }  // namespace lpsim

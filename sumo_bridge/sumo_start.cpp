@@ -56,7 +56,9 @@ std::string find_sumo_binary(const std::string& name) {
   throw SumoError("SUMO binary '" + name + "' not found on PATH (Debian: apt-get install sumo)");
 }
 
-SumoProcess::SumoProcess(const std::string& binary, const std::vector<std::string>& args) {
+SumoProcess::SumoProcess(const std::string& binary, const std::vector<std::string>& args,
+                         double answer_timeout_s)
+    : answer_timeout_s_(answer_timeout_s) {
   port_ = free_port();
   std::vector<std::string> argv{binary};
   argv.insert(argv.end(), args.begin(), args.end());
@@ -71,6 +73,35 @@ SumoProcess::SumoProcess(const std::string& binary, const std::vector<std::strin
     ::execv(binary.c_str(), c_argv.data());
     ::_exit(127);
   }
+  watchdog_ = std::thread([this] { watch(); });
+}
+
+void SumoProcess::watch() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  while (!stop_) {
+    if (deadline_ && std::chrono::steady_clock::now() >= *deadline_) {
+      timed_out_ = true;
+      deadline_.reset();
+      ::kill(pid_, SIGKILL);  // its socket closes: the blocked call fails
+    }
+    if (deadline_)
+      wake_.wait_until(lock, *deadline_);
+    else
+      wake_.wait(lock);
+  }
+}
+
+SumoProcess::Call::Call(SumoProcess& p, double seconds) : p_(p) {
+  const std::lock_guard<std::mutex> lock(p_.mutex_);
+  p_.deadline_ = std::chrono::steady_clock::now() +
+                 std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::duration<double>(seconds));
+  p_.wake_.notify_one();
+}
+
+SumoProcess::Call::~Call() {
+  const std::lock_guard<std::mutex> lock(p_.mutex_);
+  p_.deadline_.reset();
+  p_.wake_.notify_one();
 }
 
 bool SumoProcess::ended(int* status) {
@@ -98,15 +129,21 @@ void SumoProcess::finish(double timeout_s) {
 }
 
 SumoProcess::~SumoProcess() {
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    stop_ = true;
+    wake_.notify_one();
+  }
+  if (watchdog_.joinable()) watchdog_.join();
   if (pid_ > 0) finish(0);
 }
 
 std::unique_ptr<SumoLink> start_sumo(SumoMode mode, const std::string& binary,
-                                     const std::vector<std::string>& args) {
+                                     const std::vector<std::string>& args, double answer_timeout_s) {
   if (mode == SumoMode::Libsumo) return start_libsumo(args);
   // A socket whose SUMO died must give an error on the next call, not end this process by SIGPIPE.
   ::signal(SIGPIPE, SIG_IGN);
-  return start_traci(find_sumo_binary(binary), args);
+  return start_traci(find_sumo_binary(binary), args, answer_timeout_s);
 }
 
 }  // namespace lpsim

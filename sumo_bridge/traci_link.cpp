@@ -22,8 +22,9 @@ constexpr double kStartSeconds = 300;
 
 }  // namespace
 
-std::unique_ptr<SumoLink> start_traci(const std::string& binary, const std::vector<std::string>& args) {
-  auto process = std::make_unique<SumoProcess>(binary, args);
+std::unique_ptr<SumoLink> start_traci(const std::string& binary, const std::vector<std::string>& args,
+                                      double answer_timeout_s) {
+  auto process = std::make_unique<SumoProcess>(binary, args, answer_timeout_s);
   const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(kStartSeconds);
   for (;;) {
     int status = 0;

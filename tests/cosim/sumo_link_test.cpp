@@ -1,10 +1,12 @@
 // SumoLink with the real SUMO, in process (libsumo) and as a sumo process over TraCI: it starts on a bundled
 // network, takes a vehicle in on a given lane with a given speed and drives its route to the end, leaves a
 // vehicle it cannot insert pending until removed, refuses an id in use, and fails to start with one error,
-// quickly, when the binary or the network is missing.
+// quickly, when the binary or the network is missing; over TraCI a SUMO killed or stopped mid-run is one
+// error, not a hang.
 #include "sumo_bridge/sumo_link.hpp"
 
 #include <gtest/gtest.h>
+#include <signal.h>
 
 #include <algorithm>
 #include <chrono>
@@ -86,6 +88,39 @@ INSTANTIATE_TEST_SUITE_P(Modes, SumoLinkTest, ::testing::Values(SumoMode::Libsum
                          [](const auto& info) {
                            return info.param == SumoMode::Libsumo ? "libsumo" : "traci";
                          });
+
+// Over TraCI a SUMO that dies mid-run is an error on the next call, and one that stops answering is killed
+// after the answer timeout: never a hang.
+TEST(SumoLinkFaultTest, ASumoKilledMidRunIsOneError) {
+  auto sumo = start_sumo(SumoMode::Traci, "sumo", sumo_args());
+  sumo->step_to(5.0);
+  ASSERT_GT(sumo->process_id(), 0);
+  ::kill(sumo->process_id(), SIGKILL);
+  try {
+    sumo->step_to(6.0);
+    FAIL() << "stepped";
+  } catch (const SumoError& e) {
+    EXPECT_NE(std::string(e.what()).find("ended (status 137) during simulationStep"), std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(SumoLinkFaultTest, ASumoThatStopsAnsweringIsKilledAfterTheTimeout) {
+  auto sumo = start_sumo(SumoMode::Traci, "sumo", sumo_args(), 1.0);
+  sumo->step_to(5.0);
+  ::kill(sumo->process_id(), SIGSTOP);
+  const auto t0 = std::chrono::steady_clock::now();
+  try {
+    sumo->step_to(6.0);
+    FAIL() << "stepped";
+  } catch (const SumoError& e) {
+    EXPECT_NE(std::string(e.what()).find("did not answer simulationStep within 1 s"), std::string::npos)
+        << e.what();
+  }
+  const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  EXPECT_GE(waited, 0.9);
+  EXPECT_LT(waited, 10.0);
+}
 
 TEST(SumoLinkStartTest, AMissingBinaryIsOneError) {
   try {
