@@ -84,10 +84,12 @@ void SumoProcess::watch() {
       deadline_.reset();
       ::kill(pid_, SIGKILL);  // its socket closes: the blocked call fails
     }
-    if (deadline_)
-      wake_.wait_until(lock, *deadline_);
-    else
+    if (deadline_) {
+      const auto until = *deadline_;  // a Call ending meanwhile resets deadline_
+      wake_.wait_until(lock, until);
+    } else {
       wake_.wait(lock);
+    }
   }
 }
 
