@@ -20,6 +20,7 @@ cmake -S . -B build-sanitize "${generator[@]}" -DCMAKE_BUILD_TYPE=Debug -DLPSIM_
 cmake --build build-sanitize -j "$(nproc)"
 export SUMO_HOME="${SUMO_HOME:-/usr/share/sumo}"
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1}"
+export LSAN_OPTIONS="${LSAN_OPTIONS:-suppressions=$PWD/tools/lsan_suppressions.txt}"
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1}"
 cd build-sanitize
 # The format check does not depend on the build; the GPU tests skip without a GPU anyway. The emulated GPU
