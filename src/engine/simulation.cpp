@@ -91,6 +91,13 @@ Simulation::Simulation(const Network& net, Demand demand, const SimulationOption
   if ((opt_.part == nullptr) != (opt_.transport == nullptr))
     throw std::invalid_argument("a part of a partitioned run needs both its plan and its transport");
   if (opt_.part != nullptr) init_parts();
+  if (opt_.outside_lanes) {
+    if (opt_.part) throw std::invalid_argument("lanes driven by another simulator need a run of one part");
+    if (opt_.outside_lanes->size() != net.num_lanes())
+      throw std::invalid_argument("outside lanes: " + std::to_string(opt_.outside_lanes->size()) +
+                                  " flags for " + std::to_string(net.num_lanes()) + " lanes");
+    all_lanes_.assign(net.num_lanes(), 1);
+  }
 
   StepperSetup setup;
   setup.net = engine_net_.view(net_);
@@ -214,6 +221,7 @@ void Simulation::step() {
   s.start_step(params, cur_);
   s.clear_footprints();
   if (parts_) forget_remote_footprints(1 - cur_);
+  if (opt_.outside_lanes) write_outside_footprints(1 - cur_);
   s.approach();
   if (parts_) share_approaches();
   s.plan();
@@ -233,6 +241,7 @@ void Simulation::step() {
   handle_vehicle_ends(out.ends);
   if (!moves_.empty()) s.apply_teleports(moves_, step_);
   if (parts_) exchange_vehicles();
+  if (opt_.outside_lanes) hand_out_vehicles();
   insert_waiting(1 - cur_);
   if (parts_) share_insertions(1 - cur_);
   cur_ = 1 - cur_;
@@ -321,6 +330,12 @@ void Simulation::enqueue(uint32_t v) {
   }
   const uint32_t edge = d.route_edges[d.route_begin[v]];
   if (parts_ && parts_->plan.edge_owner[edge] != parts_->plan.part) return;  // another part inserts it
+  if (opt_.outside_lanes && (*opt_.outside_lanes)[net_.edge_first_lane[edge]]) {
+    ledger_.set_status(v, kMigrated);  // its trip starts in the other simulator
+    departing_outside_.push_back(HandOut{v, -1, 0, 0, 0});
+    ++handed_out_;
+    return;
+  }
   queues_.push_back(edge, queue_entry(v, false));
 }
 
@@ -394,7 +409,8 @@ void Simulation::start_inserted(uint32_t kept, uint32_t running) {
   stepper_->start_vehicles(inits_, added_);
   num_active_ = kept + static_cast<uint32_t>(added_.size());
   // Running vehicles: those of the step's active list, and every one inserted.
-  counts_.running = running + inits_.size() + adopted - migrated;
+  counts_.running = running + inits_.size() + adopted - migrated - handed_out_last_step_;
+  handed_out_last_step_ = 0;
   counts_.waiting = queues_.waiting();
   inits_.clear();
   for (const uint32_t k : retiring_) slots_.release(k);
@@ -653,6 +669,9 @@ std::string Simulation::check_lane_map() const {
       expect[c] = 1;
     }
   }
+  // Cells written from outside (a co-simulation's mirrored vehicles, handed-out vehicles' last footprints).
+  for (const FootprintWrite& w : outside_footprints_[cur_])
+    apply_footprint(expect.data(), nv, w.fp, w.length, 1);
   for (uint64_t c = 0; c < net_.num_cells(); ++c)
     if ((s.map[c] != 0) != (expect[c] != 0))
       return "lane map cell " + std::to_string(c) +

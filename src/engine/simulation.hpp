@@ -44,6 +44,10 @@ struct SimulationOptions {
   // every other part runs serve_part() until part 0's Simulation is destroyed.
   const PartPlan* part = nullptr;
   Transport* transport = nullptr;
+  // Co-simulation: the lanes another simulator drives, 1 per lane of the network (null: none; outlives the
+  // Simulation; one part only). A vehicle whose front reaches one, or whose trip departs on one, leaves this
+  // simulation (Simulation::hand_outs()).
+  const std::vector<uint8_t>* outside_lanes = nullptr;
 };
 
 struct PartState;  // src/engine/part_state.hpp
@@ -141,6 +145,32 @@ class Simulation {
   /// The teleports that started in the last step, in vehicle order (the runner warns of each, as SUMO).
   const std::vector<TeleportEvent>& teleport_events() const;
 
+  // --- co-simulation: lanes another simulator (SUMO) drives (simulation_outside.cpp) ---
+  /// A vehicle that left for an outside lane (SimulationOptions::outside_lanes): where and how fast it was
+  /// at the end of the step; or (lane -1, pos and speed 0, route_pos 0) one due to depart on an outside edge,
+  /// whose trip starts in the other simulator.
+  struct HandOut {
+    uint32_t vehicle = 0;
+    int32_t lane = -1;  // the outside lane its front is on
+    float pos = 0, speed = 0;
+    uint32_t route_pos = 0;  // of the lane's edge in its route
+  };
+  /// The vehicles that left for outside lanes in the last step: those due to depart there, in the order
+  /// they were due, then those that drove there, in vehicle order. Their ledger status is kMigrated from then
+  /// on (not running, not arrived: the other simulator has them).
+  const std::vector<HandOut>& hand_outs() const { return hand_outs_; }
+  /// The other simulator's vehicles on outside lanes as they are at the end of the next step (the caller
+  /// has stepped it already): the lane map the next step writes holds them before its insertions, and the
+  /// step after reads them (the room after a junction, leaders). Kept for the following steps until the
+  /// next call replaces them.
+  struct OutsideVehicle {
+    int32_t lane = 0;
+    float pos = 0, length = 0, speed = 0;  // front position, m
+  };
+  void mirror_outside_vehicles(const std::vector<OutsideVehicle>& vehicles);
+  /// Vehicles handed out so far.
+  uint64_t handed_out() const { return handed_out_; }
+
  private:
   StepParams step_params() const;
   TripTableView trip_table_view() const;
@@ -159,6 +189,8 @@ class Simulation {
   void share_approaches();
   void apply_remote_footprints(int map, const std::vector<FootprintWrite>& writes);
   void forget_remote_footprints(int map);
+  void hand_out_vehicles();
+  void write_outside_footprints(int map);
   void share_claims();
   void exchange_vehicles();
   void share_insertions(int map);
@@ -214,6 +246,17 @@ class Simulation {
   std::vector<TeleportMove> moves_;
   std::vector<TeleportEvent> teleport_events_;
   LaneCounters lane_counters_;
+
+  // Co-simulation: every lane (what a one-part run holds, when lanes are driven elsewhere), the
+  // footprints written into each lane map from outside (mirrored vehicles, and those of vehicles handed out,
+  // which their own clear pass no longer erases), erased when that map is next written.
+  std::vector<uint8_t> all_lanes_;
+  std::vector<HandOut> departing_outside_;  // due to depart on an outside edge, for the next hand_outs()
+  std::vector<FootprintWrite> outside_footprints_[2];
+  std::vector<FootprintWrite> mirror_;  // mirror_outside_vehicles(): written into each map the steps write
+  std::vector<HandOut> hand_outs_;
+  uint64_t handed_out_ = 0;
+  uint32_t handed_out_last_step_ = 0;
 
   std::unique_ptr<Stepper> stepper_;  // last: made from the members above, gone before them
   std::unique_ptr<PartState> parts_;  // a partitioned run's state (null: one part)

@@ -1,0 +1,68 @@
+// The co-simulation's boundary in the Simulation: lanes another simulator drives. Its vehicles there are
+// written into the lane map like another part's (the footprints a part receives), so that this simulation's
+// vehicles queue behind them and enter only where there is room; a vehicle whose front reaches such a lane
+// leaves at the end of that step, like a vehicle driving into another part, and is handed to the other side.
+#include <algorithm>
+#include <stdexcept>
+
+#include "engine/simulation.hpp"
+#include "kernels/lane_map.hpp"
+
+namespace lpsim {
+
+void Simulation::mirror_outside_vehicles(const std::vector<OutsideVehicle>& vehicles) {
+  if (!opt_.outside_lanes) throw std::logic_error("mirror_outside_vehicles() without outside lanes");
+  mirror_.clear();
+  for (const OutsideVehicle& o : vehicles) {
+    if (o.lane < 0 || static_cast<uint32_t>(o.lane) >= net_.num_lanes() ||
+        !(*opt_.outside_lanes)[static_cast<uint32_t>(o.lane)])
+      throw std::invalid_argument("mirrored vehicle on lane " + std::to_string(o.lane) +
+                                  ", not one driven outside");
+    mirror_.push_back(FootprintWrite{Footprint{o.lane, -1, -1, std::max(0.0f, o.pos)}, o.length,
+                                     encode_cell_speed(o.speed)});
+  }
+}
+
+// Before the step writes lane map `map`: what was written into it from outside is erased, and the other
+// simulator's vehicles as they are at the end of this step are written (before this step's insertions,
+// which must not overlap them, and the next step's passes, which read them); this step's passes read the
+// other map, with them as they were at its start.
+void Simulation::write_outside_footprints(int map) {
+  std::vector<FootprintWrite>& kept = outside_footprints_[map];  // values 0: erasures
+  if (!kept.empty()) stepper_->write_footprints(map, kept, all_lanes_.data());
+  kept.clear();
+  if (mirror_.empty()) return;
+  stepper_->write_footprints(map, mirror_, all_lanes_.data());
+  for (const FootprintWrite& w : mirror_) kept.push_back(FootprintWrite{w.fp, w.length, 0});
+}
+
+// After the end of step: the running vehicles whose front is on an outside lane leave, in vehicle order.
+void Simulation::hand_out_vehicles() {
+  hand_outs_.swap(departing_outside_);
+  departing_outside_.clear();
+  const size_t departures = hand_outs_.size();
+  const std::vector<uint8_t>& outside = *opt_.outside_lanes;
+  const HostState& st = stepper_->fetch(StateParts::Columns, slots_.size());
+  const float* length = trips_.demand().types.length.data();
+  std::vector<uint32_t> gone;
+  for (uint32_t i = 0; i < st.num_active; ++i) {
+    const uint32_t k = st.active[i];
+    if (st.veh.status[k] != kRunning || !outside[static_cast<uint32_t>(st.veh.lane[k])]) continue;
+    const uint32_t v = st.veh.vehicle[k];
+    hand_outs_.push_back(HandOut{v, st.veh.lane[k], st.veh.pos[k], st.veh.speed[k], st.veh.route_pos[k]});
+    // Its footprint in the map the step wrote is erased when that map is next written (its slot stops).
+    const Footprint fp{st.veh.lane[k], st.veh.prev[k], st.veh.prev2[k], st.veh.pos[k]};
+    outside_footprints_[1 - cur_].push_back(FootprintWrite{fp, length[st.veh.trip_type[k]], 0});
+    ledger_.set_status(v, kMigrated);
+    gone.push_back(k);
+  }
+  if (gone.empty()) return;
+  stepper_->mark_migrated(gone);
+  for (const uint32_t k : gone) retiring_next_.push_back(k);
+  handed_out_ += gone.size();
+  handed_out_last_step_ = static_cast<uint32_t>(gone.size());
+  std::sort(hand_outs_.begin() + static_cast<std::ptrdiff_t>(departures), hand_outs_.end(),
+            [](const HandOut& a, const HandOut& b) { return a.vehicle < b.vehicle; });
+}
+
+}  // namespace lpsim
