@@ -294,6 +294,13 @@ void Simulation::handle_vehicle_ends(std::vector<VehicleEnd>& ends) {
     }
     moves_.push_back(TeleportMove{v, e.slot, 0});
     const uint32_t edge = d.route_edges[d.route_begin[v] + e.route_pos + 1];
+    if (opt_.outside_lanes && (*opt_.outside_lanes)[net_.edge_first_lane[edge]]) {
+      // Its next edge is driven elsewhere: it re-enters there, in the other simulator.
+      ledger_.set_status(v, kMigrated);
+      departing_outside_.push_back(HandOut{v, -1, 0, 0, e.route_pos + 1});
+      ++handed_out_;
+      continue;
+    }
     if (parts_) {  // the edge's owner queues it (exchange_vehicles)
       parts_->teleports.push_back(TeleportHandOver{e, e.route_pos + 1, edge, ledger_.departure(v)});
       continue;

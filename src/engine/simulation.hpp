@@ -147,17 +147,17 @@ class Simulation {
 
   // --- co-simulation: lanes another simulator (SUMO) drives (simulation_outside.cpp) ---
   /// A vehicle that left for an outside lane (SimulationOptions::outside_lanes): where and how fast it was
-  /// at the end of the step; or (lane -1, pos and speed 0, route_pos 0) one due to depart on an outside edge,
-  /// whose trip starts in the other simulator.
+  /// at the end of the step; or (lane -1, pos and speed 0) one that enters the other simulator off the road:
+  /// due to depart on an outside edge (route_pos 0), or teleported to one (route_pos: that edge's).
   struct HandOut {
     uint32_t vehicle = 0;
     int32_t lane = -1;  // the outside lane its front is on
     float pos = 0, speed = 0;
     uint32_t route_pos = 0;  // of the lane's edge in its route
   };
-  /// The vehicles that left for outside lanes in the last step: those due to depart there, in the order
-  /// they were due, then those that drove there, in vehicle order. Their ledger status is kMigrated from then
-  /// on (not running, not arrived: the other simulator has them).
+  /// The vehicles that left for outside lanes in the last step: those off the road (departures in the order
+  /// they were due, teleports in vehicle order), then those that drove there, in vehicle order. Their ledger
+  /// status is kMigrated from then on (not running, not arrived: the other simulator has them).
   const std::vector<HandOut>& hand_outs() const { return hand_outs_; }
   /// The other simulator's vehicles on outside lanes as they are at the end of the next step (the caller
   /// has stepped it already): the lane map the next step writes holds them before its insertions, and the

@@ -1,7 +1,8 @@
 // Lanes another simulator drives (the co-simulation's corridor): a vehicle whose route enters one leaves the
 // simulation at the end of the step its front reaches it, there, once, at its position and speed, with every
 // vehicle counted in exactly one state each step; vehicles written onto those lanes from outside hold the
-// traffic behind them (the queue spills back), and once they are gone it flows in again. The lane map stays
+// traffic behind them (the queue spills back; a vehicle standing time-to-teleport re-enters in the corridor,
+// handed out), and once they are gone it flows in again. The lane map stays
 // consistent throughout (check_lane_map counts the cells written from outside).
 #include <gtest/gtest.h>
 
@@ -43,6 +44,12 @@ int32_t first_outside(const Demand& d, uint32_t v, const std::set<uint32_t>& out
   for (uint32_t i = 1; i < d.route_length[v]; ++i)
     if (outside.count(d.route_edges[d.route_begin[v] + i])) return static_cast<int32_t>(i);
   return -1;
+}
+
+uint64_t not_yet_due(const Simulation& sim, const Scenario& sc) {
+  uint64_t n = 0;
+  for (uint32_t v = 0; v < sc.demand.size(); ++v) n += sc.demand.depart[v] > sim.time() + 1e-9 ? 1 : 0;
+  return n;
 }
 
 TEST(EngineOutsideLanesTest, VehiclesLeaveWhereTheirRouteEntersTheCorridorOnceAtSpeed) {
@@ -118,16 +125,25 @@ TEST(EngineOutsideLanesTest, VehiclesMirroredOnTheCorridorHoldTheTrafficBehindTh
   std::vector<Simulation::OutsideVehicle> blockers;
   for (uint32_t l = 0; l < net.num_lanes(); ++l)
     if (outside[l]) blockers.push_back(Simulation::OutsideVehicle{static_cast<int32_t>(l), 5.0f, 5.0f, 0.0f});
+  uint64_t teleported_in = 0;
   for (int step = 0; step < 600; ++step) {
     sim.mirror_outside_vehicles(blockers);
     if (step % 100 == 0) {
       ASSERT_EQ(sim.check_lane_map(), "") << "t=" << sim.time();
     }
     sim.step();
-    for (const Simulation::HandOut& h : sim.hand_outs())
+    for (const Simulation::HandOut& h : sim.hand_outs()) {
+      teleported_in += h.lane < 0 && h.route_pos > 0 ? 1 : 0;
       EXPECT_EQ(h.lane, -1) << "t=" << sim.time() << ": vehicle " << h.vehicle
                             << " drove into the corridor at " << h.pos << " speed " << h.speed;
+    }
   }
+  // Every vehicle is in one state: on the road, waiting, arrived, or handed out (at its departure, or
+  // teleported into the corridor after standing time-to-teleport).
+  const Simulation::Counts& c = sim.counts();
+  EXPECT_EQ(c.loaded,
+            c.removed + c.arrived + c.running + c.waiting + sim.handed_out() + not_yet_due(sim, sc));
+  EXPECT_GT(teleported_in, 0u) << "vehicles stood time-to-teleport and re-entered in the corridor";
   // The queues before the corridor stand.
   uint32_t standing = 0;
   for (const uint32_t v : sim.active())
