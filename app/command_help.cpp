@@ -25,6 +25,14 @@ simulate and write SUMO outputs
   lpsim run -c scenario.sumocfg [--end T] [--fcd-output f.xml] [--tripinfo-output f.xml]
 )";
 
+constexpr const char* kCosimUsage = R"(usage: lpsim cosim [options] --corridor corridor.txt [scenario.sumocfg]
+simulate with SUMO driving the corridor's edges and LPSim the rest of the network, vehicles handed across
+the boundary both ways; outputs as `run` (SUMO writes its side beside each, as sumo.<name>; the tripinfo
+has one line per trip for both sides)
+  lpsim cosim -c scenario.sumocfg --corridor corridor.txt [--tripinfo-output f.xml]
+  lpsim cosim -c scenario.sumocfg --corridor corridor.txt --sumo-binary sumo-gui   (SUMO over TraCI)
+)";
+
 constexpr const char* kPartitionUsage = R"(usage: lpsim partition [options] --parts K -o parts.txt
 split the network into K parts for a partitioned run: a part per junction, each road in the part of the
 junction it leads to; weights from the demand (vehicle-steps per junction's roads, vehicles per road).
@@ -35,7 +43,8 @@ Prints a table per part; --map draws the parts.
 
 constexpr const char* kTrailer = R"(
 Options take SUMO's names and may also come from the .sumocfg (except -c, -o, --device,
---max-lane-map-gb, --progress-interval, --jam-report*, --parts, --partition-* and --map, which are
+--max-lane-map-gb, --progress-interval, --jam-report*, --parts, --partition-*, --map, --corridor and
+--sumo-*, which are
 LPSim's own). Other SUMO options:
 those that cannot change the results (verbose, log, gui-settings-file, ...) are ignored with a warning;
 those that could (scale, mesosim, ...) are refused unless set to SUMO's default. No output may be the
@@ -56,6 +65,9 @@ std::string command_help(const std::string& command) {
   } else if (command == "run") {
     usage = kRunUsage;
     c = CliCommand::Run;
+  } else if (command == "cosim") {
+    usage = kCosimUsage;
+    c = CliCommand::Cosim;
   } else if (command == "partition") {
     usage = kPartitionUsage;
     c = CliCommand::Partition;

@@ -32,6 +32,7 @@ std::vector<NamedPath> inputs_of(const ConfigSpec& c) {
   add("--lpsim-od", c.lpsim_od_csv);
   add("--partition-file", c.partition_file);
   add("--migrations-from", c.migrations_from);
+  add("--corridor", c.corridor_file);
   return in;
 }
 
@@ -43,7 +44,7 @@ std::vector<NamedPath> outputs_of(const Scenario& sc, CliCommand command) {
   const ConfigSpec& c = sc.config;
   if (command == CliCommand::Convert || command == CliCommand::Partition) add("-o (output)", c.output_file);
   if (command == CliCommand::Partition) add("--map", c.partition_map);
-  if (command != CliCommand::Run) return out;
+  if (command != CliCommand::Run && command != CliCommand::Cosim) return out;
   add("--fcd-output", c.outputs.fcd);
   add("--tripinfo-output", c.outputs.tripinfo);
   add("--summary-output", c.outputs.summary);

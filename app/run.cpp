@@ -133,16 +133,22 @@ void Run::write_step_outputs() {
     next_fcd_ = config_.outputs.fcd_period > 0 ? next_fcd_ + config_.outputs.fcd_period : sim_.time();
   }
   for (const TripRecord& r : sim_.take_finished_trips()) {
-    ++totals_.trips;
-    totals_.duration += r.arrival - r.depart;
-    totals_.route_length += r.route_length;
-    totals_.waiting += r.waiting_time;
-    totals_.time_loss += r.time_loss;
-    totals_.depart_delay += r.depart_delay;
-    if (r.arrival > r.depart) totals_.speed += r.route_length / (r.arrival - r.depart);
-    if (tripinfo_) tripinfo_->write(r);
+    if (hold_trip_ && hold_trip_(r)) continue;
+    write_trip(r);
   }
   if (summary_) summary_->write(sim_.summary_row());
+}
+
+void Run::write_trip(const TripRecord& r) {
+  if (closed_) throw std::logic_error("Run::write_trip() after finish()");
+  ++totals_.trips;
+  totals_.duration += r.arrival - r.depart;
+  totals_.route_length += r.route_length;
+  totals_.waiting += r.waiting_time;
+  totals_.time_loss += r.time_loss;
+  totals_.depart_delay += r.depart_delay;
+  if (r.arrival > r.depart) totals_.speed += r.route_length / (r.arrival - r.depart);
+  if (tripinfo_) tripinfo_->write(r);
 }
 
 // SUMO's warning for each vehicle that starts a teleport; the time is the end of the step in which its

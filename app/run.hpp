@@ -4,6 +4,7 @@
 // chunks, the outputs are those of one uninterrupted run.
 #include <cstdint>
 #include <cstdio>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -70,6 +71,12 @@ class Run {
   /// one after its step t), while SUMO's clock has already moved on by one step.
   double end_time() const { return sim_.time() + sim_.step_length(); }
 
+  /// Trips that end from now on and for which `hold` returns true are not written nor counted: the caller
+  /// writes them later with write_trip() (a co-simulation completes the trips that SUMO drove part of).
+  void hold_trips(std::function<bool(const TripRecord&)> hold) { hold_trip_ = std::move(hold); }
+  /// Writes a trip's tripinfo line and counts it in the totals. std::logic_error after finish().
+  void write_trip(const TripRecord& r);
+
   Simulation& simulation() { return sim_; }
   const Simulation& simulation() const { return sim_; }
   const Totals& totals() const { return totals_; }
@@ -113,6 +120,7 @@ class Run {
   FcdFrame frame_;
   double next_fcd_ = 0;
   Totals totals_;
+  std::function<bool(const TripRecord&)> hold_trip_;
   bool closed_ = false;
 };
 

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "app/commands.hpp"
+#include "sumo_bridge/cosim_command.hpp"
 #include "core/error.hpp"
 #include "transport/mpi/mpi_transport.hpp"
 
@@ -24,6 +25,9 @@ commands:
   run      simulate and write SUMO outputs
            lpsim run -c scenario.sumocfg [--threads N] [--end T] [--fcd-output f.xml] [--tripinfo-output f.xml]
            [--edgedata-output f.xml] [--summary-output f.xml] [--device cpu|auto|gpu]
+  cosim    simulate with SUMO driving a corridor (the edges of a sumo-gui selection), LPSim the rest
+           lpsim cosim -c scenario.sumocfg --corridor corridor.txt [outputs as for run]
+           [--sumo-binary sumo|sumo-gui (over TraCI; default: libsumo in process)] [--sumo-args "..."]
   partition  split the network into K parts (METIS, Leiden + k-means, random) for a partitioned run
            lpsim partition -c scenario.sumocfg --parts 4 -o parts.txt [--map parts.png]
   version  print the version
@@ -47,6 +51,7 @@ int dispatch(const std::string& command, const std::vector<std::string>& args) {
     if (command == "convert") return lpsim::command_convert(args);
     if (command == "run") return lpsim::command_run(args);
     if (command == "partition") return lpsim::command_partition(args);
+    if (command == "cosim") return lpsim::command_cosim(args);
     if (command == "version" || command == "--version") {
       std::printf("lpsim %s\n", LPSIM_VERSION);
       return 0;

@@ -13,7 +13,7 @@ namespace lpsim {
 
 namespace {
 
-enum class Kind { Path, PathList, Time, Bool, Integer, Number, Device, Name, Method };
+enum class Kind { Path, PathList, Time, Bool, Integer, Number, Device, Name, Method, Text };
 
 // A checked value, handed to the option's store function.
 struct Value {
@@ -34,11 +34,13 @@ constexpr long long kMaxThreads = 1024;
 constexpr long long kMaxParts = 1000000;
 
 // Which commands use an option: a bit per CliCommand.
-constexpr unsigned kInfo = 1, kConvert = 2, kRun = 4, kPartition = 8;
+constexpr unsigned kInfo = 1, kConvert = 2, kRun = 4, kPartition = 8, kCosim = 16;
 // Loading uses these (the demand is built with begin, end, step, seed, routing threads and penalties), so
 // every command takes them. Outputs, teleports and the device are `run`'s, -o is `convert`'s: given to
 // another command on its command line, they are refused rather than ignored.
-constexpr unsigned kLoad = kInfo | kConvert | kRun | kPartition;
+constexpr unsigned kLoad = kInfo | kConvert | kRun | kPartition | kCosim;
+// `cosim` takes what `run` does (outputs, teleports, the device), bar the partitioned run's options.
+constexpr unsigned kRuns = kRun | kCosim;
 
 unsigned command_bit(CliCommand c) {
   switch (c) {
@@ -50,6 +52,8 @@ unsigned command_bit(CliCommand c) {
       return kRun;
     case CliCommand::Partition:
       return kPartition;
+    case CliCommand::Cosim:
+      return kCosim;
   }
   return 0;
 }
@@ -80,26 +84,29 @@ const OptionDef kOptions[] = {
   {"default.carfollowmodel", "", 0, Kind::Name, Check::None, false, kLoad, "car-following model of vTypes that name none: Krauss (default) or IDM; others run IDM", [](ConfigSpec& c, Value&& v) { c.default_car_follow_model = std::move(v.text); }},
   {"seed", "", 0, Kind::Integer, Check::None, false, kLoad, "random seed (default 23423)", [](ConfigSpec& c, Value&& v) { c.seed = v.integer; }},
   // Negative disables teleporting, as in SUMO.
-  {"time-to-impatience", "", 0, Kind::Time, Check::None, false, kRun, "waiting time after which a vehicle at a link without priority counts on foes that can still brake to let it go (SUMO's impatience; default 180; <= 0: never)", [](ConfigSpec& c, Value&& v) { c.time_to_impatience = v.seconds; }},
-  {"time-to-teleport", "", 0, Kind::Time, Check::None, false, kRun, "waiting time before a blocked vehicle teleports; < 0: never (default 300)", [](ConfigSpec& c, Value&& v) { c.time_to_teleport = v.seconds; }},
+  {"time-to-impatience", "", 0, Kind::Time, Check::None, false, kRuns, "waiting time after which a vehicle at a link without priority counts on foes that can still brake to let it go (SUMO's impatience; default 180; <= 0: never)", [](ConfigSpec& c, Value&& v) { c.time_to_impatience = v.seconds; }},
+  {"time-to-teleport", "", 0, Kind::Time, Check::None, false, kRuns, "waiting time before a blocked vehicle teleports; < 0: never (default 300)", [](ConfigSpec& c, Value&& v) { c.time_to_teleport = v.seconds; }},
   {"weights.minor-penalty", "", 0, Kind::Time, Check::NonNegative, false, kLoad, "routing cost of a minor link, in s (default 1.5)", [](ConfigSpec& c, Value&& v) { c.minor_penalty = v.seconds; }},
-  {"no-warnings", "", 'W', Kind::Bool, Check::None, false, kRun, "no teleport warnings on stderr", [](ConfigSpec& c, Value&& v) { c.no_warnings = v.flag; }},
-  {"no-step-log", "", 0, Kind::Bool, Check::None, false, kRun, "no progress lines on stderr", [](ConfigSpec& c, Value&& v) { c.no_step_log = v.flag; }},
+  {"no-warnings", "", 'W', Kind::Bool, Check::None, false, kRuns, "no teleport warnings on stderr", [](ConfigSpec& c, Value&& v) { c.no_warnings = v.flag; }},
+  {"no-step-log", "", 0, Kind::Bool, Check::None, false, kRuns, "no progress lines on stderr", [](ConfigSpec& c, Value&& v) { c.no_step_log = v.flag; }},
   {"ignore-route-errors", "", 0, Kind::Bool, Check::None, false, kLoad, "skip vehicles with broken routes instead of refusing the input", [](ConfigSpec& c, Value&& v) { c.ignore_route_errors = v.flag; }},
   {"threads", "", 0, Kind::Integer, Check::ThreadCount, false, kLoad, "threads for routing and stepping; 0: all for routing, 1 for stepping", [](ConfigSpec& c, Value&& v) { c.threads = static_cast<int>(v.integer); }},
   // Not a SUMO option: command line only, so a .sumocfg stays valid for SUMO.
-  {"device", "", 0, Kind::Device, Check::None, true, kRun, "cpu (default), auto (a usable CUDA device, else the CPU) or gpu", [](ConfigSpec& c, Value&& v) { c.device = v.device; }},
+  {"device", "", 0, Kind::Device, Check::None, true, kRuns, "cpu (default), auto (a usable CUDA device, else the CPU) or gpu", [](ConfigSpec& c, Value&& v) { c.device = v.device; }},
   {"max-lane-map-gb", "", 0, Kind::Number, Check::Positive, true, kLoad, "the most lane map (one byte per metre of lane) a network may need, GiB (default 16)", [](ConfigSpec& c, Value&& v) { c.max_lane_map_gb = v.number; }},
-  {"progress-interval", "", 0, Kind::Number, Check::Positive, true, kRun, "wall seconds between progress lines when stderr is not a terminal (default 60)", [](ConfigSpec& c, Value&& v) { c.progress_interval = v.number; }},
-  {"jam-report", "", 0, Kind::Path, Check::None, true, kRun, "LPSim's jam report: each teleport and long stop, its cause and blockers", [](ConfigSpec& c, Value&& v) { c.jam_report = std::move(v.text); }},
-  {"jam-report.stop-time", "", 0, Kind::Number, Check::Positive, true, kRun, "the jam report's shortest stop, in s (default 60)", [](ConfigSpec& c, Value&& v) { c.jam_report_stop_time = v.number; }},
-  {"fcd-output", "", 0, Kind::Path, Check::None, false, kRun, "SUMO FCD output (.gz: compressed)", [](ConfigSpec& c, Value&& v) { c.outputs.fcd = std::move(v.text); }},
-  {"device.fcd.period", "", 0, Kind::Time, Check::NonNegative, false, kRun, "FCD sampling period in s; 0 (default): every step", [](ConfigSpec& c, Value&& v) { c.outputs.fcd_period = v.seconds; }},
-  {"tripinfo-output", "tripinfo", 0, Kind::Path, Check::None, false, kRun, "SUMO tripinfo output", [](ConfigSpec& c, Value&& v) { c.outputs.tripinfo = std::move(v.text); }},
-  {"summary-output", "summary", 0, Kind::Path, Check::None, false, kRun, "SUMO summary output", [](ConfigSpec& c, Value&& v) { c.outputs.summary = std::move(v.text); }},
-  {"statistic-output", "statistics-output", 0, Kind::Path, Check::None, false, kRun, "SUMO statistic output", [](ConfigSpec& c, Value&& v) { c.outputs.statistic = std::move(v.text); }},
-  {"edgedata-output", "", 0, Kind::Path, Check::None, false, kRun, "SUMO edgeData output, one interval for the whole run", [](ConfigSpec& c, Value&& v) { c.outputs.edgedata = std::move(v.text); }},
-  {"lanedata-output", "", 0, Kind::Path, Check::None, false, kRun, "SUMO laneData output, one interval for the whole run", [](ConfigSpec& c, Value&& v) { c.outputs.lanedata = std::move(v.text); }},
+  {"progress-interval", "", 0, Kind::Number, Check::Positive, true, kRuns, "wall seconds between progress lines when stderr is not a terminal (default 60)", [](ConfigSpec& c, Value&& v) { c.progress_interval = v.number; }},
+  {"jam-report", "", 0, Kind::Path, Check::None, true, kRuns, "LPSim's jam report: each teleport and long stop, its cause and blockers", [](ConfigSpec& c, Value&& v) { c.jam_report = std::move(v.text); }},
+  {"jam-report.stop-time", "", 0, Kind::Number, Check::Positive, true, kRuns, "the jam report's shortest stop, in s (default 60)", [](ConfigSpec& c, Value&& v) { c.jam_report_stop_time = v.number; }},
+  {"fcd-output", "", 0, Kind::Path, Check::None, false, kRuns, "SUMO FCD output (.gz: compressed)", [](ConfigSpec& c, Value&& v) { c.outputs.fcd = std::move(v.text); }},
+  {"device.fcd.period", "", 0, Kind::Time, Check::NonNegative, false, kRuns, "FCD sampling period in s; 0 (default): every step", [](ConfigSpec& c, Value&& v) { c.outputs.fcd_period = v.seconds; }},
+  {"tripinfo-output", "tripinfo", 0, Kind::Path, Check::None, false, kRuns, "SUMO tripinfo output", [](ConfigSpec& c, Value&& v) { c.outputs.tripinfo = std::move(v.text); }},
+  {"summary-output", "summary", 0, Kind::Path, Check::None, false, kRuns, "SUMO summary output", [](ConfigSpec& c, Value&& v) { c.outputs.summary = std::move(v.text); }},
+  {"statistic-output", "statistics-output", 0, Kind::Path, Check::None, false, kRuns, "SUMO statistic output", [](ConfigSpec& c, Value&& v) { c.outputs.statistic = std::move(v.text); }},
+  {"edgedata-output", "", 0, Kind::Path, Check::None, false, kRuns, "SUMO edgeData output, one interval for the whole run", [](ConfigSpec& c, Value&& v) { c.outputs.edgedata = std::move(v.text); }},
+  {"lanedata-output", "", 0, Kind::Path, Check::None, false, kRuns, "SUMO laneData output, one interval for the whole run", [](ConfigSpec& c, Value&& v) { c.outputs.lanedata = std::move(v.text); }},
+  {"corridor", "", 0, Kind::Path, Check::None, true, kCosim, "the edges SUMO simulates: a sumo-gui/netedit selection file (edge:ID, lane:ID lines) or plain edge ids", [](ConfigSpec& c, Value&& v) { c.corridor_file = std::move(v.text); }},
+  {"sumo-binary", "", 0, Kind::Text, Check::None, true, kCosim, "run SUMO as this program (sumo, sumo-gui, or a path) over TraCI on 127.0.0.1 instead of in process (libsumo)", [](ConfigSpec& c, Value&& v) { c.sumo_binary = std::move(v.text); }},
+  {"sumo-args", "", 0, Kind::Text, Check::None, true, kCosim, "further SUMO options, as on its command line (quoted: --sumo-args \"--lateral-resolution 0.8\")", [](ConfigSpec& c, Value&& v) { c.sumo_args = std::move(v.text); }},
   {"lpsim-nodes", "", 0, Kind::Path, Check::None, false, kLoad, "LPSim CSV nodes (with --lpsim-edges, instead of a SUMO network)", [](ConfigSpec& c, Value&& v) { c.lpsim_nodes_csv = std::move(v.text); }},
   {"lpsim-edges", "", 0, Kind::Path, Check::None, false, kLoad, "LPSim CSV edges (with --lpsim-nodes)", [](ConfigSpec& c, Value&& v) { c.lpsim_edges_csv = std::move(v.text); }},
   {"lpsim-od", "", 0, Kind::Path, Check::None, false, kLoad, "LPSim CSV origin-destination demand", [](ConfigSpec& c, Value&& v) { c.lpsim_od_csv = std::move(v.text); }},
@@ -195,6 +202,9 @@ Value convert(const OptionDef& def, std::string_view name, const std::string& va
       v.number = *x;
       break;
     }
+    case Kind::Text:
+      v.text = value;
+      break;
     case Kind::Name:
       if (value.empty() || value.find_first_of(" \t\r\n,") != std::string::npos)
         bad_value(where, name, value, "expected a model name");
@@ -299,6 +309,9 @@ std::string describe_options(CliCommand command) {
         break;
       case Kind::Name:
         left += " MODEL";
+        break;
+      case Kind::Text:
+        left += " TEXT";
         break;
       case Kind::Method:
         left += " METHOD";

@@ -46,6 +46,9 @@ struct InsertBatch {
   const uint32_t* begin;      // [num_slots+1] into entry
   const uint32_t* entry;      // vehicle index, | kInsertTeleported
   const uint32_t* route_pos;  // [entries] route position it enters at (0 for a departure)
+  // [entries] the speed a re-entering vehicle asks for (lowered to fit the traffic): 0 after a teleport, its
+  // speed for one handed back by a co-simulated SUMO; departures ignore it.
+  const float* enter_speed;
   uint32_t* inserted;         // out [num_slots]: entries of the slot inserted
   int32_t* out_lane;          // out [entries]: where an inserted vehicle was placed
   float* out_pos;
@@ -295,11 +298,11 @@ LPSIM_HD int32_t free_lane(const NetView& net, uint32_t first, uint32_t nlanes, 
 /// Lanes an edge's insertion looks at (SUMO's 64-bit masks); lanes beyond are not used for departures.
 constexpr uint32_t kMaxInsertLanes = 64;
 
-/// Tries to put a teleported vehicle back on the road at the start of route edge `rp`: best lanes first,
-/// then the others its class may use, at the lane start, standing. Returns false, changing nothing, when none
-/// has room.
+/// Tries to put a teleported (or handed-back) vehicle back on the road at the start of route edge `rp`: best
+/// lanes first, then the others its class may use, at the lane start, at up to `speed` (lowered to fit).
+/// Returns false, changing nothing, when none has room.
 LPSIM_HD bool try_reenter(const StepContext& s, const InsertParams& p, uint8_t* map, uint32_t v, uint32_t rp,
-                          int32_t* out_lane, float* out_pos, float* out_speed) {
+                          float speed_wanted, int32_t* out_lane, float* out_pos, float* out_speed) {
   const NetView& net = s.net;
   const uint32_t e = trip_route_edge(s, v, rp);
   const uint32_t first = net.edge_first_lane[e], nlanes = net.edge_num_lanes[e];
@@ -314,7 +317,7 @@ LPSIM_HD bool try_reenter(const StepContext& s, const InsertParams& p, uint8_t* 
       if (((lane_bit(net, l) & best) != 0) != (pass == 0) || !lane_allows(net, l, vclass)) continue;
       const int32_t li = static_cast<int32_t>(l);
       const float pos = base_pos(net.lane_length[l], length);
-      const float speed = insertion_check(s, p, map, v, li, pos, 0.0f, true);
+      const float speed = insertion_check(s, p, map, v, li, pos, speed_wanted, true);
       if (speed < 0.0f) continue;
       apply_footprint(map, net, Footprint{li, -1, -1, pos}, length, encode_cell_speed(speed));
       if (p.cnt_entered != nullptr) atomic_add_i64(&p.cnt_entered[l], 1);
@@ -348,7 +351,8 @@ LPSIM_HD void insert_queue_head(const StepContext& s, const DepartView& d, const
     const uint32_t entry = b.entry[i];
     const uint32_t v = entry & ~kInsertTeleported;
     if (entry & kInsertTeleported) {
-      if (try_reenter(s, p, map, v, b.route_pos[i], &b.out_lane[i], &b.out_pos[i], &b.out_speed[i])) {
+      if (try_reenter(s, p, map, v, b.route_pos[i], b.enter_speed[i], &b.out_lane[i], &b.out_pos[i],
+                      &b.out_speed[i])) {
         ++n;
         scanned = 0;
       }

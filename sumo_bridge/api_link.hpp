@@ -54,9 +54,14 @@ class ApiLink final : public SumoLink {
     if (entry_routes_.insert(first).second)
       call("route.add " + route, [&] { Api::Route::add(route, {first}); });
     call("vehicle.add " + e.id, [&] {
-      Api::Vehicle::add(e.id, route, e.type, "now", std::to_string(e.lane), number(e.pos), number(e.speed));
+      if (e.lane >= 0)
+        Api::Vehicle::add(e.id, route, e.type, "now", std::to_string(e.lane), number(e.pos), number(e.speed));
+      else
+        Api::Vehicle::add(e.id, route, e.type, "now", e.depart_lane, e.depart_pos, e.depart_speed);
     });
     if (e.route.size() > 1) call("vehicle.setRoute " + e.id, [&] { Api::Vehicle::setRoute(e.id, e.route); });
+    if (e.speed_factor > 0)
+      call("vehicle.setSpeedFactor " + e.id, [&] { Api::Vehicle::setSpeedFactor(e.id, e.speed_factor); });
   }
   std::vector<std::string> pending() override {
     return call("getPendingVehicles", [] { return Api::Simulation::getPendingVehicles(); });
@@ -67,11 +72,18 @@ class ApiLink final : public SumoLink {
   SumoVehicle vehicle(const std::string& id) override {
     return call("vehicle " + id, [&] {
       return SumoVehicle{Api::Vehicle::getRoadID(id), Api::Vehicle::getLaneIndex(id),
-                         Api::Vehicle::getLanePosition(id), Api::Vehicle::getSpeed(id)};
+                         Api::Vehicle::getLanePosition(id), Api::Vehicle::getSpeed(id),
+                         Api::Vehicle::getRouteIndex(id)};
     });
   }
   void remove(const std::string& id) override {
     call("vehicle.remove " + id, [&] { Api::Vehicle::remove(id); });
+  }
+  void hold(const std::string& id, bool held) override {
+    call("vehicle.setSpeed " + id, [&] { Api::Vehicle::setSpeed(id, held ? 0.0 : -1.0); });
+  }
+  int running() override {
+    return call("vehicle.getIDCount", [] { return Api::Vehicle::getIDCount(); });
   }
   void close() override {
     if (!open_) return;

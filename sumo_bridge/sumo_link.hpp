@@ -16,12 +16,15 @@ struct SumoError : std::runtime_error {
 };
 
 /// A vehicle handed into SUMO: it enters at `pos` metres of lane `lane` of route.front() with `speed`, then
-/// drives the rest of the route.
+/// drives the rest of the route. With lane -1 it departs there as a trip does, by SUMO's depart attributes
+/// (departLane, departPos, departSpeed values).
 struct SumoEntry {
   std::string id, type;
   std::vector<std::string> route;  // SUMO edge ids, each reachable from the one before
   int lane = 0;
   double pos = 0, speed = 0;
+  std::string depart_lane = "first", depart_pos = "base", depart_speed = "0";  // lane -1 only
+  double speed_factor = 0;  // > 0: the vehicle's own (as the other side drew it); else SUMO draws one
 };
 
 /// Where a vehicle is in SUMO.
@@ -29,6 +32,7 @@ struct SumoVehicle {
   std::string edge;  // SUMO's road id (an internal edge's starts with ':')
   int lane = 0;
   double pos = 0, speed = 0;
+  int route_index = 0;  // of its current (or, on an internal edge, last) edge in the route SUMO drives
 };
 
 class SumoLink {
@@ -54,6 +58,10 @@ class SumoLink {
   virtual SumoVehicle vehicle(const std::string& id) = 0;
   /// Takes a vehicle out of SUMO (running or pending), as a hand-over out of the corridor does.
   virtual void remove(const std::string& id) = 0;
+  /// Holds a running vehicle (it brakes to a stop as its model allows, and stays) or lets it drive on.
+  virtual void hold(const std::string& id, bool held) = 0;
+  /// Vehicles running in SUMO (inserted, not yet arrived or removed).
+  virtual int running() = 0;
   /// Ends SUMO (it writes and closes its outputs). Idempotent; the destructor calls it.
   virtual void close() = 0;
 };

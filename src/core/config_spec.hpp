@@ -51,6 +51,9 @@ struct ConfigSpec {
   std::string partition_method = "metis";
   std::string partition_file, partition_map;
   std::string migrations_from;  // an edgeData output whose entries count the vehicles crossing the cuts
+  // `lpsim cosim`: the corridor file, SUMO as a program over TraCI (empty: libsumo in process) and the
+  // options passed to it, as one command-line text.
+  std::string corridor_file, sumo_binary, sumo_args;
   // SUMO options given that cannot change LPSim's results (verbose, log, gui-settings-file, ...), in the
   // order first given, for the one warning that names them.
   std::vector<std::string> inert_options;

@@ -296,7 +296,8 @@ void Simulation::handle_vehicle_ends(std::vector<VehicleEnd>& ends) {
     const uint32_t edge = d.route_edges[d.route_begin[v] + e.route_pos + 1];
     if (opt_.outside_lanes && (*opt_.outside_lanes)[net_.edge_first_lane[edge]]) {
       // Its next edge is driven elsewhere: it re-enters there, in the other simulator.
-      ledger_.set_status(v, kMigrated);
+      ledger_.handed_out(v, TripCounters{e.route_length, e.time_loss, e.waiting_steps, e.waiting_count,
+                                         e.next_stop, e.stop_steps});
       departing_outside_.push_back(HandOut{v, -1, 0, 0, e.route_pos + 1});
       ++handed_out_;
       continue;
@@ -338,7 +339,9 @@ void Simulation::enqueue(uint32_t v) {
   const uint32_t edge = d.route_edges[d.route_begin[v]];
   if (parts_ && parts_->plan.edge_owner[edge] != parts_->plan.part) return;  // another part inserts it
   if (opt_.outside_lanes && (*opt_.outside_lanes)[net_.edge_first_lane[edge]]) {
-    ledger_.set_status(v, kMigrated);  // its trip starts in the other simulator
+    TripCounters none;
+    none.next_stop = d.stops.first(v);
+    ledger_.handed_out(v, none);  // its trip starts in the other simulator
     departing_outside_.push_back(HandOut{v, -1, 0, 0, 0});
     ++handed_out_;
     return;
@@ -347,7 +350,7 @@ void Simulation::enqueue(uint32_t v) {
 }
 
 void Simulation::insert_waiting(int map_index) {
-  const InsertBatch& batch = queues_.offer(ledger_.resume_route_positions());
+  const InsertBatch& batch = queues_.offer(ledger_.resume_route_positions(), ledger_.resume_speeds());
   // The step length as a float in the one way the insertion checks have always used it.
   const InsertParams params{static_cast<float>(step_length()),
                             opt_.seed,

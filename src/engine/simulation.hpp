@@ -168,8 +168,23 @@ class Simulation {
     float pos = 0, length = 0, speed = 0;  // front position, m
   };
   void mirror_outside_vehicles(const std::vector<OutsideVehicle>& vehicles);
-  /// Vehicles handed out so far.
+  /// Vehicles handed out so far, and taken back.
   uint64_t handed_out() const { return handed_out_; }
+  uint64_t taken_back() const { return taken_back_; }
+  /// A handed-out vehicle v comes back at route position `route_pos` (an edge this simulation drives): it
+  /// queues there to re-enter at the lane start as a teleported vehicle does, at up to `speed`, carrying its
+  /// counters plus `elsewhere` (what the other simulator measured). std::invalid_argument, naming it, when it
+  /// was not handed out or the edge is driven outside.
+  void take_back(uint32_t v, uint32_t route_pos, float speed, const TripCounters& elsewhere);
+  /// Whether edge `edge` takes one more vehicle back now: fewer are queued to enter there than it has lanes
+  /// (the insertion then finds room at a lane start, or the queue holds the next one in the other simulator).
+  bool has_entry_room(uint32_t edge) const;
+  /// A vehicle's departure record (lane -1: it has not departed here) and, while it is handed out, the
+  /// counters it carries.
+  DepartRecord departure(uint32_t v) const { return ledger_.departure(v); }
+  const TripCounters* carried(uint32_t v) const { return ledger_.carried(v); }
+  /// The ledger's status of vehicle v (kMigrated: handed out to the other simulator).
+  uint8_t ledger_status(uint32_t v) const { return ledger_.status(v); }
 
  private:
   StepParams step_params() const;
@@ -255,7 +270,7 @@ class Simulation {
   std::vector<FootprintWrite> outside_footprints_[2];
   std::vector<FootprintWrite> mirror_;  // mirror_outside_vehicles(): written into each map the steps write
   std::vector<HandOut> hand_outs_;
-  uint64_t handed_out_ = 0;
+  uint64_t handed_out_ = 0, taken_back_ = 0;
   uint32_t handed_out_last_step_ = 0;
 
   std::unique_ptr<Stepper> stepper_;  // last: made from the members above, gone before them

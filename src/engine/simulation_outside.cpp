@@ -53,7 +53,8 @@ void Simulation::hand_out_vehicles() {
     // Its footprint in the map the step wrote is erased when that map is next written (its slot stops).
     const Footprint fp{st.veh.lane[k], st.veh.prev[k], st.veh.prev2[k], st.veh.pos[k]};
     outside_footprints_[1 - cur_].push_back(FootprintWrite{fp, length[st.veh.trip_type[k]], 0});
-    ledger_.set_status(v, kMigrated);
+    ledger_.handed_out(v, TripCounters{st.veh.route_length[k], st.veh.time_loss[k], st.veh.waiting_steps[k],
+                                       st.veh.waiting_count[k], st.veh.next_stop[k], st.veh.stop_steps[k]});
     gone.push_back(k);
   }
   if (gone.empty()) return;
@@ -63,6 +64,27 @@ void Simulation::hand_out_vehicles() {
   handed_out_last_step_ = static_cast<uint32_t>(gone.size());
   std::sort(hand_outs_.begin() + static_cast<std::ptrdiff_t>(departures), hand_outs_.end(),
             [](const HandOut& a, const HandOut& b) { return a.vehicle < b.vehicle; });
+}
+
+void Simulation::take_back(uint32_t v, uint32_t route_pos, float speed, const TripCounters& elsewhere) {
+  if (!opt_.outside_lanes) throw std::logic_error("take_back() without outside lanes");
+  const Demand& d = trips_.demand();
+  if (v >= d.size() || ledger_.status(v) != kMigrated)
+    throw std::invalid_argument("take_back: vehicle " + (v < d.size() ? d.vehicle_id[v] : std::to_string(v)) +
+                                " was not handed out");
+  if (route_pos >= d.route_length[v])
+    throw std::invalid_argument("take_back: vehicle " + d.vehicle_id[v] + " has no route edge " +
+                                std::to_string(route_pos));
+  const uint32_t edge = d.route_edges[d.route_begin[v] + route_pos];
+  if ((*opt_.outside_lanes)[net_.edge_first_lane[edge]])
+    throw std::invalid_argument("take_back: vehicle " + d.vehicle_id[v] + " re-enters on an edge driven outside");
+  ledger_.handed_back(v, route_pos, speed, elsewhere);
+  queues_.push_back(edge, queue_entry(v, true));
+  ++taken_back_;
+}
+
+bool Simulation::has_entry_room(uint32_t edge) const {
+  return queues_.waiting_at(edge) < std::max<uint32_t>(1, net_.edge_num_lanes[edge]);
 }
 
 }  // namespace lpsim

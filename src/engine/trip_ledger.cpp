@@ -7,6 +7,7 @@ namespace lpsim {
 void TripLedger::resize(uint32_t n) {
   status_.resize(n, kPending);
   resume_rp_.resize(n, 0);
+  resume_speed_.resize(n, 0);
   depart_time_.resize(n, 0);
   depart_pos_.resize(n, 0);
   depart_speed_.resize(n, 0);
@@ -31,8 +32,26 @@ void TripLedger::set_departure(uint32_t v, const DepartRecord& d) {
 void TripLedger::teleporting(const VehicleEnd& e, uint32_t rp) {
   status_[e.vehicle] = kTeleporting;
   resume_rp_[e.vehicle] = rp;
+  resume_speed_[e.vehicle] = 0;
   carried_[e.vehicle] =
-      Carried{e.route_length, e.time_loss, e.waiting_steps, e.waiting_count, e.next_stop, e.stop_steps};
+      TripCounters{e.route_length, e.time_loss, e.waiting_steps, e.waiting_count, e.next_stop, e.stop_steps};
+}
+
+void TripLedger::handed_out(uint32_t v, const TripCounters& counters) {
+  status_[v] = kMigrated;
+  carried_[v] = counters;
+}
+
+void TripLedger::handed_back(uint32_t v, uint32_t rp, float speed, const TripCounters& elsewhere) {
+  status_[v] = kTeleporting;  // off the road, queued to re-enter
+  resume_rp_[v] = rp;
+  resume_speed_[v] = speed;
+  TripCounters& c = carried_[v];
+  c.route_length += elsewhere.route_length;
+  c.time_loss += elsewhere.time_loss;
+  c.waiting_steps += elsewhere.waiting_steps;
+  c.waiting_count += elsewhere.waiting_count;
+  c.stop_steps += elsewhere.stop_steps;
 }
 
 uint32_t TripLedger::reentering(SlotInit& init) {

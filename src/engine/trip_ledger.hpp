@@ -18,6 +18,13 @@ struct DepartRecord {
   int32_t lane = -1;
 };
 
+/// A trip's counters, summed over the time it spent on the road so far (what a vehicle carries over a
+/// teleport, or out to a co-simulated SUMO and back).
+struct TripCounters {
+  float route_length = 0, time_loss = 0;
+  uint32_t waiting_steps = 0, waiting_count = 0, next_stop = 0, stop_steps = 0;
+};
+
 class TripLedger {
  public:
   /// Room for trips [0, n) (the trip table grows during a run); new trips are pending.
@@ -29,6 +36,8 @@ class TripLedger {
   void set_resume_route_pos(uint32_t v, uint32_t rp) { resume_rp_[v] = rp; }
   /// Route position each trip re-enters at after a teleport (read for the insertion batch).
   const std::vector<uint32_t>& resume_route_positions() const { return resume_rp_; }
+  /// The speed each re-entering trip asks for (0 after a teleport).
+  const std::vector<float>& resume_speeds() const { return resume_speed_; }
 
   /// Vehicle v, due at `depart_due` (s), was inserted at time `now` where `init` says.
   void departed(uint32_t v, double now, double depart_due, const SlotInit& init);
@@ -37,6 +46,16 @@ class TripLedger {
   /// A teleported vehicle re-enters: `init` takes the counters it carried. Returns the first of its
   /// scheduled stops it had not made.
   uint32_t reentering(SlotInit& init);
+  /// Vehicle v left for another simulator with `counters` (status kMigrated).
+  void handed_out(uint32_t v, const TripCounters& counters);
+  /// A handed-out vehicle comes back to re-enter at route position `rp`, asking for `speed`, its counters
+  /// increased by `elsewhere` (what the other simulator measured).
+  void handed_back(uint32_t v, uint32_t rp, float speed, const TripCounters& elsewhere);
+  /// The counters a teleporting or handed-out vehicle carries (null: none).
+  const TripCounters* carried(uint32_t v) const {
+    const auto c = carried_.find(v);
+    return c == carried_.end() ? nullptr : &c->second;
+  }
 
   DepartRecord departure(uint32_t v) const {
     return DepartRecord{depart_time_[v], depart_pos_[v], depart_speed_[v], depart_lane_[v]};
@@ -54,11 +73,8 @@ class TripLedger {
  private:
   std::vector<uint8_t> status_;
   std::vector<uint32_t> resume_rp_;
-  struct Carried {
-    float route_length, time_loss;
-    uint32_t waiting_steps, waiting_count, next_stop, stop_steps;
-  };
-  std::unordered_map<uint32_t, Carried> carried_;
+  std::vector<float> resume_speed_;
+  std::unordered_map<uint32_t, TripCounters> carried_;
   // Departure records for tripinfo.
   std::vector<float> depart_time_, depart_pos_, depart_speed_;
   std::vector<int32_t> depart_lane_;

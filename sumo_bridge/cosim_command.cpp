@@ -1,0 +1,120 @@
+// `lpsim cosim`: as `lpsim run`, with SUMO driving the corridor. A fault on SUMO's side (it does not start,
+// dies, refuses a vehicle) is one error and a non-zero exit, with LPSim's outputs closed well-formed; SIGINT,
+// SIGTERM and SIGHUP stop it at the end of the current coupling period as they stop `lpsim run`.
+#include "sumo_bridge/cosim_command.hpp"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+
+#include "app/corridor_resolution.hpp"
+#include "app/device_select.hpp"
+#include "app/interrupt.hpp"
+#include "app/output_paths.hpp"
+#include "app/progress_log.hpp"
+#include "app/run.hpp"
+#include "app/scenario_args.hpp"
+#include "app/simulation_options.hpp"
+#include "converters/corridor_file.hpp"
+#include "core/error.hpp"
+#include "sumo_bridge/cosimulation.hpp"
+
+namespace lpsim {
+
+std::vector<std::string> split_sumo_args(const std::string& text) {
+  std::vector<std::string> out;
+  std::string cur;
+  bool in_word = false;
+  char quote = 0;
+  for (const char ch : text) {
+    if (quote != 0) {
+      if (ch == quote)
+        quote = 0;
+      else
+        cur += ch;
+    } else if (ch == '\'' || ch == '"') {
+      quote = ch;
+      in_word = true;
+    } else if (ch == ' ' || ch == '\t' || ch == '\n' || ch == '\r') {
+      if (in_word) out.push_back(cur);
+      cur.clear();
+      in_word = false;
+    } else {
+      cur += ch;
+      in_word = true;
+    }
+  }
+  if (quote != 0) throw InputError("--sumo-args: unclosed " + std::string(1, quote) + " in '" + text + "'");
+  if (in_word) out.push_back(cur);
+  return out;
+}
+
+int command_cosim(const std::vector<std::string>& args) {
+  ConfigSpec config;
+  Scenario sc = scenario_from_args(args, &config, CliCommand::Cosim);
+  refuse_overwrites(sc, CliCommand::Cosim);
+  if (config.corridor_file.empty()) throw InputError("cosim needs --corridor <file> (the edges SUMO simulates)");
+  const std::vector<uint8_t> corridor =
+      corridor_lanes(sc.network, resolve_corridor(read_corridor_file(config.corridor_file), sc.network));
+
+  CosimOptions cosim;
+  cosim.mode = config.sumo_binary.empty() ? SumoMode::Libsumo : SumoMode::Traci;
+  if (!config.sumo_binary.empty()) cosim.sumo_binary = config.sumo_binary;
+  cosim.sumo_args = split_sumo_args(config.sumo_args);
+  // SUMO validates its inputs against the schemas under SUMO_HOME; Debian's package puts them here.
+  if (std::getenv("SUMO_HOME") == nullptr && access("/usr/share/sumo/data/xsd", R_OK) == 0)
+    setenv("SUMO_HOME", "/usr/share/sumo", 0);
+
+  SimulationOptions options = simulation_options(config);
+  const DeviceChoice device = select_device(config.device);
+  options.gpu = device.gpu;
+  options.outside_lanes = &corridor;
+  if (config.device != ComputeDevice::Cpu)
+    std::fprintf(stderr, "lpsim: device %s\n", device.description.c_str());
+
+  using Clock = std::chrono::steady_clock;
+  const auto wall0 = Clock::now();
+  const double load_seconds = sc.load_seconds;
+  const InterruptGuard interrupt;
+  ProgressLog progress(stderr, isatty(fileno(stderr)) != 0, config.no_step_log, config.progress_interval,
+                       config.end);
+  Run run(std::move(sc), config, options);
+  int signal = 0;
+  {
+    Cosimulation co(run, corridor, cosim);
+    try {
+      while (!co.done() && interrupt.received() == 0) {
+        co.step();
+        progress.after_step(run.simulation());
+      }
+      co.finish();
+    } catch (const std::exception&) {
+      progress.end_line();
+      co.abandon();  // LPSim's outputs end well-formed where the run stopped
+      throw;
+    }
+    const double wall = std::chrono::duration<double>(Clock::now() - wall0).count();
+    progress.end_line();
+    signal = interrupt.received();
+    if (signal != 0)
+      std::fprintf(stderr, "lpsim: interrupted by %s at time %.2f; outputs closed\n", signal_name(signal),
+                   run.end_time());
+    print_run_report(stdout, run, wall, load_seconds, signal != 0 ? signal_name(signal) : nullptr);
+    const Cosimulation::Report& r = co.report();
+    std::printf(
+        "Co-simulation (SUMO %s, %s, coupling period %.3gs):\n"
+        " Handed into SUMO: %llu\n Taken back from SUMO: %llu\n Arrived in SUMO: %llu\n"
+        " Longest wait at the boundary: %.2fs\n In hand-over at the end: %llu\n"
+        " Wall time: SUMO's steps %.2fs, hand-overs %.2fs\n",
+        co.sumo().mode() == SumoMode::Libsumo ? "in process" : "over TraCI",
+        co.sumo().mode() == SumoMode::Libsumo ? "libsumo" : cosim.sumo_binary.c_str(), r.period,
+        static_cast<unsigned long long>(r.into_sumo), static_cast<unsigned long long>(r.out_of_sumo),
+        static_cast<unsigned long long>(r.arrived_in_sumo), r.longest_boundary_wait,
+        static_cast<unsigned long long>(r.in_handover_at_end), r.sumo_seconds, r.handover_seconds);
+  }
+  return signal != 0 ? 128 + signal : 0;
+}
+
+}  // namespace lpsim

@@ -1,0 +1,439 @@
+#include "sumo_bridge/cosimulation.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <numeric>
+#include <stdexcept>
+
+#include "converters/sumo_tripinfo_reader.hpp"
+#include "core/error.hpp"
+
+namespace lpsim {
+
+namespace {
+
+// SUMO writes its side of every output beside LPSim's, under this prefix of the file name (SUMO's
+// --output-prefix, which also covers the outputs the scenario's additional files define).
+constexpr const char* kSumoPrefix = "sumo.";
+
+std::string number(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", x);
+  return buf;
+}
+
+std::string joined(const std::vector<std::string>& items) {
+  std::string out;
+  for (const std::string& s : items) out += (out.empty() ? "" : ",") + s;
+  return out;
+}
+
+const char* depart_lane_value(DepartLane k) {
+  switch (k) {
+    case DepartLane::Random:
+      return "random";
+    case DepartLane::Free:
+      return "free";
+    case DepartLane::Allowed:
+      return "allowed";
+    case DepartLane::Best:
+      return "best";
+    default:
+      return "first";
+  }
+}
+
+const char* depart_pos_value(DepartPos k) {
+  switch (k) {
+    case DepartPos::Random:
+      return "random";
+    case DepartPos::Free:
+      return "free";
+    case DepartPos::RandomFree:
+      return "random_free";
+    case DepartPos::Last:
+      return "last";
+    default:
+      return "base";
+  }
+}
+
+const char* depart_speed_value(DepartSpeed k) {
+  switch (k) {
+    case DepartSpeed::Random:
+      return "random";
+    case DepartSpeed::Max:
+      return "max";
+    case DepartSpeed::Desired:
+      return "desired";
+    case DepartSpeed::SpeedLimit:
+      return "speedLimit";
+    case DepartSpeed::Last:
+      return "last";
+    case DepartSpeed::Avg:
+      return "avg";
+    default:
+      return "0";
+  }
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+std::vector<uint8_t> corridor_lanes(const Network& net, const std::vector<uint32_t>& corridor_edges) {
+  std::vector<uint8_t> lanes(net.num_lanes(), 0);
+  for (const uint32_t e : corridor_edges)
+    for (uint32_t l = net.edge_first_lane[e]; l < net.edge_first_lane[e] + net.edge_num_lanes[e]; ++l) lanes[l] = 1;
+  return lanes;
+}
+
+std::string sumo_side_path(const std::string& path) {
+  const std::filesystem::path p(path);
+  return (p.parent_path() / (std::string(kSumoPrefix) + p.filename().string())).string();
+}
+
+Cosimulation::Cosimulation(Run& run, const std::vector<uint8_t>& corridor_lanes, const CosimOptions& options)
+    : run_(run), net_(run.scenario().network), corridor_(corridor_lanes), options_(options) {
+  if (run_.options().outside_lanes != &corridor_)
+    throw std::invalid_argument("the co-simulation's run must drive outside the corridor's lanes");
+  const ConfigSpec& c = run_.config();
+  if (c.net_file.empty())
+    throw InputError("a co-simulation needs the scenario's SUMO files (-c or -n/-r), not a snapshot or CSV");
+  // SUMO's tripinfo is needed to complete the trips it drove part of: beside the run's, or a scratch file.
+  if (!c.outputs.tripinfo.empty()) {
+    sumo_tripinfo_ = c.outputs.tripinfo;
+  } else {
+    sumo_tripinfo_ = (std::filesystem::temp_directory_path() /
+                      ("lpsim-cosim-" + std::to_string(::getpid()) + "-tripinfo.xml"))
+                         .string();
+    remove_sumo_tripinfo_ = true;
+  }
+  visited_.assign(run_.simulation().demand().size(), 0);
+  run_.hold_trips([this](const TripRecord& r) {
+    if (r.vehicle >= visited_.size() || !visited_[r.vehicle]) return false;
+    held_trips_[r.vehicle] = r;
+    return true;
+  });
+  sumo_ = start_sumo(options_.mode, options_.sumo_binary, sumo_arguments(), options_.answer_timeout_s);
+  const int64_t lpsim_ms = run_.options().step_ms;
+  const double sumo_step = sumo_->step_length();
+  sumo_step_ms_ = std::llround(sumo_step * 1000.0);
+  if (sumo_step_ms_ <= 0 || std::fabs(static_cast<double>(sumo_step_ms_) - sumo_step * 1000.0) > 1e-6)
+    throw InputError("SUMO's step length " + number(sumo_step) +
+                     " s is not a whole number of milliseconds: no common coupling period with LPSim's " +
+                     number(static_cast<double>(lpsim_ms) / 1000.0) + " s");
+  period_ms_ = std::lcm(lpsim_ms, sumo_step_ms_);
+  report_.period = static_cast<double>(period_ms_) / 1000.0;
+  const double sumo_begin = sumo_->time();
+  if (std::fabs(sumo_begin - run_.simulation().time()) > 1e-6)
+    throw InputError("SUMO starts at " + number(sumo_begin) + " s, LPSim at " +
+                     number(run_.simulation().time()) + " s: give both the same --begin");
+}
+
+Cosimulation::~Cosimulation() {
+  if (remove_sumo_tripinfo_) std::filesystem::remove(sumo_side_path(sumo_tripinfo_));
+}
+
+std::vector<std::string> Cosimulation::sumo_arguments() const {
+  const ConfigSpec& c = run_.config();
+  std::vector<std::string> a{"-n", c.net_file};
+  // The route files for their vTypes (and distributions) only: SUMO drops every vehicle and flow at scale 0.
+  if (!c.route_files.empty()) a.insert(a.end(), {"-r", joined(c.route_files), "--scale", "0"});
+  if (!c.additional_files.empty()) a.insert(a.end(), {"-a", joined(c.additional_files)});
+  a.insert(a.end(), {"--begin", number(c.begin), "--step-length", number(c.step_length), "--seed",
+                     std::to_string(c.seed), "--time-to-teleport", number(c.time_to_teleport),
+                     "--time-to-impatience", number(c.time_to_impatience), "--default.carfollowmodel",
+                     c.default_car_follow_model, "--no-step-log", "true", "--output-prefix", kSumoPrefix,
+                     "--tripinfo-output", sumo_tripinfo_});
+  const OutputSpec& o = c.outputs;
+  if (!o.fcd.empty()) a.insert(a.end(), {"--fcd-output", o.fcd});
+  if (o.fcd_period > 0) a.insert(a.end(), {"--device.fcd.period", number(o.fcd_period)});
+  if (!o.summary.empty()) a.insert(a.end(), {"--summary-output", o.summary});
+  if (!o.edgedata.empty()) a.insert(a.end(), {"--edgedata-output", o.edgedata});
+  if (!o.lanedata.empty()) a.insert(a.end(), {"--lanedata-output", o.lanedata});
+  a.insert(a.end(), options_.sumo_args.begin(), options_.sumo_args.end());
+  return a;
+}
+
+void Cosimulation::step() {
+  if (finished_) throw std::logic_error("Cosimulation::step() after finish()");
+  Simulation& sim = run_.simulation();
+  const int64_t target_ms = sim.time_ms() + period_ms_;
+  // LPSim's steps: the vehicles handed out at the end of each go into SUMO as they were then.
+  while (sim.time_ms() < target_ms) {
+    run_.step();
+    const auto t0 = std::chrono::steady_clock::now();
+    for (const Simulation::HandOut& h : sim.hand_outs()) hand_into_sumo(h);
+    report_.handover_seconds += seconds_since(t0);
+  }
+  // SUMO's steps over the same period, one by one: it lists the arrivals of its last step only.
+  for (int64_t t = target_ms - period_ms_ + sumo_step_ms_; t <= target_ms; t += sumo_step_ms_) {
+    const auto t0 = std::chrono::steady_clock::now();
+    sumo_->step_to(static_cast<double>(t) / 1000.0);
+    report_.sumo_seconds += seconds_since(t0);
+    for (const std::string& id : sumo_->arrived()) {
+      if (removed_since_step_.count(id)) continue;
+      const auto it = in_sumo_.find(id);
+      if (it == in_sumo_.end()) continue;
+      ++arrived_in_sumo_;
+      ++report_.arrived_in_sumo;
+      in_sumo_.erase(it);
+    }
+    removed_since_step_.clear();
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  after_sumo_step();
+  report_.handover_seconds += seconds_since(t0);
+}
+
+void Cosimulation::hand_into_sumo(const Simulation::HandOut& h) {
+  const Simulation& sim = run_.simulation();
+  const Demand& d = sim.demand();
+  const uint32_t v = h.vehicle;
+  SumoEntry e;
+  e.id = d.vehicle_id[v];
+  e.type = d.types.id[d.vehicle_type[v]];
+  for (uint32_t k = d.route_begin[v] + h.route_pos; k < d.route_begin[v] + d.route_length[v]; ++k)
+    e.route.push_back(net_.edge_id[d.route_edges[k]]);
+  e.speed_factor = d.speed_factor[v];
+  if (h.lane >= 0) {
+    e.lane = static_cast<int>(net_.lane_index[static_cast<uint32_t>(h.lane)]);
+    e.pos = h.pos;
+    e.speed = h.speed;
+  } else {
+    e.lane = -1;
+    if (h.route_pos == 0) {  // its trip departs here, as its depart attributes say
+      const auto lane_kind = static_cast<DepartLane>(d.depart_lane_kind[v]);
+      e.depart_lane =
+          lane_kind == DepartLane::Given ? std::to_string(d.depart_lane[v]) : depart_lane_value(lane_kind);
+      const auto pos_kind = static_cast<DepartPos>(d.depart_pos_kind[v]);
+      e.depart_pos = pos_kind == DepartPos::Given ? number(d.depart_pos[v]) : depart_pos_value(pos_kind);
+      const auto speed_kind = static_cast<DepartSpeed>(d.depart_speed_kind[v]);
+      e.depart_speed =
+          speed_kind == DepartSpeed::Given ? number(d.depart_speed[v]) : depart_speed_value(speed_kind);
+    } else {  // a teleport's re-entry: at the start of the best lane, standing
+      e.depart_lane = "best";
+    }
+  }
+  sumo_->add(e);
+  visited_[v] = 1;
+  InSumo s;
+  s.vehicle = v;
+  s.route_pos = h.route_pos;
+  s.entry_lane = h.lane;
+  s.entry_pos = h.pos;
+  s.since = sim.time();
+  in_sumo_[e.id] = s;
+  ++report_.into_sumo;
+}
+
+// After SUMO's steps: what it could not insert yet stays pending where it was to enter; a vehicle that has
+// reached an edge outside the corridor comes back (or waits in SUMO); the others are mirrored.
+void Cosimulation::after_sumo_step() {
+  Simulation& sim = run_.simulation();
+  const Demand& d = sim.demand();
+  const double now = sim.time();
+  std::unordered_set<std::string> pending;
+  for (std::string& id : sumo_->pending()) pending.insert(std::move(id));
+  mirror_.clear();
+  std::vector<std::string> ids;
+  ids.reserve(in_sumo_.size());
+  for (const auto& [id, s] : in_sumo_) ids.push_back(id);
+  // In a fixed order: the take-backs queue in it, and the results must not depend on the hash.
+  std::sort(ids.begin(), ids.end(),
+            [&](const std::string& a, const std::string& b) { return in_sumo_[a].vehicle < in_sumo_[b].vehicle; });
+  for (const std::string& id : ids) {
+    InSumo& s = in_sumo_[id];
+    const float length = d.types.length[d.vehicle_type[s.vehicle]];
+    if (pending.count(id)) {
+      report_.longest_boundary_wait = std::max(report_.longest_boundary_wait, now - s.since);
+      // Not on SUMO's road yet: it keeps its place at the boundary in LPSim's lane map.
+      if (s.entry_lane >= 0) mirror_.push_back(Simulation::OutsideVehicle{s.entry_lane, s.entry_pos, length, 0.0f});
+      continue;
+    }
+    if (s.pending) {
+      s.pending = false;
+      s.since = now;
+    }
+    const SumoVehicle q = sumo_->vehicle(id);
+    if (q.edge.empty() || q.edge[0] == ':') continue;  // inside a junction: SUMO's until the next edge
+    const auto e = net_.edge_index.find(q.edge);
+    if (e == net_.edge_index.end()) throw SumoError("SUMO has vehicle " + id + " on edge " + q.edge + ", not in LPSim's network");
+    const uint32_t edge = e->second;
+    const uint32_t lane = net_.edge_first_lane[edge] + static_cast<uint32_t>(q.lane);
+    if (!corridor_[lane]) {
+      take_back_or_hold(id, s, edge, q);
+      continue;
+    }
+    mirror_.push_back(Simulation::OutsideVehicle{static_cast<int32_t>(lane), static_cast<float>(q.pos), length,
+                                                 static_cast<float>(q.speed)});
+  }
+  sim.mirror_outside_vehicles(mirror_);
+}
+
+void Cosimulation::take_back_or_hold(const std::string& id, InSumo& s, uint32_t edge, const SumoVehicle& q) {
+  Simulation& sim = run_.simulation();
+  const double now = sim.time();
+  if (!sim.has_entry_room(edge)) {
+    if (!s.held) {
+      sumo_->hold(id, true);
+      s.held = true;
+      s.since = now;
+    }
+    report_.longest_boundary_wait = std::max(report_.longest_boundary_wait, now - s.since);
+    return;
+  }
+  if (s.held) report_.longest_boundary_wait = std::max(report_.longest_boundary_wait, now - s.since);
+  // SUMO measured its piece of the trip: its tripinfo has it (merged at the end), not these counters.
+  sim.take_back(s.vehicle, s.route_pos + static_cast<uint32_t>(q.route_index), static_cast<float>(q.speed),
+                TripCounters{});
+  sumo_->remove(id);
+  removed_since_step_.insert(id);
+  in_sumo_.erase(id);
+  ++report_.out_of_sumo;
+}
+
+bool Cosimulation::done() const {
+  if (run_.config().end >= 0) return run_.done();
+  return run_.simulation().finished() && in_sumo_.empty();
+}
+
+Cosimulation::Census Cosimulation::census() const {
+  const Simulation& sim = run_.simulation();
+  Census c;
+  c.loaded = sim.demand().size();
+  uint64_t migrated = 0, ended = 0;
+  for (uint32_t v = 0; v < sim.demand().size(); ++v) {
+    const uint8_t st = sim.ledger_status(v);
+    if (st == kMigrated)
+      ++migrated;
+    else if (st == kArrived)
+      ++ended;
+    else
+      ++c.in_lpsim;
+  }
+  for (const auto& [id, s] : in_sumo_) ++(s.pending ? c.in_handover : c.in_sumo);
+  c.arrived = ended + arrived_in_sumo_;
+  const auto fail = [](const std::string& what) { throw std::logic_error("co-simulation census: " + what); };
+  if (migrated != in_sumo_.size() + arrived_in_sumo_)
+    fail(std::to_string(migrated) + " vehicles handed to SUMO by LPSim's account, " +
+         std::to_string(in_sumo_.size()) + " in SUMO + " + std::to_string(arrived_in_sumo_) +
+         " arrived there by the bridge's");
+  const uint64_t sumo_running = static_cast<uint64_t>(sumo_->running());
+  const uint64_t sumo_pending = sumo_->pending().size();
+  if (sumo_running != c.in_sumo || sumo_pending != c.in_handover)
+    fail("SUMO runs " + std::to_string(sumo_running) + " and has " + std::to_string(sumo_pending) +
+         " pending; the bridge counts " + std::to_string(c.in_sumo) + " and " + std::to_string(c.in_handover));
+  if (c.in_lpsim + c.in_sumo + c.in_handover + c.arrived != c.loaded)
+    fail(std::to_string(c.loaded) + " loaded but " + std::to_string(c.in_lpsim + c.in_sumo + c.in_handover + c.arrived) +
+         " accounted for");
+  return c;
+}
+
+void Cosimulation::finish() {
+  if (finished_) return;
+  finished_ = true;
+  for (const auto& [id, s] : in_sumo_)
+    if (s.pending || s.held) ++report_.in_handover_at_end;
+  sumo_->close();
+  merge_tripinfo();
+  run_.finish();
+}
+
+void Cosimulation::abandon() {
+  if (finished_) return;
+  finished_ = true;
+  try {
+    sumo_->close();
+  } catch (const SumoError&) {
+    // Already gone: what it wrote stays as it is.
+  }
+  run_.finish();
+}
+
+// One tripinfo line per trip that ended, for the whole trip: its start where it departed (LPSim's
+// departure, or SUMO's first piece), its end where it arrived, and the sums of both sides' pieces.
+void Cosimulation::merge_tripinfo() {
+  const Simulation& sim = run_.simulation();
+  const Demand& d = sim.demand();
+  std::unordered_map<std::string, uint32_t> visited_ids;
+  for (uint32_t v = 0; v < visited_.size(); ++v)
+    if (visited_[v]) visited_ids.emplace(d.vehicle_id[v], v);
+  std::unordered_map<uint32_t, std::vector<SumoTripPiece>> pieces;
+  for (SumoTripPiece& p : read_sumo_tripinfo(sumo_side_path(sumo_tripinfo_))) {
+    const auto it = visited_ids.find(p.id);
+    if (it != visited_ids.end()) pieces[it->second].push_back(std::move(p));
+  }
+  const auto lane_of = [&](const std::string& id) {
+    const auto it = net_.lane_index_by_id.find(id);
+    if (it == net_.lane_index_by_id.end())
+      throw SumoError("SUMO's tripinfo names lane " + id + ", not in LPSim's network");
+    return it->second;
+  };
+  const double dt = sim.step_length();
+  std::vector<TripRecord> merged;
+  for (uint32_t v = 0; v < visited_.size(); ++v) {
+    if (!visited_[v]) continue;
+    const auto pit = pieces.find(v);
+    const std::vector<SumoTripPiece>* ps = pit == pieces.end() ? nullptr : &pit->second;
+    const DepartRecord dep = sim.departure(v);
+    TripRecord r;
+    const auto held = held_trips_.find(v);
+    if (held != held_trips_.end()) {  // it arrived in LPSim, whose record sums LPSim's pieces
+      r = held->second;
+    } else if (ps != nullptr && !ps->back().vaporized) {  // it arrived in SUMO
+      const SumoTripPiece& last = ps->back();
+      r.vehicle = v;
+      r.arrival = last.arrival;
+      r.arrival_lane = lane_of(last.arrival_lane);
+      r.arrival_pos = static_cast<float>(last.arrival_pos);
+      r.arrival_speed = static_cast<float>(last.arrival_speed);
+      r.speed_factor = d.speed_factor[v];
+      r.depart = dep.time;
+      r.depart_delay = dep.time - d.depart[v];
+      r.depart_lane = static_cast<uint32_t>(std::max(0, dep.lane));
+      r.depart_pos = dep.pos;
+      r.depart_speed = dep.speed;
+      if (const TripCounters* c = sim.carried(v)) {  // what LPSim measured of it
+        r.route_length = c->route_length;
+        r.time_loss = c->time_loss;
+        r.waiting_time = static_cast<double>(c->waiting_steps) * dt;
+        r.waiting_count = c->waiting_count;
+        r.stop_time = static_cast<double>(c->stop_steps) * dt;
+      }
+    } else {
+      continue;  // still on its way when the run ended
+    }
+    if (dep.lane < 0 && ps != nullptr) {  // it departed in SUMO
+      const SumoTripPiece& first = ps->front();
+      r.depart = first.depart;
+      r.depart_delay = first.depart_delay;
+      r.depart_lane = lane_of(first.depart_lane);
+      r.depart_pos = static_cast<float>(first.depart_pos);
+      r.depart_speed = static_cast<float>(first.depart_speed);
+    }
+    if (ps != nullptr)
+      for (const SumoTripPiece& p : *ps) {
+        r.route_length += p.route_length;
+        r.waiting_time += p.waiting_time;
+        r.waiting_count += static_cast<uint32_t>(p.waiting_count);
+        r.stop_time += p.stop_time;
+        r.time_loss += p.time_loss;
+      }
+    merged.push_back(r);
+  }
+  std::sort(merged.begin(), merged.end(), [](const TripRecord& a, const TripRecord& b) {
+    return a.arrival != b.arrival ? a.arrival < b.arrival : a.vehicle < b.vehicle;
+  });
+  for (const TripRecord& r : merged) run_.write_trip(r);
+}
+
+}  // namespace lpsim

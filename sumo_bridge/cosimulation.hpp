@@ -1,0 +1,115 @@
+#pragma once
+// The co-simulation: a Run of the whole scenario in which the corridor's lanes are driven by SUMO (a
+// SumoLink), vehicles handed across the boundary both ways. Each coupling period LPSim steps first; the
+// vehicles whose front reached a corridor lane (or whose trip starts on one) are added to SUMO where and as
+// fast as they were; SUMO then steps the same period; a SUMO vehicle that reached an edge outside the corridor
+// is taken back by LPSim (queued at that edge's lane starts with its speed) when LPSim has room there, else
+// held in SUMO; and SUMO's vehicles on corridor lanes are mirrored into LPSim's lane map, so that LPSim's
+// traffic queues behind them. A vehicle leaves one side only when the other holds it (SUMO's pending
+// vehicles stand in LPSim's lane map at their entry); every vehicle is at each moment in exactly one place.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <unordered_map>
+#include <unordered_set>
+#include <vector>
+
+#include "app/run.hpp"
+#include "sumo_bridge/sumo_link.hpp"
+
+namespace lpsim {
+
+struct CosimOptions {
+  SumoMode mode = SumoMode::Libsumo;
+  std::string sumo_binary = "sumo";    // over TraCI: the program (a path, or looked up on PATH)
+  std::vector<std::string> sumo_args;  // passed to SUMO after those the co-simulation sets
+  double answer_timeout_s = 300;       // over TraCI: a SUMO that does not answer a call within this is killed
+};
+
+/// 1 for each lane of the corridor's edges, 0 elsewhere (SimulationOptions::outside_lanes).
+std::vector<uint8_t> corridor_lanes(const Network& net, const std::vector<uint32_t>& corridor_edges);
+
+/// Where SUMO writes its side of an output of the co-simulation: "fcd.xml" -> "fcd.sumo.xml".
+std::string sumo_side_path(const std::string& path);
+
+class Cosimulation {
+ public:
+  /// Starts SUMO on `run`'s scenario (its network, its route files for their vTypes at --scale 0 so that SUMO
+  /// loads no vehicle of its own, its additional files), at the run's begin time and step length, with
+  /// options.sumo_args last. The run must have been built with SimulationOptions::outside_lanes ==
+  /// &corridor_lanes, which outlives it. A SumoError when SUMO does not start; an InputError when SUMO's step
+  /// length (from sumo_args) is not a whole number of milliseconds.
+  Cosimulation(Run& run, const std::vector<uint8_t>& corridor_lanes, const CosimOptions& options);
+  ~Cosimulation();
+  Cosimulation(const Cosimulation&) = delete;
+  Cosimulation& operator=(const Cosimulation&) = delete;
+
+  /// One coupling period: LPSim's steps, the hand-overs into SUMO, SUMO's steps, the hand-overs out of it
+  /// and the mirror of SUMO's corridor vehicles. A SumoError when SUMO refuses a call or dies.
+  void step();
+  /// The run's end condition, and without an end time: nothing left in SUMO either.
+  bool done() const;
+  /// Closes SUMO (its outputs are written), completes the tripinfo of each trip SUMO drove part of from
+  /// SUMO's own, and finishes the Run. Later calls do nothing.
+  void finish();
+  /// Ends SUMO without completing anything (a run stopped by a fault or a signal); the Run is finished.
+  void abandon();
+
+  /// Where every loaded vehicle is: exactly one of these.
+  struct Census {
+    uint64_t loaded = 0;
+    uint64_t in_lpsim = 0;     // not yet departed, waiting, running or queued to re-enter in LPSim
+    uint64_t in_sumo = 0;      // running in SUMO
+    uint64_t in_handover = 0;  // added to SUMO and not yet inserted (pending)
+    uint64_t arrived = 0;      // in either
+  };
+  /// The census by LPSim's ledger and the bridge's account, each checked against the other and against
+  /// SUMO's own counts: std::logic_error naming the disagreement (a vehicle lost or in two places).
+  Census census() const;
+
+  struct Report {
+    double period = 0;               // s
+    uint64_t into_sumo = 0, out_of_sumo = 0, arrived_in_sumo = 0;
+    double longest_boundary_wait = 0;  // s: pending in SUMO, or held at the corridor's exit
+    uint64_t in_handover_at_end = 0;   // pending in SUMO or held in it at the end
+    double handover_seconds = 0;       // wall time spent handing over and mirroring
+    double sumo_seconds = 0;           // wall time in SUMO's steps
+  };
+  const Report& report() const { return report_; }
+  SumoLink& sumo() { return *sumo_; }
+
+ private:
+  struct InSumo {
+    uint32_t vehicle = 0;
+    uint32_t route_pos = 0;  // of the first edge of the route SUMO was given, in the trip's route
+    int32_t entry_lane = -1;  // LPSim lane it was added on (-1: departing there)
+    float entry_pos = 0;
+    bool pending = true, held = false;
+    double since = 0;  // when it was added, or held
+  };
+
+  std::vector<std::string> sumo_arguments() const;
+  void hand_into_sumo(const Simulation::HandOut& h);
+  void after_sumo_step();
+  void take_back_or_hold(const std::string& id, InSumo& s, uint32_t edge, const SumoVehicle& q);
+  void merge_tripinfo();
+
+  Run& run_;
+  const Network& net_;
+  const std::vector<uint8_t>& corridor_;
+  CosimOptions options_;
+  std::string sumo_tripinfo_;  // SUMO's tripinfo (merged into the run's at the end)
+  bool remove_sumo_tripinfo_ = false;
+  std::unique_ptr<SumoLink> sumo_;
+  int64_t period_ms_ = 0, sumo_step_ms_ = 0;
+  std::unordered_map<std::string, InSumo> in_sumo_;
+  std::unordered_set<std::string> removed_since_step_;  // SUMO may list a removal among the step's arrivals
+  std::vector<uint8_t> visited_;                         // per vehicle: it has been in SUMO
+  std::unordered_map<uint32_t, TripRecord> held_trips_;  // ended in LPSim after a visit: merged at finish()
+  uint64_t arrived_in_sumo_ = 0;
+  std::vector<Simulation::OutsideVehicle> mirror_;
+  Report report_;
+  bool finished_ = false;
+};
+
+}  // namespace lpsim
