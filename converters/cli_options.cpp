@@ -426,7 +426,8 @@ ConfigSpec parse_cli_options(const std::vector<std::string>& args, std::vector<s
         value = "true";
       }
     } else {
-      if (i + 1 >= args.size() || looks_like_option(args[i + 1]))
+      // Free text (--sumo-args "--opt v") may look like an option: it is the value all the same.
+      if (i + 1 >= args.size() || (looks_like_option(args[i + 1]) && !(def && def->kind == Kind::Text)))
         throw InputError(where.loc, "option '" + arg + "' (" + shown + ") needs a value");
       value = args[++i];
     }

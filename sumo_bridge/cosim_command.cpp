@@ -7,7 +7,6 @@
 
 #include <chrono>
 #include <cstdio>
-#include <cstdlib>
 
 #include "app/corridor_resolution.hpp"
 #include "app/device_select.hpp"
@@ -63,9 +62,6 @@ int command_cosim(const std::vector<std::string>& args) {
   cosim.mode = config.sumo_binary.empty() ? SumoMode::Libsumo : SumoMode::Traci;
   if (!config.sumo_binary.empty()) cosim.sumo_binary = config.sumo_binary;
   cosim.sumo_args = split_sumo_args(config.sumo_args);
-  // SUMO validates its inputs against the schemas under SUMO_HOME; Debian's package puts them here.
-  if (std::getenv("SUMO_HOME") == nullptr && access("/usr/share/sumo/data/xsd", R_OK) == 0)
-    setenv("SUMO_HOME", "/usr/share/sumo", 0);
 
   SimulationOptions options = simulation_options(config);
   const DeviceChoice device = select_device(config.device);

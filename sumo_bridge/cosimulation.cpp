@@ -10,6 +10,7 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "converters/meandata_merge.hpp"
 #include "converters/sumo_tripinfo_reader.hpp"
 #include "core/error.hpp"
 
@@ -20,6 +21,9 @@ namespace {
 // SUMO writes its side of every output beside LPSim's, under this prefix of the file name (SUMO's
 // --output-prefix, which also covers the outputs the scenario's additional files define).
 constexpr const char* kSumoPrefix = "sumo.";
+// The longest coupling period: vehicles cross the boundary once per period, so a longer one would let them
+// stand at the boundary for longer than a signal's cycle.
+constexpr int64_t kLongestPeriodMs = 60000;
 
 std::string number(double x) {
   char buf[32];
@@ -131,6 +135,11 @@ Cosimulation::Cosimulation(Run& run, const std::vector<uint8_t>& corridor_lanes,
                      " s is not a whole number of milliseconds: no common coupling period with LPSim's " +
                      number(static_cast<double>(lpsim_ms) / 1000.0) + " s");
   period_ms_ = std::lcm(lpsim_ms, sumo_step_ms_);
+  if (period_ms_ > kLongestPeriodMs)
+    throw InputError("SUMO's step length " + number(sumo_step) + " s and LPSim's " +
+                     number(static_cast<double>(lpsim_ms) / 1000.0) + " s have no common multiple up to " +
+                     number(kLongestPeriodMs / 1000.0) + " s to couple them at (the least is " +
+                     number(static_cast<double>(period_ms_) / 1000.0) + " s): give step lengths that divide one another");
   report_.period = static_cast<double>(period_ms_) / 1000.0;
   const double sumo_begin = sumo_->time();
   if (std::fabs(sumo_begin - run_.simulation().time()) > 1e-6)
@@ -144,21 +153,46 @@ Cosimulation::~Cosimulation() {
 
 std::vector<std::string> Cosimulation::sumo_arguments() const {
   const ConfigSpec& c = run_.config();
-  std::vector<std::string> a{"-n", c.net_file};
+  // The co-simulation's options, as (name, value) pairs.
+  std::vector<std::pair<std::string, std::string>> ours{{"--net-file", c.net_file}};
   // The route files for their vTypes (and distributions) only: SUMO drops every vehicle and flow at scale 0.
-  if (!c.route_files.empty()) a.insert(a.end(), {"-r", joined(c.route_files), "--scale", "0"});
-  if (!c.additional_files.empty()) a.insert(a.end(), {"-a", joined(c.additional_files)});
-  a.insert(a.end(), {"--begin", number(c.begin), "--step-length", number(c.step_length), "--seed",
-                     std::to_string(c.seed), "--time-to-teleport", number(c.time_to_teleport),
-                     "--time-to-impatience", number(c.time_to_impatience), "--default.carfollowmodel",
-                     c.default_car_follow_model, "--no-step-log", "true", "--output-prefix", kSumoPrefix,
-                     "--tripinfo-output", sumo_tripinfo_});
+  if (!c.route_files.empty()) {
+    ours.emplace_back("--route-files", joined(c.route_files));
+    ours.emplace_back("--scale", "0");
+  }
+  if (!c.additional_files.empty()) ours.emplace_back("--additional-files", joined(c.additional_files));
+  ours.insert(ours.end(), {{"--begin", number(c.begin)},
+                           {"--step-length", number(c.step_length)},
+                           {"--seed", std::to_string(c.seed)},
+                           {"--time-to-teleport", number(c.time_to_teleport)},
+                           {"--time-to-impatience", number(c.time_to_impatience)},
+                           {"--default.carfollowmodel", c.default_car_follow_model},
+                           {"--no-step-log", "true"},
+                           {"--output-prefix", kSumoPrefix},
+                           {"--tripinfo-output", sumo_tripinfo_}});
   const OutputSpec& o = c.outputs;
-  if (!o.fcd.empty()) a.insert(a.end(), {"--fcd-output", o.fcd});
-  if (o.fcd_period > 0) a.insert(a.end(), {"--device.fcd.period", number(o.fcd_period)});
-  if (!o.summary.empty()) a.insert(a.end(), {"--summary-output", o.summary});
-  if (!o.edgedata.empty()) a.insert(a.end(), {"--edgedata-output", o.edgedata});
-  if (!o.lanedata.empty()) a.insert(a.end(), {"--lanedata-output", o.lanedata});
+  if (!o.fcd.empty()) ours.emplace_back("--fcd-output", o.fcd);
+  if (o.fcd_period > 0) ours.emplace_back("--device.fcd.period", number(o.fcd_period));
+  if (!o.summary.empty()) ours.emplace_back("--summary-output", o.summary);
+  if (!o.edgedata.empty()) ours.emplace_back("--edgedata-output", o.edgedata);
+  if (!o.lanedata.empty()) ours.emplace_back("--lanedata-output", o.lanedata);
+  // SUMO refuses an option given twice: one the user passes replaces ours (its short forms too).
+  std::unordered_set<std::string> given;
+  for (const std::string& a : options_.sumo_args) {
+    const std::string name = a.substr(0, a.find('='));
+    given.insert(name == "-n" ? "--net-file"
+                 : name == "-r" ? "--route-files"
+                 : name == "-a" ? "--additional-files"
+                 : name == "-b" ? "--begin"
+                 : name);
+  }
+  for (const char* kept : {"--output-prefix", "--tripinfo-output", "--scale"})
+    if (given.count(kept))
+      throw InputError(std::string("--sumo-args: the co-simulation sets SUMO's ") + kept +
+                       " itself (SUMO's outputs are written beside LPSim's, as sumo.<name>)");
+  std::vector<std::string> a;
+  for (const auto& [name, value] : ours)
+    if (!given.count(name)) a.insert(a.end(), {name, value});
   a.insert(a.end(), options_.sumo_args.begin(), options_.sumo_args.end());
   return a;
 }
@@ -286,6 +320,7 @@ void Cosimulation::take_back_or_hold(const std::string& id, InSumo& s, uint32_t 
     if (!s.held) {
       sumo_->hold(id, true);
       s.held = true;
+      ++report_.held;
       s.since = now;
     }
     report_.longest_boundary_wait = std::max(report_.longest_boundary_wait, now - s.since);
@@ -346,6 +381,18 @@ void Cosimulation::finish() {
   sumo_->close();
   merge_tripinfo();
   run_.finish();
+  merge_edge_data();
+}
+
+// Each edgeData/laneData output: the corridor's edges as SUMO measured them, the others as LPSim did.
+void Cosimulation::merge_edge_data() const {
+  std::unordered_set<std::string> corridor;
+  for (uint32_t e = 0; e < net_.num_edges(); ++e)
+    if (net_.edge_num_lanes[e] > 0 && corridor_[net_.edge_first_lane[e]]) corridor.insert(net_.edge_id[e]);
+  std::vector<std::string> files{run_.config().outputs.edgedata, run_.config().outputs.lanedata};
+  for (const MeanDataSpec& m : run_.scenario().mean_data) files.push_back(m.file);
+  for (const std::string& f : files)
+    if (!f.empty()) merge_meandata(f, sumo_side_path(f), corridor);
 }
 
 void Cosimulation::abandon() {

@@ -50,7 +50,8 @@ class Cosimulation {
   /// The run's end condition, and without an end time: nothing left in SUMO either.
   bool done() const;
   /// Closes SUMO (its outputs are written), completes the tripinfo of each trip SUMO drove part of from
-  /// SUMO's own, and finishes the Run. Later calls do nothing.
+  /// SUMO's own, finishes the Run, and puts SUMO's entries of the corridor's edges into each edgeData and
+  /// laneData output. Later calls do nothing.
   void finish();
   /// Ends SUMO without completing anything (a run stopped by a fault or a signal); the Run is finished.
   void abandon();
@@ -70,6 +71,7 @@ class Cosimulation {
   struct Report {
     double period = 0;               // s
     uint64_t into_sumo = 0, out_of_sumo = 0, arrived_in_sumo = 0;
+    uint64_t held = 0;  // times a vehicle was held in SUMO because LPSim had no room to take it back
     double longest_boundary_wait = 0;  // s: pending in SUMO, or held at the corridor's exit
     uint64_t in_handover_at_end = 0;   // pending in SUMO or held in it at the end
     double handover_seconds = 0;       // wall time spent handing over and mirroring
@@ -93,6 +95,7 @@ class Cosimulation {
   void after_sumo_step();
   void take_back_or_hold(const std::string& id, InSumo& s, uint32_t edge, const SumoVehicle& q);
   void merge_tripinfo();
+  void merge_edge_data() const;
 
   Run& run_;
   const Network& net_;

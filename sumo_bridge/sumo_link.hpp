@@ -71,7 +71,8 @@ class SumoLink {
 /// looked up on PATH: "sumo", "sumo-gui") as a process on a free local port. A SumoError when it cannot start
 /// (binary missing, options or input files SUMO refuses). Over TraCI, a SUMO process that does not answer a
 /// call within `answer_timeout_s` is killed and the call is a SumoError (in process, a call cannot hang
-/// apart from this process).
+/// apart from this process). Sets SUMO_HOME to Debian's /usr/share/sumo when it is unset (SUMO needs its
+/// schemas to read files that name one).
 std::unique_ptr<SumoLink> start_sumo(SumoMode mode, const std::string& binary,
                                      const std::vector<std::string>& args, double answer_timeout_s = 300);
 

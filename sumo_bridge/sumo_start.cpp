@@ -143,6 +143,10 @@ SumoProcess::~SumoProcess() {
 
 std::unique_ptr<SumoLink> start_sumo(SumoMode mode, const std::string& binary,
                                      const std::vector<std::string>& args, double answer_timeout_s) {
+  // SUMO validates the files that name a schema against those under SUMO_HOME and fails without it; Debian's
+  // package installs them here but does not set the variable.
+  if (std::getenv("SUMO_HOME") == nullptr && ::access("/usr/share/sumo/data/xsd", R_OK) == 0)
+    ::setenv("SUMO_HOME", "/usr/share/sumo", 0);
   if (mode == SumoMode::Libsumo) return start_libsumo(args);
   // A socket whose SUMO died must give an error on the next call, not end this process by SIGPIPE.
   ::signal(SIGPIPE, SIG_IGN);

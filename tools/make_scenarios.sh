@@ -259,14 +259,57 @@ EOF
   write_sumocfg "$d" keep_clear keep_clear.rou.xml
 }
 
+# --- cosim_line: one lane A-B-C-D-E, a long red at D; demand above its capacity, so the queue grows from D
+# back over C and B (the co-simulation tests put the corridor before it or on it) -------------------------
+make_cosim_line() {
+  local d=$OUT/cosim_line
+  rm -rf "$d" && mkdir -p "$d"
+  cat > "$TMP/line.nod.xml" <<'EOF'
+<nodes>
+    <node id="A" x="0" y="0" type="priority"/>
+    <node id="B" x="400" y="0" type="priority"/>
+    <node id="C" x="800" y="0" type="priority"/>
+    <node id="D" x="1200" y="0" type="traffic_light"/>
+    <node id="E" x="1600" y="0" type="priority"/>
+</nodes>
+EOF
+  cat > "$TMP/line.edg.xml" <<'EOF'
+<edges>
+    <edge id="AB" from="A" to="B" numLanes="1" speed="13.89"/>
+    <edge id="BC" from="B" to="C" numLanes="1" speed="13.89"/>
+    <edge id="CD" from="C" to="D" numLanes="1" speed="13.89"/>
+    <edge id="DE" from="D" to="E" numLanes="1" speed="13.89"/>
+</edges>
+EOF
+  cat > "$TMP/line.tll.xml" <<'EOF'
+<tlLogics>
+    <tlLogic id="D" type="static" programID="0" offset="0">
+        <phase duration="10" state="G"/>
+        <phase duration="3" state="y"/>
+        <phase duration="47" state="r"/>
+    </tlLogic>
+</tlLogics>
+EOF
+  netconvert -n "$TMP/line.nod.xml" -e "$TMP/line.edg.xml" -i "$TMP/line.tll.xml" --no-turnarounds \
+    -o "$d/cosim_line.net.xml" > /dev/null
+  cat > "$d/cosim_line.rou.xml" <<'EOF'
+<routes>
+    <flow id="f" from="AB" to="DE" begin="0" end="600" vehsPerHour="900" departLane="best" departSpeed="max"/>
+</routes>
+EOF
+  strip_generated_header "$d/cosim_line.net.xml"
+  write_sumocfg "$d" cosim_line cosim_line.rou.xml
+}
+
 make_grid_tls
 make_random_net
 make_flows
 make_lpsim_csv_small
 make_actuated_cross
 make_keep_clear
+make_cosim_line
 
-for name in grid_tls random_net flows actuated_cross keep_clear; do
+for name in grid_tls random_net flows actuated_cross keep_clear cosim_line; do
   "$PY" "$ROOT/tools/sumo_reference.py" "$OUT/$name/$name.sumocfg" > "$OUT/$name/sumo_reference.txt"
 done
 du -sh "$OUT"

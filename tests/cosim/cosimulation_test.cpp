@@ -1,0 +1,334 @@
+// The co-simulation with the real SUMO (label cosim): LPSim runs a bundled scenario while SUMO drives a
+// corridor of it, in process (libsumo) and as a sumo process over TraCI. Every step, every loaded vehicle is
+// in exactly one place (LPSim's ledger, the bridge's account and SUMO's own counts agree); every trip that
+// ended has one tripinfo line for its whole trip; the outputs of both sides validate against SUMO's XSDs.
+// The spillback tests put a queue downstream of the corridor (LPSim full: vehicles held in SUMO) and inside
+// it (SUMO full: LPSim's vehicles wait at the boundary); routes may cross the corridor twice; SUMO killed
+// mid-run is one error with LPSim's outputs closed well-formed.
+#include "sumo_bridge/cosimulation.hpp"
+
+#include <gtest/gtest.h>
+#include <signal.h>
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "app/scenario_args.hpp"
+#include "app/simulation_options.hpp"
+#include "converters/sumo_tripinfo_reader.hpp"
+#include "lpsim_cli.hpp"
+#include "sumo_schema.hpp"
+#include "temp_dir.hpp"
+
+namespace lpsim {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kScenarios = LPSIM_SCENARIOS_DIR;
+const std::string kGrid = kScenarios + "/grid_tls/grid_tls.sumocfg";
+const std::string kLine = kScenarios + "/cosim_line/cosim_line.sumocfg";
+// The middle row of the 5x5 grid, both ways: routes enter it, leave it, start and end on it.
+const std::vector<std::string> kGridCorridor{"A2B2", "B2C2", "C2D2", "D2E2", "E2D2", "D2C2", "C2B2", "B2A2"};
+
+struct Outcome {
+  Cosimulation::Report report;
+  Cosimulation::Census last;
+  uint64_t steps = 0, most_in_sumo = 0, most_in_handover = 0;
+  uint64_t lpsim_arrived = 0;                      // trips written by the run (merged ones included)
+  std::map<std::string, int> hand_ins;             // per vehicle id: times handed into SUMO
+  int steps_lpsim_queued_at_boundary = 0;          // steps with a standing LPSim vehicle on `watch_lane`'s end
+  fs::path tripinfo, summary, fcd, edgedata;
+};
+
+struct Case {
+  Case(std::string cfg_, std::vector<std::string> corridor_, SumoMode mode_ = SumoMode::Libsumo)
+      : cfg(std::move(cfg_)), corridor(std::move(corridor_)), mode(mode_) {}
+  std::string cfg;
+  std::vector<std::string> corridor;
+  SumoMode mode;
+  std::vector<std::string> extra_args;  // lpsim options
+  std::vector<std::string> sumo_args;
+  std::string watch_lane;  // an LPSim lane just before the corridor
+  int kill_sumo_after = -1;  // steps; over TraCI
+};
+
+Outcome run_case(const Case& c, const test::TempDir& dir) {
+  Outcome o;
+  o.tripinfo = fs::path(dir.path()) / "tripinfo.xml";
+  o.summary = fs::path(dir.path()) / "summary.xml";
+  o.fcd = fs::path(dir.path()) / "fcd.xml";
+  o.edgedata = fs::path(dir.path()) / "edgedata.xml";
+  std::vector<std::string> args{"-c",
+                                c.cfg,
+                                "--tripinfo-output",
+                                o.tripinfo.string(),
+                                "--summary-output",
+                                o.summary.string(),
+                                "--fcd-output",
+                                o.fcd.string(),
+                                "--edgedata-output",
+                                o.edgedata.string(),
+                                "--no-step-log",
+                                "--no-warnings"};
+  args.insert(args.end(), c.extra_args.begin(), c.extra_args.end());
+  ConfigSpec config;
+  Scenario sc = scenario_from_args(args, &config, CliCommand::Cosim);
+  std::vector<uint32_t> edges;
+  for (const std::string& id : c.corridor) edges.push_back(sc.network.edge_index.at(id));
+  const std::vector<uint8_t> lanes = corridor_lanes(sc.network, edges);
+  int32_t watch = -1;
+  if (!c.watch_lane.empty()) watch = static_cast<int32_t>(sc.network.lane_index_by_id.at(c.watch_lane));
+  SimulationOptions options = simulation_options(config);
+  options.outside_lanes = &lanes;
+  Run run(std::move(sc), config, options);
+  CosimOptions co_opt;
+  co_opt.mode = c.mode;
+  co_opt.sumo_args = c.sumo_args;
+  co_opt.answer_timeout_s = 30;
+  Cosimulation co(run, lanes, co_opt);
+  const Simulation& sim = run.simulation();
+  const float watch_length = watch >= 0 ? run.scenario().network.lane_length[static_cast<uint32_t>(watch)] : 0;
+  while (!co.done()) {
+    if (c.kill_sumo_after >= 0 && o.steps == static_cast<uint64_t>(c.kill_sumo_after))
+      ::kill(co.sumo().process_id(), SIGKILL);
+    try {
+      co.step();
+    } catch (const SumoError&) {
+      co.abandon();
+      throw;
+    }
+    ++o.steps;
+    for (const Simulation::HandOut& h : sim.hand_outs()) ++o.hand_ins[sim.demand().vehicle_id[h.vehicle]];
+    o.last = co.census();  // throws when a vehicle is lost or in two places
+    o.most_in_sumo = std::max(o.most_in_sumo, o.last.in_sumo);
+    o.most_in_handover = std::max(o.most_in_handover, o.last.in_handover);
+    if (watch >= 0)
+      for (const uint32_t v : sim.active())
+        if (sim.lane(v) == watch && sim.speed(v) < 0.1f && sim.pos(v) > watch_length - 10.0f) {
+          ++o.steps_lpsim_queued_at_boundary;
+          break;
+        }
+    if (o.steps > 20000) ADD_FAILURE() << "no end";
+    if (o.steps > 20000) break;
+  }
+  co.finish();
+  o.report = co.report();
+  o.lpsim_arrived = run.totals().trips;
+  return o;
+}
+
+std::string read_all(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+double reference_value(const std::string& cfg, const std::string& key) {
+  const std::string text = read_all(fs::path(cfg).parent_path() / "sumo_reference.txt");
+  const std::regex re("(^|\n)" + key + "=([0-9.]+)");
+  std::smatch m;
+  if (!std::regex_search(text, m, re)) throw std::runtime_error(key + " not in the reference");
+  return std::stod(m[2]);
+}
+
+void expect_valid(const fs::path& file, const std::string& xsd, const test::TempDir& dir) {
+  if (std::system("xmllint --version > /dev/null 2>&1") != 0) GTEST_SKIP() << "xmllint not installed";
+  const std::string schema = test::usable_sumo_schema(std::string(test::kSumoXsdDir) + "/" + xsd, dir);
+  const fs::path log = fs::path(dir.path()) / (file.filename().string() + ".xmllint.log");
+  const std::string cmd = "xmllint --noout --schema " + schema + " " + file.string() + " > " + log.string() + " 2>&1";
+  EXPECT_EQ(std::system(cmd.c_str()), 0) << file << " fails " << xsd << ":\n" << read_all(log).substr(0, 2000);
+}
+
+// One line per trip, each vehicle once, durations that are arrival - depart.
+std::vector<SumoTripPiece> expect_one_line_per_trip(const fs::path& tripinfo, uint64_t trips) {
+  const std::vector<SumoTripPiece> lines = read_sumo_tripinfo(tripinfo.string());
+  EXPECT_EQ(lines.size(), trips);
+  std::set<std::string> ids;
+  for (const SumoTripPiece& t : lines) {
+    EXPECT_TRUE(ids.insert(t.id).second) << t.id << " has two lines";
+    EXPECT_FALSE(t.vaporized) << t.id;
+    EXPECT_GT(t.route_length, 0.0) << t.id;
+    EXPECT_GE(t.arrival, t.depart) << t.id;
+  }
+  return lines;
+}
+
+double mean_duration(const std::vector<SumoTripPiece>& lines) {
+  double sum = 0;
+  for (const SumoTripPiece& t : lines) sum += t.arrival - t.depart;
+  return lines.empty() ? 0 : sum / static_cast<double>(lines.size());
+}
+
+class GridCorridorTest : public ::testing::TestWithParam<SumoMode> {};
+
+TEST_P(GridCorridorTest, HandsVehiclesBothWaysLosesNoneAndWritesOneTripinfoLinePerTrip) {
+  test::TempDir dir("cosim_grid");
+  const Outcome o = run_case(Case(kGrid, kGridCorridor, GetParam()), dir);
+  // Every vehicle arrived, in one of the two.
+  EXPECT_EQ(o.last.loaded, 1000u);
+  EXPECT_EQ(o.last.arrived, 1000u);
+  EXPECT_EQ(o.last.in_sumo + o.last.in_handover + o.last.in_lpsim, 0u);
+  EXPECT_GT(o.report.into_sumo, 200u);
+  EXPECT_GT(o.report.out_of_sumo, 100u);
+  EXPECT_GT(o.report.arrived_in_sumo, 50u);
+  EXPECT_EQ(o.report.into_sumo, o.report.out_of_sumo + o.report.arrived_in_sumo);
+  EXPECT_GT(o.most_in_sumo, 5u);
+  const std::vector<SumoTripPiece> lines = expect_one_line_per_trip(o.tripinfo, 1000);
+  EXPECT_EQ(o.lpsim_arrived, 1000u);
+  // The whole trips, against SUMO alone on the same files.
+  EXPECT_NEAR(mean_duration(lines), reference_value(kGrid, "sumo_mean_duration_s"),
+              0.10 * reference_value(kGrid, "sumo_mean_duration_s"));
+  double length = 0;
+  for (const SumoTripPiece& t : lines) length += t.route_length;
+  EXPECT_NEAR(length / 1000.0, reference_value(kGrid, "sumo_mean_route_length_m"), 10.0);
+  expect_valid(o.tripinfo, "tripinfo_file.xsd", dir);
+  expect_valid(o.summary, "summary_file.xsd", dir);
+  expect_valid(o.fcd, "fcd_file.xsd", dir);
+  expect_valid(o.edgedata, "meandata_file.xsd", dir);
+  // SUMO's side, beside each.
+  expect_valid(sumo_side_path(o.tripinfo.string()), "tripinfo_file.xsd", dir);
+  expect_valid(sumo_side_path(o.fcd.string()), "fcd_file.xsd", dir);
+  expect_valid(sumo_side_path(o.edgedata.string()), "meandata_file.xsd", dir);
+}
+
+INSTANTIATE_TEST_SUITE_P(Modes, GridCorridorTest, ::testing::Values(SumoMode::Libsumo, SumoMode::Traci),
+                         [](const auto& info) { return info.param == SumoMode::Libsumo ? "Libsumo" : "Traci"; });
+
+TEST(CosimulationTest, InProcessAndOverTraciGiveTheSameTrips) {
+  test::TempDir a("cosim_lib"), b("cosim_traci");
+  const Outcome in_process = run_case(Case(kGrid, kGridCorridor, SumoMode::Libsumo), a);
+  const Outcome traci = run_case(Case(kGrid, kGridCorridor, SumoMode::Traci), b);
+  EXPECT_EQ(read_all(in_process.tripinfo), read_all(traci.tripinfo));
+  EXPECT_EQ(in_process.report.into_sumo, traci.report.into_sumo);
+}
+
+TEST(CosimulationTest, QueueDownstreamInLpsimHoldsVehiclesInSumo) {
+  test::TempDir dir("cosim_down");
+  // The corridor is BC; the red light at D queues LPSim's CD full, back to C.
+  const Outcome o = run_case(Case(kLine, {"BC"}), dir);
+  EXPECT_EQ(o.last.arrived, 150u);
+  EXPECT_EQ(o.report.into_sumo, 150u);
+  EXPECT_EQ(o.report.out_of_sumo, 150u);
+  EXPECT_GT(o.report.held, 20u);  // LPSim had no room at CD's start: held at SUMO's exit
+  EXPECT_GT(o.report.longest_boundary_wait, 20.0);
+  EXPECT_GT(o.most_in_sumo, 30u);  // the queue reached back into SUMO's BC
+  expect_one_line_per_trip(o.tripinfo, 150);
+  expect_valid(o.tripinfo, "tripinfo_file.xsd", dir);
+}
+
+TEST(CosimulationTest, QueueInSumoSpillsBackIntoLpsim) {
+  test::TempDir dir("cosim_up");
+  // The corridor is CD, ending at the red light: SUMO's queue fills CD and LPSim's vehicles on BC stand at
+  // its end behind the mirrored ones (or behind a vehicle SUMO has not inserted yet).
+  Case c(kLine, {"CD"});
+  c.watch_lane = "BC_0";
+  const Outcome o = run_case(c, dir);
+  EXPECT_EQ(o.last.arrived, 150u);
+  EXPECT_EQ(o.report.into_sumo, 150u);
+  EXPECT_EQ(o.report.out_of_sumo, 150u);
+  EXPECT_GT(o.steps_lpsim_queued_at_boundary, 100);
+  EXPECT_GT(o.most_in_sumo, 40u);
+  const std::vector<SumoTripPiece> lines = expect_one_line_per_trip(o.tripinfo, 150);
+  // The light and its queue are SUMO's: the trips take about as long as in SUMO alone.
+  EXPECT_NEAR(mean_duration(lines), reference_value(kLine, "sumo_mean_duration_s"),
+              0.10 * reference_value(kLine, "sumo_mean_duration_s"));
+}
+
+TEST(CosimulationTest, RoutesCrossingTheCorridorTwiceAreHandedOverTwice) {
+  test::TempDir dir("cosim_twice");
+  // Zig-zags through the grid: onto the middle row, off it, onto it again further east, off it again.
+  const std::string routes = dir.write("twice.rou.xml", R"(<routes>
+    <route id="z1" edges="A3A2 A2B2 B2B3 B3C3 C3C2 C2D2 D2D1"/>
+    <route id="z2" edges="E1E2 E2D2 D2D1 D1C1 C1C2 C2B2 B2B3"/>
+    <flow id="twice1" route="z1" begin="0" end="300" period="15"/>
+    <flow id="twice2" route="z2" begin="5" end="300" period="15"/>
+</routes>
+)");
+  Case c(kGrid, kGridCorridor);
+  c.extra_args = {"-r", routes};
+  const Outcome o = run_case(c, dir);
+  EXPECT_EQ(o.last.arrived, o.last.loaded);
+  int twice = 0;
+  for (const auto& [id, n] : o.hand_ins) {
+    EXPECT_EQ(n, 2) << id;
+    twice += n == 2;
+  }
+  EXPECT_EQ(twice, 40);
+  const std::vector<SumoTripPiece> lines = expect_one_line_per_trip(o.tripinfo, o.last.loaded);
+  // Each trip's length is its whole route's, as LPSim alone measures it: the pieces add up.
+  const test::CliResult alone = test::run_lpsim(
+      dir.path(), {"run", "-c", kGrid, "-r", routes, "--tripinfo-output", "alone.xml", "--no-step-log"});
+  ASSERT_EQ(alone.exit_code, 0) << alone.err;
+  std::map<std::string, double> length;
+  for (const SumoTripPiece& t : read_sumo_tripinfo((dir.path() / "alone.xml").string())) length[t.id] = t.route_length;
+  for (const SumoTripPiece& t : lines) EXPECT_NEAR(t.route_length, length.at(t.id), 0.02 * length.at(t.id)) << t.id;
+}
+
+TEST(CosimulationTest, SumoStepsOfHalfLpsimsAreCoupledEverySecond) {
+  test::TempDir dir("cosim_half");
+  Case c(kLine, {"CD"});
+  c.sumo_args = {"--step-length", "0.5"};
+  const Outcome o = run_case(c, dir);
+  EXPECT_DOUBLE_EQ(o.report.period, 1.0);
+  EXPECT_EQ(o.last.arrived, 150u);
+  expect_one_line_per_trip(o.tripinfo, 150);
+}
+
+TEST(CosimulationTest, StepLengthsWithoutAShortCommonMultipleAreRefused) {
+  test::TempDir dir("cosim_steps");
+  try {
+    Case c(kLine, {"CD"});
+    c.sumo_args = {"--step-length", "0.999"};
+    run_case(c, dir);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("step length 0.999"), std::string::npos) << e.what();
+  }
+}
+
+TEST(CosimulationTest, SumoKilledMidRunIsOneErrorAndLpsimsOutputsEndWellFormed) {
+  test::TempDir dir("cosim_kill");
+  Case c{kGrid, kGridCorridor, SumoMode::Traci};
+  c.kill_sumo_after = 100;
+  try {
+    run_case(c, dir);
+    FAIL() << "no error";
+  } catch (const SumoError& e) {
+    EXPECT_NE(std::string(e.what()).find("ended (status 137)"), std::string::npos) << e.what();
+  }
+  if (std::system("xmllint --version > /dev/null 2>&1") != 0) GTEST_SKIP() << "xmllint not installed";
+  for (const char* f : {"tripinfo.xml", "summary.xml", "fcd.xml", "edgedata.xml"}) {
+    const std::string cmd = "xmllint --noout " + (fs::path(dir.path()) / f).string();
+    EXPECT_EQ(std::system(cmd.c_str()), 0) << f;
+  }
+}
+
+TEST(CosimulationCliTest, RunsWithACorridorFileAndRefusesUnknownEdgesWithFileAndLine) {
+  test::TempDir dir("cosim_cli");
+  const std::string corridor = dir.write("corridor.txt", "edge:A2B2\nedge:B2C2\n");
+  const test::CliResult ok = test::run_lpsim(
+      dir.path(), {"cosim", "-c", kGrid, "--corridor", corridor, "--tripinfo-output", "ti.xml", "--no-step-log",
+                   "--end", "400", "--sumo-args", "--no-warnings true"});
+  EXPECT_EQ(ok.exit_code, 0) << ok.err;
+  EXPECT_NE(ok.out.find("Handed into SUMO: "), std::string::npos) << ok.out;
+  EXPECT_TRUE(fs::exists(fs::path(dir.path()) / "sumo.ti.xml"));
+  const std::string bad = dir.write("bad.txt", "edge:A2B2\nedge:nowhere\n");
+  const test::CliResult r =
+      test::run_lpsim(dir.path(), {"cosim", "-c", kGrid, "--corridor", bad, "--tripinfo-output", "t2.xml"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("bad.txt:2"), std::string::npos) << r.err;
+  const test::CliResult none = test::run_lpsim(dir.path(), {"cosim", "-c", kGrid});
+  EXPECT_EQ(none.exit_code, 2);
+  EXPECT_NE(none.err.find("--corridor"), std::string::npos) << none.err;
+}
+
+}  // namespace
+}  // namespace lpsim
