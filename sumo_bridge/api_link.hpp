@@ -76,7 +76,34 @@ class ApiLink final : public SumoLink {
                          Api::Vehicle::getRouteIndex(id)};
     });
   }
+  std::vector<std::string> departed() override {
+    return call("getDepartedIDList", [] { return Api::Simulation::getDepartedIDList(); });
+  }
+  void watch(const std::string& id) override {
+    call("vehicle.subscribe " + id, [&] { Api::Vehicle::subscribe(id, kWatchedVariables); });
+    watched_.insert(id);
+  }
+  std::vector<std::pair<std::string, SumoVehicle>> watched() override {
+    const auto results = call("vehicle.getAllSubscriptionResults", [] { return Api::Vehicle::getAllSubscriptionResults(); });
+    std::vector<std::pair<std::string, SumoVehicle>> out;
+    out.reserve(results.size());
+    for (const auto& [id, values] : results) {
+      SumoVehicle v;
+      for (const auto& [variable, value] : values) {
+        if (!value) continue;
+        if (variable == Api::kRoadId) v.edge = value->getString();
+        if (variable == Api::kLaneIndex) v.lane = as_int(*value);
+        if (variable == Api::kLanePosition) v.pos = as_double(*value);
+        if (variable == Api::kSpeed) v.speed = as_double(*value);
+        if (variable == Api::kRouteIndex) v.route_index = as_int(*value);
+      }
+      out.emplace_back(id, std::move(v));
+    }
+    return out;
+  }
   void remove(const std::string& id) override {
+    // A removed vehicle that is still subscribed makes later steps fail (SUMO 1.15).
+    if (watched_.erase(id)) call("vehicle.unsubscribe " + id, [&] { Api::Vehicle::unsubscribe(id); });
     call("vehicle.remove " + id, [&] { Api::Vehicle::remove(id); });
   }
   void hold(const std::string& id, bool held) override {
@@ -128,12 +155,25 @@ class ApiLink final : public SumoLink {
     return false;
   }
 
+  static int as_int(const typename Api::Result& r) {
+    const auto* i = dynamic_cast<const typename Api::IntResult*>(&r);
+    return i != nullptr ? i->value : std::stoi(r.getString());
+  }
+  static double as_double(const typename Api::Result& r) {
+    const auto* d = dynamic_cast<const typename Api::DoubleResult*>(&r);
+    return d != nullptr ? d->value : std::stod(r.getString());
+  }
+
+  inline static const std::vector<int> kWatchedVariables{Api::kRoadId, Api::kLaneIndex, Api::kLanePosition,
+                                                         Api::kSpeed, Api::kRouteIndex};
+
   // How long SUMO may take to write and close its outputs after the client closed it.
   static constexpr double kCloseSeconds = 60;
 
   std::unique_ptr<SumoProcess> process_;
   bool open_ = true;
   std::set<std::string> entry_routes_;
+  std::set<std::string> watched_;
 };
 
 }  // namespace lpsim

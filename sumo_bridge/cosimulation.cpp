@@ -217,11 +217,23 @@ void Cosimulation::step() {
       if (removed_since_step_.count(id)) continue;
       const auto it = in_sumo_.find(id);
       if (it == in_sumo_.end()) continue;
+      if (it->second.pending) --pending_;  // inserted and arrived within one step
       ++arrived_in_sumo_;
       ++report_.arrived_in_sumo;
       in_sumo_.erase(it);
     }
     removed_since_step_.clear();
+    // What SUMO inserted reports where it is with every step from now on.
+    for (const std::string& id : sumo_->departed()) {
+      const auto it = in_sumo_.find(id);
+      if (it == in_sumo_.end() || !it->second.pending) continue;
+      it->second.pending = false;
+      --pending_;
+      report_.longest_boundary_wait =
+          std::max(report_.longest_boundary_wait, static_cast<double>(t) / 1000.0 - it->second.since);
+      it->second.since = static_cast<double>(t) / 1000.0;
+      sumo_->watch(id);
+    }
   }
   const auto t0 = std::chrono::steady_clock::now();
   after_sumo_step();
@@ -266,49 +278,52 @@ void Cosimulation::hand_into_sumo(const Simulation::HandOut& h) {
   s.entry_pos = h.pos;
   s.since = sim.time();
   in_sumo_[e.id] = s;
+  ++pending_;
   ++report_.into_sumo;
 }
 
-// After SUMO's steps: what it could not insert yet stays pending where it was to enter; a vehicle that has
-// reached an edge outside the corridor comes back (or waits in SUMO); the others are mirrored.
+// After SUMO's steps: what it could not insert yet stays pending where it was to enter (in LPSim's lane
+// map); a vehicle that has reached an edge outside the corridor comes back (or waits in SUMO); the others
+// are mirrored.
 void Cosimulation::after_sumo_step() {
   Simulation& sim = run_.simulation();
   const Demand& d = sim.demand();
   const double now = sim.time();
-  std::unordered_set<std::string> pending;
-  for (std::string& id : sumo_->pending()) pending.insert(std::move(id));
   mirror_.clear();
-  std::vector<std::string> ids;
-  ids.reserve(in_sumo_.size());
-  for (const auto& [id, s] : in_sumo_) ids.push_back(id);
-  // In a fixed order: the take-backs queue in it, and the results must not depend on the hash.
-  std::sort(ids.begin(), ids.end(),
-            [&](const std::string& a, const std::string& b) { return in_sumo_[a].vehicle < in_sumo_[b].vehicle; });
-  for (const std::string& id : ids) {
-    InSumo& s = in_sumo_[id];
-    const float length = d.types.length[d.vehicle_type[s.vehicle]];
-    if (pending.count(id)) {
+  if (pending_ > 0)
+    for (const auto& [id, s] : in_sumo_) {
+      if (!s.pending) continue;
       report_.longest_boundary_wait = std::max(report_.longest_boundary_wait, now - s.since);
-      // Not on SUMO's road yet: it keeps its place at the boundary in LPSim's lane map.
-      if (s.entry_lane >= 0) mirror_.push_back(Simulation::OutsideVehicle{s.entry_lane, s.entry_pos, length, 0.0f});
-      continue;
+      if (s.entry_lane >= 0)
+        mirror_.push_back(Simulation::OutsideVehicle{s.entry_lane, s.entry_pos,
+                                                     d.types.length[d.vehicle_type[s.vehicle]], 0.0f});
     }
-    if (s.pending) {
-      s.pending = false;
-      s.since = now;
-    }
-    const SumoVehicle q = sumo_->vehicle(id);
+  std::vector<std::pair<std::string, SumoVehicle>> running = sumo_->watched();
+  // In vehicle order: the take-backs queue in it, and the results must not depend on SUMO's order.
+  std::vector<std::pair<uint32_t, size_t>> order;
+  order.reserve(running.size());
+  for (size_t i = 0; i < running.size(); ++i) {
+    const auto it = in_sumo_.find(running[i].first);
+    if (it == in_sumo_.end()) throw SumoError("SUMO reports vehicle " + running[i].first + ", which LPSim did not hand to it");
+    order.emplace_back(it->second.vehicle, i);
+  }
+  std::sort(order.begin(), order.end());
+  for (const auto& [v, i] : order) {
+    const std::string& id = running[i].first;
+    const SumoVehicle& q = running[i].second;
+    InSumo& s = in_sumo_.at(id);
     if (q.edge.empty() || q.edge[0] == ':') continue;  // inside a junction: SUMO's until the next edge
     const auto e = net_.edge_index.find(q.edge);
-    if (e == net_.edge_index.end()) throw SumoError("SUMO has vehicle " + id + " on edge " + q.edge + ", not in LPSim's network");
+    if (e == net_.edge_index.end())
+      throw SumoError("SUMO has vehicle " + id + " on edge " + q.edge + ", not in LPSim's network");
     const uint32_t edge = e->second;
     const uint32_t lane = net_.edge_first_lane[edge] + static_cast<uint32_t>(q.lane);
     if (!corridor_[lane]) {
       take_back_or_hold(id, s, edge, q);
       continue;
     }
-    mirror_.push_back(Simulation::OutsideVehicle{static_cast<int32_t>(lane), static_cast<float>(q.pos), length,
-                                                 static_cast<float>(q.speed)});
+    mirror_.push_back(Simulation::OutsideVehicle{static_cast<int32_t>(lane), static_cast<float>(q.pos),
+                                                 d.types.length[d.vehicle_type[v]], static_cast<float>(q.speed)});
   }
   sim.mirror_outside_vehicles(mirror_);
 }

@@ -110,6 +110,7 @@ class Cosimulation {
   std::vector<uint8_t> visited_;                         // per vehicle: it has been in SUMO
   std::unordered_map<uint32_t, TripRecord> held_trips_;  // ended in LPSim after a visit: merged at finish()
   uint64_t arrived_in_sumo_ = 0;
+  uint64_t pending_ = 0;  // of in_sumo_
   std::vector<Simulation::OutsideVehicle> mirror_;
   Report report_;
   bool finished_ = false;

@@ -5,6 +5,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace lpsim {
@@ -56,7 +57,15 @@ class SumoLink {
   /// Vehicles that ended their route in SUMO's last step (those remove() took out are not among them).
   virtual std::vector<std::string> arrived() = 0;
   virtual SumoVehicle vehicle(const std::string& id) = 0;
-  /// Takes a vehicle out of SUMO (running or pending), as a hand-over out of the corridor does.
+  /// Vehicles inserted in SUMO's last step.
+  virtual std::vector<std::string> departed() = 0;
+  /// From now on, where the running vehicle `id` is comes with every step (a subscription): watched() reads
+  /// all of them in one call. Until it arrives or is removed.
+  virtual void watch(const std::string& id) = 0;
+  /// Where every watched vehicle is after SUMO's last step, by id.
+  virtual std::vector<std::pair<std::string, SumoVehicle>> watched() = 0;
+  /// Takes a vehicle out of SUMO (running or pending), as a hand-over out of the corridor does; it is no
+  /// longer watched.
   virtual void remove(const std::string& id) = 0;
   /// Holds a running vehicle (it brakes to a stop as its model allows, and stays) or lets it drive on.
   virtual void hold(const std::string& id, bool held) = 0;
