@@ -109,17 +109,8 @@ std::string read_whole(const std::string& path) {
   return text;
 }
 
-}  // namespace
-
-void merge_meandata(const std::string& lpsim_file, const std::string& sumo_file,
-                    const std::unordered_set<std::string>& corridor_edges) {
-  const Entries sumo = read_sumo_entries(sumo_file, corridor_edges);
-  const std::string text = read_whole(lpsim_file);
-  std::unordered_set<std::string> corridor;  // as the ids appear in the file
-  for (const std::string& id : corridor_edges) corridor.insert(escaped(id));
-
-  const std::filesystem::path p(lpsim_file);
-  const std::string merging = (p.parent_path() / ("merging." + p.filename().string())).string();
+void write_merged(const std::string& text, const std::string& lpsim_file, const std::string& sumo_file,
+                  const Entries& sumo, const std::unordered_set<std::string>& corridor, const std::string& merging) {
   {
     OutputFile out(merging);
     const std::map<std::string, std::string>* interval = nullptr;
@@ -167,6 +158,26 @@ void merge_meandata(const std::string& lpsim_file, const std::string& sumo_file,
       if (nl < text.size()) out.put('\n');
     }
     out.close();
+  }
+}
+
+}  // namespace
+
+void merge_meandata(const std::string& lpsim_file, const std::string& sumo_file,
+                    const std::unordered_set<std::string>& corridor_edges) {
+  const Entries sumo = read_sumo_entries(sumo_file, corridor_edges);
+  const std::string text = read_whole(lpsim_file);
+  std::unordered_set<std::string> corridor;  // as the ids appear in the file
+  for (const std::string& id : corridor_edges) corridor.insert(escaped(id));
+
+  const std::filesystem::path p(lpsim_file);
+  const std::string merging = (p.parent_path() / ("merging." + p.filename().string())).string();
+  try {
+    write_merged(text, lpsim_file, sumo_file, sumo, corridor, merging);
+  } catch (...) {
+    std::error_code ignored;
+    std::filesystem::remove(merging, ignored);
+    throw;
   }
   std::filesystem::rename(merging, lpsim_file);
 }

@@ -53,12 +53,18 @@ class ApiLink final : public SumoLink {
     const std::string route = "lpsim_entry_" + first;
     if (entry_routes_.insert(first).second)
       call("route.add " + route, [&] { Api::Route::add(route, {first}); });
+    // A given departSpeed that SUMO finds unsafe (a junction too close to brake for) makes it drop the
+    // vehicle with an error; "max" lets it lower the speed instead, and the vehicle's maximum speed, until it
+    // is inserted (restore_max_speed), caps it at the speed it had.
+    const bool capped = e.lane >= 0 && e.speed >= kLeastCappedSpeed;
     call("vehicle.add " + e.id, [&] {
-      if (e.lane >= 0)
-        Api::Vehicle::add(e.id, route, e.type, "now", std::to_string(e.lane), number(e.pos), number(e.speed));
-      else
+      if (e.lane < 0)
         Api::Vehicle::add(e.id, route, e.type, "now", e.depart_lane, e.depart_pos, e.depart_speed);
+      else
+        Api::Vehicle::add(e.id, route, e.type, "now", std::to_string(e.lane), number(e.pos),
+                          capped ? "max" : "0");
     });
+    if (capped) call("vehicle.setMaxSpeed " + e.id, [&] { Api::Vehicle::setMaxSpeed(e.id, e.speed); });
     if (e.route.size() > 1) call("vehicle.setRoute " + e.id, [&] { Api::Vehicle::setRoute(e.id, e.route); });
     if (e.speed_factor > 0)
       call("vehicle.setSpeedFactor " + e.id, [&] { Api::Vehicle::setSpeedFactor(e.id, e.speed_factor); });
@@ -105,6 +111,9 @@ class ApiLink final : public SumoLink {
     // A removed vehicle that is still subscribed makes later steps fail (SUMO 1.15).
     if (watched_.erase(id)) call("vehicle.unsubscribe " + id, [&] { Api::Vehicle::unsubscribe(id); });
     call("vehicle.remove " + id, [&] { Api::Vehicle::remove(id); });
+  }
+  void restore_max_speed(const std::string& id, double max_speed) override {
+    call("vehicle.setMaxSpeed " + id, [&] { Api::Vehicle::setMaxSpeed(id, max_speed); });
   }
   void hold(const std::string& id, bool held) override {
     call("vehicle.setSpeed " + id, [&] { Api::Vehicle::setSpeed(id, held ? 0.0 : -1.0); });
@@ -167,6 +176,8 @@ class ApiLink final : public SumoLink {
   inline static const std::vector<int> kWatchedVariables{Api::kRoadId, Api::kLaneIndex, Api::kLanePosition,
                                                          Api::kSpeed, Api::kRouteIndex};
 
+  // Slower than this, a vehicle handed in enters standing.
+  static constexpr double kLeastCappedSpeed = 0.1;
   // How long SUMO may take to write and close its outputs after the client closed it.
   static constexpr double kCloseSeconds = 60;
 

@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "converters/meandata_merge.hpp"
+#include "converters/output_file.hpp"
 #include "converters/sumo_tripinfo_reader.hpp"
 #include "core/error.hpp"
 
@@ -24,6 +25,9 @@ constexpr const char* kSumoPrefix = "sumo.";
 // The longest coupling period: vehicles cross the boundary once per period, so a longer one would let them
 // stand at the boundary for longer than a signal's cycle.
 constexpr int64_t kLongestPeriodMs = 60000;
+// A vehicle SUMO has not inserted for this long (s) after it was handed over is stuck for good: SUMO retries a
+// pending vehicle at the same place for ever, which would keep the run from ending.
+constexpr double kLongestPending = 3600;
 
 std::string number(double x) {
   char buf[32];
@@ -118,7 +122,29 @@ Cosimulation::Cosimulation(Run& run, const std::vector<uint8_t>& corridor_lanes,
     sumo_tripinfo_ = (std::filesystem::temp_directory_path() /
                       ("lpsim-cosim-" + std::to_string(::getpid()) + "-tripinfo.xml"))
                          .string();
-    remove_sumo_tripinfo_ = true;
+    scratch_tripinfo_.path = sumo_side_path(sumo_tripinfo_);
+  }
+  // SUMO's --edgedata-output counts from time 0 whatever the begin time (SUMO 1.15): definitions in an
+  // additional file span the run, as LPSim's intervals do.
+  const OutputSpec& o = c.outputs;
+  if (!o.edgedata.empty() || !o.lanedata.empty()) {
+    mean_data_file_.path = (std::filesystem::temp_directory_path() /
+                       ("lpsim-cosim-" + std::to_string(::getpid()) + "-meandata.add.xml"))
+                          .string();
+    OutputFile add(mean_data_file_.path);
+    add.text("<additional>\n");
+    if (!o.edgedata.empty()) {
+      add.text("    <edgeData id=\"edgedata\"");
+      add.attr("file", o.edgedata);
+      add.text("/>\n");
+    }
+    if (!o.lanedata.empty()) {
+      add.text("    <laneData id=\"lanedata\"");
+      add.attr("file", o.lanedata);
+      add.text("/>\n");
+    }
+    add.text("</additional>\n");
+    add.close();
   }
   visited_.assign(run_.simulation().demand().size(), 0);
   run_.hold_trips([this](const TripRecord& r) {
@@ -147,8 +173,11 @@ Cosimulation::Cosimulation(Run& run, const std::vector<uint8_t>& corridor_lanes,
                      number(run_.simulation().time()) + " s: give both the same --begin");
 }
 
-Cosimulation::~Cosimulation() {
-  if (remove_sumo_tripinfo_) std::filesystem::remove(sumo_side_path(sumo_tripinfo_));
+Cosimulation::~Cosimulation() = default;
+
+Cosimulation::ScratchFile::~ScratchFile() {
+  std::error_code ignored;
+  if (!path.empty()) std::filesystem::remove(path, ignored);
 }
 
 std::vector<std::string> Cosimulation::sumo_arguments() const {
@@ -160,7 +189,9 @@ std::vector<std::string> Cosimulation::sumo_arguments() const {
     ours.emplace_back("--route-files", joined(c.route_files));
     ours.emplace_back("--scale", "0");
   }
-  if (!c.additional_files.empty()) ours.emplace_back("--additional-files", joined(c.additional_files));
+  std::vector<std::string> additional = c.additional_files;
+  if (!mean_data_file_.path.empty()) additional.push_back(mean_data_file_.path);
+  if (!additional.empty()) ours.emplace_back("--additional-files", joined(additional));
   ours.insert(ours.end(), {{"--begin", number(c.begin)},
                            {"--step-length", number(c.step_length)},
                            {"--seed", std::to_string(c.seed)},
@@ -174,8 +205,6 @@ std::vector<std::string> Cosimulation::sumo_arguments() const {
   if (!o.fcd.empty()) ours.emplace_back("--fcd-output", o.fcd);
   if (o.fcd_period > 0) ours.emplace_back("--device.fcd.period", number(o.fcd_period));
   if (!o.summary.empty()) ours.emplace_back("--summary-output", o.summary);
-  if (!o.edgedata.empty()) ours.emplace_back("--edgedata-output", o.edgedata);
-  if (!o.lanedata.empty()) ours.emplace_back("--lanedata-output", o.lanedata);
   // SUMO refuses an option given twice: one the user passes replaces ours (its short forms too).
   std::unordered_set<std::string> given;
   for (const std::string& a : options_.sumo_args) {
@@ -232,6 +261,10 @@ void Cosimulation::step() {
       report_.longest_boundary_wait =
           std::max(report_.longest_boundary_wait, static_cast<double>(t) / 1000.0 - it->second.since);
       it->second.since = static_cast<double>(t) / 1000.0;
+      if (it->second.entry_lane >= 0) {  // its maximum speed capped its speed at the insertion
+        const Demand& d = run_.simulation().demand();
+        sumo_->restore_max_speed(id, d.types.max_speed[d.vehicle_type[it->second.vehicle]]);
+      }
       sumo_->watch(id);
     }
   }
@@ -252,7 +285,7 @@ void Cosimulation::hand_into_sumo(const Simulation::HandOut& h) {
   e.speed_factor = d.speed_factor[v];
   if (h.lane >= 0) {
     e.lane = static_cast<int>(net_.lane_index[static_cast<uint32_t>(h.lane)]);
-    e.pos = h.pos;
+    e.pos = std::min(h.pos, net_.lane_length[static_cast<uint32_t>(h.lane)]);  // LPSim's front may overhang
     e.speed = h.speed;
   } else {
     e.lane = -1;
@@ -290,9 +323,18 @@ void Cosimulation::after_sumo_step() {
   const Demand& d = sim.demand();
   const double now = sim.time();
   mirror_.clear();
+  std::unordered_set<std::string> pending;
+  if (pending_ > 0)
+    for (std::string& id : sumo_->pending()) pending.insert(std::move(id));
   if (pending_ > 0)
     for (const auto& [id, s] : in_sumo_) {
       if (!s.pending) continue;
+      // SUMO drops a vehicle it will never insert (an error of its own above): that would lose it.
+      if (!pending.count(id))
+        throw SumoError("SUMO dropped vehicle " + id + " instead of inserting it (SUMO's messages above say why)");
+      if (now - s.since > kLongestPending)
+        throw SumoError("SUMO has not inserted vehicle " + id + " for " + number(now - s.since) +
+                        " s since LPSim handed it over: no room where it enters, for ever");
       report_.longest_boundary_wait = std::max(report_.longest_boundary_wait, now - s.since);
       if (s.entry_lane >= 0)
         mirror_.push_back(Simulation::OutsideVehicle{s.entry_lane, s.entry_pos,
@@ -317,20 +359,39 @@ void Cosimulation::after_sumo_step() {
     if (e == net_.edge_index.end())
       throw SumoError("SUMO has vehicle " + id + " on edge " + q.edge + ", not in LPSim's network");
     const uint32_t edge = e->second;
-    const uint32_t lane = net_.edge_first_lane[edge] + static_cast<uint32_t>(q.lane);
-    if (!corridor_[lane]) {
+    if (net_.edge_num_lanes[edge] == 0 || !corridor_[net_.edge_first_lane[edge]]) {
       take_back_or_hold(id, s, edge, q);
       continue;
     }
-    mirror_.push_back(Simulation::OutsideVehicle{static_cast<int32_t>(lane), static_cast<float>(q.pos),
-                                                 d.types.length[d.vehicle_type[v]], static_cast<float>(q.speed)});
+    const int32_t lane = lpsim_lane(edge, q.lane);
+    if (lane >= 0)
+      mirror_.push_back(Simulation::OutsideVehicle{lane, static_cast<float>(q.pos), d.types.length[d.vehicle_type[v]],
+                                                   static_cast<float>(q.speed)});
   }
   sim.mirror_outside_vehicles(mirror_);
 }
 
+// LPSim keeps the lanes road vehicles use, so SUMO's lane index on an edge (which counts sidewalks and bike
+// lanes too) is found among them; -1 for a lane LPSim does not have.
+int32_t Cosimulation::lpsim_lane(uint32_t edge, int sumo_index) const {
+  for (uint32_t l = net_.edge_first_lane[edge]; l < net_.edge_first_lane[edge] + net_.edge_num_lanes[edge]; ++l)
+    if (static_cast<int>(net_.lane_index[l]) == sumo_index) return static_cast<int32_t>(l);
+  return -1;
+}
+
 void Cosimulation::take_back_or_hold(const std::string& id, InSumo& s, uint32_t edge, const SumoVehicle& q) {
   Simulation& sim = run_.simulation();
+  const Demand& d = sim.demand();
   const double now = sim.time();
+  // Where it is in its trip's route: SUMO's route index, counted from the route SUMO was given.
+  uint32_t rp = s.route_pos + static_cast<uint32_t>(q.route_index);
+  const uint32_t* route = d.route_edges.data() + d.route_begin[s.vehicle];
+  if (rp >= d.route_length[s.vehicle] || route[rp] != edge) {
+    rp = s.route_pos;
+    while (rp < d.route_length[s.vehicle] && route[rp] != edge) ++rp;
+    if (rp == d.route_length[s.vehicle])
+      throw SumoError("SUMO drove vehicle " + id + " onto edge " + q.edge + ", which is not on its route");
+  }
   if (!sim.has_entry_room(edge)) {
     if (!s.held) {
       sumo_->hold(id, true);
@@ -343,8 +404,7 @@ void Cosimulation::take_back_or_hold(const std::string& id, InSumo& s, uint32_t 
   }
   if (s.held) report_.longest_boundary_wait = std::max(report_.longest_boundary_wait, now - s.since);
   // SUMO measured its piece of the trip: its tripinfo has it (merged at the end), not these counters.
-  sim.take_back(s.vehicle, s.route_pos + static_cast<uint32_t>(q.route_index), static_cast<float>(q.speed),
-                TripCounters{});
+  sim.take_back(s.vehicle, rp, static_cast<float>(q.speed), TripCounters{});
   sumo_->remove(id);
   removed_since_step_.insert(id);
   in_sumo_.erase(id);

@@ -93,6 +93,7 @@ class Cosimulation {
   std::vector<std::string> sumo_arguments() const;
   void hand_into_sumo(const Simulation::HandOut& h);
   void after_sumo_step();
+  int32_t lpsim_lane(uint32_t edge, int sumo_index) const;
   void take_back_or_hold(const std::string& id, InSumo& s, uint32_t edge, const SumoVehicle& q);
   void merge_tripinfo();
   void merge_edge_data() const;
@@ -101,8 +102,17 @@ class Cosimulation {
   const Network& net_;
   const std::vector<uint8_t>& corridor_;
   CosimOptions options_;
-  std::string sumo_tripinfo_;  // SUMO's tripinfo (merged into the run's at the end)
-  bool remove_sumo_tripinfo_ = false;
+  // A file of this run's that goes with it (also when the constructor fails).
+  struct ScratchFile {
+    std::string path;  // empty: none
+    ScratchFile() = default;
+    ScratchFile(const ScratchFile&) = delete;
+    ScratchFile& operator=(const ScratchFile&) = delete;
+    ~ScratchFile();
+  };
+  std::string sumo_tripinfo_;  // SUMO's tripinfo (merged into the run's at the end), before its prefix
+  ScratchFile scratch_tripinfo_;  // SUMO's tripinfo when the run writes none
+  ScratchFile mean_data_file_;    // the additional file defining SUMO's side of edgeData/laneData outputs
   std::unique_ptr<SumoLink> sumo_;
   int64_t period_ms_ = 0, sumo_step_ms_ = 0;
   std::unordered_map<std::string, InSumo> in_sumo_;

@@ -16,9 +16,10 @@ struct SumoError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// A vehicle handed into SUMO: it enters at `pos` metres of lane `lane` of route.front() with `speed`, then
-/// drives the rest of the route. With lane -1 it departs there as a trip does, by SUMO's depart attributes
-/// (departLane, departPos, departSpeed values).
+/// A vehicle handed into SUMO: it enters at `pos` metres of lane `lane` of route.front() at up to `speed`
+/// (lower where SUMO finds that speed unsafe there; its maximum speed is `speed` until restore_max_speed()),
+/// then drives the rest of the route. With lane -1 it departs there as a trip does, by SUMO's depart
+/// attributes (departLane, departPos, departSpeed values).
 struct SumoEntry {
   std::string id, type;
   std::vector<std::string> route;  // SUMO edge ids, each reachable from the one before
@@ -67,6 +68,8 @@ class SumoLink {
   /// Takes a vehicle out of SUMO (running or pending), as a hand-over out of the corridor does; it is no
   /// longer watched.
   virtual void remove(const std::string& id) = 0;
+  /// Gives a vehicle handed in on a lane its type's maximum speed back (once it has been inserted).
+  virtual void restore_max_speed(const std::string& id, double max_speed) = 0;
   /// Holds a running vehicle (it brakes to a stop as its model allows, and stays) or lets it drive on.
   virtual void hold(const std::string& id, bool held) = 0;
   /// Vehicles running in SUMO (inserted, not yet arrived or removed).

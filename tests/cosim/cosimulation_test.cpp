@@ -22,6 +22,7 @@
 #include "app/scenario_args.hpp"
 #include "app/simulation_options.hpp"
 #include "converters/sumo_tripinfo_reader.hpp"
+#include "converters/xml_stream.hpp"
 #include "lpsim_cli.hpp"
 #include "sumo_schema.hpp"
 #include "temp_dir.hpp"
@@ -167,6 +168,15 @@ double mean_duration(const std::vector<SumoTripPiece>& lines) {
   return lines.empty() ? 0 : sum / static_cast<double>(lines.size());
 }
 
+// edge id -> sampledSeconds, as written, of an edgeData file's intervals.
+std::map<std::string, std::string> sampled_seconds(const fs::path& file) {
+  std::map<std::string, std::string> out;
+  XmlStream xml(file.string());
+  for (XmlStream::Event e = xml.next(); e != XmlStream::Event::Eof; e = xml.next())
+    if (e == XmlStream::Event::Start && xml.name() == "edge") out[xml.required("id")] = xml.get("sampledSeconds", "");
+  return out;
+}
+
 class GridCorridorTest : public ::testing::TestWithParam<SumoMode> {};
 
 TEST_P(GridCorridorTest, HandsVehiclesBothWaysLosesNoneAndWritesOneTripinfoLinePerTrip) {
@@ -193,6 +203,11 @@ TEST_P(GridCorridorTest, HandsVehiclesBothWaysLosesNoneAndWritesOneTripinfoLineP
   expect_valid(o.summary, "summary_file.xsd", dir);
   expect_valid(o.fcd, "fcd_file.xsd", dir);
   expect_valid(o.edgedata, "meandata_file.xsd", dir);
+  // One edgeData: the corridor's edges as SUMO measured them, the others as LPSim did.
+  const auto merged = sampled_seconds(o.edgedata), sumo = sampled_seconds(sumo_side_path(o.edgedata.string()));
+  for (const std::string& e : kGridCorridor) EXPECT_EQ(merged.at(e), sumo.at(e)) << e;
+  EXPECT_EQ(merged.size(), 80u);
+  for (const char* outside : {"A0A1", "E4D4", "B1B2"}) EXPECT_NE(merged.at(outside), sumo.count(outside) ? sumo.at(outside) : "") << outside;
   // SUMO's side, beside each.
   expect_valid(sumo_side_path(o.tripinfo.string()), "tripinfo_file.xsd", dir);
   expect_valid(sumo_side_path(o.fcd.string()), "fcd_file.xsd", dir);

@@ -33,7 +33,9 @@ TEST_P(SumoLinkTest, TakesAVehicleInOnItsLaneWithItsSpeedAndDrivesItsRoute) {
   EXPECT_EQ(sumo->mode(), GetParam());
   EXPECT_NE(sumo->version().find("1.15"), std::string::npos) << sumo->version();
   EXPECT_DOUBLE_EQ(sumo->step_length(), 1.0);
-  sumo->add(SumoEntry{"v1", "DEFAULT_VEHTYPE", {"A0B0", "B0C0"}, 1, 0.0, 12.5});
+  SumoEntry v1{"v1", "DEFAULT_VEHTYPE", {"A0B0", "B0C0"}, 1, 0.0, 12.5};
+  v1.speed_factor = 1.0;  // the lane's limit, 13.89 m/s, is then above its speed
+  sumo->add(v1);
   sumo->step_to(1.0);
   EXPECT_DOUBLE_EQ(sumo->time(), 1.0);
   EXPECT_TRUE(sumo->pending().empty());
