@@ -49,6 +49,9 @@ struct InsertBatch {
   // [entries] the speed a re-entering vehicle asks for (lowered to fit the traffic): 0 after a teleport, its
   // speed for one handed back by a co-simulated SUMO; departures ignore it.
   const float* enter_speed;
+  // [entries] the lane a re-entering vehicle must take (a handed-back vehicle's lane in SUMO, chosen there for
+  // its route); -1: the best free lane (after a teleport). Departures ignore it.
+  const int32_t* enter_lane;
   uint32_t* inserted;         // out [num_slots]: entries of the slot inserted
   int32_t* out_lane;          // out [entries]: where an inserted vehicle was placed
   float* out_pos;
@@ -298,11 +301,12 @@ LPSIM_HD int32_t free_lane(const NetView& net, uint32_t first, uint32_t nlanes, 
 /// Lanes an edge's insertion looks at (SUMO's 64-bit masks); lanes beyond are not used for departures.
 constexpr uint32_t kMaxInsertLanes = 64;
 
-/// Tries to put a teleported (or handed-back) vehicle back on the road at the start of route edge `rp`: best
-/// lanes first, then the others its class may use, at the lane start, at up to `speed` (lowered to fit).
-/// Returns false, changing nothing, when none has room.
+/// Tries to put a teleported (or handed-back) vehicle back on the road at the start of route edge `rp`: on
+/// `lane_wanted` if >= 0, else best lanes first, then the others its class may use; at the lane start, at up
+/// to `speed_wanted` (lowered to fit). Returns false, changing nothing, when none has room.
 LPSIM_HD bool try_reenter(const StepContext& s, const InsertParams& p, uint8_t* map, uint32_t v, uint32_t rp,
-                          float speed_wanted, int32_t* out_lane, float* out_pos, float* out_speed) {
+                          float speed_wanted, int32_t lane_wanted, int32_t* out_lane, float* out_pos,
+                          float* out_speed) {
   const NetView& net = s.net;
   const uint32_t e = trip_route_edge(s, v, rp);
   const uint32_t first = net.edge_first_lane[e], nlanes = net.edge_num_lanes[e];
@@ -315,6 +319,7 @@ LPSIM_HD bool try_reenter(const StepContext& s, const InsertParams& p, uint8_t* 
   for (int pass = 0; pass < 2; ++pass) {
     for (uint32_t l = first; l < first + nlanes; ++l) {
       if (((lane_bit(net, l) & best) != 0) != (pass == 0) || !lane_allows(net, l, vclass)) continue;
+      if (lane_wanted >= 0 && static_cast<int32_t>(l) != lane_wanted) continue;
       const int32_t li = static_cast<int32_t>(l);
       const float pos = base_pos(net.lane_length[l], length);
       const float speed = insertion_check(s, p, map, v, li, pos, speed_wanted, true);
@@ -351,8 +356,8 @@ LPSIM_HD void insert_queue_head(const StepContext& s, const DepartView& d, const
     const uint32_t entry = b.entry[i];
     const uint32_t v = entry & ~kInsertTeleported;
     if (entry & kInsertTeleported) {
-      if (try_reenter(s, p, map, v, b.route_pos[i], b.enter_speed[i], &b.out_lane[i], &b.out_pos[i],
-                      &b.out_speed[i])) {
+      if (try_reenter(s, p, map, v, b.route_pos[i], b.enter_speed[i], b.enter_lane[i], &b.out_lane[i],
+                      &b.out_pos[i], &b.out_speed[i])) {
         ++n;
         scanned = 0;
       }

@@ -102,12 +102,14 @@ int command_cosim(const std::vector<std::string>& args) {
     std::printf(
         "Co-simulation (SUMO %s, %s, coupling period %.3gs):\n"
         " Handed into SUMO: %llu\n Taken back from SUMO: %llu\n Arrived in SUMO: %llu\n"
+        " Held in SUMO for want of room in LPSim: %llu\n"
         " Longest wait at the boundary: %.2fs\n In hand-over at the end: %llu\n"
         " Wall time: SUMO's steps %.2fs, hand-overs %.2fs\n",
         co.sumo().mode() == SumoMode::Libsumo ? "in process" : "over TraCI",
         co.sumo().mode() == SumoMode::Libsumo ? "libsumo" : cosim.sumo_binary.c_str(), r.period,
         static_cast<unsigned long long>(r.into_sumo), static_cast<unsigned long long>(r.out_of_sumo),
-        static_cast<unsigned long long>(r.arrived_in_sumo), r.longest_boundary_wait,
+        static_cast<unsigned long long>(r.arrived_in_sumo), static_cast<unsigned long long>(r.held),
+        r.longest_boundary_wait,
         static_cast<unsigned long long>(r.in_handover_at_end), r.sumo_seconds, r.handover_seconds);
   }
   return signal != 0 ? 128 + signal : 0;

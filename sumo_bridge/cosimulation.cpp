@@ -404,7 +404,9 @@ void Cosimulation::take_back_or_hold(const std::string& id, InSumo& s, uint32_t 
   }
   if (s.held) report_.longest_boundary_wait = std::max(report_.longest_boundary_wait, now - s.since);
   // SUMO measured its piece of the trip: its tripinfo has it (merged at the end), not these counters.
-  sim.take_back(s.vehicle, rp, static_cast<float>(q.speed), TripCounters{});
+  // On the lane SUMO chose for its route (SUMO's own lane-change model got it there), or any best lane
+  // where LPSim does not have that lane.
+  sim.take_back(s.vehicle, rp, lpsim_lane(edge, q.lane), static_cast<float>(q.speed), TripCounters{});
   sumo_->remove(id);
   removed_since_step_.insert(id);
   in_sumo_.erase(id);

@@ -34,9 +34,10 @@ class InsertionQueues {
   }
 
   /// The batch of this step: up to kMaxInsertPerEdge heads of each queue, edges ascending, with the route
-  /// position each enters at (resume_rp[v] for a teleported vehicle, 0 for a departure) and the speed a
-  /// re-entering vehicle asks for (resume_speed[v]). Its output arrays are sized for the backend to fill.
-  const InsertBatch& offer(const std::vector<uint32_t>& resume_rp, const std::vector<float>& resume_speed);
+  /// position each enters at (resume_rp[v] for a teleported vehicle, 0 for a departure) and the speed and
+  /// lane a re-entering vehicle asks for (resume_speed[v], resume_lane[v]). Its output arrays are sized for the backend to fill.
+  const InsertBatch& offer(const std::vector<uint32_t>& resume_rp, const std::vector<float>& resume_speed,
+                           const std::vector<int32_t>& resume_lane);
   uint32_t offered_entries() const { return static_cast<uint32_t>(entry_.size()); }
   /// After the backend filled the batch: calls inserted(i) for each inserted entry i of the batch, in batch
   /// order, and removes those entries from their queues.
@@ -55,6 +56,7 @@ class InsertionQueues {
   // The batch (InsertBatch's arrays).
   std::vector<uint32_t> edge_, begin_, entry_, rp_, inserted_;
   std::vector<float> enter_speed_;
+  std::vector<int32_t> enter_lane_;
   std::vector<int32_t> lane_;
   std::vector<float> pos_, speed_;
   InsertBatch batch_{};

@@ -172,10 +172,11 @@ class Simulation {
   uint64_t handed_out() const { return handed_out_; }
   uint64_t taken_back() const { return taken_back_; }
   /// A handed-out vehicle v comes back at route position `route_pos` (an edge this simulation drives): it
-  /// queues there to re-enter at the lane start as a teleported vehicle does, at up to `speed`, carrying its
-  /// counters plus `elsewhere` (what the other simulator measured). std::invalid_argument, naming it, when it
-  /// was not handed out or the edge is driven outside.
-  void take_back(uint32_t v, uint32_t route_pos, float speed, const TripCounters& elsewhere);
+  /// queues there to re-enter at the start of `lane` (one of the edge's; -1: its best free lane, as a
+  /// teleported vehicle does), at up to `speed`, carrying its counters plus `elsewhere` (what the other
+  /// simulator measured). std::invalid_argument, naming it, when it was not handed out, the edge is driven
+  /// outside or the lane is not the edge's.
+  void take_back(uint32_t v, uint32_t route_pos, int32_t lane, float speed, const TripCounters& elsewhere);
   /// Whether edge `edge` takes one more vehicle back now: fewer are queued to enter there than it has lanes
   /// (the insertion then finds room at a lane start, or the queue holds the next one in the other simulator).
   bool has_entry_room(uint32_t edge) const;

@@ -66,7 +66,8 @@ void Simulation::hand_out_vehicles() {
             [](const HandOut& a, const HandOut& b) { return a.vehicle < b.vehicle; });
 }
 
-void Simulation::take_back(uint32_t v, uint32_t route_pos, float speed, const TripCounters& elsewhere) {
+void Simulation::take_back(uint32_t v, uint32_t route_pos, int32_t lane, float speed,
+                           const TripCounters& elsewhere) {
   if (!opt_.outside_lanes) throw std::logic_error("take_back() without outside lanes");
   const Demand& d = trips_.demand();
   if (v >= d.size() || ledger_.status(v) != kMigrated)
@@ -78,7 +79,11 @@ void Simulation::take_back(uint32_t v, uint32_t route_pos, float speed, const Tr
   const uint32_t edge = d.route_edges[d.route_begin[v] + route_pos];
   if ((*opt_.outside_lanes)[net_.edge_first_lane[edge]])
     throw std::invalid_argument("take_back: vehicle " + d.vehicle_id[v] + " re-enters on an edge driven outside");
-  ledger_.handed_back(v, route_pos, speed, elsewhere);
+  if (lane >= 0 && (static_cast<uint32_t>(lane) < net_.edge_first_lane[edge] ||
+                    static_cast<uint32_t>(lane) >= net_.edge_first_lane[edge] + net_.edge_num_lanes[edge]))
+    throw std::invalid_argument("take_back: vehicle " + d.vehicle_id[v] + " re-enters on lane " +
+                                std::to_string(lane) + ", not one of edge " + net_.edge_id[edge]);
+  ledger_.handed_back(v, route_pos, lane, speed, elsewhere);
   queues_.push_back(edge, queue_entry(v, true));
   ++taken_back_;
 }

@@ -8,6 +8,7 @@ void TripLedger::resize(uint32_t n) {
   status_.resize(n, kPending);
   resume_rp_.resize(n, 0);
   resume_speed_.resize(n, 0);
+  resume_lane_.resize(n, -1);
   depart_time_.resize(n, 0);
   depart_pos_.resize(n, 0);
   depart_speed_.resize(n, 0);
@@ -33,6 +34,7 @@ void TripLedger::teleporting(const VehicleEnd& e, uint32_t rp) {
   status_[e.vehicle] = kTeleporting;
   resume_rp_[e.vehicle] = rp;
   resume_speed_[e.vehicle] = 0;
+  resume_lane_[e.vehicle] = -1;
   carried_[e.vehicle] =
       TripCounters{e.route_length, e.time_loss, e.waiting_steps, e.waiting_count, e.next_stop, e.stop_steps};
 }
@@ -42,10 +44,11 @@ void TripLedger::handed_out(uint32_t v, const TripCounters& counters) {
   carried_[v] = counters;
 }
 
-void TripLedger::handed_back(uint32_t v, uint32_t rp, float speed, const TripCounters& elsewhere) {
+void TripLedger::handed_back(uint32_t v, uint32_t rp, int32_t lane, float speed, const TripCounters& elsewhere) {
   status_[v] = kTeleporting;  // off the road, queued to re-enter
   resume_rp_[v] = rp;
   resume_speed_[v] = speed;
+  resume_lane_[v] = lane;
   TripCounters& c = carried_[v];
   c.route_length += elsewhere.route_length;
   c.time_loss += elsewhere.time_loss;

@@ -36,8 +36,9 @@ class TripLedger {
   void set_resume_route_pos(uint32_t v, uint32_t rp) { resume_rp_[v] = rp; }
   /// Route position each trip re-enters at after a teleport (read for the insertion batch).
   const std::vector<uint32_t>& resume_route_positions() const { return resume_rp_; }
-  /// The speed each re-entering trip asks for (0 after a teleport).
+  /// The speed and lane each re-entering trip asks for (0 and -1, any best lane, after a teleport).
   const std::vector<float>& resume_speeds() const { return resume_speed_; }
+  const std::vector<int32_t>& resume_lanes() const { return resume_lane_; }
 
   /// Vehicle v, due at `depart_due` (s), was inserted at time `now` where `init` says.
   void departed(uint32_t v, double now, double depart_due, const SlotInit& init);
@@ -48,9 +49,9 @@ class TripLedger {
   uint32_t reentering(SlotInit& init);
   /// Vehicle v left for another simulator with `counters` (status kMigrated).
   void handed_out(uint32_t v, const TripCounters& counters);
-  /// A handed-out vehicle comes back to re-enter at route position `rp`, asking for `speed`, its counters
-  /// increased by `elsewhere` (what the other simulator measured).
-  void handed_back(uint32_t v, uint32_t rp, float speed, const TripCounters& elsewhere);
+  /// A handed-out vehicle comes back to re-enter at route position `rp` on `lane` (-1: any best lane),
+  /// asking for `speed`, its counters increased by `elsewhere` (what the other simulator measured).
+  void handed_back(uint32_t v, uint32_t rp, int32_t lane, float speed, const TripCounters& elsewhere);
   /// The counters a teleporting or handed-out vehicle carries (null: none).
   const TripCounters* carried(uint32_t v) const {
     const auto c = carried_.find(v);
@@ -74,6 +75,7 @@ class TripLedger {
   std::vector<uint8_t> status_;
   std::vector<uint32_t> resume_rp_;
   std::vector<float> resume_speed_;
+  std::vector<int32_t> resume_lane_;
   std::unordered_map<uint32_t, TripCounters> carried_;
   // Departure records for tripinfo.
   std::vector<float> depart_time_, depart_pos_, depart_speed_;
