@@ -115,8 +115,8 @@ class ApiLink final : public SumoLink {
   void restore_max_speed(const std::string& id, double max_speed) override {
     call("vehicle.setMaxSpeed " + id, [&] { Api::Vehicle::setMaxSpeed(id, max_speed); });
   }
-  void hold(const std::string& id, bool held) override {
-    call("vehicle.setSpeed " + id, [&] { Api::Vehicle::setSpeed(id, held ? 0.0 : -1.0); });
+  void hold(const std::string& id) override {
+    call("vehicle.setSpeed " + id, [&] { Api::Vehicle::setSpeed(id, 0.0); });
   }
   int running() override {
     return call("vehicle.getIDCount", [] { return Api::Vehicle::getIDCount(); });

@@ -231,7 +231,9 @@ void Cosimulation::step() {
   Simulation& sim = run_.simulation();
   const int64_t target_ms = sim.time_ms() + period_ms_;
   // LPSim's steps: the vehicles handed out at the end of each go into SUMO as they were then.
-  while (sim.time_ms() < target_ms) {
+  // Never past an end time (without one LPSim steps on while SUMO has vehicles, even when it is empty).
+  const bool has_end = run_.config().end >= 0;
+  while (sim.time_ms() < target_ms && !(has_end && run_.done())) {
     run_.step();
     const auto t0 = std::chrono::steady_clock::now();
     for (const Simulation::HandOut& h : sim.hand_outs()) hand_into_sumo(h);
@@ -364,9 +366,13 @@ void Cosimulation::after_sumo_step() {
       continue;
     }
     const int32_t lane = lpsim_lane(edge, q.lane);
-    if (lane >= 0)
-      mirror_.push_back(Simulation::OutsideVehicle{lane, static_cast<float>(q.pos), d.types.length[d.vehicle_type[v]],
-                                                   static_cast<float>(q.speed)});
+    if (lane < 0) continue;
+    // The map LPSim's next step writes shows the state at its end: SUMO's vehicles a period on at their
+    // speed (else LPSim's vehicles would follow them a period's distance behind where they are). One that
+    // would pass the lane's end stands at it: the next lane is SUMO's too.
+    const float ahead = static_cast<float>(q.pos + q.speed * report_.period);
+    mirror_.push_back(Simulation::OutsideVehicle{lane, std::min(ahead, net_.lane_length[static_cast<uint32_t>(lane)]),
+                                                 d.types.length[d.vehicle_type[v]], static_cast<float>(q.speed)});
   }
   sim.mirror_outside_vehicles(mirror_);
 }
@@ -394,7 +400,7 @@ void Cosimulation::take_back_or_hold(const std::string& id, InSumo& s, uint32_t 
   }
   if (!sim.has_entry_room(edge)) {
     if (!s.held) {
-      sumo_->hold(id, true);
+      sumo_->hold(id);
       s.held = true;
       ++report_.held;
       s.since = now;

@@ -70,8 +70,8 @@ class SumoLink {
   virtual void remove(const std::string& id) = 0;
   /// Gives a vehicle handed in on a lane its type's maximum speed back (once it has been inserted).
   virtual void restore_max_speed(const std::string& id, double max_speed) = 0;
-  /// Holds a running vehicle (it brakes to a stop as its model allows, and stays) or lets it drive on.
-  virtual void hold(const std::string& id, bool held) = 0;
+  /// Holds a running vehicle: it brakes to a stop as its model allows, and stays until removed.
+  virtual void hold(const std::string& id) = 0;
   /// Vehicles running in SUMO (inserted, not yet arrived or removed).
   virtual int running() = 0;
   /// Ends SUMO (it writes and closes its outputs). Idempotent; the destructor calls it.
