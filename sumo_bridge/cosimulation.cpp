@@ -10,85 +10,20 @@
 #include <numeric>
 #include <stdexcept>
 
-#include "converters/meandata_merge.hpp"
 #include "converters/output_file.hpp"
-#include "converters/sumo_tripinfo_reader.hpp"
 #include "core/error.hpp"
+#include "sumo_bridge/sumo_arguments.hpp"
 
 namespace lpsim {
 
 namespace {
 
-// SUMO writes its side of every output beside LPSim's, under this prefix of the file name (SUMO's
-// --output-prefix, which also covers the outputs the scenario's additional files define).
-constexpr const char* kSumoPrefix = "sumo.";
 // The longest coupling period: vehicles cross the boundary once per period, so a longer one would let them
 // stand at the boundary for longer than a signal's cycle.
 constexpr int64_t kLongestPeriodMs = 60000;
 // A vehicle SUMO has not inserted for this long (s) after it was handed over is stuck for good: SUMO retries a
 // pending vehicle at the same place for ever, which would keep the run from ending.
 constexpr double kLongestPending = 3600;
-
-std::string number(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", x);
-  return buf;
-}
-
-std::string joined(const std::vector<std::string>& items) {
-  std::string out;
-  for (const std::string& s : items) out += (out.empty() ? "" : ",") + s;
-  return out;
-}
-
-const char* depart_lane_value(DepartLane k) {
-  switch (k) {
-    case DepartLane::Random:
-      return "random";
-    case DepartLane::Free:
-      return "free";
-    case DepartLane::Allowed:
-      return "allowed";
-    case DepartLane::Best:
-      return "best";
-    default:
-      return "first";
-  }
-}
-
-const char* depart_pos_value(DepartPos k) {
-  switch (k) {
-    case DepartPos::Random:
-      return "random";
-    case DepartPos::Free:
-      return "free";
-    case DepartPos::RandomFree:
-      return "random_free";
-    case DepartPos::Last:
-      return "last";
-    default:
-      return "base";
-  }
-}
-
-const char* depart_speed_value(DepartSpeed k) {
-  switch (k) {
-    case DepartSpeed::Random:
-      return "random";
-    case DepartSpeed::Max:
-      return "max";
-    case DepartSpeed::Desired:
-      return "desired";
-    case DepartSpeed::SpeedLimit:
-      return "speedLimit";
-    case DepartSpeed::Last:
-      return "last";
-    case DepartSpeed::Avg:
-      return "avg";
-    default:
-      return "0";
-  }
-}
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -101,11 +36,6 @@ std::vector<uint8_t> corridor_lanes(const Network& net, const std::vector<uint32
   for (const uint32_t e : corridor_edges)
     for (uint32_t l = net.edge_first_lane[e]; l < net.edge_first_lane[e] + net.edge_num_lanes[e]; ++l) lanes[l] = 1;
   return lanes;
-}
-
-std::string sumo_side_path(const std::string& path) {
-  const std::filesystem::path p(path);
-  return (p.parent_path() / (std::string(kSumoPrefix) + p.filename().string())).string();
 }
 
 Cosimulation::Cosimulation(Run& run, const std::vector<uint8_t>& corridor_lanes, const CosimOptions& options)
@@ -152,25 +82,27 @@ Cosimulation::Cosimulation(Run& run, const std::vector<uint8_t>& corridor_lanes,
     held_trips_[r.vehicle] = r;
     return true;
   });
-  sumo_ = start_sumo(options_.mode, options_.sumo_binary, sumo_arguments(), options_.answer_timeout_s);
+  sumo_ = start_sumo(options_.mode, options_.sumo_binary,
+                     cosim_sumo_arguments(c, sumo_tripinfo_, mean_data_file_.path, options_.sumo_args),
+                     options_.answer_timeout_s);
   const int64_t lpsim_ms = run_.options().step_ms;
   const double sumo_step = sumo_->step_length();
   sumo_step_ms_ = std::llround(sumo_step * 1000.0);
   if (sumo_step_ms_ <= 0 || std::fabs(static_cast<double>(sumo_step_ms_) - sumo_step * 1000.0) > 1e-6)
-    throw InputError("SUMO's step length " + number(sumo_step) +
+    throw InputError("SUMO's step length " + sumo_number(sumo_step) +
                      " s is not a whole number of milliseconds: no common coupling period with LPSim's " +
-                     number(static_cast<double>(lpsim_ms) / 1000.0) + " s");
+                     sumo_number(static_cast<double>(lpsim_ms) / 1000.0) + " s");
   period_ms_ = std::lcm(lpsim_ms, sumo_step_ms_);
   if (period_ms_ > kLongestPeriodMs)
-    throw InputError("SUMO's step length " + number(sumo_step) + " s and LPSim's " +
-                     number(static_cast<double>(lpsim_ms) / 1000.0) + " s have no common multiple up to " +
-                     number(kLongestPeriodMs / 1000.0) + " s to couple them at (the least is " +
-                     number(static_cast<double>(period_ms_) / 1000.0) + " s): give step lengths that divide one another");
+    throw InputError("SUMO's step length " + sumo_number(sumo_step) + " s and LPSim's " +
+                     sumo_number(static_cast<double>(lpsim_ms) / 1000.0) + " s have no common multiple up to " +
+                     sumo_number(kLongestPeriodMs / 1000.0) + " s to couple them at (the least is " +
+                     sumo_number(static_cast<double>(period_ms_) / 1000.0) + " s): give step lengths that divide one another");
   report_.period = static_cast<double>(period_ms_) / 1000.0;
   const double sumo_begin = sumo_->time();
   if (std::fabs(sumo_begin - run_.simulation().time()) > 1e-6)
-    throw InputError("SUMO starts at " + number(sumo_begin) + " s, LPSim at " +
-                     number(run_.simulation().time()) + " s: give both the same --begin");
+    throw InputError("SUMO starts at " + sumo_number(sumo_begin) + " s, LPSim at " +
+                     sumo_number(run_.simulation().time()) + " s: give both the same --begin");
 }
 
 Cosimulation::~Cosimulation() = default;
@@ -178,52 +110,6 @@ Cosimulation::~Cosimulation() = default;
 Cosimulation::ScratchFile::~ScratchFile() {
   std::error_code ignored;
   if (!path.empty()) std::filesystem::remove(path, ignored);
-}
-
-std::vector<std::string> Cosimulation::sumo_arguments() const {
-  const ConfigSpec& c = run_.config();
-  // The co-simulation's options, as (name, value) pairs.
-  std::vector<std::pair<std::string, std::string>> ours{{"--net-file", c.net_file}};
-  // The route files for their vTypes (and distributions) only: SUMO drops every vehicle and flow at scale 0.
-  if (!c.route_files.empty()) {
-    ours.emplace_back("--route-files", joined(c.route_files));
-    ours.emplace_back("--scale", "0");
-  }
-  std::vector<std::string> additional = c.additional_files;
-  if (!mean_data_file_.path.empty()) additional.push_back(mean_data_file_.path);
-  if (!additional.empty()) ours.emplace_back("--additional-files", joined(additional));
-  ours.insert(ours.end(), {{"--begin", number(c.begin)},
-                           {"--step-length", number(c.step_length)},
-                           {"--seed", std::to_string(c.seed)},
-                           {"--time-to-teleport", number(c.time_to_teleport)},
-                           {"--time-to-impatience", number(c.time_to_impatience)},
-                           {"--default.carfollowmodel", c.default_car_follow_model},
-                           {"--no-step-log", "true"},
-                           {"--output-prefix", kSumoPrefix},
-                           {"--tripinfo-output", sumo_tripinfo_}});
-  const OutputSpec& o = c.outputs;
-  if (!o.fcd.empty()) ours.emplace_back("--fcd-output", o.fcd);
-  if (o.fcd_period > 0) ours.emplace_back("--device.fcd.period", number(o.fcd_period));
-  if (!o.summary.empty()) ours.emplace_back("--summary-output", o.summary);
-  // SUMO refuses an option given twice: one the user passes replaces ours (its short forms too).
-  std::unordered_set<std::string> given;
-  for (const std::string& a : options_.sumo_args) {
-    const std::string name = a.substr(0, a.find('='));
-    given.insert(name == "-n" ? "--net-file"
-                 : name == "-r" ? "--route-files"
-                 : name == "-a" ? "--additional-files"
-                 : name == "-b" ? "--begin"
-                 : name);
-  }
-  for (const char* kept : {"--output-prefix", "--tripinfo-output", "--scale"})
-    if (given.count(kept))
-      throw InputError(std::string("--sumo-args: the co-simulation sets SUMO's ") + kept +
-                       " itself (SUMO's outputs are written beside LPSim's, as sumo.<name>)");
-  std::vector<std::string> a;
-  for (const auto& [name, value] : ours)
-    if (!given.count(name)) a.insert(a.end(), {name, value});
-  a.insert(a.end(), options_.sumo_args.begin(), options_.sumo_args.end());
-  return a;
 }
 
 void Cosimulation::step() {
@@ -292,14 +178,10 @@ void Cosimulation::hand_into_sumo(const Simulation::HandOut& h) {
   } else {
     e.lane = -1;
     if (h.route_pos == 0) {  // its trip departs here, as its depart attributes say
-      const auto lane_kind = static_cast<DepartLane>(d.depart_lane_kind[v]);
-      e.depart_lane =
-          lane_kind == DepartLane::Given ? std::to_string(d.depart_lane[v]) : depart_lane_value(lane_kind);
-      const auto pos_kind = static_cast<DepartPos>(d.depart_pos_kind[v]);
-      e.depart_pos = pos_kind == DepartPos::Given ? number(d.depart_pos[v]) : depart_pos_value(pos_kind);
-      const auto speed_kind = static_cast<DepartSpeed>(d.depart_speed_kind[v]);
-      e.depart_speed =
-          speed_kind == DepartSpeed::Given ? number(d.depart_speed[v]) : depart_speed_value(speed_kind);
+      const SumoDepart dep = sumo_depart(d, v);
+      e.depart_lane = dep.lane;
+      e.depart_pos = dep.pos;
+      e.depart_speed = dep.speed;
     } else {  // a teleport's re-entry: at the start of the best lane, standing
       e.depart_lane = "best";
     }
@@ -335,7 +217,7 @@ void Cosimulation::after_sumo_step() {
       if (!pending.count(id))
         throw SumoError("SUMO dropped vehicle " + id + " instead of inserting it (SUMO's messages above say why)");
       if (now - s.since > kLongestPending)
-        throw SumoError("SUMO has not inserted vehicle " + id + " for " + number(now - s.since) +
+        throw SumoError("SUMO has not inserted vehicle " + id + " for " + sumo_number(now - s.since) +
                         " s since LPSim handed it over: no room where it enters, for ever");
       report_.longest_boundary_wait = std::max(report_.longest_boundary_wait, now - s.since);
       if (s.entry_lane >= 0)
@@ -467,17 +349,6 @@ void Cosimulation::finish() {
   merge_edge_data();
 }
 
-// Each edgeData/laneData output: the corridor's edges as SUMO measured them, the others as LPSim did.
-void Cosimulation::merge_edge_data() const {
-  std::unordered_set<std::string> corridor;
-  for (uint32_t e = 0; e < net_.num_edges(); ++e)
-    if (net_.edge_num_lanes[e] > 0 && corridor_[net_.edge_first_lane[e]]) corridor.insert(net_.edge_id[e]);
-  std::vector<std::string> files{run_.config().outputs.edgedata, run_.config().outputs.lanedata};
-  for (const MeanDataSpec& m : run_.scenario().mean_data) files.push_back(m.file);
-  for (const std::string& f : files)
-    if (!f.empty()) merge_meandata(f, sumo_side_path(f), corridor);
-}
-
 void Cosimulation::abandon() {
   if (finished_) return;
   finished_ = true;
@@ -487,83 +358,6 @@ void Cosimulation::abandon() {
     // Already gone: what it wrote stays as it is.
   }
   run_.finish();
-}
-
-// One tripinfo line per trip that ended, for the whole trip: its start where it departed (LPSim's
-// departure, or SUMO's first piece), its end where it arrived, and the sums of both sides' pieces.
-void Cosimulation::merge_tripinfo() {
-  const Simulation& sim = run_.simulation();
-  const Demand& d = sim.demand();
-  std::unordered_map<std::string, uint32_t> visited_ids;
-  for (uint32_t v = 0; v < visited_.size(); ++v)
-    if (visited_[v]) visited_ids.emplace(d.vehicle_id[v], v);
-  std::unordered_map<uint32_t, std::vector<SumoTripPiece>> pieces;
-  for (SumoTripPiece& p : read_sumo_tripinfo(sumo_side_path(sumo_tripinfo_))) {
-    const auto it = visited_ids.find(p.id);
-    if (it != visited_ids.end()) pieces[it->second].push_back(std::move(p));
-  }
-  const auto lane_of = [&](const std::string& id) {
-    const auto it = net_.lane_index_by_id.find(id);
-    if (it == net_.lane_index_by_id.end())
-      throw SumoError("SUMO's tripinfo names lane " + id + ", not in LPSim's network");
-    return it->second;
-  };
-  const double dt = sim.step_length();
-  std::vector<TripRecord> merged;
-  for (uint32_t v = 0; v < visited_.size(); ++v) {
-    if (!visited_[v]) continue;
-    const auto pit = pieces.find(v);
-    const std::vector<SumoTripPiece>* ps = pit == pieces.end() ? nullptr : &pit->second;
-    const DepartRecord dep = sim.departure(v);
-    TripRecord r;
-    const auto held = held_trips_.find(v);
-    if (held != held_trips_.end()) {  // it arrived in LPSim, whose record sums LPSim's pieces
-      r = held->second;
-    } else if (ps != nullptr && !ps->back().vaporized) {  // it arrived in SUMO
-      const SumoTripPiece& last = ps->back();
-      r.vehicle = v;
-      r.arrival = last.arrival;
-      r.arrival_lane = lane_of(last.arrival_lane);
-      r.arrival_pos = static_cast<float>(last.arrival_pos);
-      r.arrival_speed = static_cast<float>(last.arrival_speed);
-      r.speed_factor = d.speed_factor[v];
-      r.depart = dep.time;
-      r.depart_delay = dep.time - d.depart[v];
-      r.depart_lane = static_cast<uint32_t>(std::max(0, dep.lane));
-      r.depart_pos = dep.pos;
-      r.depart_speed = dep.speed;
-      if (const TripCounters* c = sim.carried(v)) {  // what LPSim measured of it
-        r.route_length = c->route_length;
-        r.time_loss = c->time_loss;
-        r.waiting_time = static_cast<double>(c->waiting_steps) * dt;
-        r.waiting_count = c->waiting_count;
-        r.stop_time = static_cast<double>(c->stop_steps) * dt;
-      }
-    } else {
-      continue;  // still on its way when the run ended
-    }
-    if (dep.lane < 0 && ps != nullptr) {  // it departed in SUMO
-      const SumoTripPiece& first = ps->front();
-      r.depart = first.depart;
-      r.depart_delay = first.depart_delay;
-      r.depart_lane = lane_of(first.depart_lane);
-      r.depart_pos = static_cast<float>(first.depart_pos);
-      r.depart_speed = static_cast<float>(first.depart_speed);
-    }
-    if (ps != nullptr)
-      for (const SumoTripPiece& p : *ps) {
-        r.route_length += p.route_length;
-        r.waiting_time += p.waiting_time;
-        r.waiting_count += static_cast<uint32_t>(p.waiting_count);
-        r.stop_time += p.stop_time;
-        r.time_loss += p.time_loss;
-      }
-    merged.push_back(r);
-  }
-  std::sort(merged.begin(), merged.end(), [](const TripRecord& a, const TripRecord& b) {
-    return a.arrival != b.arrival ? a.arrival < b.arrival : a.vehicle < b.vehicle;
-  });
-  for (const TripRecord& r : merged) run_.write_trip(r);
 }
 
 }  // namespace lpsim

@@ -29,9 +29,6 @@ struct CosimOptions {
 /// 1 for each lane of the corridor's edges, 0 elsewhere (SimulationOptions::outside_lanes).
 std::vector<uint8_t> corridor_lanes(const Network& net, const std::vector<uint32_t>& corridor_edges);
 
-/// Where SUMO writes its side of an output of the co-simulation: "fcd.xml" -> "fcd.sumo.xml".
-std::string sumo_side_path(const std::string& path);
-
 class Cosimulation {
  public:
   /// Starts SUMO on `run`'s scenario (its network, its route files for their vTypes at --scale 0 so that SUMO
@@ -90,7 +87,6 @@ class Cosimulation {
     double since = 0;  // when it was added, or held
   };
 
-  std::vector<std::string> sumo_arguments() const;
   void hand_into_sumo(const Simulation::HandOut& h);
   void after_sumo_step();
   int32_t lpsim_lane(uint32_t edge, int sumo_index) const;

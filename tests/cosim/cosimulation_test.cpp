@@ -6,6 +6,7 @@
 // it (SUMO full: LPSim's vehicles wait at the boundary); routes may cross the corridor twice; SUMO killed
 // mid-run is one error with LPSim's outputs closed well-formed.
 #include "sumo_bridge/cosimulation.hpp"
+#include "sumo_bridge/sumo_arguments.hpp"
 
 #include <gtest/gtest.h>
 #include <signal.h>

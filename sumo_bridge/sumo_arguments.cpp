@@ -1,0 +1,144 @@
+#include "sumo_bridge/sumo_arguments.hpp"
+
+#include <cstdio>
+#include <filesystem>
+#include <unordered_set>
+#include <utility>
+
+#include "core/error.hpp"
+
+namespace lpsim {
+
+namespace {
+
+// SUMO writes its side of every output beside LPSim's, under this prefix of the file name (SUMO's
+// --output-prefix, which also covers the outputs the scenario's additional files define).
+constexpr const char* kSumoPrefix = "sumo.";
+
+std::string joined(const std::vector<std::string>& items) {
+  std::string out;
+  for (const std::string& s : items) out += (out.empty() ? "" : ",") + s;
+  return out;
+}
+
+const char* depart_lane_value(DepartLane k) {
+  switch (k) {
+    case DepartLane::Random:
+      return "random";
+    case DepartLane::Free:
+      return "free";
+    case DepartLane::Allowed:
+      return "allowed";
+    case DepartLane::Best:
+      return "best";
+    default:
+      return "first";
+  }
+}
+
+const char* depart_pos_value(DepartPos k) {
+  switch (k) {
+    case DepartPos::Random:
+      return "random";
+    case DepartPos::Free:
+      return "free";
+    case DepartPos::RandomFree:
+      return "random_free";
+    case DepartPos::Last:
+      return "last";
+    default:
+      return "base";
+  }
+}
+
+const char* depart_speed_value(DepartSpeed k) {
+  switch (k) {
+    case DepartSpeed::Random:
+      return "random";
+    case DepartSpeed::Max:
+      return "max";
+    case DepartSpeed::Desired:
+      return "desired";
+    case DepartSpeed::SpeedLimit:
+      return "speedLimit";
+    case DepartSpeed::Last:
+      return "last";
+    case DepartSpeed::Avg:
+      return "avg";
+    default:
+      return "0";
+  }
+}
+
+}  // namespace
+
+std::string sumo_number(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", x);
+  return buf;
+}
+
+std::string sumo_side_path(const std::string& path) {
+  const std::filesystem::path p(path);
+  return (p.parent_path() / (std::string(kSumoPrefix) + p.filename().string())).string();
+}
+
+std::vector<std::string> cosim_sumo_arguments(const ConfigSpec& c, const std::string& tripinfo,
+                                              const std::string& extra_additional,
+                                              const std::vector<std::string>& user_args) {
+  // The co-simulation's options, as (name, value) pairs.
+  std::vector<std::pair<std::string, std::string>> ours{{"--net-file", c.net_file}};
+  // The route files for their vTypes (and distributions) only: SUMO drops every vehicle and flow at scale 0.
+  if (!c.route_files.empty()) {
+    ours.emplace_back("--route-files", joined(c.route_files));
+    ours.emplace_back("--scale", "0");
+  }
+  std::vector<std::string> additional = c.additional_files;
+  if (!extra_additional.empty()) additional.push_back(extra_additional);
+  if (!additional.empty()) ours.emplace_back("--additional-files", joined(additional));
+  ours.insert(ours.end(), {{"--begin", sumo_number(c.begin)},
+                           {"--step-length", sumo_number(c.step_length)},
+                           {"--seed", std::to_string(c.seed)},
+                           {"--time-to-teleport", sumo_number(c.time_to_teleport)},
+                           {"--time-to-impatience", sumo_number(c.time_to_impatience)},
+                           {"--default.carfollowmodel", c.default_car_follow_model},
+                           {"--no-step-log", "true"},
+                           {"--output-prefix", kSumoPrefix},
+                           {"--tripinfo-output", tripinfo}});
+  const OutputSpec& o = c.outputs;
+  if (!o.fcd.empty()) ours.emplace_back("--fcd-output", o.fcd);
+  if (o.fcd_period > 0) ours.emplace_back("--device.fcd.period", sumo_number(o.fcd_period));
+  if (!o.summary.empty()) ours.emplace_back("--summary-output", o.summary);
+  // SUMO refuses an option given twice: one the user passes replaces ours (its short forms too).
+  std::unordered_set<std::string> given;
+  for (const std::string& a : user_args) {
+    const std::string name = a.substr(0, a.find('='));
+    given.insert(name == "-n" ? "--net-file"
+                 : name == "-r" ? "--route-files"
+                 : name == "-a" ? "--additional-files"
+                 : name == "-b" ? "--begin"
+                 : name);
+  }
+  for (const char* kept : {"--output-prefix", "--tripinfo-output", "--scale"})
+    if (given.count(kept))
+      throw InputError(std::string("--sumo-args: the co-simulation sets SUMO's ") + kept +
+                       " itself (SUMO's outputs are written beside LPSim's, as sumo.<name>)");
+  std::vector<std::string> a;
+  for (const auto& [name, value] : ours)
+    if (!given.count(name)) a.insert(a.end(), {name, value});
+  a.insert(a.end(), user_args.begin(), user_args.end());
+  return a;
+}
+
+SumoDepart sumo_depart(const Demand& d, uint32_t v) {
+  SumoDepart out;
+  const auto lane_kind = static_cast<DepartLane>(d.depart_lane_kind[v]);
+  out.lane = lane_kind == DepartLane::Given ? std::to_string(d.depart_lane[v]) : depart_lane_value(lane_kind);
+  const auto pos_kind = static_cast<DepartPos>(d.depart_pos_kind[v]);
+  out.pos = pos_kind == DepartPos::Given ? sumo_number(d.depart_pos[v]) : depart_pos_value(pos_kind);
+  const auto speed_kind = static_cast<DepartSpeed>(d.depart_speed_kind[v]);
+  out.speed = speed_kind == DepartSpeed::Given ? sumo_number(d.depart_speed[v]) : depart_speed_value(speed_kind);
+  return out;
+}
+
+}  // namespace lpsim

@@ -1,0 +1,35 @@
+#pragma once
+// What the co-simulation tells SUMO: its command line for a scenario (the scenario's own files and options,
+// SUMO's side of each output beside LPSim's), and a departing trip's depart attributes as SUMO's text.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/config_spec.hpp"
+#include "demand/demand.hpp"
+
+namespace lpsim {
+
+/// Where SUMO writes its side of an output of the co-simulation: "fcd.xml" -> "sumo.fcd.xml" (SUMO's
+/// --output-prefix, which also covers the outputs the scenario's additional files define).
+std::string sumo_side_path(const std::string& path);
+
+/// A number exactly as SUMO parses it back (no rounding to six digits, no locale).
+std::string sumo_number(double x);
+
+/// SUMO's options for a co-simulation of the scenario `config` describes: its network, its route files for
+/// their vTypes only (at --scale 0 SUMO keeps none of their vehicles), its additional files and
+/// `extra_additional`, begin, step length, seed, teleport and impatience times, the default car-following
+/// model, and outputs written as sumo_side_path() of LPSim's (tripinfo to `tripinfo`); then `user_args`, whose
+/// options replace those of the same name (an InputError for the ones the co-simulation depends on).
+std::vector<std::string> cosim_sumo_arguments(const ConfigSpec& config, const std::string& tripinfo,
+                                              const std::string& extra_additional,
+                                              const std::vector<std::string>& user_args);
+
+/// Trip v's departLane, departPos and departSpeed as SUMO's attribute values.
+struct SumoDepart {
+  std::string lane, pos, speed;
+};
+SumoDepart sumo_depart(const Demand& demand, uint32_t v);
+
+}  // namespace lpsim
