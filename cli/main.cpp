@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "app/commands.hpp"
-#include "sumo_bridge/cosim_command.hpp"
 #include "core/error.hpp"
+#include "sumo_bridge/cosim_command.hpp"
 #include "transport/mpi/mpi_transport.hpp"
 
 namespace {

@@ -110,7 +110,8 @@ std::string read_whole(const std::string& path) {
 }
 
 void write_merged(const std::string& text, const std::string& lpsim_file, const std::string& sumo_file,
-                  const Entries& sumo, const std::unordered_set<std::string>& corridor, const std::string& merging) {
+                  const Entries& sumo, const std::unordered_set<std::string>& corridor,
+                  const std::string& merging) {
   {
     OutputFile out(merging);
     const std::map<std::string, std::string>* interval = nullptr;

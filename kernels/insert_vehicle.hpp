@@ -49,11 +49,11 @@ struct InsertBatch {
   // [entries] the speed a re-entering vehicle asks for (lowered to fit the traffic): 0 after a teleport, its
   // speed for one handed back by a co-simulated SUMO; departures ignore it.
   const float* enter_speed;
-  // [entries] the lane a re-entering vehicle must take (a handed-back vehicle's lane in SUMO, chosen there for
-  // its route); -1: the best free lane (after a teleport). Departures ignore it.
+  // [entries] the lane a re-entering vehicle must take (a handed-back vehicle's lane in SUMO, chosen there
+  // for its route); -1: the best free lane (after a teleport). Departures ignore it.
   const int32_t* enter_lane;
-  uint32_t* inserted;         // out [num_slots]: entries of the slot inserted
-  int32_t* out_lane;          // out [entries]: where an inserted vehicle was placed
+  uint32_t* inserted;  // out [num_slots]: entries of the slot inserted
+  int32_t* out_lane;   // out [entries]: where an inserted vehicle was placed
   float* out_pos;
   float* out_speed;
 };

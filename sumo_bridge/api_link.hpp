@@ -90,7 +90,8 @@ class ApiLink final : public SumoLink {
     watched_.insert(id);
   }
   std::vector<std::pair<std::string, SumoVehicle>> watched() override {
-    const auto results = call("vehicle.getAllSubscriptionResults", [] { return Api::Vehicle::getAllSubscriptionResults(); });
+    const auto results =
+        call("vehicle.getAllSubscriptionResults", [] { return Api::Vehicle::getAllSubscriptionResults(); });
     std::vector<std::pair<std::string, SumoVehicle>> out;
     out.reserve(results.size());
     for (const auto& [id, values] : results) {

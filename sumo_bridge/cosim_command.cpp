@@ -54,7 +54,8 @@ int command_cosim(const std::vector<std::string>& args) {
   ConfigSpec config;
   Scenario sc = scenario_from_args(args, &config, CliCommand::Cosim);
   refuse_overwrites(sc, CliCommand::Cosim);
-  if (config.corridor_file.empty()) throw InputError("cosim needs --corridor <file> (the edges SUMO simulates)");
+  if (config.corridor_file.empty())
+    throw InputError("cosim needs --corridor <file> (the edges SUMO simulates)");
   const std::vector<uint8_t> corridor =
       corridor_lanes(sc.network, resolve_corridor(read_corridor_file(config.corridor_file), sc.network));
 
@@ -109,8 +110,8 @@ int command_cosim(const std::vector<std::string>& args) {
         co.sumo().mode() == SumoMode::Libsumo ? "libsumo" : cosim.sumo_binary.c_str(), r.period,
         static_cast<unsigned long long>(r.into_sumo), static_cast<unsigned long long>(r.out_of_sumo),
         static_cast<unsigned long long>(r.arrived_in_sumo), static_cast<unsigned long long>(r.held),
-        r.longest_boundary_wait,
-        static_cast<unsigned long long>(r.in_handover_at_end), r.sumo_seconds, r.handover_seconds);
+        r.longest_boundary_wait, static_cast<unsigned long long>(r.in_handover_at_end), r.sumo_seconds,
+        r.handover_seconds);
   }
   return signal != 0 ? 128 + signal : 0;
 }

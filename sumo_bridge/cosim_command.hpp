@@ -1,5 +1,6 @@
 #pragma once
-// `lpsim cosim`: a run of the scenario in which SUMO simulates the corridor's edges (sumo_bridge/cosimulation).
+// `lpsim cosim`: a run of the scenario in which SUMO simulates the corridor's edges
+// (sumo_bridge/cosimulation).
 #include <string>
 #include <vector>
 

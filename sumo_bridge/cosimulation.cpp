@@ -21,8 +21,8 @@ namespace {
 // The longest coupling period: vehicles cross the boundary once per period, so a longer one would let them
 // stand at the boundary for longer than a signal's cycle.
 constexpr int64_t kLongestPeriodMs = 60000;
-// A vehicle SUMO has not inserted for this long (s) after it was handed over is stuck for good: SUMO retries a
-// pending vehicle at the same place for ever, which would keep the run from ending.
+// A vehicle SUMO has not inserted for this long (s) after it was handed over is stuck for good: SUMO retries
+// a pending vehicle at the same place for ever, which would keep the run from ending.
 constexpr double kLongestPending = 3600;
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
@@ -34,7 +34,8 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 std::vector<uint8_t> corridor_lanes(const Network& net, const std::vector<uint32_t>& corridor_edges) {
   std::vector<uint8_t> lanes(net.num_lanes(), 0);
   for (const uint32_t e : corridor_edges)
-    for (uint32_t l = net.edge_first_lane[e]; l < net.edge_first_lane[e] + net.edge_num_lanes[e]; ++l) lanes[l] = 1;
+    for (uint32_t l = net.edge_first_lane[e]; l < net.edge_first_lane[e] + net.edge_num_lanes[e]; ++l)
+      lanes[l] = 1;
   return lanes;
 }
 
@@ -59,8 +60,8 @@ Cosimulation::Cosimulation(Run& run, const std::vector<uint8_t>& corridor_lanes,
   const OutputSpec& o = c.outputs;
   if (!o.edgedata.empty() || !o.lanedata.empty()) {
     mean_data_file_.path = (std::filesystem::temp_directory_path() /
-                       ("lpsim-cosim-" + std::to_string(::getpid()) + "-meandata.add.xml"))
-                          .string();
+                            ("lpsim-cosim-" + std::to_string(::getpid()) + "-meandata.add.xml"))
+                               .string();
     OutputFile add(mean_data_file_.path);
     add.text("<additional>\n");
     if (!o.edgedata.empty()) {
@@ -95,9 +96,11 @@ Cosimulation::Cosimulation(Run& run, const std::vector<uint8_t>& corridor_lanes,
   period_ms_ = std::lcm(lpsim_ms, sumo_step_ms_);
   if (period_ms_ > kLongestPeriodMs)
     throw InputError("SUMO's step length " + sumo_number(sumo_step) + " s and LPSim's " +
-                     sumo_number(static_cast<double>(lpsim_ms) / 1000.0) + " s have no common multiple up to " +
-                     sumo_number(kLongestPeriodMs / 1000.0) + " s to couple them at (the least is " +
-                     sumo_number(static_cast<double>(period_ms_) / 1000.0) + " s): give step lengths that divide one another");
+                     sumo_number(static_cast<double>(lpsim_ms) / 1000.0) +
+                     " s have no common multiple up to " + sumo_number(kLongestPeriodMs / 1000.0) +
+                     " s to couple them at (the least is " +
+                     sumo_number(static_cast<double>(period_ms_) / 1000.0) +
+                     " s): give step lengths that divide one another");
   report_.period = static_cast<double>(period_ms_) / 1000.0;
   const double sumo_begin = sumo_->time();
   if (std::fabs(sumo_begin - run_.simulation().time()) > 1e-6)
@@ -215,7 +218,8 @@ void Cosimulation::after_sumo_step() {
       if (!s.pending) continue;
       // SUMO drops a vehicle it will never insert (an error of its own above): that would lose it.
       if (!pending.count(id))
-        throw SumoError("SUMO dropped vehicle " + id + " instead of inserting it (SUMO's messages above say why)");
+        throw SumoError("SUMO dropped vehicle " + id +
+                        " instead of inserting it (SUMO's messages above say why)");
       if (now - s.since > kLongestPending)
         throw SumoError("SUMO has not inserted vehicle " + id + " for " + sumo_number(now - s.since) +
                         " s since LPSim handed it over: no room where it enters, for ever");
@@ -230,7 +234,8 @@ void Cosimulation::after_sumo_step() {
   order.reserve(running.size());
   for (size_t i = 0; i < running.size(); ++i) {
     const auto it = in_sumo_.find(running[i].first);
-    if (it == in_sumo_.end()) throw SumoError("SUMO reports vehicle " + running[i].first + ", which LPSim did not hand to it");
+    if (it == in_sumo_.end())
+      throw SumoError("SUMO reports vehicle " + running[i].first + ", which LPSim did not hand to it");
     order.emplace_back(it->second.vehicle, i);
   }
   std::sort(order.begin(), order.end());
@@ -253,8 +258,9 @@ void Cosimulation::after_sumo_step() {
     // speed (else LPSim's vehicles would follow them a period's distance behind where they are). One that
     // would pass the lane's end stands at it: the next lane is SUMO's too.
     const float ahead = static_cast<float>(q.pos + q.speed * report_.period);
-    mirror_.push_back(Simulation::OutsideVehicle{lane, std::min(ahead, net_.lane_length[static_cast<uint32_t>(lane)]),
-                                                 d.types.length[d.vehicle_type[v]], static_cast<float>(q.speed)});
+    mirror_.push_back(
+        Simulation::OutsideVehicle{lane, std::min(ahead, net_.lane_length[static_cast<uint32_t>(lane)]),
+                                   d.types.length[d.vehicle_type[v]], static_cast<float>(q.speed)});
   }
   sim.mirror_outside_vehicles(mirror_);
 }
@@ -262,7 +268,8 @@ void Cosimulation::after_sumo_step() {
 // LPSim keeps the lanes road vehicles use, so SUMO's lane index on an edge (which counts sidewalks and bike
 // lanes too) is found among them; -1 for a lane LPSim does not have.
 int32_t Cosimulation::lpsim_lane(uint32_t edge, int sumo_index) const {
-  for (uint32_t l = net_.edge_first_lane[edge]; l < net_.edge_first_lane[edge] + net_.edge_num_lanes[edge]; ++l)
+  for (uint32_t l = net_.edge_first_lane[edge]; l < net_.edge_first_lane[edge] + net_.edge_num_lanes[edge];
+       ++l)
     if (static_cast<int>(net_.lane_index[l]) == sumo_index) return static_cast<int32_t>(l);
   return -1;
 }
@@ -331,10 +338,11 @@ Cosimulation::Census Cosimulation::census() const {
   const uint64_t sumo_pending = sumo_->pending().size();
   if (sumo_running != c.in_sumo || sumo_pending != c.in_handover)
     fail("SUMO runs " + std::to_string(sumo_running) + " and has " + std::to_string(sumo_pending) +
-         " pending; the bridge counts " + std::to_string(c.in_sumo) + " and " + std::to_string(c.in_handover));
+         " pending; the bridge counts " + std::to_string(c.in_sumo) + " and " +
+         std::to_string(c.in_handover));
   if (c.in_lpsim + c.in_sumo + c.in_handover + c.arrived != c.loaded)
-    fail(std::to_string(c.loaded) + " loaded but " + std::to_string(c.in_lpsim + c.in_sumo + c.in_handover + c.arrived) +
-         " accounted for");
+    fail(std::to_string(c.loaded) + " loaded but " +
+         std::to_string(c.in_lpsim + c.in_sumo + c.in_handover + c.arrived) + " accounted for");
   return c;
 }
 

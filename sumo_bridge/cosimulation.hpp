@@ -2,10 +2,10 @@
 // The co-simulation: a Run of the whole scenario in which the corridor's lanes are driven by SUMO (a
 // SumoLink), vehicles handed across the boundary both ways. Each coupling period LPSim steps first; the
 // vehicles whose front reached a corridor lane (or whose trip starts on one) are added to SUMO where and as
-// fast as they were; SUMO then steps the same period; a SUMO vehicle that reached an edge outside the corridor
-// is taken back by LPSim (queued at that edge's lane starts with its speed) when LPSim has room there, else
-// held in SUMO; and SUMO's vehicles on corridor lanes are mirrored into LPSim's lane map, so that LPSim's
-// traffic queues behind them. A vehicle leaves one side only when the other holds it (SUMO's pending
+// fast as they were; SUMO then steps the same period; a SUMO vehicle that reached an edge outside the
+// corridor is taken back by LPSim (queued at that edge's lane starts with its speed) when LPSim has room
+// there, else held in SUMO; and SUMO's vehicles on corridor lanes are mirrored into LPSim's lane map, so that
+// LPSim's traffic queues behind them. A vehicle leaves one side only when the other holds it (SUMO's pending
 // vehicles stand in LPSim's lane map at their entry); every vehicle is at each moment in exactly one place.
 #include <cstdint>
 #include <memory>
@@ -66,7 +66,7 @@ class Cosimulation {
   Census census() const;
 
   struct Report {
-    double period = 0;               // s
+    double period = 0;  // s
     uint64_t into_sumo = 0, out_of_sumo = 0, arrived_in_sumo = 0;
     uint64_t held = 0;  // times a vehicle was held in SUMO because LPSim had no room to take it back
     double longest_boundary_wait = 0;  // s: pending in SUMO, or held at the corridor's exit
@@ -80,7 +80,7 @@ class Cosimulation {
  private:
   struct InSumo {
     uint32_t vehicle = 0;
-    uint32_t route_pos = 0;  // of the first edge of the route SUMO was given, in the trip's route
+    uint32_t route_pos = 0;   // of the first edge of the route SUMO was given, in the trip's route
     int32_t entry_lane = -1;  // LPSim lane it was added on (-1: departing there)
     float entry_pos = 0;
     bool pending = true, held = false;
@@ -106,13 +106,13 @@ class Cosimulation {
     ScratchFile& operator=(const ScratchFile&) = delete;
     ~ScratchFile();
   };
-  std::string sumo_tripinfo_;  // SUMO's tripinfo (merged into the run's at the end), before its prefix
+  std::string sumo_tripinfo_;     // SUMO's tripinfo (merged into the run's at the end), before its prefix
   ScratchFile scratch_tripinfo_;  // SUMO's tripinfo when the run writes none
   ScratchFile mean_data_file_;    // the additional file defining SUMO's side of edgeData/laneData outputs
   std::unique_ptr<SumoLink> sumo_;
   int64_t period_ms_ = 0, sumo_step_ms_ = 0;
   std::unordered_map<std::string, InSumo> in_sumo_;
-  std::unordered_set<std::string> removed_since_step_;  // SUMO may list a removal among the step's arrivals
+  std::unordered_set<std::string> removed_since_step_;   // SUMO may list a removal among the step's arrivals
   std::vector<uint8_t> visited_;                         // per vehicle: it has been in SUMO
   std::unordered_map<uint32_t, TripRecord> held_trips_;  // ended in LPSim after a visit: merged at finish()
   uint64_t arrived_in_sumo_ = 0;

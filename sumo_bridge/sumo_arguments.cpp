@@ -113,11 +113,11 @@ std::vector<std::string> cosim_sumo_arguments(const ConfigSpec& c, const std::st
   std::unordered_set<std::string> given;
   for (const std::string& a : user_args) {
     const std::string name = a.substr(0, a.find('='));
-    given.insert(name == "-n" ? "--net-file"
+    given.insert(name == "-n"   ? "--net-file"
                  : name == "-r" ? "--route-files"
                  : name == "-a" ? "--additional-files"
                  : name == "-b" ? "--begin"
-                 : name);
+                                : name);
   }
   for (const char* kept : {"--output-prefix", "--tripinfo-output", "--scale"})
     if (given.count(kept))
@@ -137,7 +137,8 @@ SumoDepart sumo_depart(const Demand& d, uint32_t v) {
   const auto pos_kind = static_cast<DepartPos>(d.depart_pos_kind[v]);
   out.pos = pos_kind == DepartPos::Given ? sumo_number(d.depart_pos[v]) : depart_pos_value(pos_kind);
   const auto speed_kind = static_cast<DepartSpeed>(d.depart_speed_kind[v]);
-  out.speed = speed_kind == DepartSpeed::Given ? sumo_number(d.depart_speed[v]) : depart_speed_value(speed_kind);
+  out.speed =
+      speed_kind == DepartSpeed::Given ? sumo_number(d.depart_speed[v]) : depart_speed_value(speed_kind);
   return out;
 }
 

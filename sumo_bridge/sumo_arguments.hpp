@@ -20,8 +20,8 @@ std::string sumo_number(double x);
 /// SUMO's options for a co-simulation of the scenario `config` describes: its network, its route files for
 /// their vTypes only (at --scale 0 SUMO keeps none of their vehicles), its additional files and
 /// `extra_additional`, begin, step length, seed, teleport and impatience times, the default car-following
-/// model, and outputs written as sumo_side_path() of LPSim's (tripinfo to `tripinfo`); then `user_args`, whose
-/// options replace those of the same name (an InputError for the ones the co-simulation depends on).
+/// model, and outputs written as sumo_side_path() of LPSim's (tripinfo to `tripinfo`); then `user_args`,
+/// whose options replace those of the same name (an InputError for the ones the co-simulation depends on).
 std::vector<std::string> cosim_sumo_arguments(const ConfigSpec& config, const std::string& tripinfo,
                                               const std::string& extra_additional,
                                               const std::vector<std::string>& user_args);

@@ -35,7 +35,8 @@ class InsertionQueues {
 
   /// The batch of this step: up to kMaxInsertPerEdge heads of each queue, edges ascending, with the route
   /// position each enters at (resume_rp[v] for a teleported vehicle, 0 for a departure) and the speed and
-  /// lane a re-entering vehicle asks for (resume_speed[v], resume_lane[v]). Its output arrays are sized for the backend to fill.
+  /// lane a re-entering vehicle asks for (resume_speed[v], resume_lane[v]). Its output arrays are sized for
+  /// the backend to fill.
   const InsertBatch& offer(const std::vector<uint32_t>& resume_rp, const std::vector<float>& resume_speed,
                            const std::vector<int32_t>& resume_lane);
   uint32_t offered_entries() const { return static_cast<uint32_t>(entry_.size()); }

@@ -78,7 +78,8 @@ void Simulation::take_back(uint32_t v, uint32_t route_pos, int32_t lane, float s
                                 std::to_string(route_pos));
   const uint32_t edge = d.route_edges[d.route_begin[v] + route_pos];
   if ((*opt_.outside_lanes)[net_.edge_first_lane[edge]])
-    throw std::invalid_argument("take_back: vehicle " + d.vehicle_id[v] + " re-enters on an edge driven outside");
+    throw std::invalid_argument("take_back: vehicle " + d.vehicle_id[v] +
+                                " re-enters on an edge driven outside");
   if (lane >= 0 && (static_cast<uint32_t>(lane) < net_.edge_first_lane[edge] ||
                     static_cast<uint32_t>(lane) >= net_.edge_first_lane[edge] + net_.edge_num_lanes[edge]))
     throw std::invalid_argument("take_back: vehicle " + d.vehicle_id[v] + " re-enters on lane " +

@@ -44,7 +44,8 @@ void TripLedger::handed_out(uint32_t v, const TripCounters& counters) {
   carried_[v] = counters;
 }
 
-void TripLedger::handed_back(uint32_t v, uint32_t rp, int32_t lane, float speed, const TripCounters& elsewhere) {
+void TripLedger::handed_back(uint32_t v, uint32_t rp, int32_t lane, float speed,
+                             const TripCounters& elsewhere) {
   status_[v] = kTeleporting;  // off the road, queued to re-enter
   resume_rp_[v] = rp;
   resume_speed_[v] = speed;

@@ -6,7 +6,6 @@
 // it (SUMO full: LPSim's vehicles wait at the boundary); routes may cross the corridor twice; SUMO killed
 // mid-run is one error with LPSim's outputs closed well-formed.
 #include "sumo_bridge/cosimulation.hpp"
-#include "sumo_bridge/sumo_arguments.hpp"
 
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -25,6 +24,7 @@
 #include "converters/sumo_tripinfo_reader.hpp"
 #include "converters/xml_stream.hpp"
 #include "lpsim_cli.hpp"
+#include "sumo_bridge/sumo_arguments.hpp"
 #include "sumo_schema.hpp"
 #include "temp_dir.hpp"
 
@@ -43,9 +43,9 @@ struct Outcome {
   Cosimulation::Report report;
   Cosimulation::Census last;
   uint64_t steps = 0, most_in_sumo = 0, most_in_handover = 0;
-  uint64_t lpsim_arrived = 0;                      // trips written by the run (merged ones included)
-  std::map<std::string, int> hand_ins;             // per vehicle id: times handed into SUMO
-  int steps_lpsim_queued_at_boundary = 0;          // steps with a standing LPSim vehicle on `watch_lane`'s end
+  uint64_t lpsim_arrived = 0;              // trips written by the run (merged ones included)
+  std::map<std::string, int> hand_ins;     // per vehicle id: times handed into SUMO
+  int steps_lpsim_queued_at_boundary = 0;  // steps with a standing LPSim vehicle on `watch_lane`'s end
   fs::path tripinfo, summary, fcd, edgedata;
 };
 
@@ -57,7 +57,7 @@ struct Case {
   SumoMode mode;
   std::vector<std::string> extra_args;  // lpsim options
   std::vector<std::string> sumo_args;
-  std::string watch_lane;  // an LPSim lane just before the corridor
+  std::string watch_lane;    // an LPSim lane just before the corridor
   int kill_sumo_after = -1;  // steps; over TraCI
 };
 
@@ -96,7 +96,8 @@ Outcome run_case(const Case& c, const test::TempDir& dir) {
   co_opt.answer_timeout_s = 30;
   Cosimulation co(run, lanes, co_opt);
   const Simulation& sim = run.simulation();
-  const float watch_length = watch >= 0 ? run.scenario().network.lane_length[static_cast<uint32_t>(watch)] : 0;
+  const float watch_length =
+      watch >= 0 ? run.scenario().network.lane_length[static_cast<uint32_t>(watch)] : 0;
   while (!co.done()) {
     if (c.kill_sumo_after >= 0 && o.steps == static_cast<uint64_t>(c.kill_sumo_after))
       ::kill(co.sumo().process_id(), SIGKILL);
@@ -145,8 +146,10 @@ void expect_valid(const fs::path& file, const std::string& xsd, const test::Temp
   if (std::system("xmllint --version > /dev/null 2>&1") != 0) GTEST_SKIP() << "xmllint not installed";
   const std::string schema = test::usable_sumo_schema(std::string(test::kSumoXsdDir) + "/" + xsd, dir);
   const fs::path log = fs::path(dir.path()) / (file.filename().string() + ".xmllint.log");
-  const std::string cmd = "xmllint --noout --schema " + schema + " " + file.string() + " > " + log.string() + " 2>&1";
-  EXPECT_EQ(std::system(cmd.c_str()), 0) << file << " fails " << xsd << ":\n" << read_all(log).substr(0, 2000);
+  const std::string cmd =
+      "xmllint --noout --schema " + schema + " " + file.string() + " > " + log.string() + " 2>&1";
+  EXPECT_EQ(std::system(cmd.c_str()), 0) << file << " fails " << xsd << ":\n"
+                                         << read_all(log).substr(0, 2000);
 }
 
 // One line per trip, each vehicle once, durations that are arrival - depart.
@@ -174,7 +177,8 @@ std::map<std::string, std::string> sampled_seconds(const fs::path& file) {
   std::map<std::string, std::string> out;
   XmlStream xml(file.string());
   for (XmlStream::Event e = xml.next(); e != XmlStream::Event::Eof; e = xml.next())
-    if (e == XmlStream::Event::Start && xml.name() == "edge") out[xml.required("id")] = xml.get("sampledSeconds", "");
+    if (e == XmlStream::Event::Start && xml.name() == "edge")
+      out[xml.required("id")] = xml.get("sampledSeconds", "");
   return out;
 }
 
@@ -205,10 +209,12 @@ TEST_P(GridCorridorTest, HandsVehiclesBothWaysLosesNoneAndWritesOneTripinfoLineP
   expect_valid(o.fcd, "fcd_file.xsd", dir);
   expect_valid(o.edgedata, "meandata_file.xsd", dir);
   // One edgeData: the corridor's edges as SUMO measured them, the others as LPSim did.
-  const auto merged = sampled_seconds(o.edgedata), sumo = sampled_seconds(sumo_side_path(o.edgedata.string()));
+  const auto merged = sampled_seconds(o.edgedata),
+             sumo = sampled_seconds(sumo_side_path(o.edgedata.string()));
   for (const std::string& e : kGridCorridor) EXPECT_EQ(merged.at(e), sumo.at(e)) << e;
   EXPECT_EQ(merged.size(), 80u);
-  for (const char* outside : {"A0A1", "E4D4", "B1B2"}) EXPECT_NE(merged.at(outside), sumo.count(outside) ? sumo.at(outside) : "") << outside;
+  for (const char* outside : {"A0A1", "E4D4", "B1B2"})
+    EXPECT_NE(merged.at(outside), sumo.count(outside) ? sumo.at(outside) : "") << outside;
   // SUMO's side, beside each.
   expect_valid(sumo_side_path(o.tripinfo.string()), "tripinfo_file.xsd", dir);
   expect_valid(sumo_side_path(o.fcd.string()), "fcd_file.xsd", dir);
@@ -216,7 +222,9 @@ TEST_P(GridCorridorTest, HandsVehiclesBothWaysLosesNoneAndWritesOneTripinfoLineP
 }
 
 INSTANTIATE_TEST_SUITE_P(Modes, GridCorridorTest, ::testing::Values(SumoMode::Libsumo, SumoMode::Traci),
-                         [](const auto& info) { return info.param == SumoMode::Libsumo ? "Libsumo" : "Traci"; });
+                         [](const auto& info) {
+                           return info.param == SumoMode::Libsumo ? "Libsumo" : "Traci";
+                         });
 
 TEST(CosimulationTest, InProcessAndOverTraciGiveTheSameTrips) {
   test::TempDir a("cosim_lib"), b("cosim_traci");
@@ -284,8 +292,10 @@ TEST(CosimulationTest, RoutesCrossingTheCorridorTwiceAreHandedOverTwice) {
       dir.path(), {"run", "-c", kGrid, "-r", routes, "--tripinfo-output", "alone.xml", "--no-step-log"});
   ASSERT_EQ(alone.exit_code, 0) << alone.err;
   std::map<std::string, double> length;
-  for (const SumoTripPiece& t : read_sumo_tripinfo((dir.path() / "alone.xml").string())) length[t.id] = t.route_length;
-  for (const SumoTripPiece& t : lines) EXPECT_NEAR(t.route_length, length.at(t.id), 0.02 * length.at(t.id)) << t.id;
+  for (const SumoTripPiece& t : read_sumo_tripinfo((dir.path() / "alone.xml").string()))
+    length[t.id] = t.route_length;
+  for (const SumoTripPiece& t : lines)
+    EXPECT_NEAR(t.route_length, length.at(t.id), 0.02 * length.at(t.id)) << t.id;
 }
 
 TEST(CosimulationTest, SumoStepsOfHalfLpsimsAreCoupledEverySecond) {
@@ -331,8 +341,8 @@ TEST(CosimulationCliTest, RunsWithACorridorFileAndRefusesUnknownEdgesWithFileAnd
   test::TempDir dir("cosim_cli");
   const std::string corridor = dir.write("corridor.txt", "edge:A2B2\nedge:B2C2\n");
   const test::CliResult ok = test::run_lpsim(
-      dir.path(), {"cosim", "-c", kGrid, "--corridor", corridor, "--tripinfo-output", "ti.xml", "--no-step-log",
-                   "--end", "400", "--sumo-args", "--no-warnings true"});
+      dir.path(), {"cosim", "-c", kGrid, "--corridor", corridor, "--tripinfo-output", "ti.xml",
+                   "--no-step-log", "--end", "400", "--sumo-args", "--no-warnings true"});
   EXPECT_EQ(ok.exit_code, 0) << ok.err;
   EXPECT_NE(ok.out.find("Handed into SUMO: "), std::string::npos) << ok.out;
   EXPECT_TRUE(fs::exists(fs::path(dir.path()) / "sumo.ti.xml"));

@@ -1,5 +1,6 @@
 // merge_meandata: LPSim's edgeData/laneData output with the corridor's entries replaced by SUMO's, interval
-// by interval; a corridor edge SUMO left out (nothing passed) is left out; an interval SUMO lacks is an error.
+// by interval; a corridor edge SUMO left out (nothing passed) is left out; an interval SUMO lacks is an
+// error.
 #include "converters/meandata_merge.hpp"
 
 #include <gtest/gtest.h>

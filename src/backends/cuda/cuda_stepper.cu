@@ -493,17 +493,18 @@ class CudaStepper final : public Stepper {
     LPSIM_CUDA_CHECK(cudaMemcpyAsync(in, staged, in_words * sizeof(uint32_t), cudaMemcpyHostToDevice));
     const size_t out_words = static_cast<size_t>(slots) + 3 * static_cast<size_t>(num_entries);
     uint32_t* out = batch_out_.get(out_words);
-    InsertBatch dev{slots,
-                    in,
-                    in + slots,
-                    in + 2 * slots + 1,
-                    in + 2 * slots + 1 + num_entries,
-                    reinterpret_cast<const float*>(in + 2 * slots + 1 + 2 * static_cast<size_t>(num_entries)),
-                    reinterpret_cast<const int32_t*>(in + 2 * slots + 1 + 3 * static_cast<size_t>(num_entries)),
-                    out,
-                    reinterpret_cast<int32_t*>(out + slots),
-                    reinterpret_cast<float*>(out + slots + num_entries),
-                    reinterpret_cast<float*>(out + slots + 2 * static_cast<size_t>(num_entries))};
+    InsertBatch dev{
+        slots,
+        in,
+        in + slots,
+        in + 2 * slots + 1,
+        in + 2 * slots + 1 + num_entries,
+        reinterpret_cast<const float*>(in + 2 * slots + 1 + 2 * static_cast<size_t>(num_entries)),
+        reinterpret_cast<const int32_t*>(in + 2 * slots + 1 + 3 * static_cast<size_t>(num_entries)),
+        out,
+        reinterpret_cast<int32_t*>(out + slots),
+        reinterpret_cast<float*>(out + slots + num_entries),
+        reinterpret_cast<float*>(out + slots + 2 * static_cast<size_t>(num_entries))};
     InsertParams params = p;
     params.cnt_departed = cnt_departed_;
     params.cnt_entered = dev_.cnt_entered;
