@@ -44,8 +44,7 @@ Prints a table per part; --map draws the parts.
 constexpr const char* kTrailer = R"(
 Options take SUMO's names and may also come from the .sumocfg (except -c, -o, --device,
 --max-lane-map-gb, --progress-interval, --jam-report*, --parts, --partition-*, --map, --corridor and
---sumo-*, which are
-LPSim's own). Other SUMO options:
+--sumo-*, which are LPSim's own). Other SUMO options:
 those that cannot change the results (verbose, log, gui-settings-file, ...) are ignored with a warning;
 those that could (scale, mesosim, ...) are refused unless set to SUMO's default. No output may be the
 same file as an input or another output.

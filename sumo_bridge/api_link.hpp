@@ -73,7 +73,10 @@ class ApiLink final : public SumoLink {
     return call("getPendingVehicles", [] { return Api::Simulation::getPendingVehicles(); });
   }
   std::vector<std::string> arrived() override {
-    return call("getArrivedIDList", [] { return Api::Simulation::getArrivedIDList(); });
+    std::vector<std::string> ids =
+        call("getArrivedIDList", [] { return Api::Simulation::getArrivedIDList(); });
+    for (const std::string& id : ids) watched_.erase(id);  // SUMO ends an arrived vehicle's subscription
+    return ids;
   }
   SumoVehicle vehicle(const std::string& id) override {
     return call("vehicle " + id, [&] {
@@ -86,10 +89,17 @@ class ApiLink final : public SumoLink {
     return call("getDepartedIDList", [] { return Api::Simulation::getDepartedIDList(); });
   }
   void watch(const std::string& id) override {
-    call("vehicle.subscribe " + id, [&] { Api::Vehicle::subscribe(id, kWatchedVariables); });
+    if (!Api::kReadsDirectly)
+      call("vehicle.subscribe " + id, [&] { Api::Vehicle::subscribe(id, kWatchedVariables); });
     watched_.insert(id);
   }
   std::vector<std::pair<std::string, SumoVehicle>> watched() override {
+    if (Api::kReadsDirectly) {
+      std::vector<std::pair<std::string, SumoVehicle>> out;
+      out.reserve(watched_.size());
+      for (const std::string& id : watched_) out.emplace_back(id, vehicle(id));
+      return out;
+    }
     const auto results =
         call("vehicle.getAllSubscriptionResults", [] { return Api::Vehicle::getAllSubscriptionResults(); });
     std::vector<std::pair<std::string, SumoVehicle>> out;
@@ -110,7 +120,8 @@ class ApiLink final : public SumoLink {
   }
   void remove(const std::string& id) override {
     // A removed vehicle that is still subscribed makes later steps fail (SUMO 1.15).
-    if (watched_.erase(id)) call("vehicle.unsubscribe " + id, [&] { Api::Vehicle::unsubscribe(id); });
+    if (watched_.erase(id) && !Api::kReadsDirectly)
+      call("vehicle.unsubscribe " + id, [&] { Api::Vehicle::unsubscribe(id); });
     call("vehicle.remove " + id, [&] { Api::Vehicle::remove(id); });
   }
   void restore_max_speed(const std::string& id, double max_speed) override {

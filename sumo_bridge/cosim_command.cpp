@@ -50,7 +50,9 @@ std::vector<std::string> split_sumo_args(const std::string& text) {
   return out;
 }
 
-int command_cosim(const std::vector<std::string>& args) {
+namespace {
+
+int run_cosim(const std::vector<std::string>& args) {
   ConfigSpec config;
   Scenario sc = scenario_from_args(args, &config, CliCommand::Cosim);
   refuse_overwrites(sc, CliCommand::Cosim);
@@ -114,6 +116,18 @@ int command_cosim(const std::vector<std::string>& args) {
         r.handover_seconds);
   }
   return signal != 0 ? 128 + signal : 0;
+}
+
+}  // namespace
+
+int command_cosim(const std::vector<std::string>& args) {
+  try {
+    return run_cosim(args);
+  } catch (const SumoError& e) {
+    // SUMO's fault (it did not start, died, refused a vehicle), not an internal error of LPSim's.
+    std::fprintf(stderr, "lpsim: error: %s\n", e.what());
+    return 1;
+  }
 }
 
 }  // namespace lpsim

@@ -18,6 +18,9 @@ struct LibsumoApi {
                        kLanePosition = libsumo::VAR_LANEPOSITION, kSpeed = libsumo::VAR_SPEED,
                        kRouteIndex = libsumo::VAR_ROUTE_INDEX;
   static constexpr SumoMode kMode = SumoMode::Libsumo;
+  // In process a getter is a function call: reading the watched vehicles one by one is cheaper than the
+  // result maps a subscription builds for each of them every step.
+  static constexpr bool kReadsDirectly = true;
 };
 }  // namespace
 

@@ -60,8 +60,8 @@ class SumoLink {
   virtual SumoVehicle vehicle(const std::string& id) = 0;
   /// Vehicles inserted in SUMO's last step.
   virtual std::vector<std::string> departed() = 0;
-  /// From now on, where the running vehicle `id` is comes with every step (a subscription): watched() reads
-  /// all of them in one call. Until it arrives or is removed.
+  /// From now on watched() reports where the running vehicle `id` is, until it arrives or is removed (over
+  /// TraCI a subscription, so that one call per step reads them all; in process, getters).
   virtual void watch(const std::string& id) = 0;
   /// Where every watched vehicle is after SUMO's last step, by id.
   virtual std::vector<std::pair<std::string, SumoVehicle>> watched() = 0;

@@ -22,6 +22,8 @@ struct TraciApi {
                        kLanePosition = libsumo::VAR_LANEPOSITION, kSpeed = libsumo::VAR_SPEED,
                        kRouteIndex = libsumo::VAR_ROUTE_INDEX;
   static constexpr SumoMode kMode = SumoMode::Traci;
+  // Over a socket every call is a round trip: one subscription read per step serves every vehicle.
+  static constexpr bool kReadsDirectly = false;
 };
 
 // How long SUMO may take to load its network and open its port (a region's network takes seconds).

@@ -152,6 +152,18 @@ void expect_valid(const fs::path& file, const std::string& xsd, const test::Temp
                                          << read_all(log).substr(0, 2000);
 }
 
+// Every output of both sides, against SUMO's schemas.
+void expect_outputs_valid(const Outcome& o, const test::TempDir& dir) {
+  expect_valid(o.tripinfo, "tripinfo_file.xsd", dir);
+  expect_valid(o.summary, "summary_file.xsd", dir);
+  expect_valid(o.fcd, "fcd_file.xsd", dir);
+  expect_valid(o.edgedata, "meandata_file.xsd", dir);
+  expect_valid(sumo_side_path(o.tripinfo.string()), "tripinfo_file.xsd", dir);
+  expect_valid(sumo_side_path(o.summary.string()), "summary_file.xsd", dir);
+  expect_valid(sumo_side_path(o.fcd.string()), "fcd_file.xsd", dir);
+  expect_valid(sumo_side_path(o.edgedata.string()), "meandata_file.xsd", dir);
+}
+
 // One line per trip, each vehicle once, durations that are arrival - depart.
 std::vector<SumoTripPiece> expect_one_line_per_trip(const fs::path& tripinfo, uint64_t trips) {
   const std::vector<SumoTripPiece> lines = read_sumo_tripinfo(tripinfo.string());
@@ -204,10 +216,7 @@ TEST_P(GridCorridorTest, HandsVehiclesBothWaysLosesNoneAndWritesOneTripinfoLineP
   double length = 0;
   for (const SumoTripPiece& t : lines) length += t.route_length;
   EXPECT_NEAR(length / 1000.0, reference_value(kGrid, "sumo_mean_route_length_m"), 10.0);
-  expect_valid(o.tripinfo, "tripinfo_file.xsd", dir);
-  expect_valid(o.summary, "summary_file.xsd", dir);
-  expect_valid(o.fcd, "fcd_file.xsd", dir);
-  expect_valid(o.edgedata, "meandata_file.xsd", dir);
+  expect_outputs_valid(o, dir);
   // One edgeData: the corridor's edges as SUMO measured them, the others as LPSim did.
   const auto merged = sampled_seconds(o.edgedata),
              sumo = sampled_seconds(sumo_side_path(o.edgedata.string()));
@@ -215,10 +224,6 @@ TEST_P(GridCorridorTest, HandsVehiclesBothWaysLosesNoneAndWritesOneTripinfoLineP
   EXPECT_EQ(merged.size(), 80u);
   for (const char* outside : {"A0A1", "E4D4", "B1B2"})
     EXPECT_NE(merged.at(outside), sumo.count(outside) ? sumo.at(outside) : "") << outside;
-  // SUMO's side, beside each.
-  expect_valid(sumo_side_path(o.tripinfo.string()), "tripinfo_file.xsd", dir);
-  expect_valid(sumo_side_path(o.fcd.string()), "fcd_file.xsd", dir);
-  expect_valid(sumo_side_path(o.edgedata.string()), "meandata_file.xsd", dir);
 }
 
 INSTANTIATE_TEST_SUITE_P(Modes, GridCorridorTest, ::testing::Values(SumoMode::Libsumo, SumoMode::Traci),
@@ -245,7 +250,7 @@ TEST(CosimulationTest, QueueDownstreamInLpsimHoldsVehiclesInSumo) {
   EXPECT_GT(o.report.longest_boundary_wait, 20.0);
   EXPECT_GT(o.most_in_sumo, 30u);  // the queue reached back into SUMO's BC
   expect_one_line_per_trip(o.tripinfo, 150);
-  expect_valid(o.tripinfo, "tripinfo_file.xsd", dir);
+  expect_outputs_valid(o, dir);
 }
 
 TEST(CosimulationTest, QueueInSumoSpillsBackIntoLpsim) {
@@ -264,6 +269,7 @@ TEST(CosimulationTest, QueueInSumoSpillsBackIntoLpsim) {
   // The light and its queue are SUMO's: the trips take about as long as in SUMO alone.
   EXPECT_NEAR(mean_duration(lines), reference_value(kLine, "sumo_mean_duration_s"),
               0.10 * reference_value(kLine, "sumo_mean_duration_s"));
+  expect_outputs_valid(o, dir);
 }
 
 TEST(CosimulationTest, RoutesCrossingTheCorridorTwiceAreHandedOverTwice) {
@@ -286,6 +292,7 @@ TEST(CosimulationTest, RoutesCrossingTheCorridorTwiceAreHandedOverTwice) {
     twice += n == 2;
   }
   EXPECT_EQ(twice, 40);
+  expect_outputs_valid(o, dir);
   const std::vector<SumoTripPiece> lines = expect_one_line_per_trip(o.tripinfo, o.last.loaded);
   // Each trip's length is its whole route's, as LPSim alone measures it: the pieces add up.
   const test::CliResult alone = test::run_lpsim(
@@ -306,6 +313,7 @@ TEST(CosimulationTest, SumoStepsOfHalfLpsimsAreCoupledEverySecond) {
   EXPECT_DOUBLE_EQ(o.report.period, 1.0);
   EXPECT_EQ(o.last.arrived, 150u);
   expect_one_line_per_trip(o.tripinfo, 150);
+  expect_outputs_valid(o, dir);
 }
 
 TEST(CosimulationTest, StepLengthsWithoutAShortCommonMultipleAreRefused) {
