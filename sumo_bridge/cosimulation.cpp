@@ -56,7 +56,8 @@ Cosimulation::Cosimulation(Run& run, const std::vector<uint8_t>& corridor_lanes,
     scratch_tripinfo_.path = sumo_side_path(sumo_tripinfo_);
   }
   // SUMO's --edgedata-output counts from time 0 whatever the begin time (SUMO 1.15): definitions in an
-  // additional file span the run, as LPSim's intervals do.
+  // additional file span the run, as LPSim's intervals do. SUMO resolves their file names against the
+  // additional file's folder: absolute ones land where LPSim's are.
   const OutputSpec& o = c.outputs;
   if (!o.edgedata.empty() || !o.lanedata.empty()) {
     mean_data_file_.path = (std::filesystem::temp_directory_path() /
@@ -66,12 +67,12 @@ Cosimulation::Cosimulation(Run& run, const std::vector<uint8_t>& corridor_lanes,
     add.text("<additional>\n");
     if (!o.edgedata.empty()) {
       add.text("    <edgeData id=\"edgedata\"");
-      add.attr("file", o.edgedata);
+      add.attr("file", std::filesystem::absolute(o.edgedata).string());
       add.text("/>\n");
     }
     if (!o.lanedata.empty()) {
       add.text("    <laneData id=\"lanedata\"");
-      add.attr("file", o.lanedata);
+      add.attr("file", std::filesystem::absolute(o.lanedata).string());
       add.text("/>\n");
     }
     add.text("</additional>\n");

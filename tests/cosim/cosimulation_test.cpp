@@ -348,12 +348,15 @@ TEST(CosimulationTest, SumoKilledMidRunIsOneErrorAndLpsimsOutputsEndWellFormed) 
 TEST(CosimulationCliTest, RunsWithACorridorFileAndRefusesUnknownEdgesWithFileAndLine) {
   test::TempDir dir("cosim_cli");
   const std::string corridor = dir.write("corridor.txt", "edge:A2B2\nedge:B2C2\n");
-  const test::CliResult ok = test::run_lpsim(
-      dir.path(), {"cosim", "-c", kGrid, "--corridor", corridor, "--tripinfo-output", "ti.xml",
-                   "--no-step-log", "--end", "400", "--sumo-args", "--no-warnings true"});
+  const test::CliResult ok =
+      test::run_lpsim(dir.path(), {"cosim", "-c", kGrid, "--corridor", corridor, "--tripinfo-output",
+                                   "ti.xml", "--edgedata-output", "ed.xml", "--no-step-log", "--end", "400",
+                                   "--sumo-args", "--no-warnings true"});
   EXPECT_EQ(ok.exit_code, 0) << ok.err;
   EXPECT_NE(ok.out.find("Handed into SUMO: "), std::string::npos) << ok.out;
-  EXPECT_TRUE(fs::exists(fs::path(dir.path()) / "sumo.ti.xml"));
+  // Outputs named relative to the working folder: SUMO's side lands beside LPSim's.
+  for (const char* f : {"ti.xml", "sumo.ti.xml", "ed.xml", "sumo.ed.xml"})
+    EXPECT_TRUE(fs::exists(fs::path(dir.path()) / f)) << f;
   const std::string bad = dir.write("bad.txt", "edge:A2B2\nedge:nowhere\n");
   const test::CliResult r =
       test::run_lpsim(dir.path(), {"cosim", "-c", kGrid, "--corridor", bad, "--tripinfo-output", "t2.xml"});
