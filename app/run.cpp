@@ -5,6 +5,8 @@
 #include <string>
 #include <utility>
 
+#include "app/interrupt.hpp"
+
 namespace lpsim {
 
 namespace {
@@ -259,6 +261,13 @@ void print_run_report(std::FILE* out, const Run& run, double wall, double load_s
         static_cast<unsigned long long>(totals.trips), totals.route_length / n, totals.duration / n,
         totals.waiting / n, totals.time_loss / n, totals.depart_delay / n);
   }
+}
+
+void report_run_end(const Run& run, double wall_seconds, double load_seconds, int signal) {
+  if (signal != 0)
+    std::fprintf(stderr, "lpsim: interrupted by %s at time %.2f; outputs closed\n", signal_name(signal),
+                 run.end_time());
+  print_run_report(stdout, run, wall_seconds, load_seconds, signal != 0 ? signal_name(signal) : nullptr);
 }
 
 }  // namespace lpsim

@@ -129,5 +129,8 @@ class Run {
 /// averages. `interrupted_by` names the signal that stopped the run early, if one did (nullptr: none).
 void print_run_report(std::FILE* out, const Run& run, double wall_seconds, double load_seconds,
                       const char* interrupted_by = nullptr);
+/// How a command ends a run it stepped to its end or until `signal` (0: none) stopped it: one line on stderr
+/// for the signal, then the report on stdout.
+void report_run_end(const Run& run, double wall_seconds, double load_seconds, int signal);
 
 }  // namespace lpsim

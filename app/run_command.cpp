@@ -105,10 +105,7 @@ int command_run(const std::vector<std::string>& args) {
     const double wall = std::chrono::duration<double>(Clock::now() - wall0).count();
     progress.end_line();
     signal = interrupt.received();
-    if (signal != 0)
-      std::fprintf(stderr, "lpsim: interrupted by %s at time %.2f; outputs closed\n", signal_name(signal),
-                   run.end_time());
-    print_run_report(stdout, run, wall, load_seconds, signal != 0 ? signal_name(signal) : nullptr);
+    report_run_end(run, wall, load_seconds, signal);
   } catch (const std::exception&) {
     // Part 0's error names another part's failure when that is what stopped it (the transport's error).
     if (others) others->finish(true);

@@ -97,10 +97,7 @@ int run_cosim(const std::vector<std::string>& args) {
     const double wall = std::chrono::duration<double>(Clock::now() - wall0).count();
     progress.end_line();
     signal = interrupt.received();
-    if (signal != 0)
-      std::fprintf(stderr, "lpsim: interrupted by %s at time %.2f; outputs closed\n", signal_name(signal),
-                   run.end_time());
-    print_run_report(stdout, run, wall, load_seconds, signal != 0 ? signal_name(signal) : nullptr);
+    report_run_end(run, wall, load_seconds, signal);
     const Cosimulation::Report& r = co.report();
     std::printf(
         "Co-simulation (SUMO %s, %s, coupling period %.3gs):\n"
