@@ -28,4 +28,18 @@ std::vector<uint32_t> resolve_corridor(const CorridorSpec& spec, const Network& 
   return edges;
 }
 
+std::vector<uint32_t> close_corridor(const std::vector<uint32_t>& edges, const Network& net) {
+  std::vector<uint8_t> junction(net.num_junctions(), 0);
+  for (const uint32_t e : edges)
+    if (net.edge_to_junction[e] >= 0) junction[static_cast<uint32_t>(net.edge_to_junction[e])] = 1;
+  std::vector<uint32_t> closed = edges;
+  for (uint32_t e = 0; e < net.num_edges(); ++e)
+    if (!net.edge_is_internal[e] && net.edge_to_junction[e] >= 0 &&
+        junction[static_cast<uint32_t>(net.edge_to_junction[e])])
+      closed.push_back(e);
+  std::sort(closed.begin(), closed.end());
+  closed.erase(std::unique(closed.begin(), closed.end()), closed.end());
+  return closed;
+}
+
 }  // namespace lpsim

@@ -58,8 +58,16 @@ int run_cosim(const std::vector<std::string>& args) {
   refuse_overwrites(sc, CliCommand::Cosim);
   if (config.corridor_file.empty())
     throw InputError("cosim needs --corridor <file> (the edges SUMO simulates)");
-  const std::vector<uint8_t> corridor =
-      corridor_lanes(sc.network, resolve_corridor(read_corridor_file(config.corridor_file), sc.network));
+  const std::vector<uint32_t> selected =
+      resolve_corridor(read_corridor_file(config.corridor_file), sc.network);
+  const std::vector<uint32_t> edges = close_corridor(selected, sc.network);
+  if (edges.size() > selected.size())
+    std::fprintf(
+        stderr,
+        "lpsim: corridor: %zu edges selected, %zu more taken in so that SUMO drives every approach of the "
+        "junctions they lead to\n",
+        selected.size(), edges.size() - selected.size());
+  const std::vector<uint8_t> corridor = corridor_lanes(sc.network, edges);
 
   CosimOptions cosim;
   cosim.mode = config.sumo_binary.empty() ? SumoMode::Libsumo : SumoMode::Traci;

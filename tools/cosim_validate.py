@@ -8,8 +8,9 @@ the corridor edges' mean speeds (Pearson r against SUMO alone), CPU time, and th
 
 The corridor is chosen from the network alone: the normal edges whose midpoints lie nearest the middle of
 the network's bounding box, --corridor-share of them (a compact district, as a modeller would select in
-sumo-gui). It is written as DIR/<name>/corridor.txt (a sumo-gui selection file) and the share of SUMO
-alone's vehicle-seconds on it is reported. Every run happens in its own mirror of the scenario folder
+sumo-gui), closed over their junctions as `lpsim cosim` closes it (every road into a junction they lead
+to). It is written as DIR/<name>/corridor.txt (a sumo-gui selection file) and the share of SUMO alone's
+vehicle-seconds on it is reported. Every run happens in its own mirror of the scenario folder
 (tools/validation/runner.py). Prints a markdown table and writes DIR/results.json.
 """
 import argparse
@@ -54,7 +55,11 @@ def choose_corridor(net_file, share):
 
     edges.sort(key=lambda e: (distance(e), e.getID()))
     count = max(1, int(round(share * len(edges))))
-    return [e.getID() for e in edges[:count]], len(edges)
+    chosen = edges[:count]
+    # Closed over its junctions, as lpsim cosim takes it: every road into a junction a chosen road leads to.
+    junctions = {e.getToNode().getID() for e in chosen}
+    closed = {e.getID() for e in chosen} | {e.getID() for e in edges if e.getToNode().getID() in junctions}
+    return sorted(closed), len(edges)
 
 
 def cfg_net_file(cfg):

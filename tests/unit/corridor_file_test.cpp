@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <string>
 
@@ -87,6 +88,22 @@ TEST_F(CorridorFileTest, RefusesWhatIsNotACorridorWithFileAndLine) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("missing.txt: cannot open corridor file"), std::string::npos);
   }
+}
+
+// Closed over its junctions: every road into a junction the corridor leads to joins it, nothing else.
+TEST_F(CorridorFileTest, ClosingTakesInEveryApproachOfTheCorridorsJunctions) {
+  const Network& net = grid().network;
+  const std::vector<uint32_t> edges =
+      resolve_corridor(read_corridor_file(file("edge:A2B2\nedge:B2C2\n")), net);
+  const std::vector<uint32_t> closed = close_corridor(edges, net);
+  std::vector<std::string> ids;
+  for (const uint32_t e : closed) ids.push_back(net.edge_id[e]);
+  std::sort(ids.begin(), ids.end());
+  // The roads into B2 and into C2: from each of their four neighbours.
+  EXPECT_EQ(ids, (std::vector<std::string>{"A2B2", "B1B2", "B2C2", "B3B2", "C1C2", "C2B2", "C3C2", "D2C2"}))
+      << ::testing::PrintToString(ids);
+  EXPECT_TRUE(std::is_sorted(closed.begin(), closed.end()));
+  EXPECT_EQ(close_corridor(closed, net), closed);  // closed already
 }
 
 }  // namespace
