@@ -13,6 +13,10 @@
 #include <utility>
 #include <vector>
 
+// The client libraries' shared types: results and variable codes are libsumo's in both.
+#include <libsumo/TraCIConstants.h>
+#include <libsumo/TraCIDefs.h>
+
 #include "sumo_bridge/sumo_link.hpp"
 #include "sumo_bridge/sumo_start.hpp"
 
@@ -108,11 +112,11 @@ class ApiLink final : public SumoLink {
       SumoVehicle v;
       for (const auto& [variable, value] : values) {
         if (!value) continue;
-        if (variable == Api::kRoadId) v.edge = value->getString();
-        if (variable == Api::kLaneIndex) v.lane = as_int(*value);
-        if (variable == Api::kLanePosition) v.pos = as_double(*value);
-        if (variable == Api::kSpeed) v.speed = as_double(*value);
-        if (variable == Api::kRouteIndex) v.route_index = as_int(*value);
+        if (variable == libsumo::VAR_ROAD_ID) v.edge = value->getString();
+        if (variable == libsumo::VAR_LANE_INDEX) v.lane = as_int(*value);
+        if (variable == libsumo::VAR_LANEPOSITION) v.pos = as_double(*value);
+        if (variable == libsumo::VAR_SPEED) v.speed = as_double(*value);
+        if (variable == libsumo::VAR_ROUTE_INDEX) v.route_index = as_int(*value);
       }
       out.emplace_back(id, std::move(v));
     }
@@ -176,17 +180,18 @@ class ApiLink final : public SumoLink {
     return false;
   }
 
-  static int as_int(const typename Api::Result& r) {
-    const auto* i = dynamic_cast<const typename Api::IntResult*>(&r);
+  static int as_int(const libsumo::TraCIResult& r) {
+    const auto* i = dynamic_cast<const libsumo::TraCIInt*>(&r);
     return i != nullptr ? i->value : std::stoi(r.getString());
   }
-  static double as_double(const typename Api::Result& r) {
-    const auto* d = dynamic_cast<const typename Api::DoubleResult*>(&r);
+  static double as_double(const libsumo::TraCIResult& r) {
+    const auto* d = dynamic_cast<const libsumo::TraCIDouble*>(&r);
     return d != nullptr ? d->value : std::stod(r.getString());
   }
 
-  inline static const std::vector<int> kWatchedVariables{Api::kRoadId, Api::kLaneIndex, Api::kLanePosition,
-                                                         Api::kSpeed, Api::kRouteIndex};
+  inline static const std::vector<int> kWatchedVariables{libsumo::VAR_ROAD_ID, libsumo::VAR_LANE_INDEX,
+                                                         libsumo::VAR_LANEPOSITION, libsumo::VAR_SPEED,
+                                                         libsumo::VAR_ROUTE_INDEX};
 
   // Slower than this, a vehicle handed in enters standing.
   static constexpr double kLeastCappedSpeed = 0.1;

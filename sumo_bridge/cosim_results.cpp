@@ -92,7 +92,7 @@ void Cosimulation::merge_tripinfo() {
 void Cosimulation::merge_edge_data() const {
   std::unordered_set<std::string> corridor;
   for (uint32_t e = 0; e < net_.num_edges(); ++e)
-    if (net_.edge_num_lanes[e] > 0 && corridor_[net_.edge_first_lane[e]]) corridor.insert(net_.edge_id[e]);
+    if (corridor_edge(e)) corridor.insert(net_.edge_id[e]);
   std::vector<std::string> files{run_.config().outputs.edgedata, run_.config().outputs.lanedata};
   for (const MeanDataSpec& m : run_.scenario().mean_data) files.push_back(m.file);
   for (const std::string& f : files)

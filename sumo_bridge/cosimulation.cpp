@@ -249,7 +249,7 @@ void Cosimulation::after_sumo_step() {
     if (e == net_.edge_index.end())
       throw SumoError("SUMO has vehicle " + id + " on edge " + q.edge + ", not in LPSim's network");
     const uint32_t edge = e->second;
-    if (net_.edge_num_lanes[edge] == 0 || !corridor_[net_.edge_first_lane[edge]]) {
+    if (!corridor_edge(edge)) {
       take_back_or_hold(id, s, edge, q);
       continue;
     }
@@ -264,6 +264,10 @@ void Cosimulation::after_sumo_step() {
                                    d.types.length[d.vehicle_type[v]], static_cast<float>(q.speed)});
   }
   sim.mirror_outside_vehicles(mirror_);
+}
+
+bool Cosimulation::corridor_edge(uint32_t e) const {
+  return net_.edge_num_lanes[e] > 0 && corridor_[net_.edge_first_lane[e]];
 }
 
 // LPSim keeps the lanes road vehicles use, so SUMO's lane index on an edge (which counts sidewalks and bike
@@ -299,10 +303,10 @@ void Cosimulation::take_back_or_hold(const std::string& id, InSumo& s, uint32_t 
     return;
   }
   if (s.held) report_.longest_boundary_wait = std::max(report_.longest_boundary_wait, now - s.since);
-  // SUMO measured its piece of the trip: its tripinfo has it (merged at the end), not these counters.
+  // Its piece of the trip in SUMO is in SUMO's tripinfo (merged at the end).
   // On the lane SUMO chose for its route (SUMO's own lane-change model got it there), or any best lane
   // where LPSim does not have that lane.
-  sim.take_back(s.vehicle, rp, lpsim_lane(edge, q.lane), static_cast<float>(q.speed), TripCounters{});
+  sim.take_back(s.vehicle, rp, lpsim_lane(edge, q.lane), static_cast<float>(q.speed));
   sumo_->remove(id);
   removed_since_step_.insert(id);
   in_sumo_.erase(id);

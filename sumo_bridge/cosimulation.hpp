@@ -89,6 +89,7 @@ class Cosimulation {
 
   void hand_into_sumo(const Simulation::HandOut& h);
   void after_sumo_step();
+  bool corridor_edge(uint32_t e) const;
   int32_t lpsim_lane(uint32_t edge, int sumo_index) const;
   void take_back_or_hold(const std::string& id, InSumo& s, uint32_t edge, const SumoVehicle& q);
   void merge_tripinfo();

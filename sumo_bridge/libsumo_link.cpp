@@ -10,13 +10,6 @@ struct LibsumoApi {
   using Simulation = libsumo::Simulation;
   using Vehicle = libsumo::Vehicle;
   using Route = libsumo::Route;
-  // Both client libraries share libsumo's result types and variable codes.
-  using Result = libsumo::TraCIResult;
-  using IntResult = libsumo::TraCIInt;
-  using DoubleResult = libsumo::TraCIDouble;
-  static constexpr int kRoadId = libsumo::VAR_ROAD_ID, kLaneIndex = libsumo::VAR_LANE_INDEX,
-                       kLanePosition = libsumo::VAR_LANEPOSITION, kSpeed = libsumo::VAR_SPEED,
-                       kRouteIndex = libsumo::VAR_ROUTE_INDEX;
   static constexpr SumoMode kMode = SumoMode::Libsumo;
   // In process a getter is a function call: reading the watched vehicles one by one is cheaper than the
   // result maps a subscription builds for each of them every step.

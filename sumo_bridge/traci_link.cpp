@@ -14,13 +14,6 @@ struct TraciApi {
   using Simulation = libtraci::Simulation;
   using Vehicle = libtraci::Vehicle;
   using Route = libtraci::Route;
-  // Both client libraries share libsumo's result types and variable codes.
-  using Result = libsumo::TraCIResult;
-  using IntResult = libsumo::TraCIInt;
-  using DoubleResult = libsumo::TraCIDouble;
-  static constexpr int kRoadId = libsumo::VAR_ROAD_ID, kLaneIndex = libsumo::VAR_LANE_INDEX,
-                       kLanePosition = libsumo::VAR_LANEPOSITION, kSpeed = libsumo::VAR_SPEED,
-                       kRouteIndex = libsumo::VAR_ROUTE_INDEX;
   static constexpr SumoMode kMode = SumoMode::Traci;
   // Over a socket every call is a round trip: one subscription read per step serves every vehicle.
   static constexpr bool kReadsDirectly = false;

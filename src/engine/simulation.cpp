@@ -294,10 +294,9 @@ void Simulation::handle_vehicle_ends(std::vector<VehicleEnd>& ends) {
     }
     moves_.push_back(TeleportMove{v, e.slot, 0});
     const uint32_t edge = d.route_edges[d.route_begin[v] + e.route_pos + 1];
-    if (opt_.outside_lanes && (*opt_.outside_lanes)[net_.edge_first_lane[edge]]) {
+    if (outside_edge(edge)) {
       // Its next edge is driven elsewhere: it re-enters there, in the other simulator.
-      ledger_.handed_out(v, TripCounters{e.route_length, e.time_loss, e.waiting_steps, e.waiting_count,
-                                         e.next_stop, e.stop_steps});
+      ledger_.handed_out(v, trip_counters(e));
       departing_outside_.push_back(HandOut{v, -1, 0, 0, e.route_pos + 1});
       ++handed_out_;
       continue;
@@ -338,7 +337,7 @@ void Simulation::enqueue(uint32_t v) {
   }
   const uint32_t edge = d.route_edges[d.route_begin[v]];
   if (parts_ && parts_->plan.edge_owner[edge] != parts_->plan.part) return;  // another part inserts it
-  if (opt_.outside_lanes && (*opt_.outside_lanes)[net_.edge_first_lane[edge]]) {
+  if (outside_edge(edge)) {
     TripCounters none;
     none.next_stop = d.stops.first(v);
     ledger_.handed_out(v, none);  // its trip starts in the other simulator

@@ -168,15 +168,14 @@ class Simulation {
     float pos = 0, length = 0, speed = 0;  // front position, m
   };
   void mirror_outside_vehicles(const std::vector<OutsideVehicle>& vehicles);
-  /// Vehicles handed out so far, and taken back.
+  /// Vehicles handed out so far.
   uint64_t handed_out() const { return handed_out_; }
-  uint64_t taken_back() const { return taken_back_; }
   /// A handed-out vehicle v comes back at route position `route_pos` (an edge this simulation drives): it
   /// queues there to re-enter at the start of `lane` (one of the edge's; -1: its best free lane, as a
-  /// teleported vehicle does), at up to `speed`, carrying its counters plus `elsewhere` (what the other
-  /// simulator measured). std::invalid_argument, naming it, when it was not handed out, the edge is driven
-  /// outside or the lane is not the edge's.
-  void take_back(uint32_t v, uint32_t route_pos, int32_t lane, float speed, const TripCounters& elsewhere);
+  /// teleported vehicle does), at up to `speed`, carrying the counters it left with (the other simulator
+  /// reports its piece of the trip itself). std::invalid_argument, naming it, when it was not handed out,
+  /// the edge is driven outside or the lane is not the edge's.
+  void take_back(uint32_t v, uint32_t route_pos, int32_t lane, float speed);
   /// Whether edge `edge` takes one more vehicle back now: fewer are queued to enter there than it has lanes
   /// (the insertion then finds room at a lane start, or the queue holds the next one in the other simulator).
   bool has_entry_room(uint32_t edge) const;
@@ -206,6 +205,7 @@ class Simulation {
   void apply_remote_footprints(int map, const std::vector<FootprintWrite>& writes);
   void forget_remote_footprints(int map);
   void hand_out_vehicles();
+  bool outside_edge(uint32_t edge) const;  // driven by the other simulator
   void write_outside_footprints(int map);
   void share_claims();
   void exchange_vehicles();
@@ -271,7 +271,7 @@ class Simulation {
   std::vector<FootprintWrite> outside_footprints_[2];
   std::vector<FootprintWrite> mirror_;  // mirror_outside_vehicles(): written into each map the steps write
   std::vector<HandOut> hand_outs_;
-  uint64_t handed_out_ = 0, taken_back_ = 0;
+  uint64_t handed_out_ = 0;
   uint32_t handed_out_last_step_ = 0;
 
   std::unique_ptr<Stepper> stepper_;  // last: made from the members above, gone before them

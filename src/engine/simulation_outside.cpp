@@ -66,8 +66,12 @@ void Simulation::hand_out_vehicles() {
             [](const HandOut& a, const HandOut& b) { return a.vehicle < b.vehicle; });
 }
 
-void Simulation::take_back(uint32_t v, uint32_t route_pos, int32_t lane, float speed,
-                           const TripCounters& elsewhere) {
+bool Simulation::outside_edge(uint32_t edge) const {
+  return opt_.outside_lanes && net_.edge_num_lanes[edge] > 0 &&
+         (*opt_.outside_lanes)[net_.edge_first_lane[edge]];
+}
+
+void Simulation::take_back(uint32_t v, uint32_t route_pos, int32_t lane, float speed) {
   if (!opt_.outside_lanes) throw std::logic_error("take_back() without outside lanes");
   const Demand& d = trips_.demand();
   if (v >= d.size() || ledger_.status(v) != kMigrated)
@@ -77,16 +81,15 @@ void Simulation::take_back(uint32_t v, uint32_t route_pos, int32_t lane, float s
     throw std::invalid_argument("take_back: vehicle " + d.vehicle_id[v] + " has no route edge " +
                                 std::to_string(route_pos));
   const uint32_t edge = d.route_edges[d.route_begin[v] + route_pos];
-  if ((*opt_.outside_lanes)[net_.edge_first_lane[edge]])
+  if (outside_edge(edge))
     throw std::invalid_argument("take_back: vehicle " + d.vehicle_id[v] +
                                 " re-enters on an edge driven outside");
   if (lane >= 0 && (static_cast<uint32_t>(lane) < net_.edge_first_lane[edge] ||
                     static_cast<uint32_t>(lane) >= net_.edge_first_lane[edge] + net_.edge_num_lanes[edge]))
     throw std::invalid_argument("take_back: vehicle " + d.vehicle_id[v] + " re-enters on lane " +
                                 std::to_string(lane) + ", not one of edge " + net_.edge_id[edge]);
-  ledger_.handed_back(v, route_pos, lane, speed, elsewhere);
+  ledger_.handed_back(v, route_pos, lane, speed);
   queues_.push_back(edge, queue_entry(v, true));
-  ++taken_back_;
 }
 
 bool Simulation::has_entry_room(uint32_t edge) const {

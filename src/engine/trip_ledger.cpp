@@ -35,8 +35,7 @@ void TripLedger::teleporting(const VehicleEnd& e, uint32_t rp) {
   resume_rp_[e.vehicle] = rp;
   resume_speed_[e.vehicle] = 0;
   resume_lane_[e.vehicle] = -1;
-  carried_[e.vehicle] =
-      TripCounters{e.route_length, e.time_loss, e.waiting_steps, e.waiting_count, e.next_stop, e.stop_steps};
+  carried_[e.vehicle] = trip_counters(e);
 }
 
 void TripLedger::handed_out(uint32_t v, const TripCounters& counters) {
@@ -44,18 +43,11 @@ void TripLedger::handed_out(uint32_t v, const TripCounters& counters) {
   carried_[v] = counters;
 }
 
-void TripLedger::handed_back(uint32_t v, uint32_t rp, int32_t lane, float speed,
-                             const TripCounters& elsewhere) {
-  status_[v] = kTeleporting;  // off the road, queued to re-enter
+void TripLedger::handed_back(uint32_t v, uint32_t rp, int32_t lane, float speed) {
+  status_[v] = kTeleporting;  // off the road, queued to re-enter with what handed_out() kept
   resume_rp_[v] = rp;
   resume_speed_[v] = speed;
   resume_lane_[v] = lane;
-  TripCounters& c = carried_[v];
-  c.route_length += elsewhere.route_length;
-  c.time_loss += elsewhere.time_loss;
-  c.waiting_steps += elsewhere.waiting_steps;
-  c.waiting_count += elsewhere.waiting_count;
-  c.stop_steps += elsewhere.stop_steps;
 }
 
 uint32_t TripLedger::reentering(SlotInit& init) {

@@ -25,6 +25,12 @@ struct TripCounters {
   uint32_t waiting_steps = 0, waiting_count = 0, next_stop = 0, stop_steps = 0;
 };
 
+/// The counters a vehicle that leaves the road carries on.
+inline TripCounters trip_counters(const VehicleEnd& e) {
+  return TripCounters{e.route_length,  e.time_loss, e.waiting_steps,
+                      e.waiting_count, e.next_stop, e.stop_steps};
+}
+
 class TripLedger {
  public:
   /// Room for trips [0, n) (the trip table grows during a run); new trips are pending.
@@ -50,8 +56,8 @@ class TripLedger {
   /// Vehicle v left for another simulator with `counters` (status kMigrated).
   void handed_out(uint32_t v, const TripCounters& counters);
   /// A handed-out vehicle comes back to re-enter at route position `rp` on `lane` (-1: any best lane),
-  /// asking for `speed`, its counters increased by `elsewhere` (what the other simulator measured).
-  void handed_back(uint32_t v, uint32_t rp, int32_t lane, float speed, const TripCounters& elsewhere);
+  /// asking for `speed`, with the counters it left with (the other simulator reports its own piece).
+  void handed_back(uint32_t v, uint32_t rp, int32_t lane, float speed);
   /// The counters a teleporting or handed-out vehicle carries (null: none).
   const TripCounters* carried(uint32_t v) const {
     const auto c = carried_.find(v);
