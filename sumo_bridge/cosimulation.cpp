@@ -196,7 +196,7 @@ void Cosimulation::hand_into_sumo(const Simulation::HandOut& h) {
   s.vehicle = v;
   s.route_pos = h.route_pos;
   s.entry_lane = h.lane;
-  s.entry_pos = h.pos;
+  s.entry_pos = static_cast<float>(e.pos);  // where SUMO is to insert it (on the lane)
   s.since = sim.time();
   in_sumo_[e.id] = s;
   ++pending_;
@@ -211,10 +211,9 @@ void Cosimulation::after_sumo_step() {
   const Demand& d = sim.demand();
   const double now = sim.time();
   mirror_.clear();
-  std::unordered_set<std::string> pending;
-  if (pending_ > 0)
+  if (pending_ > 0) {
+    std::unordered_set<std::string> pending;
     for (std::string& id : sumo_->pending()) pending.insert(std::move(id));
-  if (pending_ > 0)
     for (const auto& [id, s] : in_sumo_) {
       if (!s.pending) continue;
       // SUMO drops a vehicle it will never insert (an error of its own above): that would lose it.
@@ -229,6 +228,7 @@ void Cosimulation::after_sumo_step() {
         mirror_.push_back(Simulation::OutsideVehicle{s.entry_lane, s.entry_pos,
                                                      d.types.length[d.vehicle_type[s.vehicle]], 0.0f});
     }
+  }
   std::vector<std::pair<std::string, SumoVehicle>> running = sumo_->watched();
   // In vehicle order: the take-backs queue in it, and the results must not depend on SUMO's order.
   std::vector<std::pair<uint32_t, size_t>> order;
