@@ -113,6 +113,8 @@ bool Run::done() const {
 
 void Run::finish() {
   if (closed_) return;
+  const OutputSpec& o = config_.outputs;
+  if (tripinfo_ && (o.tripinfo_write_unfinished || o.tripinfo_write_undeparted)) write_unfinished_trips();
   if (statistic_) {
     statistic_->write(statistics());
     statistic_->close();
@@ -151,6 +153,24 @@ void Run::write_trip(const TripRecord& r) {
   totals_.depart_delay += r.depart_delay;
   if (r.arrival > r.depart) totals_.speed += r.route_length / (r.arrival - r.depart);
   if (tripinfo_) tripinfo_->write(r);
+}
+
+// SUMO's write-unfinished: the trips still on their way count in the statistics like the ended ones (their
+// duration up to the end); write-undeparted adds those that never departed, whose mean delay is the
+// statistic's departDelayWaiting.
+void Run::write_unfinished_trips() {
+  double waiting_delay = 0;
+  uint64_t waiting = 0;
+  for (const TripRecord& r : sim_.unfinished_trips(end_time(), config_.outputs.tripinfo_write_undeparted)) {
+    if (r.unfinished == kTripRunning) {
+      write_trip(r);
+    } else {
+      tripinfo_->write(r);
+      waiting_delay += r.depart_delay;
+      ++waiting;
+    }
+  }
+  if (waiting > 0) depart_delay_waiting_ = waiting_delay / static_cast<double>(waiting);
 }
 
 // SUMO's warning for each vehicle that starts a teleport; the time is the end of the step in which its
@@ -196,6 +216,7 @@ RunStatistics Run::statistics() const {
   s.time_loss = totals_.time_loss;
   s.depart_delay = totals_.depart_delay;
   s.speed = totals_.speed;
+  s.depart_delay_waiting = depart_delay_waiting_;
   return s;
 }
 
@@ -250,6 +271,9 @@ void print_run_report(std::FILE* out, const Run& run, double wall, double load_s
   if (c.removed)
     std::fprintf(out, " Removed (departure before begin or no lane for its class): %llu\n",
                  static_cast<unsigned long long>(c.removed));
+  if (c.discarded)
+    std::fprintf(out, " Discarded (not inserted within --max-depart-delay): %llu\n",
+                 static_cast<unsigned long long>(c.discarded));
   std::fprintf(out, "Teleports: %llu\n", static_cast<unsigned long long>(c.teleports));
   if (totals.trips > 0) {
     const double n = static_cast<double>(totals.trips);

@@ -101,6 +101,7 @@ class Run {
   const Demand& demand() const { return sim_.demand(); }
   void open_outputs();
   void write_step_outputs();
+  void write_unfinished_trips();
   void warn_teleports() const;
   void close_interval(MeanDataOutput& m, double until);
   void close_due_intervals();
@@ -120,6 +121,7 @@ class Run {
   FcdFrame frame_;
   double next_fcd_ = 0;
   Totals totals_;
+  double depart_delay_waiting_ = -1;  // the statistic's departDelayWaiting (write-undeparted)
   std::function<bool(const TripRecord&)> hold_trip_;
   bool closed_ = false;
 };

@@ -29,16 +29,23 @@ void refuse_inputs_beside_snapshot(const ConfigSpec& c, const std::string& snaps
                          "', which already holds network and demand; give one or the other");
   // Options that act only while loading: the snapshot was loaded by `lpsim convert`, with its own.
   const ConfigSpec defaults;
-  const char* load_only = c.ignore_route_errors != defaults.ignore_route_errors ? "--ignore-route-errors"
-                          : c.minor_penalty != defaults.minor_penalty           ? "--weights.minor-penalty"
-                          : c.max_lane_map_gb != defaults.max_lane_map_gb       ? "--max-lane-map-gb"
-                          : c.default_car_follow_model != defaults.default_car_follow_model
-                              ? "--default.carfollowmodel"
-                              : nullptr;
+  const char* load_only =
+      c.ignore_route_errors != defaults.ignore_route_errors             ? "--ignore-route-errors"
+      : c.minor_penalty != defaults.minor_penalty                       ? "--weights.minor-penalty"
+      : c.max_lane_map_gb != defaults.max_lane_map_gb                   ? "--max-lane-map-gb"
+      : c.tls_all_off != defaults.tls_all_off                           ? "--tls.all-off"
+      : c.weights_random_factor != defaults.weights_random_factor       ? "--weights.random-factor"
+      : c.default_car_follow_model != defaults.default_car_follow_model ? "--default.carfollowmodel"
+                                                                        : nullptr;
   if (load_only)
     throw InputError(SourceLoc{"command line", 0}, std::string(load_only) + " given beside the snapshot '" +
                                                        snapshot +
                                                        "': it acts while loading; give it to lpsim convert");
+  // What a scoped option acts on is in the scenario's files, which a snapshot no longer has.
+  if (!c.scoped_options.empty())
+    throw InputError(c.scoped_options.front().loc,
+                     "--" + c.scoped_options.front().name + " given beside the snapshot '" + snapshot +
+                         "': whether it can act depends on the scenario's files; give it to lpsim convert");
   if (c.seed != defaults.seed)
     std::fprintf(stderr,
                  "lpsim: warning: --seed beside the snapshot '%s' seeds the simulation's own draws only; the "

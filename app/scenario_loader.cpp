@@ -3,6 +3,7 @@
 #include <string>
 
 #include "app/load_warnings.hpp"
+#include "app/option_scopes.hpp"
 #include "app/scenario.hpp"
 #include "converters/lpsim_csv_reader.hpp"
 #include "converters/net_reader.hpp"
@@ -11,6 +12,24 @@
 #include "net/network_builder.hpp"
 
 namespace lpsim {
+
+namespace {
+
+// SUMO's --tls.all-off: every traffic light runs its "off" program, under which each link keeps the right
+// of way netconvert wrote into its connection's state ('O' as a priority link, 'o' as a yield link) and the
+// junction's request rows decide the conflicts, as at a priority junction. So the network is built without
+// programs and without signal control.
+void switch_signals_off(NetSpec& net, AdditionalSpec& additional) {
+  net.tl_logics.clear();
+  additional.tl_logics.clear();
+  for (ConnectionSpec& c : net.connections) {
+    if (c.tl.empty()) continue;
+    c.tl.clear();
+    c.link_index = -1;
+  }
+}
+
+}  // namespace
 
 Scenario load_scenario(const ConfigSpec& config) {
   auto t0 = std::chrono::steady_clock::now();
@@ -33,7 +52,10 @@ Scenario load_scenario(const ConfigSpec& config) {
   for (const auto& f : config.route_files) read_sumo_routes(f, demand, additional);
   if (!config.lpsim_od_csv.empty()) read_lpsim_od_csv(config.lpsim_od_csv, net, demand);
 
+  if (config.tls_all_off) switch_signals_off(net, additional);
   sc.warnings = unimplemented_settings(demand, net, additional, config.default_car_follow_model);
+  if (std::string line = decide_scoped_options(config, net, demand); !line.empty())
+    sc.warnings.push_back(std::move(line));
   NetworkLimits limits;
   limits.max_lane_map_gib = config.max_lane_map_gb;
   limits.max_lane_map_option = "--max-lane-map-gb";
@@ -46,6 +68,7 @@ Scenario load_scenario(const ConfigSpec& config) {
   opt.end = config.end;
   opt.step_length = config.step_length;
   opt.minor_penalty = config.minor_penalty;
+  opt.random_factor = config.weights_random_factor;
   opt.default_car_follow_model = config.default_car_follow_model;
   sc.demand = build_demand(demand, sc.network, opt);
   if (const uint64_t n = sc.demand.raised_speed_factors; n > 0)

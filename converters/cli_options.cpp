@@ -28,7 +28,7 @@ struct Value {
 
 // StepLength: LPSim's clock counts milliseconds; ThreadCount: a team beyond this is a typo, and would exhaust
 // the process limit before the run starts.
-enum class Check { None, NonNegative, Positive, StepLength, ThreadCount };
+enum class Check { None, NonNegative, Positive, AtLeastOne, StepLength, ThreadCount };
 constexpr double kMinStepLength = 0.001, kMaxStepLength = 86400;
 constexpr long long kMaxThreads = 1024;
 constexpr long long kMaxParts = 1000000;
@@ -86,6 +86,11 @@ const OptionDef kOptions[] = {
   // Negative disables teleporting, as in SUMO.
   {"time-to-impatience", "", 0, Kind::Time, Check::None, false, kRuns, "waiting time after which a vehicle at a link without priority counts on foes that can still brake to let it go (SUMO's impatience; default 180; <= 0: never)", [](ConfigSpec& c, Value&& v) { c.time_to_impatience = v.seconds; }},
   {"time-to-teleport", "", 0, Kind::Time, Check::None, false, kRuns, "waiting time before a blocked vehicle teleports; < 0: never (default 300)", [](ConfigSpec& c, Value&& v) { c.time_to_teleport = v.seconds; }},
+  {"ignore-junction-blocker", "", 0, Kind::Time, Check::None, false, kRuns, "a vehicle standing this long on a junction no longer blocks the foes crossing its path; < 0: never (default -1)", [](ConfigSpec& c, Value&& v) { c.ignore_junction_blocker = v.seconds; }},
+  {"max-depart-delay", "", 0, Kind::Time, Check::None, false, kRuns, "a vehicle not inserted this long after its depart time is dropped (discarded); < 0: never (default -1)", [](ConfigSpec& c, Value&& v) { c.max_depart_delay = v.seconds; }},
+  // Loading applies it (the network is built without signals), so every command takes it.
+  {"tls.all-off", "", 0, Kind::Bool, Check::None, false, kLoad, "switch every traffic light off: its links give way as the net's connection states say (o: yield, O: priority)", [](ConfigSpec& c, Value&& v) { c.tls_all_off = v.flag; }},
+  {"weights.random-factor", "", 0, Kind::Number, Check::AtLeastOne, false, kLoad, "multiply the routing cost of each edge by a factor drawn in [1, F) per trip and edge (default 1)", [](ConfigSpec& c, Value&& v) { c.weights_random_factor = v.number; }},
   {"weights.minor-penalty", "", 0, Kind::Time, Check::NonNegative, false, kLoad, "routing cost of a minor link, in s (default 1.5)", [](ConfigSpec& c, Value&& v) { c.minor_penalty = v.seconds; }},
   {"no-warnings", "", 'W', Kind::Bool, Check::None, false, kRuns, "no teleport warnings on stderr", [](ConfigSpec& c, Value&& v) { c.no_warnings = v.flag; }},
   {"no-step-log", "", 0, Kind::Bool, Check::None, false, kRuns, "no progress lines on stderr", [](ConfigSpec& c, Value&& v) { c.no_step_log = v.flag; }},
@@ -100,6 +105,8 @@ const OptionDef kOptions[] = {
   {"fcd-output", "", 0, Kind::Path, Check::None, false, kRuns, "SUMO FCD output (.gz: compressed)", [](ConfigSpec& c, Value&& v) { c.outputs.fcd = std::move(v.text); }},
   {"device.fcd.period", "", 0, Kind::Time, Check::NonNegative, false, kRuns, "FCD sampling period in s; 0 (default): every step", [](ConfigSpec& c, Value&& v) { c.outputs.fcd_period = v.seconds; }},
   {"tripinfo-output", "tripinfo", 0, Kind::Path, Check::None, false, kRuns, "SUMO tripinfo output", [](ConfigSpec& c, Value&& v) { c.outputs.tripinfo = std::move(v.text); }},
+  {"tripinfo-output.write-unfinished", "", 0, Kind::Bool, Check::None, false, kRuns, "tripinfo also for vehicles still running at the end", [](ConfigSpec& c, Value&& v) { c.outputs.tripinfo_write_unfinished = v.flag; }},
+  {"tripinfo-output.write-undeparted", "", 0, Kind::Bool, Check::None, false, kRuns, "tripinfo also for vehicles still running and for those due that never departed (implies write-unfinished)", [](ConfigSpec& c, Value&& v) { c.outputs.tripinfo_write_undeparted = v.flag; }},
   {"summary-output", "summary", 0, Kind::Path, Check::None, false, kRuns, "SUMO summary output", [](ConfigSpec& c, Value&& v) { c.outputs.summary = std::move(v.text); }},
   {"statistic-output", "statistics-output", 0, Kind::Path, Check::None, false, kRuns, "SUMO statistic output", [](ConfigSpec& c, Value&& v) { c.outputs.statistic = std::move(v.text); }},
   {"edgedata-output", "", 0, Kind::Path, Check::None, false, kRuns, "SUMO edgeData output, one interval for the whole run", [](ConfigSpec& c, Value&& v) { c.outputs.edgedata = std::move(v.text); }},
@@ -199,6 +206,8 @@ Value convert(const OptionDef& def, std::string_view name, const std::string& va
       auto x = parse_double(value);
       if (!x || !std::isfinite(*x)) bad_value(where, name, value, "expected a number");
       if (def.check == Check::Positive && !(*x > 0)) bad_value(where, name, value, "expected a number > 0");
+      if (def.check == Check::AtLeastOne && !(*x >= 1))
+        bad_value(where, name, value, "expected a number >= 1");
       v.number = *x;
       break;
     }
@@ -234,9 +243,18 @@ bool looks_like_option(const std::string& arg) {
   return !parse_sumo_time(arg);  // "-1" is a value, not an option
 }
 
-// A SUMO option LPSim does not implement: as if absent at SUMO's default, else noted (inert) or refused.
+// A SUMO option LPSim does not implement: as if absent at SUMO's default, else noted (inert), kept for the
+// loaded scenario to decide (scoped) or refused.
 void apply_foreign(ConfigSpec& config, const ForeignOption& option, std::string_view name,
                    const std::string& value, const OptionSource& where) {
+  if (option.kind == ForeignOptionClass::Scoped) {
+    // A later value (the command line after the .sumocfg) replaces an earlier one, the default included.
+    auto& scoped = config.scoped_options;
+    std::erase_if(scoped, [&](const ScopedOption& o) { return o.name == option.name; });
+    if (!is_sumo_default(option, value))
+      scoped.push_back({std::string(option.name), value, where.loc, option.scope});
+    return;
+  }
   if (is_sumo_default(option, value)) return;
   if (option.kind == ForeignOptionClass::Unsupported) {
     std::string what = option_label(where, name) + " '" + value + "': SUMO option not supported by LPSim";

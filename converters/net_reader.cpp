@@ -233,8 +233,8 @@ class NetParser {
   }
 
   // Checks run in the order of the attributes below, so the first problem reported is always the same one.
-  enum EdgeAttr { kEdgeId, kEdgeFunction, kEdgeFrom, kEdgeTo, kEdgePriority, kEdgeType };
-  AttrCapture<6> edge_attrs_{{"id", "function", "from", "to", "priority", "type"}};
+  enum EdgeAttr { kEdgeId, kEdgeFunction, kEdgeFrom, kEdgeTo, kEdgePriority, kEdgeType, kEdgeBidi };
+  AttrCapture<7> edge_attrs_{{"id", "function", "from", "to", "priority", "type", "bidi"}};
 
   void read_edge() {
     const auto& a = edge_attrs_;
@@ -252,6 +252,7 @@ class NetParser {
     }
     e.priority = static_cast<int>(integer(xs_, "priority", a.value(kEdgePriority), -1));
     e.type = a.text(kEdgeType);
+    e.bidi = a.text(kEdgeBidi);
     const int depth = xs_.depth();
     e.lanes.reserve(4);
     for (;;) {

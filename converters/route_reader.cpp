@@ -124,6 +124,9 @@ void check_unique_ids(const std::vector<Spec>& items, size_t first_new) {
 // Fewer bytes than a vehicle with its route usually takes in a route file (Bologna's: 200).
 constexpr uintmax_t kMinBytesPerVehicle = 128;
 
+// A vehicle's or vType's parameter asking for SUMO's rerouting device.
+constexpr std::string_view kReroutingParam = "has.rerouting.device";
+
 constexpr std::string_view kUnsupportedDeparts[] = {"triggered", "containerTriggered", "begin", "split"};
 
 class RouteFileReader {
@@ -336,6 +339,10 @@ class RouteFileReader {
         route = read_route_distribution("!" + id);
       } else if (xs_.name() == "stop") {
         read_stop(stops);
+      } else if (xs_.name() == "param" && xs_.get("key", "") == kReroutingParam) {
+        // Decides whether scoped rerouting options can act (app/option_scopes.hpp).
+        if (parse_sumo_bool(trim(xs_.get("value", ""))).value_or(false)) ++demand_.rerouting_device_requests;
+        skip_subtree();
       } else {
         skip_counted();
       }
@@ -358,6 +365,16 @@ class RouteFileReader {
   void skip_children_counted() {
     const std::string element = xs_.name();
     for_each_child(xs_.loc(), element, xs_.get("id", ""), [&] { skip_counted(); });
+  }
+
+  // A boolean attribute of the current element (SUMO's spellings), false when absent; InputError otherwise.
+  bool bool_attr(const char* key, std::string_view element, std::string_view id) const {
+    auto text = xs_.attr(key);
+    if (!text) return false;
+    auto b = parse_sumo_bool(trim(*text));
+    if (!b)
+      fail(xs_.loc(), element, id, std::string("attribute '") + key + "' is not a boolean: '" + *text + "'");
+    return *b;
   }
 
   // A number attribute of the current element, or `fallback` when absent; InputError when not a number.
@@ -398,6 +415,7 @@ class RouteFileReader {
     if (number_attr("speed", element, 0) > 0) return skip_as("waypoint");
     if (xs_.has("startPos")) st.start_pos = number_attr("startPos", element, 0);
     if (xs_.has("endPos")) st.end_pos = number_attr("endPos", element, 0);
+    st.friendly_pos = bool_attr("friendlyPos", element, "");
     st.duration = named_time_attr("duration", st.loc, element, "").value_or(-1);
     st.until = named_time_attr("until", st.loc, element, "").value_or(-1);
     // SUMO waits for a person or container there, which never comes in a scenario without them.
@@ -418,11 +436,7 @@ class RouteFileReader {
     p.lane = std::string(trim(*lane));
     p.start_pos = number_attr("startPos", element, 0);
     if (xs_.has("endPos")) p.end_pos = number_attr("endPos", element, 0);
-    if (auto v = xs_.attr("friendlyPos")) {
-      auto b = parse_sumo_bool(*v);
-      if (!b) fail(p.loc, element, p.id, "attribute 'friendlyPos' is not a boolean: '" + *v + "'");
-      p.friendly_pos = *b;
-    }
+    p.friendly_pos = bool_attr("friendlyPos", element, p.id);
     for (const auto& other : demand_.stopping_places)
       if (other.id == p.id) fail(p.loc, element, p.id, "duplicate id, first used at " + other.loc.str());
     demand_.stopping_places.push_back(std::move(p));
@@ -461,8 +475,9 @@ class RouteFileReader {
     read_path_children(loc, element, v.id, v.route, v.edges, v.stops, &v);
 
     const bool endpoints = has_endpoints(v.from, v.from_junction, v.to, v.to_junction);
-    if (source == DemandSource::Trip && !endpoints)
-      fail(loc, element, v.id, "needs 'from' (or 'fromJunction') and 'to' (or 'toJunction')");
+    // SUMO starts a trip without 'from' at its first stop and ends one without 'to' at its last.
+    if (source == DemandSource::Trip && !endpoints && v.stops.empty())
+      fail(loc, element, v.id, "needs 'from' (or 'fromJunction') and 'to' (or 'toJunction'), or stops");
     if (source == DemandSource::Vehicle && v.route.empty() && v.edges.empty() && v.edge_ref_count == 0 &&
         !endpoints)
       fail(loc, element, v.id, "no route: give 'route', a nested <route>, or from/to");

@@ -49,7 +49,7 @@ void StatisticWriter::write(const RunStatistics& s) {
   out_.attr_fixed("waitingTime", s.waiting_time / n);
   out_.attr_fixed("timeLoss", s.time_loss / n);
   out_.attr_fixed("departDelay", s.depart_delay / n);
-  out_.attr_fixed("departDelayWaiting", -1.0);
+  out_.attr_fixed("departDelayWaiting", s.depart_delay_waiting);
   out_.attr_fixed("totalTravelTime", s.duration);
   out_.attr_fixed("totalDepartDelay", s.depart_delay);
   out_.text(

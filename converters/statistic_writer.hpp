@@ -19,6 +19,9 @@ struct RunStatistics {
   uint64_t trips = 0;
   double route_length = 0, duration = 0, waiting_time = 0, time_loss = 0, depart_delay = 0;
   double speed = 0;  // sum over the trips of route length / duration (SUMO averages the trips' speeds)
+  // Mean depart delay of the vehicles still waiting to depart at the end, as tripinfo's write-undeparted
+  // reports them; -1 when none was reported.
+  double depart_delay_waiting = -1;
 };
 
 class StatisticWriter {

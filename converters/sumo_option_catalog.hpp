@@ -5,11 +5,14 @@
 // are in cli_options.cpp's table, not here.
 #include <string_view>
 
+#include "core/config_spec.hpp"
+
 namespace lpsim {
 
 enum class ForeignOptionClass {
   Inert,        // cannot change LPSim's results: accepted with one warning naming it
   Unsupported,  // would change results: refused, unless given its SUMO default value
+  Scoped,       // acts only where a scenario has what `scope` names: decided once it is loaded
 };
 
 struct ForeignOption {
@@ -17,6 +20,7 @@ struct ForeignOption {
   std::string_view sumo_default;  // SUMO 1.15's default, as `sumo --save-template` writes it
   char short_name;                // 0 if none
   ForeignOptionClass kind;
+  OptionScope scope = OptionScope::BidiEdges;  // what a Scoped option acts on
 };
 
 /// The SUMO option called `name` (a current name, or one of the few synonyms listed), or nullptr.

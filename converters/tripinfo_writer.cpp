@@ -20,18 +20,25 @@ TripinfoWriter::~TripinfoWriter() {
 
 void TripinfoWriter::write(const TripRecord& trip) {
   const std::string& id = demand_.vehicle_id[trip.vehicle];
+  // SUMO's write-unfinished/write-undeparted lines: what did not happen is -1 (depart as the integer "-1")
+  // and an empty lane id; a running trip's duration runs to the end, an undeparted one's is 0.
+  const bool departed = trip.unfinished != kTripUndeparted;
+  const bool arrived = trip.unfinished == 0;
   out_.text("    <tripinfo");
   out_.attr("id", id);
-  out_.attr_fixed("depart", trip.depart);
-  out_.attr("departLane", net_.lane_id[trip.depart_lane]);
-  out_.attr_fixed("departPos", trip.depart_pos);
-  out_.attr_fixed("departSpeed", trip.depart_speed);
+  if (departed)
+    out_.attr_fixed("depart", trip.depart);
+  else
+    out_.text(" depart=\"-1\"");
+  out_.attr("departLane", departed ? std::string_view(net_.lane_id[trip.depart_lane]) : std::string_view());
+  out_.attr_fixed("departPos", departed ? trip.depart_pos : -1.0);
+  out_.attr_fixed("departSpeed", departed ? trip.depart_speed : -1.0);
   out_.attr_fixed("departDelay", trip.depart_delay);
-  out_.attr_fixed("arrival", trip.arrival);
-  out_.attr("arrivalLane", net_.lane_id[trip.arrival_lane]);
-  out_.attr_fixed("arrivalPos", trip.arrival_pos);
-  out_.attr_fixed("arrivalSpeed", trip.arrival_speed);
-  out_.attr_fixed("duration", trip.arrival - trip.depart);
+  out_.attr_fixed("arrival", arrived ? trip.arrival : -1.0);
+  out_.attr("arrivalLane", arrived ? std::string_view(net_.lane_id[trip.arrival_lane]) : std::string_view());
+  out_.attr_fixed("arrivalPos", arrived ? trip.arrival_pos : -1.0);
+  out_.attr_fixed("arrivalSpeed", arrived ? trip.arrival_speed : -1.0);
+  out_.attr_fixed("duration", departed ? trip.arrival - trip.depart : 0.0);
   out_.attr_fixed("routeLength", trip.route_length);
   out_.attr_fixed("waitingTime", trip.waiting_time);
   out_.attr_int("waitingCount", trip.waiting_count);
@@ -47,7 +54,9 @@ void TripinfoWriter::write(const TripRecord& trip) {
   out_.put('"');
   out_.attr("vType", demand_.types.id[demand_.vehicle_type[trip.vehicle]]);
   out_.attr_fixed("speedFactor", trip.speed_factor);
-  out_.text(trip.teleported ? " vaporized=\"teleport\"/>\n" : " vaporized=\"\"/>\n");
+  out_.text(!arrived          ? " vaporized=\"end\"/>\n"
+            : trip.teleported ? " vaporized=\"teleport\"/>\n"
+                              : " vaporized=\"\"/>\n");
 }
 
 void TripinfoWriter::close() {

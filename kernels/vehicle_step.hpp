@@ -1421,10 +1421,12 @@ LPSIM_HD_INLINED PlannedMove move_clamped_to_hard_limit(StepContext& s, const Pl
   return PlannedMove{new_speed, nlane, npos, nprev, nprev2, nrp};
 }
 
-/// Arrival: on the route's last edge, at its arrival position (default: the lane's end).
+/// Arrival: on the route's last edge, at its arrival position (default: the lane's end), with no scheduled
+/// stop left to make there (SUMO's MSVehicle::hasArrived: a stop at the lane's end is made before arriving).
 LPSIM_HD_INLINED bool reaches_arrival(const StepContext& s, const PlanInput& in, const PlannedMove& m) {
   const NetView& net = s.net;
   if (net.lane_internal[m.lane] || m.rp + 1 < in.route_size) return false;
+  if (s.veh.next_stop[in.r.slot] < s.veh.stops_end[in.r.slot]) return false;
   const uint32_t v = in.r.id;
   float arrival = net.lane_length[m.lane];
   if (s.trips.arrival_pos_kind[v] == 0) {  // ArrivalPos::Given; negative counts from the end

@@ -7,7 +7,8 @@
 #   tools/output_digests.sh build/lpsim build/tests/lpsim_emulated > after.txt
 #   diff before.txt after.txt
 #
-# The scenarios are copied to a scratch folder first (their add-files may name outputs of their own).
+# The scenarios are copied to a scratch folder first (their add-files may name outputs of their own). A run
+# refused as bad input (exit 2) gives one line "NAME LABEL refused DIGEST" (the digest of its error line).
 # The summary's duration attribute (wall time) is masked. Options: --end T (default: each scenario's own);
 # --model M: --default.carfollowmodel M for every run (default: LPSim's, Krauss; IDM gives the outputs of
 # commits before Krauss was implemented, when every vehicle ran the IDM); --parts "2 3 4 8": also runs the
@@ -57,6 +58,12 @@ run_case() {  # binary label name folder config threads [parts [mpi ranks]]
   (cd "$dir" && "${launch[@]}" "$bin" run "${input[@]}" "${end_args[@]}" "${part_args[@]}" --threads "$threads" --no-warnings \
     --tripinfo-output out_tripinfo.xml --fcd-output out_fcd.xml --edgedata-output out_edgedata.xml \
     --summary-output out_summary.xml > out_stdout.txt 2> out_stderr.txt) || {
+    local status=$?
+    if (( status == 2 )); then  # refused as bad input: the refusal is the result to compare
+      printf '%s %s refused %s\n' "$name" "$label" "$(grep -m1 'lpsim: error' "$dir/out_stderr.txt" | sed "s|$dir/||g" | md5sum | cut -d' ' -f1)"
+      rm -rf "$dir"
+      return 0
+    fi
     if (( k > 1 )) && grep -q "parts need at least as many junctions" "$dir/out_stderr.txt"; then
       echo "$name $label: skipped, the network has fewer junctions than parts" >&2
       rm -rf "$dir"

@@ -1,13 +1,37 @@
 #pragma once
 // What a run or a load is asked to do: a .sumocfg and/or command-line options, merged (options win).
+#include <cstdint>
 #include <string>
 #include <vector>
+
+#include "core/error.hpp"
 
 namespace lpsim {
 
 struct OutputSpec {
   std::string fcd, tripinfo, summary, edgedata, lanedata, statistic;
   double fcd_period = 0;  // 0: every step
+  // SUMO's --tripinfo-output.write-unfinished: a tripinfo line at the end for every vehicle still running;
+  // --tripinfo-output.write-undeparted: also for every vehicle due by then that never departed (it implies
+  // write-unfinished, as in SUMO).
+  bool tripinfo_write_unfinished = false, tripinfo_write_undeparted = false;
+};
+
+/// What a SUMO option that LPSim does not implement acts on, where it acts only in some scenarios. Given
+/// with a value other than SUMO's default, it is refused where the loaded scenario has what it acts on (it
+/// would change the results) and otherwise named in one warning (it cannot act there).
+enum class OptionScope : uint8_t {
+  BidiEdges,         // edges with a `bidi` partner (time-to-teleport.bidi)
+  ReroutingDevice,   // vehicles equipped with the rerouting device (device.rerouting.*)
+  ParkingAreaStops,  // stops at a parkingArea (parking.maneuver)
+  Persons,           // persons (pedestrian.model, ride.stop-tolerance, person-device.*)
+};
+
+/// A scoped option as given: decided once the scenario is loaded (app/option_scopes.hpp).
+struct ScopedOption {
+  std::string name, value;
+  SourceLoc loc;
+  OptionScope scope;
 };
 
 /// Where `lpsim run` steps the simulation (--device): auto takes a usable CUDA device, else the CPU.
@@ -25,6 +49,18 @@ struct ConfigSpec {
   std::string default_car_follow_model = "Krauss";
   double time_to_teleport = 300;
   double time_to_impatience = 180;  // SUMO's --time-to-impatience [s]; <= 0: never impatient
+  // SUMO's --ignore-junction-blocker [s]: a vehicle standing this long on a junction's internal lane no
+  // longer blocks the foes crossing its path; < 0: never.
+  double ignore_junction_blocker = -1;
+  // SUMO's --max-depart-delay [s]: a vehicle still not inserted this long after its depart time is dropped
+  // (counted as discarded); < 0: never.
+  double max_depart_delay = -1;
+  // SUMO's --tls.all-off: every traffic light is off; its links keep the right of way the net's connection
+  // states give them ('O' priority, 'o' yield).
+  bool tls_all_off = false;
+  // SUMO's --weights.random-factor (>= 1): each routed trip's edge costs are multiplied by factors drawn
+  // in [1, F), per trip and edge, from the seed.
+  double weights_random_factor = 1;
   double minor_penalty =
       1.5;                   // SUMO's --weights.minor-penalty: routing cost of a crossing on a minor link [s]
   bool no_warnings = false;  // SUMO's --no-warnings: no teleport warnings on stderr
@@ -57,6 +93,9 @@ struct ConfigSpec {
   // SUMO options given that cannot change LPSim's results (verbose, log, gui-settings-file, ...), in the
   // order first given, for the one warning that names them.
   std::vector<std::string> inert_options;
+  // SUMO options that act only in some scenarios, given with other values than SUMO's defaults, in the order
+  // given: refused or named in a warning once the scenario is loaded.
+  std::vector<ScopedOption> scoped_options;
 };
 
 }  // namespace lpsim

@@ -45,6 +45,7 @@ struct StopSpec {
   std::string lane;            // with no stopping place
   std::string edge;            // with neither: the edge's first lane the vehicle's class may use
   std::optional<double> start_pos, end_pos;  // not given: SUMO's defaults apply
+  bool friendly_pos = false;                 // positions outside the lane are moved onto it, not refused
   double duration = -1, until = -1;          // s; -1: not given
   SourceLoc loc;
 };
@@ -136,6 +137,8 @@ struct DemandSpec {
   std::vector<std::string> edge_names;     // each edge id of the interned inline routes, once
   std::vector<uint32_t> edge_refs;         // interned inline routes: indices into edge_names
   std::map<std::string, int64_t> skipped;  // element name -> count of unsupported elements (persons, ...)
+  // Vehicles and flows with <param key="has.rerouting.device" value="true"/> (vTypes keep theirs in params).
+  int64_t rerouting_device_requests = 0;
 };
 
 }  // namespace lpsim

@@ -34,6 +34,7 @@ struct EdgeSpec {
   EdgeFunction function = EdgeFunction::Normal;
   int priority = -1;
   std::string type;
+  std::string bidi;             // the edge driven the other way on the same road (SUMO's bidi), or empty
   std::vector<LaneSpec> lanes;  // ordered by index
   SourceLoc loc;
 };

@@ -68,7 +68,8 @@ class Builder {
     for (uint32_t i = 0; i < spec_.vehicles.size(); ++i) add_vehicle(i);
     for (uint32_t f = 0; f < spec_.flows.size(); ++f) add_flow(f, flow_times[f]);
     flow_times.clear();
-    demand_.routing.seconds = trips_.route_all(opt_.threads, opt_.minor_penalty);
+    demand_.routing.seconds = trips_.route_all(
+        opt_.threads, opt_.minor_penalty, RandomWeights{opt_.random_factor, opt_.seed ^ kSeedRandomWeights});
     demand_.routing.requests = trips_.num_requests();
     check_unique_ids();
     assemble();
@@ -87,8 +88,15 @@ class Builder {
     } else if (v.edge_ref_count > 0) {
       slot = routes_.interned_route(v.edge_ref_begin, v.edge_ref_count, "vehicle", v.id, v.loc);
     } else {
-      slot = trips_.add({v.from, v.to, v.from_junction, v.to_junction, via_and_stops(v.via, v.stops)},
-                        types_.types().vclass_mask[type], kind_name(v.source), v.id, v.loc);
+      const bool no_from = v.from.empty() && v.from_junction.empty(),
+                 no_to = v.to.empty() && v.to_junction.empty();
+      // SUMO: a trip without 'from' ('to') starts (ends) on the edge of its first (last) stop.
+      const std::string& from =
+          no_from && !v.stops.empty() ? net_.edge_id[stops_.edge_of(v.stops.front())] : v.from;
+      const std::string& to = no_to && !v.stops.empty() ? net_.edge_id[stops_.edge_of(v.stops.back())] : v.to;
+      slot = trips_.add({from, to, v.from_junction, v.to_junction, via_and_stops(v.via, v.stops)},
+                        types_.types().vclass_mask[type], kind_name(v.source), v.id, v.loc,
+                        random_stream(stream));
     }
     pending_.push_back({v.depart, type, slot, types_.speed_factor(type, opt_.seed, stream), i, false});
     ids_.push_back(v.id);
@@ -97,9 +105,11 @@ class Builder {
   void add_flow(uint32_t f, const std::vector<double>& times) {
     if (times.empty()) return;
     const FlowSpec& flow = spec_.flows[f];
-    // One route for the whole flow unless it names a route (a distribution draws per vehicle).
+    // One route for the whole flow unless it names a route (a distribution draws per vehicle) or its
+    // vehicles are routed each with random weights.
+    const bool routed_each = flow.route.empty() && flow.edges.empty() && opt_.random_factor > 1;
     uint32_t shared_slot = 0;
-    if (flow.route.empty()) {
+    if (flow.route.empty() && !routed_each) {
       // The flow's one route is routed for the class of its first vehicle's type (a vTypeDistribution of
       // mixed classes gets that class's route for all; class_problem then skips or refuses the others).
       const std::string first_id = flow.id + ".0";
@@ -116,11 +126,21 @@ class Builder {
       id.assign(flow.id).append(".").append(std::to_string(n));
       const uint64_t stream = draw_stream(id);
       const uint32_t type = types_.resolve(flow.type, id, opt_.seed, stream, flow.loc);
-      const uint32_t slot =
-          flow.route.empty() ? shared_slot : routes_.named(flow.route, id, opt_.seed, stream, flow.loc);
+      const uint32_t slot = routed_each          ? trips_.add({flow.from, flow.to, flow.from_junction,
+                                                               flow.to_junction, via_and_stops(flow.via, flow.stops)},
+                                                              types_.types().vclass_mask[type], "flow", id, flow.loc,
+                                                              random_stream(stream))
+                            : flow.route.empty() ? shared_slot
+                                                 : routes_.named(flow.route, id, opt_.seed, stream, flow.loc);
       pending_.push_back({times[n], type, slot, types_.speed_factor(type, opt_.seed, stream), f, true});
       ids_.push_back(id);
     }
+  }
+
+  // The stream a trip's random edge-cost factors are drawn from (0: no random weights). Never 0 when
+  // they are on, whatever the id hashes to.
+  uint64_t random_stream(uint64_t vehicle_stream) const {
+    return opt_.random_factor > 1 ? (vehicle_stream | 1) : 0;
   }
 
   // A trip's via edges, then the edges of its stops: the router leads it through both, as duarouter does.
@@ -300,6 +320,9 @@ class Builder {
     }
     d.types = types_.take();
     d.unsupported = spec_.skipped;
+    // Stopping places on rail, tram or pedestrian lanes: skipped, with the vehicles using them (trains).
+    if (const uint64_t n = stops_.left_out_places(); n > 0)
+      d.unsupported["stopping place on a lane no road vehicle may use"] += static_cast<int64_t>(n);
     for (auto src : d.source) d.routing.vehicles += src != DemandSource::Vehicle ? 1 : 0;
   }
 

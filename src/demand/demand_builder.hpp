@@ -14,6 +14,9 @@ struct DemandOptions {
   int threads = 0;                   // routing threads; 0: all hardware threads
   double step_length = 1.0;          // s; the grid on which probability flows draw
   double minor_penalty = kMinorLinkPenalty;  // s; routing cost of crossing on a link without priority
+  // SUMO's --weights.random-factor: above 1, every trip (each flow vehicle too) is routed on its own with
+  // its edge costs multiplied by factors drawn in [1, F) from the seed and its id (RandomWeights).
+  double random_factor = 1;
   // Kept for the engine: every vehicle is built whatever its depart; the engine decides what runs.
   double begin = 0, end = -1;
   // SUMO's --default.carfollowmodel: the model of every vType that names none.

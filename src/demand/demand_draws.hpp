@@ -16,6 +16,10 @@ inline constexpr uint64_t kDrawVTypeMember = 0x8000000000000001ull;
 inline constexpr uint64_t kDrawRouteMember = 0x8000000000000002ull;
 inline constexpr uint64_t kDrawSpeedFactor = 0x8000000000000100ull;  // + 2 per attempt
 
+/// Mixed into the seed of the random edge-cost factors (--weights.random-factor), whose counters are edge
+/// indices: small numbers that per-step draws use too.
+inline constexpr uint64_t kSeedRandomWeights = 0x5745494748545321ull;
+
 /// SUMO's default bounds of the speed factor distribution normc(mean, dev, 0.2, 2.0).
 inline constexpr double kSpeedFactorMin = 0.2, kSpeedFactorMax = 2.0;
 

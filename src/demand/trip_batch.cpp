@@ -82,12 +82,13 @@ bool TripBatch::endpoint(const std::string& edge, const std::string& junction, b
 }
 
 uint32_t TripBatch::add(const TripEnds& ends, uint32_t vclass, std::string_view kind, std::string_view id,
-                        const SourceLoc& loc) {
+                        const SourceLoc& loc, uint64_t random_stream) {
   const std::string who = std::string(kind) + " '" + std::string(id) + "'";
   if ((ends.from.empty() && ends.from_junction.empty()) || (ends.to.empty() && ends.to_junction.empty()))
     return routes_.add_broken(loc, who + " has neither a route nor both trip endpoints");
   RouteRequest request;
   request.vclass = vclass;
+  request.random_stream = random_stream;
   std::string reason;
   if (!endpoint(ends.from, ends.from_junction, true, request.origins, reason) ||
       !endpoint(ends.to, ends.to_junction, false, request.destinations, reason))
@@ -99,13 +100,14 @@ uint32_t TripBatch::add(const TripEnds& ends, uint32_t vclass, std::string_view 
   }
 
   // SUMO drives a trip whose two ends are the same edge on that edge alone.
-  if (request.via.empty() && !ends.from.empty() && ends.from == ends.to) {
+  if (request.via.empty() && !ends.from.empty() && ends.from == ends.to && random_stream == 0) {
     const uint32_t e = request.origins.front();
     auto it = single_edge_slot_.find(e);
     if (it == single_edge_slot_.end()) it = single_edge_slot_.emplace(e, routes_.add_resolved({e})).first;
     return it->second;
   }
 
+  if (random_stream != 0) return add_request(std::move(request), ends, who, loc, false);
   const bool packed = request.origins.size() == 1 && request.destinations.size() == 1 && request.via.empty();
   // Packed keys of one vClass are exact; another class's may collide and is told apart by the comparison.
   const uint64_t key =
@@ -117,7 +119,11 @@ uint32_t TripBatch::add(const TripEnds& ends, uint32_t vclass, std::string_view 
     return packed_[r] ? packed : !packed && same_request(requests_[r], request);
   });
   if (known != next) return pending_[known].slot;
+  return add_request(std::move(request), ends, who, loc, packed);
+}
 
+uint32_t TripBatch::add_request(RouteRequest&& request, const TripEnds& ends, const std::string& who,
+                                const SourceLoc& loc, bool packed) {
   const uint32_t slot = routes_.add_pending();  // filled by route_all()
   requests_.push_back(std::move(request));
   packed_.push_back(packed);
@@ -128,10 +134,10 @@ uint32_t TripBatch::add(const TripEnds& ends, uint32_t vclass, std::string_view 
   return slot;
 }
 
-double TripBatch::route_all(int threads, double minor_penalty) {
+double TripBatch::route_all(int threads, double minor_penalty, RandomWeights random) {
   if (requests_.empty()) return 0;
   const auto t0 = std::chrono::steady_clock::now();
-  Router router(net_, minor_penalty);
+  Router router(net_, minor_penalty, random);
   const auto paths = router.route_all(requests_, threads);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   for (size_t i = 0; i < pending_.size(); ++i) {

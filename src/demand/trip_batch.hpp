@@ -30,13 +30,15 @@ class TripBatch {
   /// Slot the trip `id` (a "trip" or "flow", says `kind`) of vClass mask `vclass` will use; filled by
   /// route_all() with a path that class may drive. Bad endpoints throw InputError at `loc` naming the id
   /// (or give a broken slot when route errors are ignored).
+  /// random_stream non-zero: the trip is routed on its own with random edge-cost factors drawn from that
+  /// stream (RouteRequest::random_stream), never shared with an identical trip.
   uint32_t add(const TripEnds& ends, uint32_t vclass, std::string_view kind, std::string_view id,
-               const SourceLoc& loc);
+               const SourceLoc& loc, uint64_t random_stream = 0);
 
   /// Routes every pending request in one Router::route_all call and fills their slots. A request without
   /// a path: InputError "no route from X to Y for trip T" at the first trip's location, or a broken slot.
   /// Returns the wall time spent in the router (s).
-  double route_all(int threads, double minor_penalty = kMinorLinkPenalty);
+  double route_all(int threads, double minor_penalty = kMinorLinkPenalty, RandomWeights random = {});
   size_t num_requests() const { return requests_.size(); }
 
  private:
@@ -49,6 +51,9 @@ class TripBatch {
   bool endpoint(const std::string& edge, const std::string& junction, bool leaving,
                 std::vector<uint32_t>& out, std::string& reason);
   void index_junctions();
+  // Appends a request and its pending slot (a new slot: requests are deduplicated by the caller).
+  uint32_t add_request(RouteRequest&& request, const TripEnds& ends, const std::string& who,
+                       const SourceLoc& loc, bool packed);
 
   const Network& net_;
   RouteTable& routes_;

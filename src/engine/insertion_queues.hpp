@@ -44,6 +44,10 @@ class InsertionQueues {
   /// order, and removes those entries from their queues.
   template <class Inserted>
   void take_inserted(Inserted&& inserted);
+  /// Removes the departures (not re-entering vehicles) for which drop(v) is true from every queue, keeping
+  /// the order of the others; edges ascending, each queue from its head.
+  template <class Drop>
+  void drop_departures(Drop&& drop);
 
  private:
   struct EdgeQueue {
@@ -89,6 +93,31 @@ void InsertionQueues::take_inserted(Inserted&& inserted) {
       --waiting_;
     }
     q.head = static_cast<uint32_t>(keep);
+    if (q.head < q.entries.size()) {
+      still_.push_back(e);
+    } else {
+      q.entries.clear();
+      q.head = 0;
+    }
+  }
+  queued_edges_.swap(still_);
+}
+
+template <class Drop>
+void InsertionQueues::drop_departures(Drop&& drop) {
+  still_.clear();
+  for (const uint32_t e : queued_edges_) {
+    EdgeQueue& q = queue_[e];
+    size_t keep = q.head;
+    for (size_t i = q.head; i < q.entries.size(); ++i) {
+      const uint32_t entry = q.entries[i];
+      if (!(entry & kInsertTeleported) && drop(entry)) {
+        --waiting_;
+        continue;
+      }
+      q.entries[keep++] = entry;
+    }
+    q.entries.resize(keep);
     if (q.head < q.entries.size()) {
       still_.push_back(e);
     } else {

@@ -38,7 +38,8 @@ enum PartRequest : uint8_t {
   kRequestSample = 2,
   kRequestCounters = 3,
   kRequestSpeedSums = 4,
-  kRequestStop = 5
+  kRequestStop = 5,
+  kRequestUnfinished = 6
 };
 
 struct PartState {

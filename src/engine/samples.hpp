@@ -60,7 +60,11 @@ struct TripRecord {
   double time_loss = 0;  // s
   float speed_factor = 1;
   bool teleported = false;
+  // SUMO's write-unfinished / write-undeparted records, written at the end: kTripRunning for a trip still
+  // on its way (arrival fields unknown), kTripUndeparted for one due by the end that never departed.
+  uint8_t unfinished = 0;
 };
+inline constexpr uint8_t kTripRunning = 1, kTripUndeparted = 2;
 
 /// One step of the summary output.
 struct SummaryRow {

@@ -399,6 +399,21 @@ void Simulation::insert_waiting(int map_index) {
     init.slot = slots_.take();
     inits_.push_back(init);
   });
+  if (opt_.max_depart_delay >= 0) drop_late_departures();
+}
+
+// SUMO's --max-depart-delay: a departure that could not be inserted in this step, which ends more than the
+// delay after its depart time, is dropped (MSInsertionControl::tryInsert); queued vehicles behind a failed
+// head were not tried and are dropped alike, as in SUMO.
+void Simulation::drop_late_departures() {
+  const Demand& d = trips_.demand();
+  const int64_t max_delay_ms = std::llround(opt_.max_depart_delay * 1000.0);
+  queues_.drop_departures([&](uint32_t v) {
+    if (time_ms_ - depart_ms(d.depart[v]) <= max_delay_ms) return false;
+    ledger_.set_status(v, kArrived);
+    ++counts_.discarded;
+    return true;
+  });
 }
 
 // The vehicles inserted in this step start in their slots and join the active list; the slots that left it
@@ -628,6 +643,61 @@ SpeedSums Simulation::speed_sums() const {
   return sums;
 }
 
+std::vector<TripRecord> Simulation::own_unfinished_trips(double end, bool undeparted) const {
+  const Demand& d = trips_.demand();
+  std::vector<TripRecord> out;
+  auto record = [&](uint32_t v, uint8_t kind) -> TripRecord& {
+    TripRecord& r = out.emplace_back();
+    r.vehicle = v;
+    r.unfinished = kind;
+    r.speed_factor = d.speed_factor[v];
+    const DepartRecord dep = ledger_.departure(v);
+    r.depart = kind == kTripRunning ? dep.time : -1.0;
+    r.depart_delay = (kind == kTripRunning ? dep.time : end) - d.depart[v];
+    r.depart_lane = static_cast<uint32_t>(dep.lane);
+    r.depart_pos = dep.pos;
+    r.depart_speed = dep.speed;
+    r.arrival = end;  // the writer gives duration end - depart and arrival -1
+    return r;
+  };
+  // On the road: its slot holds the counters so far (a vehicle teleported before carries them there).
+  const HostState& s = state(StateParts::Columns);
+  for (const uint64_t key : active_by_vehicle()) {
+    const uint32_t v = static_cast<uint32_t>(key >> 32), k = static_cast<uint32_t>(key);
+    if (s.veh.status[k] != kRunning) continue;
+    TripRecord& r = record(v, kTripRunning);
+    r.route_length = s.veh.route_length[k];
+    r.time_loss = s.veh.time_loss[k];
+    r.waiting_time = static_cast<double>(s.veh.waiting_steps[k]) * step_length();
+    r.waiting_count = s.veh.waiting_count[k];
+    r.stop_time = static_cast<double>(s.veh.stop_steps[k]) * step_length();
+  }
+  // Off the road between a teleport and its re-entry, or never departed.
+  for (uint32_t v = 0; v < trips_.size(); ++v) {
+    const uint8_t st = ledger_.status(v);
+    if (st == kTeleporting) {
+      const TripCounters* c = ledger_.carried(v);
+      TripRecord& r = record(v, kTripRunning);
+      if (c) {
+        r.route_length = c->route_length;
+        r.time_loss = c->time_loss;
+        r.waiting_time = static_cast<double>(c->waiting_steps) * step_length();
+        r.waiting_count = c->waiting_count;
+        r.stop_time = static_cast<double>(c->stop_steps) * step_length();
+      }
+    } else if (st == kPending && undeparted && ledger_.departure(v).lane < 0 &&
+               depart_ms(d.depart[v]) <= std::llround(end * 1000.0) && d.route_length[v] > 0) {
+      // In a partitioned run the part that owns its first edge reports it (the others never queue it).
+      const uint32_t edge = d.route_edges[d.route_begin[v]];
+      if (parts_ && parts_->plan.edge_owner[edge] != parts_->plan.part) continue;
+      record(v, kTripUndeparted);
+    }
+  }
+  std::sort(out.begin(), out.end(),
+            [](const TripRecord& a, const TripRecord& b) { return a.vehicle < b.vehicle; });
+  return out;
+}
+
 SummaryRow Simulation::summary_row() const {
   SummaryRow r;
   const Counts& c = counts();
@@ -637,7 +707,7 @@ SummaryRow Simulation::summary_row() const {
   r.running = c.running;
   r.waiting = c.waiting;
   r.arrived = c.arrived;
-  r.ended = c.arrived;
+  r.ended = c.arrived + c.discarded;
   r.teleports = c.teleports;
   const SpeedSums sums = parts_ ? gather_speed_sums() : speed_sums();
   const uint64_t running = sums.running;

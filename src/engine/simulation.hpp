@@ -29,6 +29,9 @@ struct SimulationOptions {
   int threads = 1;
   double time_to_teleport = 300;    // s; <= 0: never
   double time_to_impatience = 180;  // s for a waiting vehicle's impatience to grow from 0 to 1; <= 0: never
+  // SUMO's --max-depart-delay: a departure not inserted in a step that ends more than this after its depart
+  // time is dropped (Counts::discarded); < 0: never. Vehicles re-entering after a teleport are never dropped.
+  double max_depart_delay = -1;  // s
   // Run the step on the CUDA device (backends/cuda). The device then owns the run state; the host keeps the
   // insertion queues and the trip ledger and fetches only what outputs and teleports need.
   bool gpu = false;
@@ -103,7 +106,8 @@ class Simulation {
 
   struct Counts {
     uint64_t loaded = 0, inserted = 0, running = 0, waiting = 0, arrived = 0, teleports = 0;
-    uint64_t removed = 0;  // never inserted for a reason (departure before begin, route without car lanes)
+    uint64_t removed = 0;    // never inserted for a reason (departure before begin, route without car lanes)
+    uint64_t discarded = 0;  // dropped while waiting to depart, after the max depart delay
     uint64_t vehicle_updates = 0;
   };
   /// The run's counts (in a partitioned run, part 0 sums the parts').
@@ -119,6 +123,11 @@ class Simulation {
   std::vector<PartStats> part_stats() const;
   /// Trips that ended since the last call, in order of arrival then vehicle index.
   std::vector<TripRecord> take_finished_trips();
+  /// Records of the trips that have not ended, for SUMO's tripinfo write-unfinished, as of `end` (the time
+  /// SUMO's run ends): every vehicle on the road or teleporting (kTripRunning, its counters so far), and with
+  /// `undeparted` every trip due by `end` that never departed (kTripUndeparted). In vehicle order; in a
+  /// partitioned run part 0 gathers every part's (the others return nothing).
+  std::vector<TripRecord> unfinished_trips(double end, bool undeparted) const;
   SummaryRow summary_row() const;
 
   /// Test support: recomputes the lane map from every running vehicle's footprint and reports the first
@@ -193,6 +202,8 @@ class Simulation {
   void enqueue_due(int64_t until_ms);
   void enqueue(uint32_t v);
   void insert_waiting(int map_index);
+  void drop_late_departures();
+  std::vector<TripRecord> own_unfinished_trips(double end, bool undeparted) const;
   void handle_vehicle_ends(std::vector<VehicleEnd>& ends);
   void stop_steps_from_times();
   void set_stops(SlotInit& init, uint32_t next) const;

@@ -396,6 +396,7 @@ void Simulation::report_to_root() {
     sum.waiting += c.waiting;
     sum.arrived += c.arrived;
     sum.teleports += c.teleports;
+    sum.discarded += c.discarded;
     sum.vehicle_updates += c.vehicle_updates;
     const bool part_idle = r.get<uint8_t>() != 0;
     idle = idle && part_idle;
@@ -458,6 +459,8 @@ void Simulation::serve_part() {
       lane_counters();
     } else if (what == kRequestSpeedSums) {
       gather_speed_sums();
+    } else if (what == kRequestUnfinished) {
+      unfinished_trips(0, false);  // the arguments come with the gather
     } else if (what == kRequestStop) {
       return;
     } else {
@@ -465,6 +468,35 @@ void Simulation::serve_part() {
                              std::to_string(what));
     }
   }
+}
+
+// Part 0 sends `end` and `undeparted` with the gather's request; every part answers with its own records.
+std::vector<TripRecord> Simulation::unfinished_trips(double end, bool undeparted) const {
+  if (!parts_) return own_unfinished_trips(end, undeparted);
+  PartState& ps = *parts_;
+  std::vector<int> others;
+  for (int p = 1; p < ps.plan.parts; ++p) others.push_back(p);
+  if (ps.plan.part == 0) {
+    request(kRequestUnfinished);
+    Bytes args;
+    ByteWriter w(args);
+    w.put(end);
+    w.put(static_cast<uint8_t>(undeparted ? 1 : 0));
+    ps.round(others, std::vector<Bytes>(others.size(), args), {}, "unfinished arguments", false);
+  } else {
+    const std::vector<Bytes> got = ps.round({}, {}, {0}, "unfinished arguments", false);
+    ByteReader r(got.at(0));
+    end = r.get<double>();
+    undeparted = r.get<uint8_t>() != 0;
+  }
+  Bytes b;
+  ByteWriter(b).put_array(own_unfinished_trips(end, undeparted));
+  std::vector<TripRecord> all;
+  for (const Bytes& x : gather_at_root(b, "unfinished"))
+    for (const TripRecord& t : ByteReader(x).get_array<TripRecord>()) all.push_back(t);
+  std::sort(all.begin(), all.end(),
+            [](const TripRecord& a, const TripRecord& b) { return a.vehicle < b.vehicle; });
+  return all;
 }
 
 // The summary's sums of every part, added at part 0 (integers: exact in any order).

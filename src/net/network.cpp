@@ -28,6 +28,7 @@ void release_name_indexes(Network& net) {
   decltype(net.lane_index_by_id)().swap(net.lane_index_by_id);
   decltype(net.junction_index)().swap(net.junction_index);
   decltype(net.signal_index)().swap(net.signal_index);
+  decltype(net.left_out_lane_edge)().swap(net.left_out_lane_edge);
 }
 
 }  // namespace lpsim

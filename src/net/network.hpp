@@ -103,6 +103,10 @@ struct Network {
 
   // --- lookups (built by the builder) ---
   std::unordered_map<std::string, uint32_t> edge_index, lane_index_by_id, junction_index, signal_index;
+  // Lanes of normal edges that no road vehicle may use (sidewalks, rail, tram tracks), left out of the lane
+  // tables: each id with its edge, so that a stopping place or stop on one is told from an unknown lane.
+  // Not kept in snapshots (only the demand builder reads it).
+  std::unordered_map<std::string, uint32_t> left_out_lane_edge;
 
   uint32_t num_edges() const { return static_cast<uint32_t>(edge_id.size()); }
   uint32_t num_lanes() const { return static_cast<uint32_t>(lane_id.size()); }

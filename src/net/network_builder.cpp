@@ -196,8 +196,8 @@ class Builder {
       for (uint32_t k = 0; k < e.lanes.size(); ++k) {
         if (vehicle_lane(e.lanes[k].permissions))
           order.push_back(k);
-        else
-          non_car_lanes_.insert(e.lanes[k].id);
+        else if (non_car_lanes_.insert(e.lanes[k].id).second && !internal)
+          net_.left_out_lane_edge.emplace(e.lanes[k].id, ei);
       }
       std::stable_sort(order.begin(), order.end(),
                        [&](uint32_t a, uint32_t b) { return e.lanes[a].index < e.lanes[b].index; });

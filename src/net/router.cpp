@@ -8,6 +8,8 @@
 #include <string>
 #include <thread>
 
+#include "kernels/rng.hpp"
+
 namespace lpsim {
 namespace {
 
@@ -37,10 +39,12 @@ inline bool heap_after(const HeapItem& a, const HeapItem& b) {
 // cleared, so a query costs only what it touches.
 class Search {
  public:
-  Search(const Network& net, const std::vector<float>& cost, const std::vector<double>& step_cost)
+  Search(const Network& net, const std::vector<float>& cost, const std::vector<double>& step_cost,
+         const RandomWeights& random)
       : net_(net),
         cost_(cost),
         step_cost_(step_cost),
+        random_(random),
         dist_(net.num_edges()),
         pred_(net.num_edges()),
         seen_(net.num_edges(), 0),
@@ -54,7 +58,7 @@ class Search {
   void run(const std::vector<uint32_t>& seeds, OnSettle&& on_settle) {
     heap_.clear();
     for (uint32_t s : seeds) {
-      const double c = cost_[s];
+      const double c = cost_[s] * factor(s);
       if (!std::isfinite(c) || net_.edge_is_internal[s] || (net_.edge_permissions[s] & vclass_) == 0)
         continue;
       if (seen_[s] != version_ || c < dist_[s]) {
@@ -74,9 +78,9 @@ class Search {
       if (on_settle(e)) return;
       for (uint32_t i = net_.edge_succ_begin[e]; i < net_.edge_succ_begin[e + 1]; ++i) {
         const uint32_t s = net_.edge_succ[i];
-        const double c = step_cost_[i];
-        if (!std::isfinite(c) || settled_[s] == version_ || (net_.edge_succ_permissions[i] & vclass_) == 0)
-          continue;
+        if (settled_[s] == version_ || (net_.edge_succ_permissions[i] & vclass_) == 0) continue;
+        const double c = step_cost_[i] * factor(s);
+        if (!std::isfinite(c)) continue;
         const double d = top.dist + c;
         if (seen_[s] != version_ || d < dist_[s]) {
           seen_[s] = version_;
@@ -88,8 +92,11 @@ class Search {
     }
   }
 
-  /// The vClass mask the following searches route for.
-  void set_vclass(uint32_t vclass) { vclass_ = vclass; }
+  /// The vClass mask and the random stream (RouteRequest::random_stream) of the following searches.
+  void set_request(uint32_t vclass, uint64_t random_stream) {
+    vclass_ = vclass;
+    stream_ = random_stream;
+  }
 
   /// Starts a new search: all per-edge tags become stale.
   void next_version() {
@@ -156,6 +163,12 @@ class Search {
   }
 
  private:
+  // The random factor of edge e's cost for the current request (1 without random weights).
+  double factor(uint32_t e) const {
+    if (stream_ == 0 || !(random_.factor > 1)) return 1.0;
+    return 1.0 + (random_.factor - 1.0) * rng_uniform_double(random_.seed, stream_, e);
+  }
+
   void push(double d, uint32_t e) {
     heap_.push_back({d, e});
     std::push_heap(heap_.begin(), heap_.end(), heap_after);
@@ -164,18 +177,20 @@ class Search {
   const Network& net_;
   const std::vector<float>& cost_;
   const std::vector<double>& step_cost_;
+  const RandomWeights& random_;
   std::vector<double> dist_;
   std::vector<int32_t> pred_;
   std::vector<uint32_t> seen_, settled_, target_, target_slot_;
   uint32_t version_ = 1;
   uint32_t vclass_ = kAllVClasses;
+  uint64_t stream_ = 0;
   std::vector<HeapItem> heap_;
   std::vector<std::pair<uint32_t, uint32_t>> pairs_;
   std::vector<char> answered_;
 };
 
 std::vector<uint32_t> route_one(Search& search, const RouteRequest& r) {
-  search.set_vclass(r.vclass);
+  search.set_request(r.vclass, r.random_stream);
   std::vector<uint32_t> path;
   std::vector<uint32_t> sources = r.origins;
   for (uint32_t v : r.via) {
@@ -214,8 +229,8 @@ double crossing_cost(const Network& net, uint32_t c, double minor_penalty) {
 
 }  // namespace
 
-Router::Router(const Network& net, double minor_penalty)
-    : net_(net), edge_cost_(net.num_edges()), step_cost_(net.edge_succ.size()) {
+Router::Router(const Network& net, double minor_penalty, RandomWeights random)
+    : net_(net), random_(random), edge_cost_(net.num_edges()), step_cost_(net.edge_succ.size()) {
   for (uint32_t e = 0; e < net.num_edges(); ++e)
     edge_cost_[e] = net.edge_speed[e] > 0 ? net.edge_length[e] / net.edge_speed[e]
                                           : std::numeric_limits<float>::infinity();
@@ -263,13 +278,13 @@ std::vector<std::vector<uint32_t>> Router::route_all(const std::vector<RouteRequ
                                   std::to_string(e) + " of " + std::to_string(edges));
 
   // Work items: one per distinct origin set and vClass (requests without via sharing them, e.g. trips between
-  // junctions or zones, share one one-to-many search), and one per request with via. A search settles edges
-  // in the same order whatever it stops on, so sharing gives each request the path its own search would.
-  // Items depend only on the requests, never on the thread count.
+  // junctions or zones, share one one-to-many search), and one per request with via or random weights. A
+  // search settles edges in the same order whatever it stops on, so sharing gives each request the path its
+  // own search would. Items depend only on the requests, never on the thread count.
   std::vector<uint32_t> by_origins;  // requests without via, grouped by equal origin lists
   std::vector<uint32_t> singles;
   for (uint32_t i = 0; i < requests.size(); ++i) {
-    if (requests[i].via.empty())
+    if (requests[i].via.empty() && requests[i].random_stream == 0)
       by_origins.push_back(i);
     else
       singles.push_back(i);
@@ -299,7 +314,7 @@ std::vector<std::vector<uint32_t>> Router::route_all(const std::vector<RouteRequ
   std::vector<std::vector<uint32_t>> out(requests.size());
   std::atomic<size_t> next{0};
   auto worker = [&]() {
-    Search search(net_, edge_cost_, step_cost_);
+    Search search(net_, edge_cost_, step_cost_, random_);
     std::vector<uint32_t> group;
     for (size_t k; (k = next.fetch_add(1, std::memory_order_relaxed)) < items.size();) {
       const Item& it = items[k];
@@ -309,7 +324,7 @@ std::vector<std::vector<uint32_t>> Router::route_all(const std::vector<RouteRequ
       }
       group.clear();
       for (uint32_t i = it.first; i < it.last; ++i) group.push_back(by_origins[i]);
-      search.set_vclass(requests[group.front()].vclass);
+      search.set_request(requests[group.front()].vclass, 0);
       search.one_to_many(requests[group.front()].origins, group, requests, out);
     }
   };

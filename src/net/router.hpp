@@ -12,6 +12,18 @@ namespace lpsim {
 struct RouteRequest {
   std::vector<uint32_t> origins, destinations, via;
   uint32_t vclass = kAllVClasses;
+  // Non-zero: the stream from which this request's random edge-cost factors are drawn (RandomWeights), e.g.
+  // a hash of the vehicle id; such a request is routed on its own, never shared with another.
+  uint64_t random_stream = 0;
+};
+
+/// SUMO's --weights.random-factor F: each edge's cost is multiplied by a factor drawn uniformly in [1, F),
+/// here one per (request, edge) from the counter-based RNG keyed by `seed` and the request's random_stream,
+/// so that routes depend on the seed and the vehicle only (SUMO draws one per cost evaluation from its
+/// global RNG, which no other simulator can reproduce draw for draw).
+struct RandomWeights {
+  double factor = 1;
+  uint64_t seed = 0;
 };
 
 /// SUMO's default time penalty (--weights.minor-penalty) for crossing a junction on a link without
@@ -26,7 +38,7 @@ constexpr double kMinorLinkPenalty = 1.5;
 class Router {
  public:
   /// minor_penalty: SUMO's --weights.minor-penalty [s].
-  explicit Router(const Network& net, double minor_penalty = kMinorLinkPenalty);
+  explicit Router(const Network& net, double minor_penalty = kMinorLinkPenalty, RandomWeights random = {});
   /// Routes all requests on `threads` threads (0: all). An empty result means "no path".
   std::vector<std::vector<uint32_t>> route_all(const std::vector<RouteRequest>& requests, int threads) const;
   /// Free-flow cost of a path (seconds), its edges' and the junction crossings between them.
@@ -36,6 +48,7 @@ class Router {
 
  private:
   const Network& net_;
+  RandomWeights random_;
   std::vector<float> edge_cost_;
   std::vector<double> step_cost_;  // parallel to net.edge_succ
 };

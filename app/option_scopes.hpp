@@ -1,0 +1,27 @@
+#pragma once
+// SUMO options that act only on something a scenario may lack (ConfigSpec::scoped_options): decided once
+// the scenario's files are read. An option that would act here is refused, as an option LPSim does not model
+// that would change the results; one that cannot act here is named in one warning, with why.
+//  - BidiEdges (time-to-teleport.bidi): acts where a road edge has a bidi partner.
+//  - ReroutingDevice (device.rerouting.*): acts where a vehicle is equipped with the rerouting device (by
+//    probability > 0, explicit, or has.rerouting.device on its vType or itself), or where trips and flows
+//    from/to are rerouted en route (period > 0 with the probability left at SUMO's default). Trips and
+//    flows from/to alone: LPSim routes them when loading on free-flow travel times, whatever these options
+//    say (SUMO routes them when inserting them, on the travel times the adaptation options tune): accepted,
+//    and the warning says so.
+//  - ParkingAreaStops (parking.maneuver): acts where a vehicle stops at a parkingArea.
+//  - Persons (pedestrian.model, ride.stop-tolerance, person-device.*): acts where the scenario has persons
+//    or containers; pedestrian.model nonInteracting never acts (LPSim's persons never meet its vehicles).
+#include <string>
+
+#include "core/config_spec.hpp"
+#include "core/demand_spec.hpp"
+#include "core/net_spec.hpp"
+
+namespace lpsim {
+
+/// InputError at the option's file:line for the first scoped option that acts in this scenario; else the
+/// warning line naming those that cannot act here and why ("" when none was given).
+std::string decide_scoped_options(const ConfigSpec& config, const NetSpec& net, const DemandSpec& demand);
+
+}  // namespace lpsim
