@@ -277,7 +277,13 @@ struct StepParams {
   float max_emergency_decel;  // largest emergency decel over all types (hardest a leader may brake)
   uint32_t teleport_steps;    // 0: never teleport
   uint32_t impatience_steps;  // stopped steps for a vehicle's impatience to grow from 0 to 1; 0: never
+  // SUMO's --ignore-junction-blocker in steps: foes no longer wait for vehicles standing this long on a
+  // junction lane (read only where the step tracks junction stands, StepContext::junction_stand_now).
+  uint32_t ignore_blocker_steps;
 };
+
+/// A junction lane's entry of StepContext::junction_stand_*: no vehicle's front stood there.
+constexpr uint32_t kNoJunctionStand = 0xFFFFFFFFu;
 
 /// A vehicle that arrived or started a teleport in a step, as the host sees it (trip record, teleport).
 struct VehicleEnd {

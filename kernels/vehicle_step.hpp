@@ -39,6 +39,12 @@ struct StepContext {
   uint64_t* merge_requests;  // per lane: a blocked mandatory lane changer asks followers there to open a gap
   const uint32_t* yielder_begin;  // [num_conns+1] connections that must yield to each connection (CSR)
   const uint32_t* yielder;
+  // Per lane, for SUMO's --ignore-junction-blocker (null without it): the fewest consecutive steps any
+  // vehicle whose front is on the junction lane has stood there, as the step began (now, read) and as it
+  // ends (next, written: reset by the clear pass on the lanes fronts held two steps ago, as the lane map's
+  // buffer is, then lowered by the commit pass). kNoJunctionStand where no front is.
+  const uint32_t* junction_stand_now;
+  uint32_t* junction_stand_next;
   // Per-lane output counters (integers: order independent).
   int64_t* cnt_sampled_steps;
   int64_t* cnt_travelled_mm;
@@ -394,6 +400,16 @@ LPSIM_HD bool krauss_gap_blocked(const StepContext& s, uint32_t c, uint32_t f, u
                             impatience, same_target, s.params.dt);
 }
 
+/// SUMO's --ignore-junction-blocker: the vehicles on junction lane `via` have all stood there at least the
+/// given time (MSLink::getLeaderInfo leaves out a link leader whose waiting time reached it), so a foe
+/// crossing their path no longer waits for them. Only vehicles whose front is on the lane are counted: a
+/// lane holding only the tail of one that drove on is not ignored.
+LPSIM_HD bool ignored_blocker(const StepContext& s, int32_t via) {
+  if (s.junction_stand_now == nullptr) return false;
+  const uint32_t stood = s.junction_stand_now[via];
+  return stood != kNoJunctionStand && stood >= s.params.ignore_blocker_steps;
+}
+
 /// Right of way for entering connection c, `dist` metres ahead: every foe link it must yield to is either
 /// closed by its signal, empty inside the junction and without an approaching vehicle that would arrive
 /// before this one has cleared. Foes beyond their request horizon (the distance within which they could
@@ -424,9 +440,10 @@ LPSIM_HD bool may_enter(const StepContext& s, uint32_t c, float dist, float spee
     // A foe on its via lane blocks until its rear has passed the crossing, unless that link has an internal
     // junction: the vehicle there waits before the crossing (for links that include this one's).
     const int32_t fvia = net.conn_via_lane[f];
-    const int32_t inside = fvia >= 0 && !has_internal_junction(net, f)
-                               ? first_occupied(s.map_now, net, fvia, 0, net.conn_foe_block_cells[k] - 1)
-                               : -1;
+    int32_t inside = fvia >= 0 && !has_internal_junction(net, f)
+                         ? first_occupied(s.map_now, net, fvia, 0, net.conn_foe_block_cells[k] - 1)
+                         : -1;
+    if (inside >= 0 && ignored_blocker(s, fvia)) inside = -1;
     const bool merge = net.conn_to_lane[c] == net.conn_to_lane[f];
     if (inside >= 0 && !(stops_at_line && merge)) return false;
     const uint32_t flane = net.conn_from_lane[f];
@@ -1510,6 +1527,8 @@ LPSIM_HD void plan_vehicle(StepContext& s, uint32_t i, uint32_t slot) {
 LPSIM_HD void clear_old_footprint(StepContext& s, uint32_t /*i*/, uint32_t slot) {
   const Footprint fp{s.veh.old_lane[slot], s.veh.old_prev[slot], s.veh.old_prev2[slot], s.veh.old_pos[slot]};
   apply_footprint(s.map_next, s.net, fp, s.types.length[s.veh.trip_type[slot]], 0);
+  if (s.junction_stand_next != nullptr && fp.lane >= 0 && s.net.lane_internal[fp.lane])
+    atomic_store_u32(&s.junction_stand_next[fp.lane], kNoJunctionStand);
 }
 
 /// No vehicle stood ahead of a front at `pos` on `lane` as the step began. SUMO teleports only the first
@@ -1667,6 +1686,8 @@ LPSIM_HD_INLINED void commit_vehicle(StepContext& s, uint32_t i, uint32_t slot) 
   veh.prev2[slot] = nprev2;
   veh.speed[slot] = nspeed;
   apply_footprint(s.map_next, net, Footprint{nlane, nprev, nprev2, npos}, length, encode_cell_speed(nspeed));
+  if (s.junction_stand_next != nullptr && net.lane_internal[nlane])
+    atomic_min_u32(&s.junction_stand_next[nlane], veh.stopped_steps[slot]);
 }
 
 // --- After the passes: which vehicles left the road this step, and which stay in the active list. ---

@@ -62,6 +62,9 @@ struct StepperSetup {
   TripTableView trips;
   // Accumulate the per-lane edgeData/laneData counters; without them the passes skip their atomics.
   bool lane_counters = true;
+  // Track how long fronts stand on junction lanes (StepContext::junction_stand_*), for SUMO's
+  // --ignore-junction-blocker; without it the passes skip that work.
+  bool junction_stands = false;
   int threads = 1;  // CPU backend: threads of its team
   int device = 0;   // CUDA backend: the device, counted modulo the devices present (ranks share them)
 };

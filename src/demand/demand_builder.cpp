@@ -91,9 +91,8 @@ class Builder {
       const bool no_from = v.from.empty() && v.from_junction.empty(),
                  no_to = v.to.empty() && v.to_junction.empty();
       // SUMO: a trip without 'from' ('to') starts (ends) on the edge of its first (last) stop.
-      const std::string& from =
-          no_from && !v.stops.empty() ? net_.edge_id[stops_.edge_of(v.stops.front())] : v.from;
-      const std::string& to = no_to && !v.stops.empty() ? net_.edge_id[stops_.edge_of(v.stops.back())] : v.to;
+      const std::string from = no_from ? stop_edge(v.stops, true) : v.from;
+      const std::string to = no_to ? stop_edge(v.stops, false) : v.to;
       slot = trips_.add({from, to, v.from_junction, v.to_junction, via_and_stops(v.via, v.stops)},
                         types_.types().vclass_mask[type], kind_name(v.source), v.id, v.loc,
                         random_stream(stream));
@@ -143,12 +142,20 @@ class Builder {
     return opt_.random_factor > 1 ? (vehicle_stream | 1) : 0;
   }
 
+  // The edge of the first (or last) stop that is not dropped, or "" (the trip then has no such end).
+  std::string stop_edge(const std::vector<StopSpec>& stops, bool first) const {
+    for (size_t k = 0; k < stops.size(); ++k)
+      if (const auto e = stops_.edge_of(stops[first ? k : stops.size() - 1 - k])) return net_.edge_id[*e];
+    return "";
+  }
+
   // A trip's via edges, then the edges of its stops: the router leads it through both, as duarouter does.
   const std::vector<std::string>& via_and_stops(const std::vector<std::string>& via,
                                                 const std::vector<StopSpec>& stops) {
     if (stops.empty()) return via;
     via_buffer_ = via;
-    for (const StopSpec& st : stops) via_buffer_.push_back(net_.edge_id[stops_.edge_of(st)]);
+    for (const StopSpec& st : stops)
+      if (const auto e = stops_.edge_of(st)) via_buffer_.push_back(net_.edge_id[*e]);
     return via_buffer_;
   }
 
@@ -323,6 +330,9 @@ class Builder {
     // Stopping places on rail, tram or pedestrian lanes: skipped, with the vehicles using them (trains).
     if (const uint64_t n = stops_.left_out_places(); n > 0)
       d.unsupported["stopping place on a lane no road vehicle may use"] += static_cast<int64_t>(n);
+    // As SUMO 1.15, which reports each and runs on without it.
+    if (const uint64_t n = stops_.dropped_stops(); n > 0)
+      d.unsupported["stop (position off its lane, dropped as SUMO drops it)"] += static_cast<int64_t>(n);
     for (auto src : d.source) d.routing.vehicles += src != DemandSource::Vehicle ? 1 : 0;
   }
 

@@ -86,23 +86,28 @@ StopResolver::Place StopResolver::place_of(const StopSpec& s, uint32_t vclass) c
   const double length = net_.lane_length[lane];
   double end = s.end_pos.value_or(length);
   double start = s.start_pos.value_or(std::fmax(0.0, end - 2 * kPositionEps));
+  // SUMO 1.15 reports such a stop as an error but drops it and runs on.
   if (!stop_position_valid(start, end, length, 0.0, s.friendly_pos))
-    throw InputError(s.loc, "stop on lane '" + net_.lane_id[lane] + "': invalid position: startPos " +
-                                metres(s.start_pos.value_or(start)) + ", endPos " +
-                                metres(s.end_pos.value_or(end)) + " on a lane of length " + metres(length) +
-                                " (give friendlyPos=\"true\" to move it onto the lane)");
+    return Place{kDropped, net_.lane_edge[lane], 0.0f, 0.0f};
   return Place{lane, net_.lane_edge[lane], static_cast<float>(start), static_cast<float>(end)};
 }
 
-uint32_t StopResolver::edge_of(const StopSpec& stop) const { return place_of(stop, kAllVClasses).edge; }
+std::optional<uint32_t> StopResolver::edge_of(const StopSpec& stop) const {
+  const Place p = place_of(stop, kAllVClasses);
+  if (p.lane == kDropped) return std::nullopt;
+  return p.edge;
+}
 
 std::string StopResolver::append(const std::vector<const StopSpec*>& specs, const uint32_t* route,
-                                 uint32_t route_len, uint32_t vclass, double until_shift,
-                                 StopTable& out) const {
+                                 uint32_t route_len, uint32_t vclass, double until_shift, StopTable& out) {
   uint32_t pos = 0;
   float last_end = -1.0f;
   for (const StopSpec* s : specs) {
     const Place p = place_of(*s, vclass);
+    if (p.lane == kDropped) {
+      ++dropped_stops_;
+      continue;
+    }
     if (p.lane == kLeftOut)
       return "may not stop " +
              (s->stopping_place.empty() ? "on edge '" + net_.edge_id[p.edge] + "'"

@@ -86,6 +86,8 @@ Simulation::Simulation(const Network& net, Demand demand, const SimulationOption
   }
   teleport_steps_ = stopped_steps_for(opt_.time_to_teleport, step_length());
   impatience_steps_ = stopped_steps_for(opt_.time_to_impatience, step_length());
+  // 0 s ignores every vehicle on a junction lane, standing or not, as in SUMO.
+  ignore_blocker_steps_ = stopped_steps_for(opt_.ignore_junction_blocker, step_length());
   stop_steps_from_times();
 
   if ((opt_.part == nullptr) != (opt_.transport == nullptr))
@@ -112,6 +114,7 @@ Simulation::Simulation(const Network& net, Demand demand, const SimulationOption
   setup.yielder = engine_net_.yielder.data();
   setup.trips = trip_table_view();
   setup.lane_counters = opt_.lane_counters;
+  setup.junction_stands = opt_.ignore_junction_blocker >= 0;
   setup.threads = opt_.threads;
   setup.device = opt_.gpu_device;
   stepper_ = opt_.gpu ? make_cuda_stepper(setup) : make_cpu_stepper(setup);
@@ -206,7 +209,8 @@ StepParams Simulation::step_params() const {
                     max_accel_,
                     max_emergency_decel_,
                     teleport_steps_,
-                    impatience_steps_};
+                    impatience_steps_,
+                    ignore_blocker_steps_};
 }
 
 void Simulation::step() {

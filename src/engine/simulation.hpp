@@ -32,6 +32,9 @@ struct SimulationOptions {
   // SUMO's --max-depart-delay: a departure not inserted in a step that ends more than this after its depart
   // time is dropped (Counts::discarded); < 0: never. Vehicles re-entering after a teleport are never dropped.
   double max_depart_delay = -1;  // s
+  // SUMO's --ignore-junction-blocker: a vehicle standing this long on a junction lane (not at a scheduled
+  // stop) no longer blocks the foes crossing its path; < 0: never (the step then tracks nothing for it).
+  double ignore_junction_blocker = -1;  // s
   // Run the step on the CUDA device (backends/cuda). The device then owns the run state; the host keeps the
   // insertion queues and the trip ledger and fetches only what outputs and teleports need.
   bool gpu = false;
@@ -249,9 +252,10 @@ class Simulation {
   double step_seconds_ = 0;
   Counts counts_;
   float max_accel_ = 2.6f, max_emergency_decel_ = 9.0f, min_decel_ = 4.5f;
-  uint32_t teleport_steps_ = 0;    // stopped steps before a teleport (0: never)
-  uint32_t impatience_steps_ = 0;  // stopped steps for impatience to reach 1 (0: never impatient)
-  int cur_ = 0;                    // the lane map the state is in (the next step reads it)
+  uint32_t teleport_steps_ = 0;        // stopped steps before a teleport (0: never)
+  uint32_t impatience_steps_ = 0;      // stopped steps for impatience to reach 1 (0: never impatient)
+  uint32_t ignore_blocker_steps_ = 0;  // stood steps after which a junction blocker is ignored (if tracked)
+  int cur_ = 0;                        // the lane map the state is in (the next step reads it)
 
   // Host bookkeeping: slots handed out, the queues, every trip's account.
   SlotPool slots_;

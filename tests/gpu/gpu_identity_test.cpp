@@ -109,7 +109,8 @@ TEST_P(GpuIdentityTest, GpuOutputsEqualCpuOutputsByteForByte) {
 // Signals (grid_tls), right of way (random_net), random departures and flows (flows), 0.5 s steps with
 // edgeData intervals, teleports with re-insertion (a short time-to-teleport on the signalised grid), and the
 // device's run split into parts (their exchanges read and write the device's state; teleported vehicles
-// re-enter in the part that owns their next edge) against the CPU in one part.
+// re-enter in the part that owns their next edge) against the CPU in one part; junction blockers ignored
+// (--ignore-junction-blocker 0: every vehicle on a junction lane) in parts.
 INSTANTIATE_TEST_SUITE_P(
     BundledScenarios, GpuIdentityTest,
     ::testing::Values(IdentityCase{"grid_tls", "grid_tls", "", false},
@@ -119,7 +120,10 @@ INSTANTIATE_TEST_SUITE_P(
                       IdentityCase{"grid_tls_teleports", "grid_tls", "--time-to-teleport 20", true},
                       IdentityCase{"grid_tls_in_3_parts", "grid_tls", "", false, "--parts 3"},
                       IdentityCase{"grid_tls_teleports_in_4_parts", "grid_tls", "--time-to-teleport 20", true,
-                                   "--parts 4"}),
+                                   "--parts 4"},
+                      // The junction lanes' stand times (double-buffered like the lane map) in 3 parts.
+                      IdentityCase{"grid_tls_ignore_junction_blockers_in_3_parts", "grid_tls",
+                                   "--ignore-junction-blocker 0", false, "--parts 3"}),
     [](const ::testing::TestParamInfo<IdentityCase>& info) { return std::string(info.param.name); });
 
 TEST(DeviceSelectTest, CpuIsAlwaysTheCpu) {

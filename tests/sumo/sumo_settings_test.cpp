@@ -1,6 +1,7 @@
 // Settings real scenarios use, implemented as SUMO defines them, each run by the real sumo and by lpsim on
 // the same small scenario: --tls.all-off (SUMO's game scenarios), --max-depart-delay (the DLR bus network),
-// --weights.random-factor (SUMO's grid game), --tripinfo-output.write-undeparted / write-unfinished.
+// --weights.random-factor (SUMO's grid game), --tripinfo-output.write-undeparted / write-unfinished,
+// --ignore-junction-blocker (the DLR bus network).
 #include <gtest/gtest.h>
 
 #include <regex>
@@ -207,6 +208,53 @@ TEST(SumoSettingsTest, UnfinishedAndUndepartedTripsAreWrittenAsInSumo) {
   const std::string u = read_file(dir.path() / "u.xml");
   EXPECT_TRUE(undeparted(u).empty());
   EXPECT_EQ(count_of(u, "vaporized=\"end\""), lpsim_running);
+}
+
+// A vehicle A on the major road stands on the junction (keepClear off) behind a car parked at the start of
+// the next edge; B on the minor road must cross A's path. Without --ignore-junction-blocker B waits for ever,
+// as in SUMO; with T it goes once A has stood T seconds on the junction: SUMO's B arrives at 56 s (T 20) and
+// 66 s (T 30); LPSim's within 3 s.
+TEST(SumoSettingsTest, VehiclesStandingOnAJunctionAreIgnoredAfterTheGivenTimeAsInSumo) {
+  if (!test::have_sumo_and_netconvert()) GTEST_SKIP() << "SUMO not installed";
+  TempDir dir("lpsim_junction_blocker");
+  dir.write("n.nod.xml",
+            "<nodes><node id=\"C\" x=\"0\" y=\"0\" type=\"priority\" keepClear=\"false\"/>"
+            "<node id=\"W\" x=\"-200\" y=\"0\"/><node id=\"E\" x=\"200\" y=\"0\"/>"
+            "<node id=\"S\" x=\"0\" y=\"-200\"/><node id=\"N\" x=\"0\" y=\"200\"/></nodes>\n");
+  dir.write("n.edg.xml",
+            "<edges><edge id=\"WC\" from=\"W\" to=\"C\" numLanes=\"1\" speed=\"13.89\" priority=\"3\"/>"
+            "<edge id=\"CE\" from=\"C\" to=\"E\" numLanes=\"1\" speed=\"13.89\" priority=\"3\"/>"
+            "<edge id=\"SC\" from=\"S\" to=\"C\" numLanes=\"1\" speed=\"13.89\" priority=\"1\"/>"
+            "<edge id=\"CN\" from=\"C\" to=\"N\" numLanes=\"1\" speed=\"13.89\" priority=\"1\"/></edges>\n");
+  dir.write("r.rou.xml", R"X(<routes>
+  <vType id="t" sigma="0"/>
+  <vehicle id="blk" type="t" depart="0" departPos="5" departSpeed="0"><route edges="CE"/>
+    <stop lane="CE_0" startPos="0" endPos="5" duration="1000"/></vehicle>
+  <vehicle id="A" type="t" depart="0"><route edges="WC CE"/></vehicle>
+  <vehicle id="B" type="t" depart="20"><route edges="SC CN"/></vehicle>
+</routes>
+)X");
+  ASSERT_NO_FATAL_FAILURE(test::netconvert(dir, {"-n", "n.nod.xml", "-e", "n.edg.xml", "-o", "n.net.xml"}));
+  const std::regex b_arrival(R"re(<tripinfo id="B"[^>]* arrival="([0-9.]+)")re");
+  auto arrival = [&](const std::string& tripinfo) {
+    std::smatch m;
+    return std::regex_search(tripinfo, m, b_arrival) ? std::stod(m[1]) : -1.0;
+  };
+  for (const std::string t : {"-1", "20", "30"}) {
+    SCOPED_TRACE("--ignore-junction-blocker " + t);
+    const test::SumoAndLpsim r = test::run_sumo_and_lpsim(
+        dir, {"-n", "n.net.xml", "-r", "r.rou.xml", "--end", "300", "--ignore-junction-blocker", t});
+    ASSERT_EQ(r.sumo.exit_code, 0) << r.sumo.err;
+    ASSERT_EQ(r.lpsim.exit_code, 0) << r.lpsim.err;
+    const double sumo = arrival(r.sumo_tripinfo), lpsim = arrival(r.lpsim_tripinfo);
+    if (t == "-1") {
+      EXPECT_EQ(sumo, -1.0);  // never arrives
+      EXPECT_EQ(lpsim, -1.0);
+    } else {
+      ASSERT_GT(sumo, 0);
+      EXPECT_NEAR(lpsim, sumo, 3.0);
+    }
+  }
 }
 
 }  // namespace

@@ -732,8 +732,10 @@ TEST_F(DemandBuilderTest, StopsArePlacedAlongTheRouteAsSumoPlacesThem) {
   EXPECT_EQ(st.last(0), 4u);
   EXPECT_EQ(st.route_pos, (std::vector<uint32_t>{0, 1, 2, 3}));
   EXPECT_EQ(corridor.lane_id[st.lane[0]], "E0_1");
-  EXPECT_FLOAT_EQ(st.end_pos[0], 99.0f);    // negative: from the lane's end
-  EXPECT_FLOAT_EQ(st.start_pos[0], 98.8f);  // SUMO's default: 0.2 m before the end
+  EXPECT_FLOAT_EQ(st.end_pos[0], 99.0f);  // negative: from the lane's end
+  // SUMO's default startPos is 0.2 m before endPos as given, before a negative endPos counts from the
+  // lane's end (measured: endPos -10 alone is [0, 90] on a 100 m lane).
+  EXPECT_FLOAT_EQ(st.start_pos[0], 0.0f);
   EXPECT_FLOAT_EQ(st.start_pos[1], 20.0f);
   EXPECT_FLOAT_EQ(st.end_pos[1], 40.0f);
   EXPECT_DOUBLE_EQ(st.duration[1], 20);
@@ -798,14 +800,30 @@ TEST_F(DemandBuilderTest, StopsThatCannotBeMadeAreErrorsNamingTheVehicle) {
   EXPECT_EQ(error_of(spec, corridor), "test.rou.xml:12: stop: unknown stopping place 'nowhere'");
   spec.vehicles[0].stops = {stop_on("E1_7", 50, 5)};
   EXPECT_NE(error_of(spec, corridor).find("test.rou.xml:11: stop: unknown lane 'E1_7'"), std::string::npos);
-  spec.vehicles[0].stops = {stop_on("E1_0", 150, 5)};
-  EXPECT_NE(error_of(spec, corridor).find("invalid position"), std::string::npos);
   spec.vehicles[0].stops = {};
   spec.stopping_places = {bus_stop("bs", "E1_0", 90, 120)};
   EXPECT_NE(error_of(spec, corridor).find("s.add.xml:3: stopping place 'bs': invalid position"),
             std::string::npos);
   spec.stopping_places[0].friendly_pos = true;  // moved onto the lane instead
   EXPECT_EQ(error_of(spec, corridor), "");
+}
+
+TEST_F(DemandBuilderTest, AStopOffItsLaneIsDroppedAndCountedAsSumoDropsIt) {
+  // SUMO 1.15 reports "Invalid start or end position for stop on lane" and runs on without the stop; with
+  // friendlyPos it moves the stop onto the lane (to its end) instead.
+  DemandSpec spec;
+  VehicleSpec v = on_edges("v", 0, {"E1", "E2"});
+  v.stops = {stop_on("E1_0", 150, 5), stop_on("E2_0", 50, 5)};
+  spec.vehicles = {v};
+  const Demand d = build_demand(spec, corridor, {});
+  ASSERT_EQ(d.stops.size(), 1u);
+  EXPECT_EQ(corridor.lane_id[d.stops.lane[0]], "E2_0");
+  EXPECT_EQ(d.unsupported.at("stop (position off its lane, dropped as SUMO drops it)"), 1);
+  spec.vehicles[0].stops[0].friendly_pos = true;
+  const Demand f = build_demand(spec, corridor, {});
+  ASSERT_EQ(f.stops.size(), 2u);
+  EXPECT_FLOAT_EQ(f.stops.end_pos[0], corridor.lane_length[f.stops.lane[0]]);
+  EXPECT_EQ(f.unsupported.count("stop (position off its lane, dropped as SUMO drops it)"), 0u);
 }
 
 }  // namespace

@@ -49,6 +49,8 @@ class CpuStepper final : public Stepper {
     claims_.assign(nl, 0);
     merge_requests_.assign(static_cast<size_t>(kMergeSlots) * nl, 0);
     if (setup.lane_counters) counters_.assign(static_cast<size_t>(kNumLaneCounters) * nl, 0);
+    if (setup.junction_stands)
+      for (auto& j : junction_stand_) j.assign(nl, kNoJunctionStand);
     trips_ = setup.trips;
   }
 
@@ -65,6 +67,10 @@ class CpuStepper final : public Stepper {
     plan_.reserve(active_.size(), false);
     ctx_ = context(map_[map_now].data(), map_[1 - map_now].data());
     ctx_.params = params;
+    if (setup_.junction_stands) {  // double-buffered as the lane map
+      ctx_.junction_stand_now = junction_stand_[map_now].data();
+      ctx_.junction_stand_next = junction_stand_[1 - map_now].data();
+    }
   }
 
   // Each pass is one parallel loop over the active vehicles, finished before the next starts. Each names
@@ -316,6 +322,7 @@ class CpuStepper final : public Stepper {
   std::vector<LaneApproach> approach_;
   std::vector<uint64_t> claims_, merge_requests_;
   std::vector<int64_t> counters_;  // kNumLaneCounters columns of num_lanes; empty without lane counters
+  std::vector<uint32_t> junction_stand_[2];  // per lane, with map_'s buffer index; empty unless tracked
   HostVehicleColumns veh_;
   HostPlanColumns plan_;
   std::vector<uint32_t> active_;  // slots the passes visit, ascending

@@ -110,7 +110,7 @@ static_assert(sizeof(TypeView) == 11 * sizeof(void*) && sizeof(TripView) == 13 *
               "TypeView or TripView changed: update upload_types and DeviceTrips");
 static_assert(sizeof(StepContext) == sizeof(NetView) + sizeof(TypeView) + sizeof(TripView) +
                                          sizeof(VehicleView) + sizeof(PlanView) + sizeof(StepParams) +
-                                         16 * sizeof(void*),
+                                         18 * sizeof(void*),
               "StepContext changed: update CudaStepper");
 
 static_assert(sizeof(DepartView) == 6 * sizeof(void*), "DepartView changed: update DeviceTrips");
@@ -374,6 +374,12 @@ class CudaStepper final : public Stepper {
       cnt_departed_ = counters_ + static_cast<size_t>(kCountDeparted) * nl;
     }
 
+    if (setup.junction_stands)
+      for (auto& j : junction_stand_) {
+        j = allocate<uint32_t>(nl);
+        LPSIM_CUDA_CHECK(cudaMemset(j, 0xFF, nl * sizeof(uint32_t)));  // kNoJunctionStand
+      }
+
     cells_ = setup.net.lane_cell_begin[nl];
     // With the host's kLaneMapPadding zero bytes after the last cell: the device scans stay within a lane,
     // but the host emulation (tests/cuda_emulation) runs the host scan, which reads past a lane's end.
@@ -404,6 +410,8 @@ class CudaStepper final : public Stepper {
     ctx_.params = params;
     ctx_.map_now = map_[map_now];
     ctx_.map_next = map_[1 - map_now];
+    ctx_.junction_stand_now = junction_stand_[map_now];  // null unless tracked
+    ctx_.junction_stand_next = junction_stand_[1 - map_now];
     state_map_ = 1 - map_now;
     launched_ = num_active_;
     kept_count_ = 0;
@@ -957,6 +965,7 @@ class CudaStepper final : public Stepper {
   int64_t* cnt_departed_ = nullptr;
   uint64_t cells_ = 0;
   uint8_t* map_[2] = {nullptr, nullptr};
+  uint32_t* junction_stand_[2] = {nullptr, nullptr};  // per lane, with map_'s index; null unless tracked
   NetView host_net_;   // the host's columns (the Simulation's), for the exchanges' host-side work
   int state_map_ = 0;  // the lane map the state is in: the one the last step wrote
   // The active list, ping-ponged between two buffers by rebuild.
