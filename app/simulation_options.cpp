@@ -22,6 +22,7 @@ SimulationOptions simulation_options(const ConfigSpec& config) {
   options.threads = config.threads > 0 ? config.threads : 1;
   options.time_to_teleport = config.time_to_teleport;
   options.time_to_impatience = config.time_to_impatience;
+  options.volumetric_fuel = config.volumetric_fuel;
   return options;
 }
 

@@ -39,6 +39,7 @@ struct StepContext {
   uint64_t* merge_requests;  // per lane: a blocked mandatory lane changer asks followers there to open a gap
   const uint32_t* yielder_begin;  // [num_conns+1] connections that must yield to each connection (CSR)
   const uint32_t* yielder;
+  EmissionView em;  // its sums are null unless an emissions output asks for them
   // Per-lane output counters (integers: order independent).
   int64_t* cnt_sampled_steps;
   int64_t* cnt_travelled_mm;
@@ -1750,6 +1751,8 @@ LPSIM_HD void activate_slot(const VehicleView& veh, const TripView& trips, const
   veh.stops_end[k] = in.stops_end;
   veh.stop_release[k] = 0;
   veh.stop_steps[k] = in.stop_steps;
+  veh.emission_speed[k] = in.speed;
+  veh.emission_flags[k] = kEmissionFlagsOnEntry;
   clear_route_caches(veh, k);
 }
 
