@@ -54,6 +54,12 @@ std::vector<std::string> unimplemented_settings(const DemandSpec& demand, const 
                     std::string(kLaneChangeModel) + ") is used instead for " + plural(ids.size(), "vType") +
                     ": " + id_list(ids));
 
+  // SUMO 1.15 warns of its old name for emissions meandata, and takes it.
+  for (const MeanDataSpec& m : additional.mean_data)
+    if (m.hbefa_name)
+      lines.push_back(std::string(m.lane_level ? "laneData" : "edgeData") + " '" + m.id + "' (" +
+                      m.loc.str() + "): the type 'hbefa' is deprecated, 'emissions' is its name now");
+
   // The program each signal runs: the net's, replaced by an add-file's of the same id (network_builder).
   std::map<std::string, const TlLogicSpec*> program_of;
   for (const TlLogicSpec& tl : net.tl_logics) program_of[tl.id] = &tl;

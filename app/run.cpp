@@ -5,6 +5,7 @@
 #include <string>
 #include <utility>
 
+#include "app/emission_models.hpp"
 #include "app/interrupt.hpp"
 
 namespace lpsim {
@@ -24,7 +25,7 @@ Run::Run(Scenario scenario, const ConfigSpec& config, SimulationOptions options)
     : scenario_(std::move(scenario)),
       config_(config),
       mean_data_(mean_data_outputs(scenario_, config.outputs)),
-      options_(counting_lanes(options, !mean_data_.empty())),
+      options_(counting_lanes(options, mean_data_)),
       sim_(scenario_.network, std::move(scenario_.demand), options_) {
   open_outputs();
   write_step_outputs();
@@ -40,16 +41,25 @@ std::vector<Run::MeanDataOutput> Run::mean_data_outputs(const Scenario& scenario
   if (!outputs.lanedata.empty())
     specs.push_back(MeanDataSpec{"lanedata", outputs.lanedata, true, -1, -1, -1, false, false, {}});
   std::vector<MeanDataOutput> out(specs.size());
-  for (size_t k = 0; k < specs.size(); ++k) out[k].spec = std::move(specs[k]);
+  for (size_t k = 0; k < specs.size(); ++k) {
+    if (specs[k].type == MeanDataType::Emissions) check_emission_models(scenario.demand.types, specs[k]);
+    out[k].spec = std::move(specs[k]);
+  }
   return out;
 }
 
 bool Run::needs_lane_counters(const Scenario& scenario, const OutputSpec& outputs) {
-  return !mean_data_outputs(scenario, outputs).empty();
+  return counting_lanes(SimulationOptions{}, mean_data_outputs(scenario, outputs)).lane_counters;
 }
 
-SimulationOptions Run::counting_lanes(SimulationOptions options, bool lane_counters) {
-  options.lane_counters = lane_counters;
+bool Run::needs_emission_sums(const Scenario& scenario, const OutputSpec& outputs) {
+  return counting_lanes(SimulationOptions{}, mean_data_outputs(scenario, outputs)).emission_sums;
+}
+
+SimulationOptions Run::counting_lanes(SimulationOptions options, const std::vector<MeanDataOutput>& outputs) {
+  options.lane_counters = options.emission_sums = false;
+  for (const MeanDataOutput& m : outputs)
+    (m.spec.type == MeanDataType::Emissions ? options.emission_sums : options.lane_counters) = true;
   return options;
 }
 
@@ -67,10 +77,11 @@ void Run::open_outputs() {
     jam_ = std::make_unique<JamRecorder>(config_.jam_report, config_.jam_report_stop_time, scenario_.network,
                                          sim_);
   for (MeanDataOutput& m : mean_data_) {
-    m.writer = std::make_unique<MeanDataWriter>(m.spec, scenario_.network, demand());
+    m.writer =
+        std::make_unique<MeanDataWriter>(m.spec, scenario_.network, demand(), options_.volumetric_fuel);
     m.interval_begin = m.spec.begin >= 0 ? m.spec.begin : sim_.time();
     // Zero, not the counters now: vehicles inserted at the begin time belong to the first interval.
-    m.at_begin.resize(scenario_.network.num_lanes());
+    m.at_begin.resize(scenario_.network.num_lanes(), options_.emission_sums);
   }
   next_fcd_ = sim_.time();
 }

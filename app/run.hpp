@@ -37,12 +37,15 @@ class Run {
   /// LPSim's jam report with --jam-report)
   /// and writes the state at the begin time. The Run owns the scenario; its demand becomes the simulation's
   /// trip table (move a scenario in, so that a large demand is not copied). Run sets options.lane_counters
-  /// itself: on exactly when an edgeData/laneData output needs them (the engine skips their atomics
-  /// otherwise).
+  /// and options.emission_sums itself: on exactly when an edgeData/laneData output needs them (the engine
+  /// skips their atomics, and its emissions pass, otherwise).
   Run(Scenario scenario, const ConfigSpec& config, SimulationOptions options);
-  /// Whether a run of `scenario` with `outputs` counts per lane (what Run sets options.lane_counters to): the
-  /// other parts of a partitioned run, which build their simulations without a Run, count alike.
+  /// Whether a run of `scenario` with `outputs` counts per lane (what Run sets options.lane_counters to), and
+  /// whether it sums emissions per lane (options.emission_sums): the other parts of a partitioned run, which
+  /// build their simulations without a Run, count alike. An InputError when an emissions output is
+  /// requested and a vehicle type has an emission class of a model LPSim does not implement.
   static bool needs_lane_counters(const Scenario& scenario, const OutputSpec& outputs);
+  static bool needs_emission_sums(const Scenario& scenario, const OutputSpec& outputs);
   /// Without finish(), the writers close their files but the open edgeData/laneData intervals and the
   /// statistics are lost.
   ~Run();
@@ -82,7 +85,7 @@ class Run {
   const Totals& totals() const { return totals_; }
   const ConfigSpec& config() const { return config_; }
   const Scenario& scenario() const { return scenario_; }
-  /// The options the simulation runs with (lane_counters as Run set it).
+  /// The options the simulation runs with (lane_counters and emission_sums as Run set them).
   const SimulationOptions& options() const { return options_; }
 
  private:
@@ -96,7 +99,8 @@ class Run {
   };
 
   static std::vector<MeanDataOutput> mean_data_outputs(const Scenario& scenario, const OutputSpec& outputs);
-  static SimulationOptions counting_lanes(SimulationOptions options, bool lane_counters);
+  static SimulationOptions counting_lanes(SimulationOptions options,
+                                          const std::vector<MeanDataOutput>& outputs);
   /// The trips the simulation runs, which may grow while it runs (the writers name their vehicles).
   const Demand& demand() const { return sim_.demand(); }
   void open_outputs();

@@ -46,6 +46,7 @@ int command_run(const std::vector<std::string>& args) {
   const DeviceChoice device = select_device(config.device);
   options.gpu = device.gpu;
   options.lane_counters = Run::needs_lane_counters(sc, config.outputs);
+  options.emission_sums = Run::needs_emission_sums(sc, config.outputs);
   if (config.device != ComputeDevice::Cpu)
     std::fprintf(stderr, "lpsim: device %s\n", device.description.c_str());
 

@@ -24,6 +24,7 @@ SimulationOptions simulation_options(const ConfigSpec& config) {
   options.time_to_impatience = config.time_to_impatience;
   options.max_depart_delay = config.max_depart_delay;
   options.ignore_junction_blocker = config.ignore_junction_blocker;
+  options.volumetric_fuel = config.volumetric_fuel;
   return options;
 }
 

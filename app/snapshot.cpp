@@ -144,6 +144,8 @@ void visit(IO& io, VehicleTypes& t) {
   io.field(t.tau), io.field(t.sigma), io.field(t.delta), io.field(t.vclass), io.field(t.car_follow_model);
   io.field(t.model);
   io.field(t.vclass_mask);
+  io.field(t.emission_class), io.field(t.emission_model), io.field(t.emission_coeff), io.field(t.coast_incl);
+  io.field(t.coast_mass_term), io.field(t.fuel_density), io.field(t.shut_off_stop), io.field(t.loc);
 }
 
 template <class IO>
@@ -171,7 +173,8 @@ void visit(IO& io, Demand& d) {
 template <class IO>
 void visit(IO& io, MeanDataSpec& m) {
   io.field(m.id), io.field(m.file), io.field(m.lane_level), io.field(m.period), io.field(m.begin);
-  io.field(m.end), io.field(m.exclude_empty), io.field(m.with_internal), io.field(m.loc);
+  io.field(m.end), io.field(m.exclude_empty), io.field(m.with_internal), io.field(m.loc), io.field(m.type);
+  io.field(m.empty_defaults);
 }
 
 template <class IO>

@@ -9,8 +9,8 @@
 
 namespace lpsim {
 
-inline constexpr uint32_t kSnapshotVersion = 6;  // 2: car-following model; 3: actuated loops; 4: vClasses;
-                                                 // 5: keepClear links; 6: scheduled stops
+inline constexpr uint32_t kSnapshotVersion = 7;  // 2: car-following model; 3: actuated loops; 4: vClasses;
+                                                 // 5: keepClear links; 6: scheduled stops; 7: emissions
 
 void write_snapshot(const Scenario& scenario, const std::string& path);
 Scenario read_snapshot(const std::string& path);

@@ -109,6 +109,7 @@ const OptionDef kOptions[] = {
   {"tripinfo-output.write-undeparted", "", 0, Kind::Bool, Check::None, false, kRuns, "tripinfo also for vehicles still running and for those due that never departed (implies write-unfinished)", [](ConfigSpec& c, Value&& v) { c.outputs.tripinfo_write_undeparted = v.flag; }},
   {"summary-output", "summary", 0, Kind::Path, Check::None, false, kRuns, "SUMO summary output", [](ConfigSpec& c, Value&& v) { c.outputs.summary = std::move(v.text); }},
   {"statistic-output", "statistics-output", 0, Kind::Path, Check::None, false, kRuns, "SUMO statistic output", [](ConfigSpec& c, Value&& v) { c.outputs.statistic = std::move(v.text); }},
+  {"emissions.volumetric-fuel", "", 0, Kind::Bool, Check::None, false, kRuns, "emissions outputs give fuel in ml (by the fuel's density) instead of mg", [](ConfigSpec& c, Value&& v) { c.volumetric_fuel = v.flag; }},
   {"edgedata-output", "", 0, Kind::Path, Check::None, false, kRuns, "SUMO edgeData output, one interval for the whole run", [](ConfigSpec& c, Value&& v) { c.outputs.edgedata = std::move(v.text); }},
   {"lanedata-output", "", 0, Kind::Path, Check::None, false, kRuns, "SUMO laneData output, one interval for the whole run", [](ConfigSpec& c, Value&& v) { c.outputs.lanedata = std::move(v.text); }},
   {"corridor", "", 0, Kind::Path, Check::None, true, kCosim, "the edges SUMO simulates: a sumo-gui/netedit selection file (edge:ID, lane:ID lines) or plain edge ids", [](ConfigSpec& c, Value&& v) { c.corridor_file = std::move(v.text); }},

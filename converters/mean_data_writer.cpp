@@ -64,8 +64,12 @@ MeanDataMeasures derive_mean_data(const MeanDataTotals& t, double length, uint32
   return m;
 }
 
-MeanDataWriter::MeanDataWriter(const MeanDataSpec& spec, const Network& net, const Demand& demand)
-    : spec_(spec), net_(net), out_(spec.file) {
+MeanDataWriter::MeanDataWriter(const MeanDataSpec& spec, const Network& net, const Demand& demand,
+                               bool volumetric_fuel)
+    : spec_(spec),
+      net_(net),
+      default_vehicle_(default_emission_vehicle(demand, volumetric_fuel)),
+      out_(spec.file) {
   min_vehicle_length_ = std::numeric_limits<double>::max();
   for (float length : demand.types.length)
     if (length > 0) min_vehicle_length_ = std::min<double>(min_vehicle_length_, length);
@@ -82,7 +86,8 @@ MeanDataWriter::~MeanDataWriter() {
 }
 
 void MeanDataWriter::write(const MeanDataInterval& interval) {
-  if (interval.counters == nullptr || interval.counters->sampled_steps.size() != net_.num_lanes())
+  if (interval.counters == nullptr || interval.counters->sampled_steps.size() != net_.num_lanes() ||
+      (spec_.type == MeanDataType::Emissions && interval.counters->emission[0].size() != net_.num_lanes()))
     throw std::logic_error("MeanDataInterval: counters missing or not sized to the network's lanes");
   const double seconds = interval.end - interval.begin;
   if (!(seconds > 0)) throw std::logic_error("MeanDataInterval: end must be after begin");
@@ -102,33 +107,47 @@ void MeanDataWriter::write(const MeanDataInterval& interval) {
   out_.text("    </interval>\n");
 }
 
+bool MeanDataWriter::empty(const MeanDataInterval& interval, uint32_t first, uint32_t lanes) const {
+  if (spec_.type == MeanDataType::Emissions)
+    return sum_emission_sums(*interval.counters, first, lanes).sampled_seconds == 0;
+  return sum_lane_counters(*interval.counters, first, lanes, interval.step_length).empty();
+}
+
+void MeanDataWriter::write_entry(const MeanDataInterval& interval, uint32_t first, uint32_t lanes,
+                                 double length, double speed_limit, double seconds) {
+  if (spec_.type == MeanDataType::Emissions)
+    return write_emission_values(out_, sum_emission_sums(*interval.counters, first, lanes), length,
+                                 speed_limit, seconds, spec_.empty_defaults ? &default_vehicle_ : nullptr);
+  write_values(sum_lane_counters(*interval.counters, first, lanes, interval.step_length), length, lanes,
+               speed_limit, seconds);
+}
+
 void MeanDataWriter::write_edge(const MeanDataInterval& interval, uint32_t edge, double seconds) {
-  const uint32_t lanes = net_.edge_num_lanes[edge];
-  const MeanDataTotals totals =
-      sum_lane_counters(*interval.counters, net_.edge_first_lane[edge], lanes, interval.step_length);
-  if (spec_.exclude_empty && totals.empty()) return;
+  const uint32_t first = net_.edge_first_lane[edge], lanes = net_.edge_num_lanes[edge];
+  if (spec_.exclude_empty && empty(interval, first, lanes)) return;
   out_.text("        <edge");
   out_.attr("id", net_.edge_id[edge]);
-  write_values(totals, net_.edge_length[edge], lanes, net_.edge_speed[edge], seconds);
+  // SUMO's edge speed limit is its first lane's (what an emissions output's defaults read).
+  const double speed_limit =
+      spec_.type == MeanDataType::Emissions && lanes > 0 ? net_.lane_speed[first] : net_.edge_speed[edge];
+  write_entry(interval, first, lanes, net_.edge_length[edge], speed_limit, seconds);
 }
 
 void MeanDataWriter::write_lanes(const MeanDataInterval& interval, uint32_t edge, double seconds) {
   const uint32_t first = net_.edge_first_lane[edge], lanes = net_.edge_num_lanes[edge];
   if (lanes == 0) return;
   bool any = !spec_.exclude_empty;
-  for (uint32_t l = first; l < first + lanes && !any; ++l)
-    any = !sum_lane_counters(*interval.counters, l, 1, interval.step_length).empty();
+  for (uint32_t l = first; l < first + lanes && !any; ++l) any = !empty(interval, l, 1);
   if (!any) return;
 
   out_.text("        <edge");
   out_.attr("id", net_.edge_id[edge]);
   out_.text(">\n");
   for (uint32_t l = first; l < first + lanes; ++l) {
-    const MeanDataTotals totals = sum_lane_counters(*interval.counters, l, 1, interval.step_length);
-    if (spec_.exclude_empty && totals.empty()) continue;
+    if (spec_.exclude_empty && empty(interval, l, 1)) continue;
     out_.text("            <lane");
     out_.attr("id", net_.lane_id[l]);
-    write_values(totals, net_.lane_length[l], 1, net_.lane_speed[l], seconds);
+    write_entry(interval, l, 1, net_.lane_length[l], net_.lane_speed[l], seconds);
   }
   out_.text("        </edge>\n");
 }

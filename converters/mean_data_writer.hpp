@@ -1,6 +1,8 @@
 #pragma once
 // edgeData / laneData output (SUMO's meandata_file.xsd): per interval, traffic measures of every edge (or
-// of every lane, nested in its edge) computed from the engine's integer LaneCounters.
+// of every lane, nested in its edge) computed from the engine's integer LaneCounters; or, for type
+// "emissions", the emissions of converters/emission_mean_data.hpp. The rest of this comment is about the
+// traffic measures.
 //
 // Definitions, for one edge (lanes summed; L = edge length = length of its first car lane, n = its car
 // lane count, v_max = edge speed) or one lane (L = lane length, n = 1, v_max = lane speed), over an
@@ -29,6 +31,7 @@
 #include <cstdint>
 #include <string>
 
+#include "converters/emission_mean_data.hpp"
 #include "converters/output_file.hpp"
 #include "core/additional_spec.hpp"
 #include "demand/demand.hpp"
@@ -63,7 +66,9 @@ MeanDataMeasures derive_mean_data(const MeanDataTotals& totals, double length, u
 class MeanDataWriter {
  public:
   /// Opens spec.file (".gz" gives gzip) and writes the root tag. net and demand must outlive the writer.
-  MeanDataWriter(const MeanDataSpec& spec, const Network& net, const Demand& demand);
+  /// volumetric_fuel: the run sums fuel by volume (the defaults of excludeEmpty="defaults" follow it).
+  MeanDataWriter(const MeanDataSpec& spec, const Network& net, const Demand& demand,
+                 bool volumetric_fuel = false);
   ~MeanDataWriter();
   MeanDataWriter(const MeanDataWriter&) = delete;
   MeanDataWriter& operator=(const MeanDataWriter&) = delete;
@@ -79,12 +84,18 @@ class MeanDataWriter {
  private:
   void write_values(const MeanDataTotals& totals, double length, uint32_t lanes, double speed_limit,
                     double interval_seconds);
+  /// Whether lanes [first, first + lanes) counted nothing in the interval (what excludeEmpty leaves out).
+  bool empty(const MeanDataInterval& interval, uint32_t first, uint32_t lanes) const;
+  /// The attributes after the id of an edge (lanes: its lanes) or a lane (lanes: 1) and the element's end.
+  void write_entry(const MeanDataInterval& interval, uint32_t first, uint32_t lanes, double length,
+                   double speed_limit, double interval_seconds);
   void write_edge(const MeanDataInterval& interval, uint32_t edge, double interval_seconds);
   void write_lanes(const MeanDataInterval& interval, uint32_t edge, double interval_seconds);
 
   MeanDataSpec spec_;
   const Network& net_;
   double min_vehicle_length_ = 0;
+  DefaultEmissionVehicle default_vehicle_;  // for an emissions output's excludeEmpty="defaults"
   OutputFile out_;
 };
 

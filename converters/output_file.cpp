@@ -152,6 +152,27 @@ void OutputFile::fixed(double v, int decimals) {
   used_ += static_cast<size_t>(end - begin);
 }
 
+void OutputFile::real(double v, int precision) {
+  if (v == 0) return put('0');
+  if (!(v >= std::pow(10.0, -precision))) {  // below the precision (or negative): 6 significant digits
+    reserve(kMaxNumberChars);
+    char* begin = buffer_.data() + used_;
+    used_ += static_cast<size_t>(
+        std::to_chars(begin, buffer_.data() + buffer_.size(), v, std::chars_format::scientific, 6).ptr -
+        begin);
+    return;
+  }
+  fixed(v, precision);
+}
+
+void OutputFile::attr_real(std::string_view name, double v, int precision) {
+  put(' ');
+  text(name);
+  text("=\"");
+  real(v, precision);
+  put('"');
+}
+
 void OutputFile::integer(int64_t v) {
   reserve(24);
   char* begin = buffer_.data() + used_;

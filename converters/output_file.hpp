@@ -29,6 +29,9 @@ class OutputFile {
   /// Fixed-point with `decimals` digits after the point; NaN and infinities are written as SUMO would
   /// print them through iostreams ("nan", "inf", "-inf").
   void fixed(double v, int decimals = 2);
+  /// SUMO's OutputDevice::realString: "0" for zero, fixed-point with `precision` decimals from 10^-precision
+  /// up, else scientific with 6 digits after the point ("7.199424e-03"; negative values too).
+  void real(double v, int precision);
   void integer(int64_t v);
   void unsigned_integer(uint64_t v);
 
@@ -36,6 +39,7 @@ class OutputFile {
   void attr(std::string_view name, std::string_view value);  // value is escaped
   void attr_fixed(std::string_view name, double v, int decimals = 2);
   void attr_int(std::string_view name, int64_t v);
+  void attr_real(std::string_view name, double v, int precision);
 
   /// Hands everything written so far to the operating system, so that the file holds it even if the
   /// process is killed next (a gzip stream is flushed to a byte boundary: its data so far decompresses,

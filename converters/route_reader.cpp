@@ -663,21 +663,23 @@ class RouteFileReader {
     demand_.vtype_dists.push_back(std::move(dist));
   }
 
-  // SUMO's meandata types: traffic measures ("", "traffic", "performance": the ones LPSim writes) or
-  // emission and noise models, which LPSim does not have; anything else SUMO refuses as well.
-  static void check_mean_data_type(const SourceLoc& loc, std::string_view element, const std::string& id,
-                                   const std::string& value) {
+  // SUMO's meandata types: traffic measures ("", "traffic", "performance") and exhaust emissions
+  // ("emissions", and "hbefa", the name SUMO 1.15 still takes for it with a warning) are written; SUMO's
+  // noise and amitran types are not; anything else SUMO refuses as well.
+  static MeanDataType mean_data_type(const SourceLoc& loc, std::string_view element, const std::string& id,
+                                     const std::string& value) {
     const std::string_view type = trim(value);
-    if (type.empty() || type == "traffic" || type == "performance") return;
-    for (std::string_view model : {"emissions", "hbefa", "harmonoise", "amitran"})
-      if (type == model)
-        fail(loc, element, id,
-             "type '" + value +
-                 "' is not supported: LPSim writes traffic measures only (no type, or 'traffic')");
+    if (type.empty() || type == "traffic" || type == "performance") return MeanDataType::Traffic;
+    if (type == "emissions" || type == "hbefa") return MeanDataType::Emissions;
+    if (type == "harmonoise" || type == "amitran")
+      fail(loc, element, id,
+           "type '" + value +
+               "' is not supported: LPSim writes traffic measures (no type, or 'traffic') and emissions "
+               "('emissions'), not SUMO's noise (harmonoise) or amitran measures");
     fail(loc, element, id,
          "unknown type '" + value +
-             "' (traffic, performance; emissions, hbefa, harmonoise and amitran are "
-             "SUMO's, not supported)");
+             "' (traffic, performance, emissions; hbefa, harmonoise and amitran are SUMO's, of which "
+             "harmonoise and amitran are not supported)");
   }
 
   void read_mean_data(bool lane_level) {
@@ -687,7 +689,10 @@ class RouteFileReader {
     m.lane_level = lane_level;
     m.id = xs_.get("id", "");
     if (m.id.empty()) fail(m.loc, element, "", "missing or empty attribute 'id'");
-    if (auto type = xs_.attr("type")) check_mean_data_type(m.loc, element, m.id, *type);
+    if (auto type = xs_.attr("type")) {
+      m.type = mean_data_type(m.loc, element, m.id, *type);
+      m.hbefa_name = trim(*type) == "hbefa";
+    }
     auto file = xs_.attr("file");
     if (!file || trim(*file).empty()) fail(m.loc, element, m.id, "missing attribute 'file'");
     std::filesystem::path out(std::string(trim(*file)));
@@ -702,7 +707,10 @@ class RouteFileReader {
       auto text = xs_.attr(key);
       if (!text) return false;
       // excludeEmpty="defaults" writes empty edges with default values: they are not excluded.
-      if (std::string_view(key) == "excludeEmpty" && trim(*text) == "defaults") return false;
+      if (std::string_view(key) == "excludeEmpty" && trim(*text) == "defaults") {
+        m.empty_defaults = m.type == MeanDataType::Emissions;
+        return false;
+      }
       auto b = parse_sumo_bool(*text);
       if (!b)
         fail(m.loc, element, m.id, std::string("attribute '") + key + "' is not a boolean: '" + *text + "'");

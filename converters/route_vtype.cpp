@@ -151,6 +151,12 @@ VTypeSpec read_vtype(XmlStream& xs, std::map<std::string, int64_t>& skipped, dou
       t.min_gap = num(k, v, Sign::NonNegative, kMaxLength);
     else if (k == "maxSpeed")
       t.max_speed = num(k, v, Sign::Positive, kMaxSpeed);
+    else if (k == "width")
+      t.width = num(k, v, Sign::Positive, kMaxLength);
+    else if (k == "height")
+      t.height = num(k, v, Sign::Positive, kMaxLength);
+    else if (k == "emissionClass")
+      t.emission_class = v;  // resolved with the vClass (demand/emission_class): SUMO takes it verbatim
     else if (k == "speedDev")
       speed_dev = num(k, v, Sign::NonNegative, kNoMax);
     else if (k == "probability")

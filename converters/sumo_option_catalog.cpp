@@ -179,7 +179,6 @@ constexpr ForeignOption kForeign[] = {
   {"emission-output.geo", "false", 0, Class::Unsupported},
   {"emission-output.precision", "2", 0, Class::Unsupported},
   {"emission-output.step-scaled", "false", 0, Class::Unsupported},
-  {"emissions.volumetric-fuel", "false", 0, Class::Unsupported},
   {"error-log", "", 0, Class::Inert},
   {"extrapolate-departpos", "false", 0, Class::Unsupported},
   {"fcd-output.acceleration", "false", 0, Class::Unsupported},

@@ -1,12 +1,14 @@
 #pragma once
 // The CUDA backend's kernels: thin __global__ wrappers over the same functions the CPU backend loops over
-// (kernels/vehicle_step.hpp, kernels/signal_step.hpp, kernels/insert_vehicle.hpp), one thread per active
+// (kernels/vehicle_step.hpp, kernels/emission_step.hpp, kernels/signal_step.hpp, kernels/insert_vehicle.hpp),
+// one thread per active
 // vehicle, per signal, per edge with waiting vehicles, or per entry of what the host hands over; and the few
 // device-only steps of the backend's bookkeeping (the end-of-step tally, the slot sort's gathers). Included
 // by the one CUDA translation unit, backends/cuda/cuda_stepper.cu, built by nvcc or against the host
 // emulation in tests/cuda_emulation.
 #include <stdint.h>
 
+#include "kernels/emission_step.hpp"
 #include "kernels/insert_vehicle.hpp"
 #include "kernels/signal_step.hpp"
 #include "kernels/vehicle_step.hpp"

@@ -4,6 +4,7 @@
 // The engine (src/engine) owns the arrays and fills these views; kernels never allocate.
 #include <stdint.h>
 
+#include "kernels/emissions.hpp"
 #include "kernels/hd.hpp"
 
 namespace lpsim {
@@ -57,6 +58,33 @@ struct TypeView {
   const uint32_t* vclass;  // vClass mask: the type may use lanes whose permissions share a bit with it
 };
 
+/// The per-lane sums of an emissions edgeData/laneData output, column by column (Pollutant order for the
+/// masses). Integers, so that the sums do not depend on the order vehicles add in; units fine enough that
+/// rounding each step's share stays far below the output's precision and coarse enough that a lane's sum
+/// over a long run of a large network stays far within 2^63 (ng: 9,200 t of CO2 on one lane).
+enum EmissionSum : int {
+  kEmissionMicroseconds,  // vehicle-time on the lane (any part of the body on it), us
+  kEmissionMicrometres,   // distance driven while on it (time on it x speed), um
+  kEmissionNanograms,     // first of kNumPollutants masses, ng (fuel by volume: nl)
+  kNumEmissionSums = kEmissionNanograms + kNumPollutants
+};
+
+/// The sum column of the mass of `pollutant` (Pollutant).
+LPSIM_HD constexpr int emission_mass_sum(int pollutant) { return kEmissionNanograms + pollutant; }
+
+/// Vehicle types' emission parameters (read-only) and the per-lane sums the emissions pass adds to.
+struct EmissionView {
+  const uint8_t* model;      // EmissionModel (kernels/emissions.hpp)
+  const double* coeff;       // kCoefficientsPerClass per type
+  const double* coast_incl;  // CoastingParams per type
+  const double* coast_mass_term;
+  const double* fuel_divisor;   // per type: kHbefaScale, or times the fuel density for fuel by volume
+  const double* shut_off_stop;  // s: the engine is off at a scheduled stop planned longer than this
+  // kNumEmissionSums columns of num_lanes each (column k from sums + k * num_lanes); null: not counted.
+  int64_t* sums;
+  uint32_t num_lanes;
+};
+
 /// Per-vehicle static data, read-only.
 struct TripView {
   const uint32_t* type;
@@ -87,6 +115,17 @@ struct Footprint {
   int32_t prev;
   int32_t prev2;
   float pos;
+};
+
+/// VehicleView::emission_flags. After a lane change SUMO stops counting the vehicle on the lanes its back
+/// still covers (its back's lanes drop it): the low bits count how many of its tail lanes (prev, then prev2)
+/// it entered since its last lane change, and so still count (2: both; a lane change sets 0, each lane
+/// entered adds one).
+enum EmissionFlags : uint8_t {
+  kEmissionTailLanes = 3,     // mask of the tail lanes still counted: 0, 1 or 2
+  kEmissionAtStop = 4,        // standing at a scheduled stop (its engine decided when it got there)
+  kEmissionEngineOff = 8,     // ... with the engine off for the whole stop
+  kEmissionFlagsOnEntry = 2,  // a vehicle entering the road: its tail lanes count
 };
 
 /// Mutable state of the vehicles on the road, indexed by slot: a vehicle takes a free slot when it is
@@ -136,6 +175,10 @@ struct VehicleView {
   uint32_t* stops_end;
   uint32_t* stop_release;  // standing at next_stop until this step (0: not at a stop)
   uint32_t* stop_steps;    // steps stood at stops (tripinfo stopTime)
+  // The emissions pass's own state (kernels/emission_step.hpp), kept only while it runs: the speed at the
+  // step's start (the commit pass overwrites `speed` before it), and EmissionFlags.
+  float* emission_speed;
+  uint8_t* emission_flags;
 };
 
 constexpr uint32_t kBestLaneEntries = 2;  // a power of two
@@ -184,8 +227,10 @@ void visit_vehicle_columns(F&& f, Views&... v) {
   f(1u, v.stops_end...);
   f(1u, v.stop_release...);
   f(1u, v.stop_steps...);
+  f(1u, v.emission_speed...);
+  f(1u, v.emission_flags...);
 }
-static_assert(sizeof(VehicleView) == 34 * sizeof(void*), "VehicleView changed: update visit_vehicle_columns");
+static_assert(sizeof(VehicleView) == 36 * sizeof(void*), "VehicleView changed: update visit_vehicle_columns");
 
 enum StopReason : uint8_t {
   kFree = 0,

@@ -45,6 +45,7 @@ struct StepContext {
   // buffer is, then lowered by the commit pass). kNoJunctionStand where no front is.
   const uint32_t* junction_stand_now;
   uint32_t* junction_stand_next;
+  EmissionView em;  // its sums are null unless an emissions output asks for them
   // Per-lane output counters (integers: order independent).
   int64_t* cnt_sampled_steps;
   int64_t* cnt_travelled_mm;
@@ -1773,6 +1774,8 @@ LPSIM_HD void activate_slot(const VehicleView& veh, const TripView& trips, const
   veh.stops_end[k] = in.stops_end;
   veh.stop_release[k] = 0;
   veh.stop_steps[k] = in.stop_steps;
+  veh.emission_speed[k] = in.speed;
+  veh.emission_flags[k] = kEmissionFlagsOnEntry;
   clear_route_caches(veh, k);
 }
 

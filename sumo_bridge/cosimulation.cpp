@@ -46,6 +46,11 @@ Cosimulation::Cosimulation(Run& run, const std::vector<uint8_t>& corridor_lanes,
   const ConfigSpec& c = run_.config();
   if (c.net_file.empty())
     throw InputError("a co-simulation needs the scenario's SUMO files (-c or -n/-r), not a snapshot or CSV");
+  // The merge of the two simulators' edgeData (converters/meandata_merge) knows traffic measures only.
+  for (const MeanDataSpec& m : run_.scenario().mean_data)
+    if (m.type == MeanDataType::Emissions)
+      throw InputError(m.loc, std::string(m.lane_level ? "laneData" : "edgeData") + " '" + m.id +
+                                  "': emissions outputs are not supported in a co-simulation");
   // SUMO's tripinfo is needed to complete the trips it drove part of: beside the run's, or a scratch file.
   if (!c.outputs.tripinfo.empty()) {
     sumo_tripinfo_ = c.outputs.tripinfo;

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Which scenarios SUMO and LPSim load: for every .sumocfg given (or found under the folders given), sumo
-loads it and runs one step, and `lpsim info` loads it; one markdown row each with both outcomes, LPSim's
+loads it and runs its first second, and `lpsim info` loads it; one markdown row each with both outcomes, LPSim's
 refusal (its error line) or its warnings (what it skips, accepts or ignores). Standard library only.
 
   tools/load_table.py [--lpsim build/lpsim] [--out DIR] CFG_OR_FOLDER...
@@ -12,6 +12,7 @@ Typical use (docs/VALIDATION.md, "Everything SUMO runs"):
 """
 import argparse
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -43,7 +44,9 @@ def check(config, lpsim, out):
     cfg = os.path.join(work, os.path.basename(config))
     cwd = work
     env = dict(os.environ, SUMO_HOME=os.environ.get("SUMO_HOME", "/usr/share/sumo"))
-    sumo = subprocess.run(["sumo", "-c", cfg, "--end", "1", "--no-step-log", "--duration-log.disable",
+    begin = re.search(r'<begin\s+value="([^"]+)"', open(cfg, encoding="utf-8", errors="replace").read())
+    end = (float(begin.group(1)) if begin else 0.0) + 1
+    sumo = subprocess.run(["sumo", "-c", cfg, "--end", str(end), "--no-step-log", "--duration-log.disable",
                            "--no-warnings", "--tripinfo-output", os.devnull, "--output-prefix", "loadcheck."],
                           cwd=cwd, env=env, capture_output=True, text=True, timeout=1800)
     sumo_errors = [l for l in sumo.stderr.splitlines() if l.startswith("Error")]

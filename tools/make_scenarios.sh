@@ -301,6 +301,121 @@ EOF
   write_sumocfg "$d" cosim_line cosim_line.rou.xml
 }
 
+# --- emissions_*: one lane A-B-C-D (3 x 300 m, 13.89 m/s) and vehicles with sigma 0 and speedDev 0, whose
+# trips LPSim drives as SUMO does; emissions.add.xml asks for emissions edgeData (period 60) and laneData
+# (the whole run, internal lanes too). It is not in the .sumocfg: its outputs land beside it, so the tests run
+# a copy. make_emissions_line DIR NAME [red]: the network DIR/NAME.net.xml (priority nodes, or with "red" a
+# signal at C: red 70 s, green 40 s, yellow 3 s from time 0) and the add-file.
+make_emissions_line() {
+  local d=$1 name=$2 signal=${3:-}
+  local c_type=priority tll=()
+  if [ "$signal" = red ]; then
+    c_type=traffic_light
+    tll=(-i "$TMP/line.tll.xml")
+  fi
+  cat > "$TMP/line.nod.xml" <<EOF
+<nodes>
+    <node id="A" x="0" y="0" type="priority"/>
+    <node id="B" x="300" y="0" type="priority"/>
+    <node id="C" x="600" y="0" type="$c_type"/>
+    <node id="D" x="900" y="0" type="priority"/>
+</nodes>
+EOF
+  cat > "$TMP/line.edg.xml" <<'EOF'
+<edges>
+    <edge id="AB" from="A" to="B" numLanes="1" speed="13.89"/>
+    <edge id="BC" from="B" to="C" numLanes="1" speed="13.89"/>
+    <edge id="CD" from="C" to="D" numLanes="1" speed="13.89"/>
+</edges>
+EOF
+  cat > "$TMP/line.tll.xml" <<'EOF'
+<tlLogics>
+    <tlLogic id="C" type="static" programID="0" offset="0">
+        <phase duration="70" state="r"/>
+        <phase duration="40" state="G"/>
+        <phase duration="3" state="y"/>
+    </tlLogic>
+</tlLogics>
+EOF
+  netconvert -n "$TMP/line.nod.xml" -e "$TMP/line.edg.xml" "${tll[@]}" --no-turnarounds \
+    -o "$d/$name.net.xml" > /dev/null
+  strip_generated_header "$d/$name.net.xml"
+  cat > "$d/emissions.add.xml" <<'EOF'
+<additional>
+    <edgeData id="edges_60" type="emissions" file="edges_60.xml" period="60"/>
+    <laneData id="lanes" type="emissions" file="lanes.xml" withInternal="true"/>
+</additional>
+EOF
+}
+
+# --- emissions_free: three cars accelerating from standstill (one departing at full speed) and cruising ----
+make_emissions_free() {
+  local d=$OUT/emissions_free
+  rm -rf "$d" && mkdir -p "$d"
+  make_emissions_line "$d" emissions_free
+  cat > "$d/emissions_free.rou.xml" <<'EOF'
+<routes>
+    <vType id="car" sigma="0" speedDev="0"/>
+    <route id="r" edges="AB BC CD"/>
+    <vehicle id="car0" type="car" route="r" depart="0"/>
+    <vehicle id="car1" type="car" route="r" depart="30" departSpeed="max"/>
+    <vehicle id="car2" type="car" route="r" depart="60"/>
+</routes>
+EOF
+  write_sumocfg "$d" emissions_free emissions_free.rou.xml
+}
+
+# --- emissions_redlight: a car, an HBEFA2 car, a bus and a car stop at C's red light, queue and restart ---
+make_emissions_redlight() {
+  local d=$OUT/emissions_redlight
+  rm -rf "$d" && mkdir -p "$d"
+  make_emissions_line "$d" emissions_redlight red
+  cat > "$d/emissions_redlight.rou.xml" <<'EOF'
+<routes>
+    <vType id="car" sigma="0" speedDev="0"/>
+    <vType id="car_hbefa2" sigma="0" speedDev="0" emissionClass="HBEFA2/P_7_7"/>
+    <vType id="bus" vClass="bus" sigma="0" speedDev="0"/>
+    <route id="r" edges="AB BC CD"/>
+    <vehicle id="car0" type="car" route="r" depart="0"/>
+    <vehicle id="car1" type="car_hbefa2" route="r" depart="4"/>
+    <vehicle id="bus0" type="bus" route="r" depart="8"/>
+    <vehicle id="car2" type="car" route="r" depart="12"/>
+</routes>
+EOF
+  write_sumocfg "$d" emissions_redlight emissions_redlight.rou.xml
+}
+
+# --- emissions_classes: one vehicle of each of eight emission classes, 15 s apart: HBEFA3 petrol car (the
+# default), diesel car (PC_D_EU6), truck (HDV), bus, motorcycle (LDV_G_EU6) and delivery van (LDV); HBEFA2
+# car (the bare name P_7_7) and truck without acceleration terms (HDV_A0_12_3) -----------------------------
+make_emissions_classes() {
+  local d=$OUT/emissions_classes
+  rm -rf "$d" && mkdir -p "$d"
+  make_emissions_line "$d" emissions_classes
+  cat > "$d/emissions_classes.rou.xml" <<'EOF'
+<routes>
+    <vType id="car" sigma="0" speedDev="0"/>
+    <vType id="car_hbefa2" sigma="0" speedDev="0" emissionClass="P_7_7"/>
+    <vType id="car_diesel" sigma="0" speedDev="0" emissionClass="HBEFA3/PC_D_EU6"/>
+    <vType id="truck" vClass="truck" sigma="0" speedDev="0"/>
+    <vType id="truck_hbefa2" vClass="truck" sigma="0" speedDev="0" emissionClass="HBEFA2/HDV_A0_12_3"/>
+    <vType id="bus" vClass="bus" sigma="0" speedDev="0"/>
+    <vType id="moto" vClass="motorcycle" sigma="0" speedDev="0"/>
+    <vType id="van" vClass="delivery" sigma="0" speedDev="0"/>
+    <route id="r" edges="AB BC CD"/>
+    <vehicle id="car" type="car" route="r" depart="0"/>
+    <vehicle id="truck" type="truck" route="r" depart="15"/>
+    <vehicle id="bus" type="bus" route="r" depart="30"/>
+    <vehicle id="moto" type="moto" route="r" depart="45"/>
+    <vehicle id="car_hbefa2" type="car_hbefa2" route="r" depart="60"/>
+    <vehicle id="truck_hbefa2" type="truck_hbefa2" route="r" depart="75"/>
+    <vehicle id="van" type="van" route="r" depart="90"/>
+    <vehicle id="car_diesel" type="car_diesel" route="r" depart="105"/>
+</routes>
+EOF
+  write_sumocfg "$d" emissions_classes emissions_classes.rou.xml
+}
+
 make_grid_tls
 make_random_net
 make_flows
@@ -308,8 +423,12 @@ make_lpsim_csv_small
 make_actuated_cross
 make_keep_clear
 make_cosim_line
+make_emissions_free
+make_emissions_redlight
+make_emissions_classes
 
-for name in grid_tls random_net flows actuated_cross keep_clear cosim_line; do
+for name in grid_tls random_net flows actuated_cross keep_clear cosim_line emissions_free emissions_redlight \
+  emissions_classes; do
   "$PY" "$ROOT/tools/sumo_reference.py" "$OUT/$name/$name.sumocfg" > "$OUT/$name/sumo_reference.txt"
 done
 du -sh "$OUT"

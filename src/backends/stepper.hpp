@@ -3,9 +3,9 @@
 // the step's phases over it. The engine's Simulation (src/engine) keeps the host's bookkeeping (slots handed
 // out, insertion queues, trip records) and calls the phases in one sequence for every backend:
 //
-//   update_signals, start_step, clear_footprints, approach, plan, commit, start_end_of_step
-//   (host work that does not depend on the step's outcome), finish_end_of_step, apply_teleports, insert,
-//   start_vehicles, sort_slots (every so many steps)
+//   update_signals, start_step, clear_footprints, approach, plan, commit, (count_emissions),
+//   start_end_of_step (host work that does not depend on the step's outcome), finish_end_of_step,
+//   apply_teleports, insert, start_vehicles, sort_slots (every so many steps)
 //
 // so that a later phase (a ghost exchange between approach and plan, a claims exchange before commit,
 // migration after commit, a co-simulation hand-over at the end of step) is one more call in one place.
@@ -24,7 +24,9 @@
 
 namespace lpsim {
 
-/// The per-lane edgeData/laneData counter columns, in LaneCounters' order (src/engine/samples.hpp).
+/// The per-lane edgeData/laneData counter columns, in LaneCounters' order (src/engine/samples.hpp): the
+/// traffic measures, kept when a traffic output asks for them, then the emissions pass's sums (EmissionSum
+/// order), kept when an emissions output does.
 enum LaneCounter : int {
   kCountSampledSteps,
   kCountTravelledMm,
@@ -35,7 +37,9 @@ enum LaneCounter : int {
   kCountLeft,
   kCountArrived,
   kCountDeparted,
-  kNumLaneCounters
+  kNumTrafficCounters,
+  kCountEmissionFirst = kNumTrafficCounters,
+  kNumLaneCounters = kCountEmissionFirst + kNumEmissionSums
 };
 
 /// The trip table as a backend reads it (pointers into the engine's host table, valid until it changes:
@@ -65,6 +69,10 @@ struct StepperSetup {
   // Track how long fronts stand on junction lanes (StepContext::junction_stand_*), for SUMO's
   // --ignore-junction-blocker; without it the passes skip that work.
   bool junction_stands = false;
+  // The vehicle types' emission columns (their sums pointer unused), and whether the emissions pass runs
+  // (count_emissions) and its sums are kept.
+  EmissionView emission_types{};
+  bool emission_sums = false;
   int threads = 1;  // CPU backend: threads of its team
   int device = 0;   // CUDA backend: the device, counted modulo the devices present (ranks share them)
 };
@@ -123,6 +131,8 @@ class Stepper {
   virtual void approach() = 0;
   virtual void plan() = 0;
   virtual void commit() = 0;
+  /// The emissions pass (kernels/emission_step.hpp), after commit; only in runs set up with emission_sums.
+  virtual void count_emissions() = 0;
   /// Starts each vehicle's end of step (arrived, teleporting, staying active). `steps_done` is the step count
   /// after this step. The host may do work meanwhile that does not depend on the step's outcome.
   virtual void start_end_of_step(uint32_t steps_done) = 0;
@@ -170,7 +180,8 @@ class Stepper {
   virtual void mark_migrated(const std::vector<uint32_t>& slots) = 0;
 
   /// Adds the counters counted since the last call to `columns` (kNumLaneCounters columns of num_lanes, in
-  /// LaneCounters' order) and starts counting from zero.
+  /// LaneCounters' order) and starts counting from zero. Only the columns it keeps (setup's lane_counters,
+  /// emission_sums) are touched: the others may be null.
   virtual void drain_counters(int64_t* const* columns) = 0;
 };
 

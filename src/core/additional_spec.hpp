@@ -1,12 +1,17 @@
 #pragma once
 // What add-files contribute besides demand: signal programs that replace the net's, and definitions of
 // edgeData/laneData outputs kept for the output writers.
+#include <cstdint>
 #include <string>
 #include <vector>
 
 #include "core/net_spec.hpp"
 
 namespace lpsim {
+
+/// What an edgeData/laneData measures: traffic (type "", "traffic" or "performance") or exhaust emissions
+/// (type "emissions", or "hbefa", SUMO's deprecated name for it).
+enum class MeanDataType : uint8_t { Traffic, Emissions };
 
 struct MeanDataSpec {
   std::string id, file;
@@ -16,6 +21,11 @@ struct MeanDataSpec {
   bool exclude_empty = false;
   bool with_internal = false;
   SourceLoc loc;
+  MeanDataType type = MeanDataType::Traffic;
+  // excludeEmpty="defaults" on an emissions output: empty edges are written with the values of a default
+  // vehicle driving through at the speed limit (a traffic output writes them as with "false").
+  bool empty_defaults = false;
+  bool hbefa_name = false;  // type="hbefa": SUMO warns that the name is deprecated (not kept in snapshots)
 };
 
 struct AdditionalSpec {

@@ -73,6 +73,8 @@ struct ConfigSpec {
   std::string jam_report;
   double jam_report_stop_time = 60;
   bool ignore_route_errors = false;
+  // SUMO's --emissions.volumetric-fuel: emissions outputs give fuel in ml (by the fuel's density), not mg.
+  bool volumetric_fuel = false;
   int threads = 0;  // 0: all hardware threads
   // Not a SUMO option: the most lane map (one byte per metre of car lane) a network may ask for, in GiB, so
   // that an absurd lane length is refused before it allocates.

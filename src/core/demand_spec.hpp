@@ -23,6 +23,8 @@ struct VTypeSpec {
   // earns the warning that LPSim follows IDM instead.
   bool car_follow_model_given = false;
   std::string lane_change_model;              // as given; empty: SUMO's default (LC2013)
+  std::optional<std::string> emission_class;  // as given; not given: the vClass's default
+  std::optional<double> width, height;        // m; not given: the vClass's (read by the emission model)
   std::map<std::string, std::string> params;  // other attributes and car-following parameters (delta, ...)
   SourceLoc loc;
 };

@@ -18,6 +18,14 @@ struct VehicleTypes {
   std::vector<std::string> vclass, car_follow_model;  // car_follow_model: the vType's, or the default's
   std::vector<uint8_t> model;         // CarFollowModel simulated (kernels/idm.hpp): IDM or Krauss
   std::vector<uint32_t> vclass_mask;  // the lanes a type may use: core/vehicle_vclass_mask of its vclass
+  // Emissions (demand/emission_class.hpp, kernels/emissions.hpp): the class as SUMO names it, its model and
+  // coefficients (kCoefficientsPerClass per type, zero for Zero and other models), its coasting cut-off,
+  // its fuel's density (mg/ml) and the stop length beyond which the engine is off (s).
+  std::vector<std::string> emission_class;
+  std::vector<uint8_t> emission_model;
+  std::vector<double> emission_coeff;
+  std::vector<double> coast_incl, coast_mass_term, fuel_density, shut_off_stop;
+  std::vector<SourceLoc> loc;  // where each was defined (none for a DEFAULT_VEHTYPE LPSim added)
   std::unordered_map<std::string, uint32_t> index;
 
   uint32_t size() const { return static_cast<uint32_t>(id.size()); }

@@ -5,22 +5,35 @@
 
 #include "core/vclass.hpp"
 #include "demand/demand_draws.hpp"
+#include "demand/emission_class.hpp"
 #include "kernels/idm.hpp"
 
 namespace lpsim {
 namespace {
 
-constexpr double kDefaultIdmDelta = 4.0;  // SUMO's IDM acceleration exponent
+constexpr double kDefaultIdmDelta = 4.0;             // SUMO's IDM acceleration exponent
+constexpr double kDefaultShutOffStopDuration = 300;  // s, SUMO's default of the vType param
 
-double idm_delta(const VTypeSpec& spec) {
-  auto it = spec.params.find("delta");
-  if (it == spec.params.end()) return kDefaultIdmDelta;
+// The vType param `key` as a finite number, `fallback` when absent.
+double numeric_param(const VTypeSpec& spec, const std::string& key, double fallback) {
+  auto it = spec.params.find(key);
+  if (it == spec.params.end()) return fallback;
   const std::string& text = it->second;
   double value = 0;
   auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(value))
-    throw InputError(spec.loc, "invalid delta '" + text + "' in vType '" + spec.id + "'");
+    throw InputError(spec.loc, "invalid " + key + " '" + text + "' in vType '" + spec.id + "'");
   return value;
+}
+
+EmissionClass emission_class_of(const VTypeSpec& spec) {
+  if (!spec.emission_class) return default_emission_class(spec.vclass);
+  std::optional<EmissionClass> c = find_emission_class(*spec.emission_class);
+  if (!c)
+    throw InputError(spec.loc, "vType '" + spec.id + "': emissionClass '" + *spec.emission_class +
+                                   "' does not exist (as SUMO 1.15 names them: HBEFA3/<class>, "
+                                   "HBEFA2/<class> or a bare HBEFA2 class, Zero)");
+  return *c;
 }
 
 }  // namespace
@@ -80,14 +93,30 @@ uint32_t VTypeTable::add_type(const VTypeSpec& t) {
   types_.speed_dev.push_back(static_cast<float>(t.speed_dev));
   types_.tau.push_back(static_cast<float>(t.tau));
   types_.sigma.push_back(static_cast<float>(t.sigma));
-  types_.delta.push_back(static_cast<float>(idm_delta(t)));
+  types_.delta.push_back(static_cast<float>(numeric_param(t, "delta", kDefaultIdmDelta)));
   types_.vclass.push_back(t.vclass);
   const std::string& model = t.car_follow_model_given ? t.car_follow_model : default_model_;
   types_.car_follow_model.push_back(model);
   types_.model.push_back(simulated_car_follow_model(model));
   types_.vclass_mask.push_back(vehicle_vclass_mask(t.vclass));
+  add_emission_columns(t);
   types_.index.emplace(t.id, index);
   return index;
+}
+
+void VTypeTable::add_emission_columns(const VTypeSpec& t) {
+  const EmissionClass c = emission_class_of(t);
+  types_.emission_class.push_back(c.name);
+  types_.emission_model.push_back(c.model);
+  for (int k = 0; k < kCoefficientsPerClass; ++k) types_.emission_coeff.push_back(c.coeff ? c.coeff[k] : 0.0);
+  const VehicleBody body = vclass_body(t.vclass);
+  const CoastingParams coasting =
+      coasting_params(body.mass, t.width.value_or(body.width), t.height.value_or(body.height));
+  types_.coast_incl.push_back(coasting.incl);
+  types_.coast_mass_term.push_back(coasting.mass_term);
+  types_.fuel_density.push_back(c.fuel_density);
+  types_.shut_off_stop.push_back(numeric_param(t, "shutOffStopDuration", kDefaultShutOffStopDuration));
+  types_.loc.push_back(t.loc);
 }
 
 uint32_t VTypeTable::default_type() {

@@ -19,7 +19,8 @@ uint8_t simulated_car_follow_model(std::string_view name);
 class VTypeTable {
  public:
   /// Registers every vType (in spec order) and checks every distribution; InputError for duplicate ids,
-  /// unknown members, bad weights or a non-numeric IDM "delta". A vType that names no car-following model
+  /// unknown members, bad weights, a non-numeric IDM "delta" or shutOffStopDuration, or an emissionClass
+  /// SUMO does not know. A vType that names no car-following model
   /// gets `default_model` (SUMO's --default.carfollowmodel).
   VTypeTable(const DemandSpec& spec, std::string default_model);
 
@@ -41,6 +42,7 @@ class VTypeTable {
     std::vector<double> cumulative;
   };
   uint32_t add_type(const VTypeSpec& spec);
+  void add_emission_columns(const VTypeSpec& spec);
   uint32_t default_type();
 
   std::string default_model_;

@@ -1,14 +1,17 @@
 #include "engine/samples.hpp"
 
+#include "backends/stepper.hpp"
+
 namespace lpsim {
 
-void LaneCounters::resize(size_t lanes) {
+void LaneCounters::resize(size_t lanes, bool emission_sums) {
   for (auto* v : {&sampled_steps, &travelled_mm, &waiting_steps, &time_loss_ms, &occupied_mm_steps, &departed,
                   &arrived, &entered, &left})
     v->assign(lanes, 0);
+  for (auto& v : emission) v.assign(emission_sums ? lanes : 0, 0);
 }
 
-void LaneCounters::clear() { resize(sampled_steps.size()); }
+void LaneCounters::clear() { resize(sampled_steps.size(), !emission[0].empty()); }
 
 }  // namespace lpsim
 
@@ -28,6 +31,7 @@ LaneCounters counters_since(const LaneCounters& now, const LaneCounters& start) 
   sub(d.arrived, start.arrived);
   sub(d.entered, start.entered);
   sub(d.left, start.left);
+  for (int k = 0; k < kNumEmissionSums; ++k) sub(d.emission[k], start.emission[k]);
   return d;
 }
 
@@ -35,7 +39,8 @@ std::vector<int64_t>& counter_column(LaneCounters& c, int k) {
   std::vector<int64_t>* columns[] = {&c.sampled_steps, &c.travelled_mm,      &c.waiting_steps,
                                      &c.time_loss_ms,  &c.occupied_mm_steps, &c.entered,
                                      &c.left,          &c.arrived,           &c.departed};
-  return *columns[k];
+  static_assert(sizeof(columns) / sizeof(columns[0]) == kCountEmissionFirst);
+  return k < kCountEmissionFirst ? *columns[k] : c.emission[k - kCountEmissionFirst];
 }
 
 }  // namespace lpsim

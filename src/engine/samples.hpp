@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "kernels/step_view.hpp"
+
 namespace lpsim {
 
 /// Vehicle positions at one time step (FCD). Vehicles are listed in ascending vehicle index.
@@ -25,8 +27,12 @@ struct LaneCounters {
   std::vector<int64_t> time_loss_ms;       // sum over vehicle-steps of dt * (1 - v / v_desired), milliseconds
   std::vector<int64_t> occupied_mm_steps;  // sum over vehicle-steps of (vehicle length on the lane) in mm
   std::vector<int64_t> departed, arrived, entered, left;
+  // The emissions pass's sums (EmissionSum order: time in us, distance in um, masses in ng), kept only for
+  // emissions edgeData/laneData (empty otherwise).
+  std::vector<int64_t> emission[kNumEmissionSums];
 
-  void resize(size_t lanes);
+  /// Every traffic column to `lanes` zeros, and the emission columns too with `emission_sums` (else empty).
+  void resize(size_t lanes, bool emission_sums = false);
   void clear();
 };
 

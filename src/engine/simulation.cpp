@@ -69,8 +69,8 @@ Simulation::Simulation(const Network& net, Demand demand, const SimulationOption
   counts_.loaded = num_loaded_;
   ledger_.resize(num_loaded_);
   // kNumLaneCounters columns over every lane: kept only for edgeData/laneData (lane_counters() sizes them
-  // when asked without).
-  if (opt_.lane_counters) lane_counters_.resize(net.num_lanes());
+  // when asked without), the emission sums only for emissions outputs.
+  if (opt_.lane_counters || opt_.emission_sums) lane_counters_.resize(net.num_lanes(), opt_.emission_sums);
 
   const VehicleTypes& t = d.types;
   for (uint32_t k = 0; k < t.size(); ++k) {
@@ -115,6 +115,18 @@ Simulation::Simulation(const Network& net, Demand demand, const SimulationOption
   setup.trips = trip_table_view();
   setup.lane_counters = opt_.lane_counters;
   setup.junction_stands = opt_.ignore_junction_blocker >= 0;
+  setup.emission_sums = opt_.emission_sums;
+  fuel_divisor_.resize(t.size());
+  for (uint32_t k = 0; k < t.size(); ++k)
+    fuel_divisor_[k] = opt_.volumetric_fuel ? kHbefaScale * t.fuel_density[k] : kHbefaScale;
+  setup.emission_types = EmissionView{t.emission_model.data(),
+                                      t.emission_coeff.data(),
+                                      t.coast_incl.data(),
+                                      t.coast_mass_term.data(),
+                                      fuel_divisor_.data(),
+                                      t.shut_off_stop.data(),
+                                      nullptr,
+                                      net.num_lanes()};
   setup.threads = opt_.threads;
   setup.device = opt_.gpu_device;
   stepper_ = opt_.gpu ? make_cuda_stepper(setup) : make_cpu_stepper(setup);
@@ -231,6 +243,7 @@ void Simulation::step() {
   s.plan();
   if (parts_) share_claims();
   s.commit();
+  if (opt_.emission_sums) s.count_emissions();
   s.start_end_of_step(step_ + 1);
   // While a device runs the passes: the departures due by the end of the step join their queues. Nothing
   // there depends on the step's outcome, and the order does not matter: a vehicle teleported in the step
@@ -521,22 +534,34 @@ void Simulation::set_route(uint32_t v, const std::vector<uint32_t>& edges) {
 }
 
 const LaneCounters& Simulation::lane_counters() const {
-  if (lane_counters_.sampled_steps.size() != net_.num_lanes())
-    const_cast<LaneCounters&>(lane_counters_).resize(net_.num_lanes());  // all zero: nothing counted
+  if (lane_counters_.sampled_steps.size() != net_.num_lanes())  // all zero: nothing counted
+    const_cast<LaneCounters&>(lane_counters_).resize(net_.num_lanes(), opt_.emission_sums);
   if (parts_ && parts_->plan.part == 0) request(kRequestCounters);
   if (parts_ && parts_->plan.part != 0) {
     gather_counters();
     return lane_counters_;
   }
-  if (opt_.lane_counters) {
+  if (opt_.lane_counters || opt_.emission_sums) {
     // Drained from the backend's counters: const, as the totals it reports do not change.
     auto* self = const_cast<Simulation*>(this);
     int64_t* columns[kNumLaneCounters];
-    for (int k = 0; k < kNumLaneCounters; ++k) columns[k] = counter_column(self->lane_counters_, k).data();
+    for (int k = 0; k < kNumLaneCounters; ++k) {
+      std::vector<int64_t>& column = counter_column(self->lane_counters_, k);
+      columns[k] = column.empty() ? nullptr : column.data();
+    }
     stepper_->drain_counters(columns);
   }
   if (parts_) gather_counters();
   return lane_counters_;
+}
+
+// The counter columns the backend keeps (LaneCounter order): the traffic ones for edgeData/laneData, the
+// emission sums for emissions outputs.
+std::vector<int> Simulation::kept_counters() const {
+  std::vector<int> kept;
+  for (int k = 0; k < kNumLaneCounters; ++k)
+    if (k < kCountEmissionFirst ? opt_.lane_counters : opt_.emission_sums) kept.push_back(k);
+  return kept;
 }
 
 const std::vector<uint64_t>& Simulation::active_by_vehicle() const {

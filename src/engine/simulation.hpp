@@ -42,6 +42,11 @@ struct SimulationOptions {
   // Accumulate the per-lane edgeData/laneData counters (lane_counters()). Off when no such output is
   // requested: the passes then skip their atomics.
   bool lane_counters = true;
+  // Run the emissions pass and keep its per-lane sums in lane_counters() (emissions edgeData/laneData). Off
+  // by default: the step then has no emissions pass. With volumetric_fuel, fuel is summed in nl, not ng
+  // (SUMO's --emissions.volumetric-fuel).
+  bool emission_sums = false;
+  bool volumetric_fuel = false;
   // Every this many steps the vehicles on the road are renumbered by lane (slot_order), so that the passes
   // visit the vehicles of a lane, and neighbouring lanes, together; 0: never. Results do not depend on it.
   uint32_t slot_sort_interval = 16;
@@ -118,7 +123,7 @@ class Simulation {
 
   /// Positions of running vehicles now.
   void sample_fcd(FcdFrame& frame) const;
-  /// edgeData/laneData counters accumulated since the start.
+  /// edgeData/laneData counters accumulated since the start (the emission sums only with emission_sums).
   const LaneCounters& lane_counters() const;
   /// Wall time spent in step() so far (in a partitioned run part 0's, which waits for the others).
   double step_seconds() const { return step_seconds_; }
@@ -226,6 +231,7 @@ class Simulation {
   void share_insertions(int map);
   void init_parts();
   void gather_counters() const;
+  std::vector<int> kept_counters() const;
   void report_to_root();
   void request(uint8_t what) const;
   std::vector<Bytes> gather_at_root(const Bytes& mine, const char* what) const;
@@ -277,6 +283,7 @@ class Simulation {
   std::vector<TeleportMove> moves_;
   std::vector<TeleportEvent> teleport_events_;
   LaneCounters lane_counters_;
+  std::vector<double> fuel_divisor_;  // per type: EmissionView::fuel_divisor
 
   // Co-simulation: every lane (what a one-part run holds, when lanes are driven elsewhere), the
   // footprints written into each lane map from outside (mirrored vehicles, and those of vehicles handed out,

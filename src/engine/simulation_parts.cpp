@@ -546,11 +546,13 @@ void Simulation::gather_sample() const {
 }
 
 // The lane counters counted since the last request, from every part to part 0, which adds them to its own.
+// Only the columns every part keeps travel (kept_counters: the parts run with the same options).
 void Simulation::gather_counters() const {
   PartState& ps = *parts_;
   std::vector<uint32_t> lanes;
   std::vector<int64_t> values;
-  if (ps.plan.part != 0 && opt_.lane_counters) {
+  const std::vector<int> kept = kept_counters();
+  if (ps.plan.part != 0 && !kept.empty()) {
     const uint32_t nl = net_.num_lanes();
     std::vector<int64_t> all(static_cast<size_t>(kNumLaneCounters) * nl, 0);
     int64_t* columns[kNumLaneCounters];
@@ -558,10 +560,10 @@ void Simulation::gather_counters() const {
     stepper_->drain_counters(columns);
     for (uint32_t l = 0; l < nl; ++l) {
       bool any = false;
-      for (int k = 0; k < kNumLaneCounters; ++k) any = any || columns[k][l] != 0;
+      for (const int k : kept) any = any || columns[k][l] != 0;
       if (!any) continue;
       lanes.push_back(l);
-      for (int k = 0; k < kNumLaneCounters; ++k) values.push_back(columns[k][l]);
+      for (const int k : kept) values.push_back(columns[k][l]);
     }
   }
   Bytes b;
@@ -574,9 +576,8 @@ void Simulation::gather_counters() const {
     const std::vector<uint32_t> l = r.get_array<uint32_t>();
     const std::vector<int64_t> v = r.get_array<int64_t>();
     for (size_t j = 0; j < l.size(); ++j)
-      for (int k = 0; k < kNumLaneCounters; ++k)
-        counter_column(const_cast<LaneCounters&>(lane_counters_), k)[l[j]] +=
-            v[j * kNumLaneCounters + static_cast<size_t>(k)];
+      for (size_t c = 0; c < kept.size(); ++c)
+        counter_column(const_cast<LaneCounters&>(lane_counters_), kept[c])[l[j]] += v[j * kept.size() + c];
   }
 }
 

@@ -1,11 +1,12 @@
 // `mpirun -n K lpsim run ... --parts K` (label mpi): one part per rank writes the outputs of the run in one
-// part byte for byte; a rank count other than the part count is bad input; a rank killed mid-run ends the
-// job with a non-zero status, never a hang. As root, OpenMPI needs --allow-run-as-root; --oversubscribe lets
-// 4 ranks share 2 cores.
+// part byte for byte, its emissions edgeData and laneData too; a rank count other than the part count is bad
+// input; a rank killed mid-run ends the job with a non-zero status, never a hang. As root, OpenMPI needs
+// --allow-run-as-root; --oversubscribe lets 4 ranks share 2 cores.
 #include <gtest/gtest.h>
 
 #include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <regex>
 #include <string>
 #include <vector>
@@ -83,6 +84,29 @@ TEST(MpiPartitionedRunTest, RanksWriteTheOutputsOfOnePart) {
       EXPECT_GT(crossed, 100u) << r.out;
     }
   }
+}
+
+// The per-lane emission sums of every rank reach rank 0 as the traffic counters do.
+TEST(MpiPartitionedRunTest, RanksWriteTheEmissionsOfOnePart) {
+  if (!have_mpirun()) GTEST_SKIP() << "mpirun not installed";
+  test::TempDir tmp("lpsim_mpi_emissions");
+  auto run_in = [&](const std::string& tag, int ranks) {
+    const fs::path dir = tmp.path() / tag;
+    fs::create_directories(dir);
+    std::ofstream(dir / "em.add.xml")
+        << "<additional>\n<edgeData id=\"e\" type=\"emissions\" file=\"edges.xml\" period=\"600\" "
+           "withInternal=\"true\"/>\n<laneData id=\"l\" type=\"emissions\" file=\"lanes.xml\"/>\n"
+           "</additional>\n";
+    std::vector<std::string> args{"run",  scenario("grid_tls"), "-a", "em.add.xml", "--end",
+                                  "1200", "--no-step-log"};
+    if (ranks > 1) args.insert(args.end(), {"--parts", std::to_string(ranks)});
+    const test::CliResult r = ranks > 1 ? mpirun_lpsim(dir, ranks, args) : test::run_lpsim(dir, args);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return test::read_file(dir / "edges.xml") + test::read_file(dir / "lanes.xml");
+  };
+  const std::string one = run_in("one", 1);
+  EXPECT_NE(one.find("CO2_perVeh"), std::string::npos);
+  EXPECT_TRUE(run_in("three", 3) == one) << "3 ranks: emissions differ";
 }
 
 TEST(MpiPartitionedRunTest, PartsOtherThanRanksIsBadInput) {

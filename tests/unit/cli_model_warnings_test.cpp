@@ -1,8 +1,8 @@
 // Settings that load but are not modelled get one warning each, never silence: carFollowModel other than
 // IDM and Krauss (one line per model naming its vTypes, the default model included), laneChangeModel other
 // than LC2013 (LPSim's lane changing stands in for it), signal programs of a type other than static (run as
-// static: one line with the count and ids). An edgeData or laneData of an emission or noise type is refused:
-// LPSim writes traffic measures.
+// static: one line with the count and ids). An edgeData or laneData of SUMO's noise or amitran types is
+// refused: LPSim writes traffic measures and emissions; "hbefa", SUMO's old name of emissions, warns as SUMO.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -115,14 +115,14 @@ TEST_F(CliModelWarningsTest, ActuatedParametersNotImplementedWarn) {
                      {"tlLogic 'A0' param 'max-gap'", "'soon'"});
 }
 
-TEST_F(CliModelWarningsTest, EmissionEdgeDataIsRefused) {
-  for (const char* type : {"emissions", "harmonoise", "amitran"}) {
+TEST_F(CliModelWarningsTest, NoiseAndAmitranEdgeDataAreRefused) {
+  for (const char* type : {"harmonoise", "amitran"}) {
     SCOPED_TRACE(type);
     write("data.add.xml",
           std::string("<additional>\n<!-- test input -->\n<laneData id=\"d\" file=\"o.xml\" type=\"") + type +
               "\"/>\n</additional>\n");
     expect_input_error(run({"info", "-n", test::kGridTlsNet, "-a", "data.add.xml"}), "data.add.xml:3",
-                       {"<laneData id=\"d\">", std::string("type '") + type + "'", "traffic measures only"});
+                       {"<laneData id=\"d\">", std::string("type '") + type + "'", "not supported"});
   }
   write("data.add.xml",
         "<additional>\n<!-- test input -->\n<edgeData id=\"d\" file=\"o.xml\" type=\"bogus\"/>\n"
@@ -132,6 +132,22 @@ TEST_F(CliModelWarningsTest, EmissionEdgeDataIsRefused) {
   write("data.add.xml",
         "<additional>\n<edgeData id=\"d\" file=\"o.xml\" type=\"traffic\"/>\n</additional>\n");
   EXPECT_EQ(run({"info", "-n", test::kGridTlsNet, "-a", "data.add.xml"}).exit_code, 0);
+  write("data.add.xml",
+        "<additional>\n<edgeData id=\"d\" file=\"o.xml\" type=\"emissions\"/>\n</additional>\n");
+  const auto emissions = run({"info", "-n", test::kGridTlsNet, "-a", "data.add.xml"});
+  EXPECT_EQ(emissions.exit_code, 0) << emissions.err;
+  EXPECT_TRUE(emissions.err.empty()) << emissions.err;
+}
+
+TEST_F(CliModelWarningsTest, HbefaEdgeDataIsEmissionsWithSumosWarning) {
+  write("data.add.xml",
+        "<additional>\n<laneData id=\"old\" file=\"o.xml\" type=\"hbefa\"/>\n</additional>\n");
+  const auto r = run({"info", "-n", test::kGridTlsNet, "-a", "data.add.xml"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(has_line(r,
+                       "lpsim: warning: laneData 'old' (data.add.xml:2): the type 'hbefa' is deprecated, "
+                       "'emissions' is its name now"))
+      << r.err;
 }
 
 }  // namespace

@@ -33,6 +33,7 @@ void fill(Columns& c, size_t slots, uint64_t stream) {
 // The bytes of slot `slot` of every column, concatenated.
 std::vector<uint8_t> slot_bytes(Columns& c, uint32_t slot) {
   std::vector<uint8_t> out;
+  out.reserve(256);  // a slot's bytes; without it GCC 12 warns falsely (-Wstringop-overflow) on the inserts
   visit_vehicle_columns(
       [&](uint32_t per, auto*& column) {
         using T = std::remove_reference_t<decltype(*column)>;

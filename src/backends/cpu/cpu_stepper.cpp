@@ -7,6 +7,7 @@
 #include "backends/cpu/pass_prefetch.hpp"
 #include "backends/host_columns.hpp"
 #include "backends/vehicle_packing.hpp"
+#include "kernels/emission_step.hpp"
 #include "kernels/insert_vehicle.hpp"
 #include "kernels/signal_step.hpp"
 #include "kernels/vehicle_step.hpp"
@@ -48,7 +49,8 @@ class CpuStepper final : public Stepper {
     approach_.assign(nl, LaneApproach{0xFFFFFFFFu, -1, 0, 0, 0, 0, 0, 0});
     claims_.assign(nl, 0);
     merge_requests_.assign(static_cast<size_t>(kMergeSlots) * nl, 0);
-    if (setup.lane_counters) counters_.assign(static_cast<size_t>(kNumLaneCounters) * nl, 0);
+    if (setup.lane_counters) counters_.assign(static_cast<size_t>(kNumTrafficCounters) * nl, 0);
+    if (setup.emission_sums) emission_sums_.assign(static_cast<size_t>(kNumEmissionSums) * nl, 0);
     if (setup.junction_stands)
       for (auto& j : junction_stand_) j.assign(nl, kNoJunctionStand);
     trips_ = setup.trips;
@@ -113,6 +115,15 @@ class CpuStepper final : public Stepper {
     };
     pass(new_front, ctx_.map_next, lane_columns(),
          [](StepContext& s, uint32_t i, uint32_t k) { commit_vehicle(s, i, k); });
+  }
+
+  // Reads the footprint each vehicle had as the step began (the commit pass kept it as the old one).
+  void count_emissions() override {
+    const StepContext& c = ctx_;
+    const uint32_t* act = active_.data();
+    auto old_front = [&](int64_t i) { return LaneAt{c.veh.old_lane[act[i]], c.veh.old_pos[act[i]]}; };
+    pass(old_front, nullptr, lane_columns(),
+         [](StepContext& s, uint32_t i, uint32_t k) { count_vehicle_emissions(s, i, k); });
   }
 
   // One walk over the active list: the vehicles whose trip or road time ended in this step, and the slots
@@ -253,17 +264,23 @@ class CpuStepper final : public Stepper {
   }
 
   void drain_counters(int64_t* const* columns) override {
-    if (counters_.empty()) return;
+    drain(counters_, columns, kNumTrafficCounters);
+    drain(emission_sums_, columns + kCountEmissionFirst, kNumEmissionSums);
+  }
+
+ private:
+  // Adds `n` columns of num_lanes kept in `from` (none when it is empty) to `columns` and zeroes them.
+  void drain(std::vector<int64_t>& from, int64_t* const* columns, int n) const {
+    if (from.empty()) return;
     const size_t nl = setup_.net.num_lanes;
-    for (int k = 0; k < kNumLaneCounters; ++k)
+    for (int k = 0; k < n; ++k)
       for (size_t l = 0; l < nl; ++l) {
-        int64_t& c = counters_[static_cast<size_t>(k) * nl + l];
+        int64_t& c = from[static_cast<size_t>(k) * nl + l];
         columns[k][l] += c;
         c = 0;
       }
   }
 
- private:
   int64_t* counter(LaneCounter k) {
     return counters_.empty() ? nullptr : counters_.data() + static_cast<size_t>(k) * setup_.net.num_lanes;
   }
@@ -292,6 +309,9 @@ class CpuStepper final : public Stepper {
     ctx.cnt_entered = counter(kCountEntered);
     ctx.cnt_left = counter(kCountLeft);
     ctx.cnt_arrived = counter(kCountArrived);
+    ctx.em = setup_.emission_types;
+    ctx.em.sums = emission_sums_.empty() ? nullptr : emission_sums_.data();
+    ctx.em.num_lanes = setup_.net.num_lanes;
     return ctx;
   }
 
@@ -321,7 +341,8 @@ class CpuStepper final : public Stepper {
   std::vector<int64_t> actuated_start_ms_, det_last_ms_;
   std::vector<LaneApproach> approach_;
   std::vector<uint64_t> claims_, merge_requests_;
-  std::vector<int64_t> counters_;  // kNumLaneCounters columns of num_lanes; empty without lane counters
+  std::vector<int64_t> counters_;  // kNumTrafficCounters columns of num_lanes; empty without lane counters
+  std::vector<int64_t> emission_sums_;  // kNumEmissionSums columns of num_lanes; empty without emission sums
   std::vector<uint32_t> junction_stand_[2];  // per lane, with map_'s buffer index; empty unless tracked
   HostVehicleColumns veh_;
   HostPlanColumns plan_;

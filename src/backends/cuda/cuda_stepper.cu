@@ -110,8 +110,9 @@ static_assert(sizeof(TypeView) == 11 * sizeof(void*) && sizeof(TripView) == 13 *
               "TypeView or TripView changed: update upload_types and DeviceTrips");
 static_assert(sizeof(StepContext) == sizeof(NetView) + sizeof(TypeView) + sizeof(TripView) +
                                          sizeof(VehicleView) + sizeof(PlanView) + sizeof(StepParams) +
-                                         18 * sizeof(void*),
+                                         sizeof(EmissionView) + 18 * sizeof(void*),
               "StepContext changed: update CudaStepper");
+static_assert(sizeof(EmissionView) == 8 * sizeof(void*), "EmissionView changed: update upload_emissions");
 
 static_assert(sizeof(DepartView) == 6 * sizeof(void*), "DepartView changed: update DeviceTrips");
 
@@ -359,9 +360,9 @@ class CudaStepper final : public Stepper {
     // The counters, contiguous so that one copy fetches them and one memset clears them.
     num_lanes_ = nl;
     if (setup.lane_counters) {
-      counters_ = allocate<int64_t>(static_cast<size_t>(kNumLaneCounters) * nl);
+      counters_ = allocate<int64_t>(static_cast<size_t>(kNumTrafficCounters) * nl);
       LPSIM_CUDA_CHECK(
-          cudaMemset(counters_, 0, kNumLaneCounters * static_cast<size_t>(nl) * sizeof(int64_t)));
+          cudaMemset(counters_, 0, kNumTrafficCounters * static_cast<size_t>(nl) * sizeof(int64_t)));
       int64_t** columns[kCountDeparted] = {&dev_.cnt_sampled_steps,
                                            &dev_.cnt_travelled_mm,
                                            &dev_.cnt_waiting_steps,
@@ -373,6 +374,7 @@ class CudaStepper final : public Stepper {
       for (int k = 0; k < kCountDeparted; ++k) *columns[k] = counters_ + static_cast<size_t>(k) * nl;
       cnt_departed_ = counters_ + static_cast<size_t>(kCountDeparted) * nl;
     }
+    if (setup.emission_sums) upload_emissions(setup.emission_types, setup.num_types, nl);
 
     if (setup.junction_stands)
       for (auto& j : junction_stand_) {
@@ -422,6 +424,7 @@ class CudaStepper final : public Stepper {
   void approach() override { launch_pass<approach_vehicle>(3); }
   void plan() override { launch_pass<plan_vehicle>(4); }
   void commit() override { launch_pass<commit_vehicle>(5); }
+  void count_emissions() override { launch_pass<count_vehicle_emissions>(5); }  // timed with the commit
 
   // The tally and the step's ends share one buffer, so that one copy brings back the tally and as many
   // ends as the guess allows (twice the last step's, at least LPSIM_GPU_MIN_ENDS_FETCHED): the step's
@@ -748,13 +751,8 @@ class CudaStepper final : public Stepper {
   }
 
   void drain_counters(int64_t* const* columns) override {
-    if (counters_ == nullptr) return;
-    const size_t nl = num_lanes_;
-    std::vector<int64_t> all(kNumLaneCounters * nl);
-    copy_to_host(all.data(), counters_, all.size());
-    LPSIM_CUDA_CHECK(cudaMemset(counters_, 0, all.size() * sizeof(int64_t)));
-    for (int k = 0; k < kNumLaneCounters; ++k)
-      for (size_t l = 0; l < nl; ++l) columns[k][l] += all[static_cast<size_t>(k) * nl + l];
+    drain(counters_, columns, kNumTrafficCounters);
+    drain(dev_.em.sums, columns + kCountEmissionFirst, kNumEmissionSums);
   }
 
  private:
@@ -939,6 +937,31 @@ class CudaStepper final : public Stepper {
     actuated_state_.det_last_ms = upload(never.data(), loops);
   }
 
+  // Adds `n` device columns of num_lanes at `from` (none: null) to `columns` and zeroes them.
+  void drain(int64_t* from, int64_t* const* columns, int n) {
+    if (from == nullptr) return;
+    const size_t nl = num_lanes_;
+    std::vector<int64_t> all(static_cast<size_t>(n) * nl);
+    copy_to_host(all.data(), from, all.size());
+    LPSIM_CUDA_CHECK(cudaMemset(from, 0, all.size() * sizeof(int64_t)));
+    for (int k = 0; k < n; ++k)
+      for (size_t l = 0; l < nl; ++l) columns[k][l] += all[static_cast<size_t>(k) * nl + l];
+  }
+
+  // The types' emission columns and the per-lane sums of the emissions pass, zeroed.
+  void upload_emissions(const EmissionView& h, uint32_t nt, uint32_t nl) {
+    dev_.em = EmissionView{upload(h.model, nt),
+                           upload(h.coeff, static_cast<size_t>(nt) * kCoefficientsPerClass),
+                           upload(h.coast_incl, nt),
+                           upload(h.coast_mass_term, nt),
+                           upload(h.fuel_divisor, nt),
+                           upload(h.shut_off_stop, nt),
+                           allocate<int64_t>(static_cast<size_t>(kNumEmissionSums) * nl),
+                           nl};
+    LPSIM_CUDA_CHECK(
+        cudaMemset(dev_.em.sums, 0, kNumEmissionSums * static_cast<size_t>(nl) * sizeof(int64_t)));
+  }
+
   void upload_types(const TypeView& h, uint32_t nt) {
     dev_.types = TypeView{upload(h.length, nt), upload(h.min_gap, nt),         upload(h.accel, nt),
                           upload(h.decel, nt),  upload(h.emergency_decel, nt), upload(h.max_speed, nt),
@@ -961,7 +984,7 @@ class CudaStepper final : public Stepper {
   // The slot columns (dev_.veh), the active lists and the keep flags, each its own buffer, regrown together.
   std::vector<DeviceBuffer> slot_buffers_;
   size_t slot_capacity_ = 0, slot_bytes_ = 0;
-  int64_t* counters_ = nullptr;  // kNumLaneCounters columns; null without lane counters
+  int64_t* counters_ = nullptr;  // kNumTrafficCounters columns; null without lane counters
   int64_t* cnt_departed_ = nullptr;
   uint64_t cells_ = 0;
   uint8_t* map_[2] = {nullptr, nullptr};
