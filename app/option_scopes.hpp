@@ -10,8 +10,9 @@
 //    say (SUMO routes them when inserting them, on the travel times the adaptation options tune): accepted,
 //    and the warning says so.
 //  - ParkingAreaStops (parking.maneuver): acts where a vehicle stops at a parkingArea.
-//  - Persons (pedestrian.model, ride.stop-tolerance, person-device.*): acts where the scenario has persons
-//    or containers; pedestrian.model nonInteracting never acts (LPSim's persons never meet its vehicles).
+//  - Persons (pedestrian.*, persontrip.*, person-device.*, ride.stop-tolerance): acts where the scenario has
+//    persons or containers; pedestrian.model nonInteracting never acts (LPSim's persons never meet its
+//    vehicles).
 #include <string>
 
 #include "core/config_spec.hpp"
