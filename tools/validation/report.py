@@ -1,11 +1,19 @@
-"""Markdown table (one row per scenario) and the JSON document with every number."""
+"""Markdown table (one row per scenario and car-following model), the line totalling the targets, and the JSON
+document with every number."""
 import json
 
-COLUMNS = [
-    "scenario", "inserted S/L", "arrived S/L", "arrived Δ", "mean dur S/L (s)", "dur Δ",
-    "p10/p50/p90 S (s)", "p10/p50/p90 L (s)", "speed r (edges)", "entered r", "teleports S/L",
-    "CPU s S/L", "CPU L/S", "wall s S/L", "arrived ±2%", "dur ±15%", "speed r≥0.8", "note",
-]
+from . import metrics
+
+TARGET_HEADERS = {
+    "inserted": "inserted ±%g%%" % (100 * metrics.INSERTED_TOLERANCE),
+    "arrived": "arrived ±%g%%" % (100 * metrics.ARRIVED_TOLERANCE),
+    "duration": "dur ±%g%%" % (100 * metrics.DURATION_TOLERANCE),
+    "speed_r": "speed r≥%g" % metrics.SPEED_R_MIN,
+    "teleports": "teleports ≤max(%d×S,%d)" % (metrics.TELEPORTS_FACTOR, metrics.TELEPORTS_FLOOR),
+}
+COLUMNS = (["scenario", "model", "loaded S/L", "inserted S/L", "arrived S/L", "mean dur S/L (s)", "dur Δ",
+            "speed r (edges)", "teleports S/L", "wall s S/L"]
+           + [TARGET_HEADERS[t] for t in metrics.TARGETS] + ["note"])
 
 
 def _num(value, digits=1):
@@ -24,67 +32,72 @@ def _pair(a, b, digits=1):
     return "%s / %s" % (_num(a, digits), _num(b, digits))
 
 
-def _triple(summary):
-    if not summary or summary.get("mean") is None:
-        return "–"
-    return "%s / %s / %s" % (_num(summary["p10"], 0), _num(summary["median"], 0), _num(summary["p90"], 0))
-
-
 def _cell(text):
     return str(text).replace("|", "\\|").replace("\n", " ")
 
 
+def _target_cells(comparison):
+    """PASS/MISS per target; the inserted and arrived cells carry the relative difference too."""
+    if not comparison:
+        return ["–"] * len(metrics.TARGETS)
+    cells = []
+    for target in metrics.TARGETS:
+        text = comparison["targets"].get(target) or "–"
+        if target in ("inserted", "arrived"):
+            text += " " + _pct(comparison[target]["relative_difference"])
+        cells.append(text)
+    return cells
+
+
+def notes_of(entry):
+    """The row's note: 'refused: <LPSim's error line>' for a scenario LPSim refuses (exit status 2), else the
+    errors of either side."""
+    if entry.get("refused"):
+        return "refused: %s" % entry["refused"]
+    return "; ".join(n for n in (entry.get("reference_error"), entry.get("candidate_error")) if n)
+
+
 def scenario_row(entry):
-    """One markdown row from a scenario entry of the JSON document (see validate.run_scenario)."""
-    name = entry["scenario"]
-    sumo, cand, comparison = entry.get("reference"), entry.get("candidate"), entry.get("comparison")
-    notes = [n for n in (entry.get("reference_error"), entry.get("candidate_error")) if n]
-    sumo_summary = (sumo or {}).get("summary", {})
-    cand_summary = (cand or {}).get("summary", {})
-    s_run, c_run = (sumo or {}).get("run", {}), (cand or {}).get("run", {})
+    """One markdown row from a (scenario, model) entry of the JSON document (see validate.run_scenario). Without
+    a comparison (a side refused or failed) the row shows what each side gave and no verdicts."""
+    sumo, cand = (entry.get("reference") or {}), (entry.get("candidate") or {})
+    s, c = sumo.get("summary", {}), cand.get("summary", {})
+    comparison = entry.get("comparison")
+    duration_delta = comparison["duration"]["relative_difference_of_mean"] if comparison else None
+    speed = "–"
     if comparison:
-        targets = comparison["targets"]
-        speed = comparison["edge_speed"]
-        cells = [
-            name,
-            _pair(comparison["inserted"]["reference"], comparison["inserted"]["candidate"]),
-            _pair(comparison["arrived"]["reference"], comparison["arrived"]["candidate"]),
-            _pct(comparison["arrived"]["relative_difference"]),
-            _pair(comparison["duration"]["reference"]["mean"], comparison["duration"]["candidate"]["mean"]),
-            _pct(comparison["duration"]["relative_difference_of_mean"]),
-            _triple(comparison["duration"]["reference"]), _triple(comparison["duration"]["candidate"]),
-            "%s (%d)" % (_num(speed["r"], 3), speed["edges"]),
-            _num(comparison["edge_entered"]["r"], 3),
-            _pair(comparison["teleports"]["reference"], comparison["teleports"]["candidate"]),
-            _pair(comparison["cpu_s"]["reference"], comparison["cpu_s"]["candidate"], 2),
-            _num(comparison["cpu_s"]["ratio"], 2),
-            _pair(s_run.get("wall_s"), c_run.get("wall_s")),
-            targets["arrived"] or "–", targets["duration"] or "–", targets["speed_r"] or "–",
-        ]
-    else:
-        # Only one side (or neither) produced outputs: show what SUMO gave, leave the comparison empty.
-        cells = [
-            name,
-            _pair(sumo_summary.get("inserted"), cand_summary.get("inserted")),
-            _pair(sumo_summary.get("arrived"), cand_summary.get("arrived")),
-            "–",
-            _pair((sumo_summary.get("duration") or {}).get("mean"), (cand_summary.get("duration") or {}).get("mean")),
-            "–", _triple(sumo_summary.get("duration")), _triple(cand_summary.get("duration")), "–", "–",
-            _pair(sumo_summary.get("teleports"), cand_summary.get("teleports")),
-            _pair(s_run.get("cpu_s"), c_run.get("cpu_s"), 2), "–",
-            _pair(s_run.get("wall_s"), c_run.get("wall_s")),
-            "–", "–", "–",
-        ]
-    cells.append("; ".join(notes))
+        speed = "%s (%d)" % (_num(comparison["edge_speed"]["r"], 3), comparison["edge_speed"]["edges"])
+    cells = [
+        entry["scenario"], entry.get("model", "–"),
+        _pair(s.get("loaded"), c.get("loaded")),
+        _pair(s.get("inserted"), c.get("inserted")),
+        _pair(s.get("arrived"), c.get("arrived")),
+        _pair((s.get("duration") or {}).get("mean"), (c.get("duration") or {}).get("mean")),
+        _pct(duration_delta), speed,
+        _pair(s.get("teleports"), c.get("teleports")),
+        _pair(sumo.get("run", {}).get("wall_s"), cand.get("run", {}).get("wall_s"), 0),
+    ] + _target_cells(comparison) + [notes_of(entry)]
     return "| " + " | ".join(_cell(c) for c in cells) + " |"
 
 
+def summary_line(entries):
+    """How many (scenario, model) pairs meet all targets, and how many miss each one."""
+    totals = metrics.tally([(entry.get("comparison") or {}).get("targets") for entry in entries])
+    share = 100.0 * totals["all_met"] / totals["pairs"] if totals["pairs"] else 0.0
+    misses = ", ".join("%s %d" % (TARGET_HEADERS[t], totals["missed"][t]) for t in metrics.TARGETS)
+    return ("**All five targets met: %d of %d (scenario, model) pairs (%.0f %%).** Pairs missing each target: %s "
+            "(a refused or failed pair misses every target).\n" % (totals["all_met"], totals["pairs"], share, misses))
+
+
 def markdown_table(entries, reference_label="SUMO", candidate_label="LPSim"):
-    legend = ("S = %s, L = %s; Δ = (L − S) / S; speed r: Pearson r of per-edge mean speed over edges both "
-              "sampled; entered r: Pearson r of per-edge entered counts." % (reference_label, candidate_label))
+    cached = sum(1 for entry in entries if ((entry.get("reference") or {}).get("run") or {}).get("cached"))
+    legend = ("S = %s, L = %s; Δ = (L − S) / S; arrived = trips in tripinfo with an arrival, mean dur over them; "
+              "loaded/inserted/teleports = each simulator's own totals; speed r: Pearson r of per-edge mean speed "
+              "over edges both sampled. SUMO runs taken from the cache: %d of %d."
+              % (reference_label, candidate_label, cached, len(entries)))
     lines = [legend, "", "| " + " | ".join(COLUMNS) + " |", "|" + "---|" * len(COLUMNS)]
     lines += [scenario_row(entry) for entry in entries]
-    return "\n".join(lines) + "\n"
+    return "\n".join(lines) + "\n\n" + summary_line(entries)
 
 
 def write_json(path, document):

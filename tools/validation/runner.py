@@ -24,10 +24,11 @@ class RunResult:
         self.cpu_s = None
         self.wall_s = None
         self.error = None  # one line when the run could not start, failed or timed out
+        self.message = None  # a failed run's most telling output line (its error message)
 
     def to_json(self):
         return {"command": self.command, "cwd": self.cwd, "files": self.files, "returncode": self.returncode,
-                "cpu_s": self.cpu_s, "wall_s": self.wall_s, "error": self.error}
+                "cpu_s": self.cpu_s, "wall_s": self.wall_s, "error": self.error, "message": self.message}
 
 
 def mirror_folder(source_dir, target_dir):
@@ -143,22 +144,26 @@ def run_timed(result, env=None, timeout=None):
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     result.cpu_s = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
     if result.error is None and result.returncode != 0:
-        result.error = "exit status %d: %s" % (result.returncode, _last_error_line(result.files))
+        result.message = _last_error_line(result.files)
+        result.error = "exit status %d: %s" % (result.returncode, result.message)
     return result
 
 
 def _last_error_line(files):
-    """The most telling line of a failed run: the last 'Error' line, else the last non-empty line."""
-    lines = []
+    """The most telling line of a failed run: the last 'error' line of stderr, else of stdout, else the last
+    non-empty line of either."""
+    outputs = []
     for role in ("stderr", "stdout"):
         try:
             with open(files[role], errors="replace") as handle:
-                lines += [line.strip() for line in handle if line.strip()]
+                outputs.append([line.strip() for line in handle if line.strip()])
         except OSError:
-            pass
-    for line in reversed(lines):
-        if "error" in line.lower():
-            return line[:300]
+            outputs.append([])
+    for lines in outputs:
+        for line in reversed(lines):
+            if "error" in line.lower():
+                return line[:300]
+    lines = outputs[0] + outputs[1]
     return lines[-1][:300] if lines else "no output"
 
 

@@ -15,7 +15,7 @@ TOOLS_DIR = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 if TOOLS_DIR not in sys.path:
     sys.path.insert(0, TOOLS_DIR)
 
-from validation import metrics, parsers, report, runner  # noqa: E402
+from validation import cache, metrics, parsers, report, runner, scenarios  # noqa: E402
 import validate  # noqa: E402
 
 
@@ -122,36 +122,99 @@ class EdgeCorrelationTest(unittest.TestCase):
 
 
 class CompareRunsTest(unittest.TestCase):
-    def run_pair(self, ref_arrived, cand_arrived, ref_duration, cand_duration, cand_speed_noise):
+    def run_pair(self, ref_arrived, cand_arrived, ref_duration, cand_duration, cand_speed_noise,
+                 ref_stats=None, cand_stats=None):
         edges_ref = {"e%d" % i: sample(2.0 + i, 10 + i, 50) for i in range(5)}
         edges_cand = {"e%d" % i: sample(2.0 + i + cand_speed_noise[i], 10 + i, 50) for i in range(5)}
         reference = {"trips": trips_with([ref_duration] * ref_arrived), "edges": edges_ref,
-                     "stats": {"inserted": ref_arrived + 3, "teleports": 2}, "cpu_s": 4.0}
+                     "stats": ref_stats or {"loaded": 120, "inserted": ref_arrived + 3, "teleports": 2}, "cpu_s": 4.0}
         candidate = {"trips": trips_with([cand_duration] * cand_arrived), "edges": edges_cand,
-                     "stats": {"inserted": cand_arrived + 1}, "cpu_s": 1.0}
+                     "stats": cand_stats or {"loaded": 121, "inserted": cand_arrived + 1, "teleports": 5},
+                     "cpu_s": 1.0}
         return metrics.compare_runs(reference, candidate)
 
     def test_all_targets_pass_at_their_limits(self):
-        result = self.run_pair(100, 102, 100.0, 115.0, [0, 0, 0, 0, 0])
-        self.assertEqual(result["targets"], {"arrived": "PASS", "duration": "PASS", "speed_r": "PASS"})
-        self.assertAlmostEqual(result["arrived"]["relative_difference"], 0.02)
-        self.assertAlmostEqual(result["duration"]["relative_difference_of_mean"], 0.15)
-        self.assertEqual(result["inserted"], {"reference": 103, "candidate": 103})
-        self.assertEqual(result["teleports"], {"reference": 2, "candidate": None})
+        result = self.run_pair(100, 103, 100.0, 110.0, [0, 0, 0, 0, 0])
+        self.assertEqual(result["targets"], dict.fromkeys(metrics.TARGETS, "PASS"))
+        self.assertAlmostEqual(result["arrived"]["relative_difference"], 0.03)
+        self.assertAlmostEqual(result["duration"]["relative_difference_of_mean"], 0.10)
+        self.assertEqual(result["inserted"]["reference"], 103)
+        self.assertEqual(result["inserted"]["candidate"], 104)
+        self.assertAlmostEqual(result["inserted"]["relative_difference"], 1 / 103.0)
+        self.assertEqual(result["loaded"], {"reference": 120, "candidate": 121})
+        self.assertEqual(result["teleports"], {"reference": 2, "candidate": 5})
         self.assertAlmostEqual(result["cpu_s"]["ratio"], 0.25)
         self.assertEqual(result["arrived"]["arrived_by_both"], 100)
 
     def test_targets_miss_just_past_their_limits(self):
         # Speeds 2..6 against 2, 8, 4, 0, 6: deviations -2..2 against -2, 4, 0, -4, 2 cancel, r = 0.
-        result = self.run_pair(100, 97, 100.0, 84.0, [0, 5, 0, -5, 0])
-        self.assertEqual(result["targets"], {"arrived": "MISS", "duration": "MISS", "speed_r": "MISS"})
-        self.assertAlmostEqual(result["arrived"]["relative_difference"], -0.03)
+        result = self.run_pair(100, 96, 100.0, 89.0, [0, 5, 0, -5, 0],
+                               cand_stats={"inserted": 101, "teleports": 6})
+        self.assertEqual(result["targets"], dict.fromkeys(metrics.TARGETS, "MISS"))
+        self.assertAlmostEqual(result["arrived"]["relative_difference"], -0.04)
         self.assertAlmostEqual(result["edge_speed"]["r"], 0.0)
 
-    def test_no_arrivals_leaves_targets_undecided(self):
+    def test_no_arrivals_leaves_the_duration_undecided(self):
         result = self.run_pair(0, 0, 1.0, 1.0, [0] * 5)
-        self.assertIsNone(result["targets"]["arrived"])
+        self.assertEqual(result["targets"]["arrived"], "PASS")  # 0 against 0
         self.assertIsNone(result["targets"]["duration"])
+        self.assertIsNone(result["arrived"]["relative_difference"])
+
+
+class TargetTest(unittest.TestCase):
+    def verdicts(self, inserted=(1000, 1000), arrived=(900, 900), duration=(300.0, 300.0), speed_r=0.9,
+                 teleports=(0, 0)):
+        return metrics.evaluate_targets(inserted, arrived, duration, speed_r, teleports)
+
+    def test_each_target_at_and_past_its_limit(self):
+        cases = [  # (target, keyword, value at the limit, value just past it)
+            ("inserted", "inserted", (1000, 1010), (1000, 989)),
+            ("arrived", "arrived", (900, 927), (900, 872)),
+            ("duration", "duration", (300.0, 330.0), (300.0, 269.9)),
+            ("speed_r", "speed_r", 0.85, 0.8499),
+            ("teleports", "teleports", (3, 6), (3, 7)),
+        ]
+        for target, keyword, at_limit, past_limit in cases:
+            self.assertEqual(self.verdicts(**{keyword: at_limit})[target], "PASS", target)
+            missed = self.verdicts(**{keyword: past_limit})
+            self.assertEqual(missed[target], "MISS", target)
+            self.assertEqual([t for t in metrics.TARGETS if missed[t] != "PASS"], [target])
+
+    def test_teleports_floor_of_five(self):
+        self.assertEqual(self.verdicts(teleports=(0, 5))["teleports"], "PASS")
+        self.assertEqual(self.verdicts(teleports=(0, 6))["teleports"], "MISS")
+        self.assertEqual(self.verdicts(teleports=(10, 20))["teleports"], "PASS")
+        self.assertEqual(self.verdicts(teleports=(10, 21))["teleports"], "MISS")
+
+    def test_missing_figures_and_zero_references(self):
+        verdicts = self.verdicts(inserted=(None, 5), duration=(None, None), speed_r=None, teleports=(2, None))
+        self.assertEqual(verdicts, {"inserted": None, "arrived": "PASS", "duration": None, "speed_r": None,
+                                    "teleports": None})
+        self.assertTrue(metrics.within(0, 0, 0.01))
+        self.assertFalse(metrics.within(1, 0, 0.01))
+        self.assertIsNone(metrics.within(None, 3, 0.01))
+
+    def test_tally_counts_pairs_meeting_all_and_misses_per_target(self):
+        passing = dict.fromkeys(metrics.TARGETS, "PASS")
+        slow = dict(passing, duration="MISS", speed_r="MISS")
+        undecided = dict(passing, duration=None)
+        totals = metrics.tally([passing, slow, undecided, None, passing])
+        self.assertEqual(totals["pairs"], 5)
+        self.assertEqual(totals["all_met"], 2)
+        self.assertEqual(totals["missed"], {"inserted": 1, "arrived": 1, "duration": 3, "speed_r": 2,
+                                            "teleports": 1})
+
+    def test_summary_line_and_refused_row(self):
+        passing = {"scenario": "a", "model": "IDM", "comparison": None}
+        refused = {"scenario": "b", "model": "Krauss", "comparison": None, "refused": "lpsim: error: no lanes",
+                   "candidate_error": "lpsim: exit status 2: lpsim: error: no lanes"}
+        line = report.summary_line([passing, refused])
+        self.assertIn("0 of 2 (scenario, model) pairs (0 %)", line)
+        self.assertIn("inserted ±1% 2", line)
+        self.assertIn("teleports ≤max(2×S,5) 2", line)
+        row = report.scenario_row(refused)
+        self.assertTrue(row.startswith("| b | Krauss | – / – |"), row)
+        self.assertTrue(row.endswith("| refused: lpsim: error: no lanes |"), row)
 
 
 class ParserTest(TempDirTest):
@@ -317,16 +380,26 @@ class RunnerTest(TempDirTest):
 
 
 # A stand-in simulator: writes tripinfo/edgeData/statistics like SUMO would; run with the Krauss model its
-# durations are multiplied and its speeds divided by FAKE_SCALE, so the comparison has something to measure. The edgeData file comes from --edgedata-output
-# or, as the runner does for SUMO, from the edgeData element of the last additional file.
-FAKE_SIMULATOR = r'''
+# durations are multiplied and its speeds divided by FAKE_SCALE, so the comparison has something to measure.
+# The edgeData file comes from --edgedata-output or, as the runner does for SUMO, from the edgeData element of
+# the last additional file. It answers --version as SUMO does, appends a line per run to FAKE_LOG when set
+# (to count runs) and, with FAKE_REFUSE, refuses the scenario as LPSim does (exit status 2).
+FAKE_SIMULATOR = r"""
 import os, re, sys
 args = sys.argv[1:]
 def opt(name):
     return args[args.index(name) + 1] if name in args else None
+if args == ["--version"]:
+    print("Fake SUMO Version 1.15.0\n Build features: none"); sys.exit(0)
+if os.environ.get("FAKE_LOG"):
+    with open(os.environ["FAKE_LOG"], "a") as log:
+        log.write(os.path.basename(sys.argv[0]) + " " + str(opt("--default.carfollowmodel")) + "\n")
 scale = float(os.environ.get("FAKE_SCALE", "1")) if "Krauss" in args else 1.0
 if os.environ.get("FAKE_FAIL"):
     print("Error: cannot simulate"); sys.exit(1)
+if os.environ.get("FAKE_REFUSE") and "run" in args:
+    print("Loading ...")
+    sys.stderr.write("warning: something\nlpsim: error: vClass 'ship' has no lane\n"); sys.exit(2)
 edgedata = opt("--edgedata-output")
 if edgedata is None:
     last_add = opt("--additional-files").split(",")[-1]
@@ -346,7 +419,7 @@ if opt("--statistic-output"):
         f.write('<statistics><vehicles loaded="12" inserted="11" running="1" waiting="1"/>'
                 '<teleports total="2"/></statistics>')
 print("Vehicles:\n Inserted: 11 (Loaded: 12)\n Running: 1\n Waiting: 1")
-'''
+"""
 
 
 class EndToEndTest(TempDirTest):
@@ -355,23 +428,35 @@ class EndToEndTest(TempDirTest):
         os.chmod(path, os.stat(path).st_mode | stat.S_IXUSR)
         return path
 
-    def run_validate(self, extra_env, *options):
-        cfg = self.write("scn/run.sumocfg", """
+    def setUp(self):
+        super().setUp()
+        self.cfg = self.write("scn/run.sumocfg", """
             <configuration><input><net-file value="n.net.xml"/><additional-files value="own.add.xml"/></input>
             <time><begin value="0"/><end value="100"/></time></configuration>
             """)
         self.write("scn/own.add.xml", "<additional/>")
+        self.log = os.path.join(self.tmp, "runs.log")
+
+    def runs(self):
+        """Simulator runs so far, as 'name model' lines."""
+        if not os.path.exists(self.log):
+            return []
+        with open(self.log) as handle:
+            return handle.read().split()[::2]
+
+    def run_validate(self, extra_env, *options, configs=None):
         out = os.path.join(self.tmp, "out")
         saved = dict(os.environ)
-        os.environ.update(extra_env)
+        os.environ.update(dict(extra_env, FAKE_LOG=self.log))
         try:
             markdown = os.path.join(self.tmp, "table.md")
             with open(os.devnull, "w") as sink:
                 stdout, stderr = sys.stdout, sys.stderr
                 sys.stdout = sys.stderr = sink
                 try:
-                    code = validate.main([cfg, "--sumo", self.make_simulator("sumo"), "--out", out,
-                                          "--markdown", markdown] + list(options))
+                    code = validate.main((configs if configs is not None else [self.cfg])
+                                         + ["--sumo", self.make_simulator("sumo"), "--out", out,
+                                            "--markdown", markdown] + list(options))
                 finally:
                     sys.stdout, sys.stderr = stdout, stderr
         finally:
@@ -387,17 +472,22 @@ class EndToEndTest(TempDirTest):
         document, table = self.run_validate({}, "--lpsim", self.make_simulator("lpsim"))
         entry = document["scenarios"][0]
         comparison = entry["comparison"]
-        self.assertEqual(entry["scenario"], "scn")
+        self.assertEqual((entry["scenario"], entry["model"]), ("scn", "IDM"))
         self.assertEqual(comparison["arrived"]["reference"], 10)
-        self.assertEqual(comparison["inserted"], {"reference": 11, "candidate": 11})
+        self.assertEqual(comparison["inserted"]["reference"], 11)
+        self.assertEqual(comparison["inserted"]["candidate"], 11)
         self.assertEqual(comparison["teleports"], {"reference": 2, "candidate": 0})
         self.assertAlmostEqual(comparison["edge_speed"]["r"], 1.0)
-        self.assertEqual(comparison["targets"], {"arrived": "PASS", "duration": "PASS", "speed_r": "PASS"})
-        self.assertIn("| scn | 11 / 11 | 10 / 10 | +0.0 %", table)
-        self.assertEqual(entry["reference"]["run"]["command"][-2:], ["--end", "100"])
-        self.assertIn(os.path.join(self.tmp, "out", "scn", "sumo", "work", "own.add.xml"),
-                      entry["reference"]["run"]["command"][entry["reference"]["run"]["command"].index(
-                          "--additional-files") + 1])
+        self.assertEqual(comparison["targets"], dict.fromkeys(metrics.TARGETS, "PASS"))
+        self.assertIn("| scn | IDM | 12 / 12 | 11 / 11 | 10 / 10 | 105.0 / 105.0 | +0.0 % | 1.000 (4) | 2 / 0 |",
+                      table)
+        self.assertIn("| PASS +0.0 % | PASS +0.0 % | PASS | PASS | PASS |", table)
+        self.assertIn("All five targets met: 1 of 1 (scenario, model) pairs (100 %)", table)
+        self.assertEqual(document["totals"]["all_met"], 1)
+        command = entry["reference"]["run"]["command"]
+        self.assertEqual(command[-2:], ["--end", "100"])
+        self.assertIn(os.path.join(self.tmp, "out", "scn", "IDM", "sumo", "work", "own.add.xml"),
+                      command[command.index("--additional-files") + 1])
 
     def test_slower_candidate_misses_duration_only(self):
         # The Krauss candidate: durations x 1.5, speeds / 1.5 (so speed r stays 1), same arrivals.
@@ -406,7 +496,7 @@ class EndToEndTest(TempDirTest):
         comparison = document["scenarios"][0]["comparison"]
         self.assertAlmostEqual(comparison["duration"]["relative_difference_of_mean"], 0.5)
         self.assertAlmostEqual(comparison["duration"]["candidate"]["p90"], 1.5 * 141.0)
-        self.assertEqual(comparison["targets"], {"arrived": "PASS", "duration": "MISS", "speed_r": "PASS"})
+        self.assertEqual(comparison["targets"], dict(dict.fromkeys(metrics.TARGETS, "PASS"), duration="MISS"))
         self.assertIn("Krauss", document["scenarios"][0]["candidate"]["run"]["command"])
         self.assertIn("| +50.0 % |", table)
 
@@ -417,8 +507,101 @@ class EndToEndTest(TempDirTest):
         self.assertIn("cannot start", entry["candidate_error"])
         self.assertEqual(entry["reference"]["summary"]["arrived"], 10)
         self.assertIn("lpsim: cannot start", table)
-        self.assertIn("| scn | 11 / – | 10 / – |", table)
+        self.assertIn("| scn | IDM | 12 / – | 11 / – | 10 / – |", table)
         self.assertIsNone(entry["candidate"]["run"]["cpu_s"])
+        self.assertIn("All five targets met: 0 of 1", table)
+
+    def test_refused_scenario_is_a_row_of_its_own_and_a_miss(self):
+        document, table = self.run_validate({"FAKE_REFUSE": "1"}, "--lpsim", self.make_simulator("lpsim"))
+        self.assertEqual(document["scenarios"][0]["refused"], "lpsim: error: vClass 'ship' has no lane")
+        self.assertIn("| refused: lpsim: error: vClass 'ship' has no lane |", table)
+        self.assertEqual(document["totals"]["missed"], dict.fromkeys(metrics.TARGETS, 1))
+
+    def test_both_models_and_the_sumo_cache(self):
+        lpsim = self.make_simulator("lpsim")
+        document, table = self.run_validate({"FAKE_SCALE": "1.5"}, "--lpsim", lpsim, "--model", "both")
+        self.assertEqual([(e["scenario"], e["model"]) for e in document["scenarios"]],
+                         [("scn", "Krauss"), ("scn", "IDM")])
+        self.assertEqual(self.runs(), ["sumo", "lpsim", "sumo", "lpsim"])
+        self.assertEqual(document["totals"]["all_met"], 2)  # both scale Krauss alike
+        self.assertIn("cache: 0 of 2", table)
+        # Again: SUMO's runs come from the cache, with the same figures.
+        again, table = self.run_validate({"FAKE_SCALE": "1.5"}, "--lpsim", lpsim, "--model", "both")
+        self.assertEqual(self.runs()[4:], ["lpsim", "lpsim"])
+        self.assertIn("cache: 2 of 2", table)
+        for before, after in zip(document["scenarios"], again["scenarios"]):
+            self.assertEqual(before["comparison"]["arrived"], after["comparison"]["arrived"])
+            self.assertEqual(before["reference"]["summary"], after["reference"]["summary"])
+            self.assertTrue(after["reference"]["run"]["cached"].startswith(os.path.join(self.tmp, "out", "sumo_cache")))
+        # A scenario file changed in place (same size) is a new key; --refresh-sumo reruns a matching one.
+        self.write("scn/own.add.xml", "<additionaL/>")
+        self.run_validate({}, "--lpsim", lpsim, "--model", "Krauss")
+        self.assertEqual(self.runs()[6:], ["sumo", "lpsim"])
+        self.run_validate({}, "--lpsim", lpsim, "--model", "Krauss")
+        self.assertEqual(self.runs()[8:], ["lpsim"])
+        self.run_validate({}, "--lpsim", lpsim, "--model", "Krauss", "--refresh-sumo")
+        self.assertEqual(self.runs()[9:], ["sumo", "lpsim"])
+
+    def test_all_and_extra_pick_the_run_cfgs(self):
+        shared = os.path.join(self.tmp, "shared")
+        self.write("shared/a/run.sumocfg", "<configuration/>")
+        self.write("shared/a/present.sumocfg", "<configuration/>")
+        self.write("shared/b/only.sumocfg", "<configuration/>")
+        self.write("shared/c/readme.md", "no cfg")
+        self.write("wiz/w1/osm.sumocfg", "<configuration/>")
+        self.write("wiz/w1/other.sumocfg", "<configuration/>")
+        args = validate.parse_args(["--all", "--shared", shared, "--extra", os.path.join(self.tmp, "wiz"),
+                                    os.path.join(shared, "a", "run.sumocfg")])
+        self.assertEqual([os.path.relpath(c, self.tmp) for c in validate.collect_configs(args)],
+                         ["shared/a/run.sumocfg", "shared/b/only.sumocfg", "wiz/w1/osm.sumocfg"])
+        self.assertEqual(scenarios.model_list("both"), ["Krauss", "IDM"])
+        self.assertEqual(scenarios.model_list("Krauss"), ["Krauss"])
+
+
+class CacheTest(TempDirTest):
+    def test_folder_digest_follows_contents_not_sizes_or_times(self):
+        path = self.write("scn/a.xml", "<a>1</a>")
+        folder = os.path.dirname(path)
+        first = cache.folder_digest(folder)
+        stamp = os.stat(path)
+        self.write("scn/a.xml", "<a>2</a>")
+        os.utime(path, ns=(stamp.st_atime_ns, stamp.st_mtime_ns))
+        self.assertNotEqual(cache.folder_digest(folder), first)
+        self.write("scn/a.xml", "<a>1</a>")
+        self.assertEqual(cache.folder_digest(folder), first)
+        self.write("scn/.git/ignored", "x")  # hidden folders are not mirrored, so not hashed
+        self.assertEqual(cache.folder_digest(folder), first)
+        self.write("scn/sub/b.xml", "")
+        self.assertNotEqual(cache.folder_digest(folder), first)
+
+    def test_key_changes_with_every_field(self):
+        fields = ["f" * 40, "run.sumocfg", "Krauss", 23423, 3600.0, 1.0, "Eclipse SUMO sumo Version 1.15.0"]
+        key = cache.cache_key(*fields)
+        self.assertEqual(key, cache.cache_key(*fields))
+        self.assertEqual(key, cache.cache_key(*fields[:4] + [3600, 1] + fields[6:]))  # 3600 == 3600.0
+        changed = ["e" * 40, "osm.sumocfg", "IDM", 1, None, 0.5, "Eclipse SUMO sumo Version 1.16.0"]
+        for index, value in enumerate(changed):
+            other = list(fields)
+            other[index] = value
+            self.assertNotEqual(cache.cache_key(*other), key, "field %d" % index)
+
+    def test_store_and_load_round_trip(self):
+        run_dir = os.path.join(self.tmp, "run")
+        files = runner.output_files(run_dir, with_statistics=True)
+        for role in ("tripinfo", "edgedata", "statistics", "stdout", "stderr", "log"):
+            self.write(os.path.relpath(files[role], self.tmp), role)
+        run = {"command": ["sumo"], "files": files, "cpu_s": 1.5, "wall_s": 2.0, "returncode": 0}
+        store = os.path.join(self.tmp, "cache")
+        self.assertIsNone(cache.load(store, "k"))
+        cache.store(store, "k", run, {"scenario": "s"})
+        record = cache.load(store, "k")
+        self.assertEqual(record["cpu_s"], 1.5)
+        self.assertEqual(record["about"], {"scenario": "s"})
+        self.assertNotIn("summary", record["files"])
+        with open(record["files"]["tripinfo"]) as handle:
+            self.assertEqual(handle.read(), "tripinfo")
+        os.remove(record["files"]["edgedata"])  # an entry missing a file is no entry
+        self.assertIsNone(cache.load(store, "k"))
 
 
 @unittest.skipUnless(shutil.which("sumo") and shutil.which("netgenerate"), "SUMO not installed")
