@@ -218,8 +218,12 @@ LPSIM_HD bool try_depart_on_lane(const StepContext& s, const DepartView& d, cons
     if (sc.last_rear < 0) {
       pos = lp_fmaxf(length, lane_len - 0.1f);
     } else {
+      // SUMO's lastInsertion: its secure gap plus minGap behind the lane's last vehicle. LPSim's step moves
+      // a vehicle at most up to its leader's rear as the step began, so a vehicle that is to keep the
+      // depart speed needs that step's distance too (a faster leader makes the secure gap 0).
       const IdmParams ip = idm_of(s, type);
-      const float need = cf_secure_gap(ip, ds.speed, sc.last_speed, p.dt) + min_gap + 0.1f;
+      const float need =
+          lp_fmaxf(cf_secure_gap(ip, ds.speed, sc.last_speed, p.dt) + min_gap, ds.speed * p.dt) + 0.1f;
       if (static_cast<float>(sc.last_rear) < need) return false;
       pos = lp_fmaxf(base_pos(lane_len, length),
                      lp_fminf(lane_len - 0.1f, static_cast<float>(sc.last_rear) - need));

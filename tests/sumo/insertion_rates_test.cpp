@@ -82,5 +82,43 @@ INSTANTIATE_TEST_SUITE_P(Motorway, InsertionRatesTest,
                                   info.param.speed;
                          });
 
+// departPos last behind faster leaders (SUMO's A10 game scenario inserts every vehicle so): a 3-lane
+// 27.78 m/s road, Krauss cars with sigma 0.8 and SUMO's speed factors at 0.5 s steps, 6000 veh/h for 10 min
+// with departLane free, departPos last, departSpeed max. SUMO inserts all 1000 with a mean depart delay of
+// 0.20 s. LPSim placed a vehicle minGap behind a faster leader (Krauss's secure gap is then 0), where its
+// step, which moves it at most to its leader's rear as the step began, braked it from 25 m/s to 5 m/s; the
+// lane filled from behind and 935 were inserted, delayed 2.2 s on average.
+TEST(InsertionLastTest, KraussCarsBehindFasterLeadersKeepTheirSpeedAsInSumo) {
+  if (!test::have_sumo_tool("netconvert")) GTEST_SKIP() << "netconvert not found (SUMO not installed)";
+  TempDir dir("lpsim_insertion_last");
+  dir.write("m.nod.xml",
+            "<nodes><node id=\"a\" x=\"0\" y=\"0\"/><node id=\"b\" x=\"1200\" y=\"0\"/>"
+            "<node id=\"c\" x=\"3200\" y=\"0\"/></nodes>\n");
+  dir.write("m.edg.xml",
+            "<edges><edge id=\"ab\" from=\"a\" to=\"b\" numLanes=\"3\" speed=\"27.78\"/>"
+            "<edge id=\"bc\" from=\"b\" to=\"c\" numLanes=\"3\" speed=\"27.78\"/></edges>\n");
+  dir.write("m.rou.xml",
+            "<routes><vType id=\"p\" sigma=\"0.8\" speedFactor=\"normc(1.00,0.10,0.20,2.00)\"/>"
+            "<route id=\"r\" edges=\"ab bc\"/><flow id=\"f\" type=\"p\" route=\"r\" begin=\"0\" end=\"600\" "
+            "vehsPerHour=\"6000\" departLane=\"free\" departPos=\"last\" departSpeed=\"max\"/></routes>\n");
+  const CliResult net =
+      test::run_program(dir.path(), {"netconvert"},
+                        {"--node-files", "m.nod.xml", "--edge-files", "m.edg.xml", "-o", "m.net.xml"});
+  ASSERT_EQ(net.exit_code, 0) << net.err;
+  const CliResult r = run_lpsim(dir.path(), {"run", "-n", "m.net.xml", "-r", "m.rou.xml", "--step-length",
+                                             "0.5", "--end", "900", "--tripinfo-output", "t.xml"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string trips = read_file(dir.path() / "t.xml");
+  const std::regex delay(R"re(departDelay="([0-9.]+)")re");
+  double sum = 0;
+  int n = 0;
+  for (auto it = std::sregex_iterator(trips.begin(), trips.end(), delay); it != std::sregex_iterator();
+       ++it, ++n)
+    sum += std::stod((*it)[1]);
+  EXPECT_NE(r.out.find("Inserted: 1000 (Loaded: 1000)"), std::string::npos) << r.out;
+  ASSERT_EQ(n, 1000);
+  EXPECT_LT(sum / n, 0.5);  // SUMO: 0.20 s
+}
+
 }  // namespace
 }  // namespace lpsim
