@@ -140,7 +140,8 @@ void visit(IO& io, Network& n) {
 template <class IO>
 void visit(IO& io, VehicleTypes& t) {
   io.field(t.id), io.field(t.length), io.field(t.min_gap), io.field(t.accel), io.field(t.decel);
-  io.field(t.emergency_decel), io.field(t.max_speed), io.field(t.speed_factor), io.field(t.speed_dev);
+  io.field(t.emergency_decel), io.field(t.max_speed), io.field(t.desired_max_speed), io.field(t.speed_factor);
+  io.field(t.speed_dev);
   io.field(t.tau), io.field(t.sigma), io.field(t.delta), io.field(t.vclass), io.field(t.car_follow_model);
   io.field(t.model);
   io.field(t.vclass_mask);

@@ -9,8 +9,9 @@
 
 namespace lpsim {
 
-inline constexpr uint32_t kSnapshotVersion = 7;  // 2: car-following model; 3: actuated loops; 4: vClasses;
-                                                 // 5: keepClear links; 6: scheduled stops; 7: emissions
+inline constexpr uint32_t kSnapshotVersion = 8;  // 2: car-following model; 3: actuated loops; 4: vClasses;
+                                                 // 5: keepClear links; 6: scheduled stops; 7: emissions;
+                                                 // 8: desiredMaxSpeed
 
 void write_snapshot(const Scenario& scenario, const std::string& path);
 Scenario read_snapshot(const std::string& path);

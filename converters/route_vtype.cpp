@@ -13,11 +13,14 @@ namespace {
 struct VClassDefaults {
   std::string_view vclass;
   double length, min_gap, accel, decel, emergency_decel, max_speed_kmh, speed_dev, sigma;
+  double desired_max_speed_kmh = std::numeric_limits<double>::infinity();
 };
 
 // Measured from SUMO 1.15 (traci.vehicletype getters on a <vType vClass="..."/> with no other attributes).
 constexpr VClassDefaults kVClassDefaults[] = {
-    {"bicycle", 1.6, 0.5, 1.2, 3.0, 7.0, 50, 0.1, 0.5},
+    // A bicycle rides at 20 km/h at most (desiredMaxSpeed) although its maxSpeed is 50 km/h: measured with
+    // traci.vehicle.getAllowedSpeed on a 100 km/h lane (20 km/h times the speed factor).
+    {"bicycle", 1.6, 0.5, 1.2, 3.0, 7.0, 50, 0.1, 0.5, 20},
     {"bus", 12, 2.5, 1.2, 4.0, 7.0, 100, 0.0, 0.5},
     {"coach", 14, 2.5, 2.0, 4.0, 7.0, 100, 0.05, 0.5},
     {"delivery", 6.5, 2.5, 2.6, 4.5, 9.0, 200, 0.05, 0.5},
@@ -118,6 +121,7 @@ void apply_vclass_defaults(std::string_view vclass, VTypeSpec& t) {
     t.decel = d.decel;
     t.emergency_decel = d.emergency_decel;
     t.max_speed = d.max_speed_kmh / 3.6;
+    t.desired_max_speed = d.desired_max_speed_kmh / 3.6;
     t.speed_dev = d.speed_dev;
     t.sigma = d.sigma;
     return;
@@ -139,6 +143,7 @@ VTypeSpec read_vtype(XmlStream& xs, std::map<std::string, int64_t>& skipped, dou
 
   probability = 1.0;
   std::optional<double> speed_dev, factor_dev;
+  bool max_speed_given = false, desired_max_given = false;
   auto num = [&](const std::string& key, const std::string& value, Sign sign, double max) {
     return number_value(t.loc, "vType", t.id, key, value, sign, max);
   };
@@ -149,9 +154,13 @@ VTypeSpec read_vtype(XmlStream& xs, std::map<std::string, int64_t>& skipped, dou
       t.length = num(k, v, Sign::Positive, kMaxLength);
     else if (k == "minGap")
       t.min_gap = num(k, v, Sign::NonNegative, kMaxLength);
-    else if (k == "maxSpeed")
+    else if (k == "maxSpeed") {
       t.max_speed = num(k, v, Sign::Positive, kMaxSpeed);
-    else if (k == "width")
+      max_speed_given = true;
+    } else if (k == "desiredMaxSpeed") {
+      t.desired_max_speed = num(k, v, Sign::Positive, kMaxSpeed);
+      desired_max_given = true;
+    } else if (k == "width")
       t.width = num(k, v, Sign::Positive, kMaxLength);
     else if (k == "height")
       t.height = num(k, v, Sign::Positive, kMaxLength);
@@ -178,6 +187,9 @@ VTypeSpec read_vtype(XmlStream& xs, std::map<std::string, int64_t>& skipped, dou
       t.params[k] = v;
     }
   }
+  // As SUMO 1.15 measured: a maxSpeed given without a desiredMaxSpeed lifts the vClass's desired limit (a
+  // bicycle with maxSpeed 10 m/s rides at 10 m/s).
+  if (max_speed_given && !desired_max_given) t.desired_max_speed = std::numeric_limits<double>::infinity();
   // As SUMO: speedDev wins over the deviation inside speedFactor, whatever the attribute order.
   if (speed_dev || factor_dev) {
     t.speed_dev = speed_dev ? *speed_dev : *factor_dev;

@@ -64,9 +64,10 @@ LPSIM_HD float idm_pow_delta(float x, float delta) {
   return powf(x, delta);
 }
 
-/// Desired (free-flow) speed: the lane's limit scaled by the driver's speed factor, capped by the vehicle.
-LPSIM_HD float desired_speed(float lane_speed, float speed_factor, float max_speed) {
-  return lp_fminf(lane_speed * speed_factor, max_speed);
+/// Desired (free-flow) speed, as SUMO 1.15 takes it: the lane's limit, or the type's desiredMaxSpeed where
+/// lower, scaled by the driver's speed factor, capped by the vehicle's maxSpeed.
+LPSIM_HD float desired_speed(float lane_speed, float speed_factor, float max_speed, float desired_max_speed) {
+  return lp_fminf(lp_fminf(lane_speed, desired_max_speed) * speed_factor, max_speed);
 }
 
 // x^delta as a function object, so sub-step loops pick the exponent's code once per call instead of testing

@@ -120,7 +120,8 @@ struct DepartSpeedChoice {
 LPSIM_HD DepartSpeedChoice depart_speed(const StepContext& s, const DepartView& d, uint64_t seed, uint32_t v,
                                         uint32_t step, uint32_t l, const LaneScan& sc) {
   const uint32_t type = s.trips.type[v];
-  const float v0 = desired_speed(s.net.lane_speed[l], s.trips.speed_factor[v], s.types.max_speed[type]);
+  const float v0 = desired_speed(s.net.lane_speed[l], s.trips.speed_factor[v], s.types.max_speed[type],
+                                 s.types.desired_max_speed[type]);
   switch (d.speed_kind[v]) {
     case kDepartSpeedGiven:
       return {d.speed[v], false};
@@ -155,7 +156,8 @@ LPSIM_HD float insertion_check(const StepContext& s, const InsertParams& p, cons
   const uint32_t type = s.trips.type[v];
   const float length = s.types.length[type];
   const IdmParams ip = idm_of(s, type);
-  const float v0 = desired_speed(net.lane_speed[l], s.trips.speed_factor[v], s.types.max_speed[type]);
+  const float v0 = desired_speed(net.lane_speed[l], s.trips.speed_factor[v], s.types.max_speed[type],
+                                 s.types.desired_max_speed[type]);
   const BodyCells body = body_cells(net, l, pos, length);
   if (first_occupied(map, net, l, body.rear, body.front) >= 0) return -1.0f;
   const int32_t cells = static_cast<int32_t>(lane_cells(net, l));

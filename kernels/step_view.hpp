@@ -51,6 +51,7 @@ struct TypeView {
   const float* decel;
   const float* emergency_decel;
   const float* max_speed;
+  const float* desired_max_speed;  // SUMO's desiredMaxSpeed, before the speed factor (FLT_MAX: none)
   const float* tau;
   const float* delta;
   const float* sigma;      // Krauss's dawdling

@@ -2,6 +2,7 @@
 // Plain description of traffic demand as read from SUMO route files, add-files or an LPSim OD CSV.
 // Readers fill it; src/demand/demand_builder resolves ids, expands flows and routes trips.
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <optional>
 #include <string>
@@ -16,6 +17,9 @@ struct VTypeSpec {
   // SUMO 1.15 defaults for a passenger car.
   double length = 5.0, min_gap = 2.5, accel = 2.6, decel = 4.5, emergency_decel = 9.0;
   double max_speed = 55.56, speed_factor = 1.0, speed_dev = 0.1, tau = 1.0, sigma = 0.5;
+  // SUMO's desiredMaxSpeed: the speed the driver wishes at most, before its speed factor (a bicycle's 20 km/h
+  // by default, while its maxSpeed is 50 km/h); infinity: none.
+  double desired_max_speed = std::numeric_limits<double>::infinity();
   bool speed_dev_given = false;
   std::string vclass = "passenger";
   std::string car_follow_model = "Krauss";

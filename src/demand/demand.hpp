@@ -14,6 +14,8 @@ namespace lpsim {
 struct VehicleTypes {
   std::vector<std::string> id;
   std::vector<float> length, min_gap, accel, decel, emergency_decel, max_speed;
+  // SUMO's desiredMaxSpeed (m/s, before the speed factor); FLT_MAX where the type has none.
+  std::vector<float> desired_max_speed;
   std::vector<float> speed_factor, speed_dev, tau, sigma, delta;  // delta: IDM acceleration exponent
   std::vector<std::string> vclass, car_follow_model;  // car_follow_model: the vType's, or the default's
   std::vector<uint8_t> model;         // CarFollowModel simulated (kernels/idm.hpp): IDM or Krauss

@@ -1,7 +1,9 @@
 #include "demand/vtype_table.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <limits>
 
 #include "core/vclass.hpp"
 #include "demand/demand_draws.hpp"
@@ -89,6 +91,8 @@ uint32_t VTypeTable::add_type(const VTypeSpec& t) {
   types_.decel.push_back(static_cast<float>(t.decel));
   types_.emergency_decel.push_back(static_cast<float>(t.emergency_decel));
   types_.max_speed.push_back(static_cast<float>(t.max_speed));
+  types_.desired_max_speed.push_back(static_cast<float>(
+      std::min(t.desired_max_speed, static_cast<double>(std::numeric_limits<float>::max()))));
   types_.speed_factor.push_back(static_cast<float>(t.speed_factor));
   types_.speed_dev.push_back(static_cast<float>(t.speed_dev));
   types_.tau.push_back(static_cast<float>(t.tau));

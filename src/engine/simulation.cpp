@@ -104,9 +104,18 @@ Simulation::Simulation(const Network& net, Demand demand, const SimulationOption
   StepperSetup setup;
   setup.net = engine_net_.view(net_);
   setup.signals = engine_net_.signal_table(net_);
-  setup.types = TypeView{t.length.data(),          t.min_gap.data(),   t.accel.data(),      t.decel.data(),
-                         t.emergency_decel.data(), t.max_speed.data(), t.tau.data(),        t.delta.data(),
-                         t.sigma.data(),           t.model.data(),     t.vclass_mask.data()};
+  setup.types = TypeView{t.length.data(),
+                         t.min_gap.data(),
+                         t.accel.data(),
+                         t.decel.data(),
+                         t.emergency_decel.data(),
+                         t.max_speed.data(),
+                         t.desired_max_speed.data(),
+                         t.tau.data(),
+                         t.delta.data(),
+                         t.sigma.data(),
+                         t.model.data(),
+                         t.vclass_mask.data()};
   setup.num_types = t.size();
   setup.num_edges = net.num_edges();
   setup.num_connections = net.num_connections();
@@ -663,8 +672,8 @@ SpeedSums Simulation::speed_sums() const {
     const float speed = s.veh.speed[k];
     ++sums.running;
     sums.speed += std::llround(static_cast<double>(speed) * kSummaryUnits);
-    const float v0 =
-        desired_speed(net_.lane_speed[s.veh.lane[k]], d.speed_factor[v], t.max_speed[d.vehicle_type[v]]);
+    const float v0 = desired_speed(net_.lane_speed[s.veh.lane[k]], d.speed_factor[v],
+                                   t.max_speed[d.vehicle_type[v]], t.desired_max_speed[d.vehicle_type[v]]);
     if (v0 > 0) sums.relative += std::llround(static_cast<double>(speed / v0) * kSummaryUnits);
     if (speed < kHaltingSpeed) ++sums.halting;
     if (s.veh.stop_release[k] != 0) ++sums.stopped;  // standing at a scheduled stop

@@ -31,8 +31,20 @@ TEST(ModelsIdm, DefaultsMatchSumoPassengerCar) {
 }
 
 TEST(ModelsIdm, DesiredSpeedIsLaneSpeedTimesFactorCappedByVehicle) {
-  EXPECT_FLOAT_EQ(desired_speed(13.89f, 1.1f, 55.56f), 13.89f * 1.1f);
-  EXPECT_FLOAT_EQ(desired_speed(40.0f, 1.2f, 30.0f), 30.0f);
+  const float none = 3.4e38f;  // no desiredMaxSpeed
+  EXPECT_FLOAT_EQ(desired_speed(13.89f, 1.1f, 55.56f, none), 13.89f * 1.1f);
+  EXPECT_FLOAT_EQ(desired_speed(40.0f, 1.2f, 30.0f, none), 30.0f);
+}
+
+TEST(ModelsIdm, DesiredMaxSpeedCapsTheLaneLimitBeforeTheSpeedFactor) {
+  // SUMO 1.15's allowed speeds (traci.vehicle.getAllowedSpeed) on a 27.78 m/s lane: a default bicycle
+  // (desiredMaxSpeed 20 km/h, maxSpeed 50 km/h, factor 1.06) 5.889; desiredMaxSpeed 4 (factor 0.9383)
+  // 3.753; a car with desiredMaxSpeed 10 (factor 1.0104) 10.104.
+  EXPECT_NEAR(desired_speed(27.78f, 1.06f, 50.0f / 3.6f, 20.0f / 3.6f), 5.889f, 1e-3f);
+  EXPECT_NEAR(desired_speed(27.78f, 0.9383f, 50.0f / 3.6f, 4.0f), 3.753f, 1e-3f);
+  EXPECT_NEAR(desired_speed(27.78f, 1.0104f, 55.56f, 10.0f), 10.104f, 1e-3f);
+  // Below the desired limit the lane's speed counts: a bicycle on a 15 km/h path.
+  EXPECT_NEAR(desired_speed(15.0f / 3.6f, 1.0f, 50.0f / 3.6f, 20.0f / 3.6f), 15.0f / 3.6f, 1e-5f);
 }
 
 TEST(ModelsIdm, PowDeltaUsesExactProductsForIntegerExponents) {

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 #include <zlib.h>
 
+#include <cmath>
+
 #include "temp_dir.hpp"
 
 namespace lpsim {
@@ -90,6 +92,25 @@ TEST_F(RouteReaderTest, VTypeAttributesDefaultsAndParams) {
   EXPECT_DOUBLE_EQ(idm.accel, 1.5);
   EXPECT_EQ(idm.params.at("delta"), "3");
   EXPECT_EQ(demand_.vtypes[6].car_follow_model, "IDM");
+}
+
+TEST_F(RouteReaderTest, ABicyclesDesiredMaxSpeedIsSumosUnlessAMaxSpeedIsGiven) {
+  // SUMO 1.15 (traci.vehicle.getAllowedSpeed on a 100 km/h lane): a default bicycle rides at 20 km/h times
+  // its speed factor (desiredMaxSpeed) though its maxSpeed is 50 km/h; a maxSpeed given lifts that limit;
+  // desiredMaxSpeed given sets it, for any class.
+  read(routes(R"X(<vType id="bike" vClass="bicycle"/>
+  <vType id="fast" vClass="bicycle" maxSpeed="10"/>
+  <vType id="slow" vClass="bicycle" desiredMaxSpeed="4"/>
+  <vType id="car" desiredMaxSpeed="10"/>
+  <vType id="plain"/>)X"));
+  ASSERT_EQ(demand_.vtypes.size(), 5u);
+  EXPECT_DOUBLE_EQ(demand_.vtypes[0].max_speed, 50 / 3.6);
+  EXPECT_DOUBLE_EQ(demand_.vtypes[0].desired_max_speed, 20 / 3.6);
+  EXPECT_DOUBLE_EQ(demand_.vtypes[1].max_speed, 10);
+  EXPECT_TRUE(std::isinf(demand_.vtypes[1].desired_max_speed));
+  EXPECT_DOUBLE_EQ(demand_.vtypes[2].desired_max_speed, 4);
+  EXPECT_DOUBLE_EQ(demand_.vtypes[3].desired_max_speed, 10);
+  EXPECT_TRUE(std::isinf(demand_.vtypes[4].desired_max_speed));
 }
 
 TEST_F(RouteReaderTest, VTypeDistributions) {

@@ -121,6 +121,7 @@ void expect_same_demand(const Demand& a, const Demand& b) {
   EXPECT_COLUMN(a, b, types.decel);
   EXPECT_COLUMN(a, b, types.emergency_decel);
   EXPECT_COLUMN(a, b, types.max_speed);
+  EXPECT_COLUMN(a, b, types.desired_max_speed);
   EXPECT_COLUMN(a, b, types.speed_factor);
   EXPECT_COLUMN(a, b, types.speed_dev);
   EXPECT_COLUMN(a, b, types.tau);

@@ -106,7 +106,7 @@ void copy_to_host(T* dst, const T* src, size_t n) {
 // (The slot and plan columns are walked through their column lists.)
 static_assert(sizeof(NetView) == 25 * sizeof(void*) + sizeof(void*),
               "NetView changed: update upload_network");
-static_assert(sizeof(TypeView) == 11 * sizeof(void*) && sizeof(TripView) == 13 * sizeof(void*),
+static_assert(sizeof(TypeView) == 12 * sizeof(void*) && sizeof(TripView) == 13 * sizeof(void*),
               "TypeView or TripView changed: update upload_types and DeviceTrips");
 static_assert(sizeof(StepContext) == sizeof(NetView) + sizeof(TypeView) + sizeof(TripView) +
                                          sizeof(VehicleView) + sizeof(PlanView) + sizeof(StepParams) +
@@ -963,10 +963,18 @@ class CudaStepper final : public Stepper {
   }
 
   void upload_types(const TypeView& h, uint32_t nt) {
-    dev_.types = TypeView{upload(h.length, nt), upload(h.min_gap, nt),         upload(h.accel, nt),
-                          upload(h.decel, nt),  upload(h.emergency_decel, nt), upload(h.max_speed, nt),
-                          upload(h.tau, nt),    upload(h.delta, nt),           upload(h.sigma, nt),
-                          upload(h.model, nt),  upload(h.vclass, nt)};
+    dev_.types = TypeView{upload(h.length, nt),
+                          upload(h.min_gap, nt),
+                          upload(h.accel, nt),
+                          upload(h.decel, nt),
+                          upload(h.emergency_decel, nt),
+                          upload(h.max_speed, nt),
+                          upload(h.desired_max_speed, nt),
+                          upload(h.tau, nt),
+                          upload(h.delta, nt),
+                          upload(h.sigma, nt),
+                          upload(h.model, nt),
+                          upload(h.vclass, nt)};
   }
 
   std::vector<DeviceBuffer> buffers_;  // every fixed allocation, freed in the stepper's destructor
