@@ -133,7 +133,7 @@ def _prepare(scenario_dir, role, cfg):
     return run_dir, work_dir, os.path.join(work_dir, os.path.basename(cfg))
 
 
-def _execute(name, role, command_for, cfg, scenario_dir, env, timeout, is_sumo):
+def _execute(name, role, command_for, cfg, scenario_dir, env, timeout, is_sumo, off_road=frozenset()):
     run_dir, work_dir, mirrored_cfg = _prepare(scenario_dir, role, cfg)
     files = runner.output_files(run_dir, with_statistics=is_sumo)
     for path in files.values():  # stale outputs of an earlier run must not pass for this one's
@@ -147,7 +147,7 @@ def _execute(name, role, command_for, cfg, scenario_dir, env, timeout, is_sumo):
     outputs, error = None, result.error
     if error is None:
         try:
-            outputs = runner.load_outputs(result, is_sumo)
+            outputs = runner.load_outputs(result, is_sumo, off_road)
         except ValueError as bad:
             error = str(bad)
     entry = {"run": result.to_json()}
@@ -156,12 +156,12 @@ def _execute(name, role, command_for, cfg, scenario_dir, env, timeout, is_sumo):
     return entry, outputs, error
 
 
-def _cached_reference(name, record, entry_folder):
+def _cached_reference(name, record, entry_folder, off_road):
     """A cached SUMO run as _execute would have given it; None when its files no longer parse."""
     result = runner.RunResult("sumo", record.get("command"), record.get("cwd"), record["files"])
     result.returncode, result.cpu_s, result.wall_s = record.get("returncode"), record.get("cpu_s"), record.get("wall_s")
     try:
-        outputs = runner.load_outputs(result, True)
+        outputs = runner.load_outputs(result, True, off_road)
     except ValueError:
         return None
     print("[%s] sumo: cached (%s)" % (name, entry_folder), file=sys.stderr, flush=True)
@@ -170,18 +170,19 @@ def _cached_reference(name, record, entry_folder):
     return {"run": run, "summary": _summary_of(outputs)}, outputs, None
 
 
-def _reference(name, cfg, model, end, step_length, command, scenario_dir, env, args, sumo_cache):
+def _reference(name, cfg, model, end, step_length, command, scenario_dir, env, args, sumo_cache, off_road):
     """SUMO's run: from the cache where an entry matches (and --refresh-sumo is not given), else run and, when it
-    succeeded, stored. sumo_cache: {'dir', 'version', 'folder_hash'}, or None to run without the cache."""
+    succeeded, stored. sumo_cache: {'dir', 'version', 'folder_hash'}, or None to run without the cache.
+    off_road: vTypes whose trips are counted apart (parsers.off_road_vtypes)."""
     key = None
     if sumo_cache:
         key = cache.cache_key(sumo_cache["folder_hash"], os.path.basename(cfg), model, args.seed, end,
                               step_length, sumo_cache["version"])
         record = None if args.refresh_sumo else cache.load(sumo_cache["dir"], key)
-        found = record and _cached_reference(name, record, cache.entry_dir(sumo_cache["dir"], key))
+        found = record and _cached_reference(name, record, cache.entry_dir(sumo_cache["dir"], key), off_road)
         if found:
             return found
-    entry, outputs, error = _execute(name, "sumo", command, cfg, scenario_dir, env, args.timeout, True)
+    entry, outputs, error = _execute(name, "sumo", command, cfg, scenario_dir, env, args.timeout, True, off_road)
     if key and error is None:
         about = {"scenario": name, "cfg": os.path.abspath(cfg), "model": model, "seed": args.seed, "end": end,
                  "step_length": step_length, "sumo": sumo_cache["version"],
@@ -217,8 +218,10 @@ def run_scenario(cfg, name, model, args, env, sumo_cache=None):
 
     entry = {"scenario": name, "model": model, "cfg": os.path.abspath(cfg), "end": end, "cfg_end": config["end"],
              "step_length": step_length, "seed": args.seed, "cfg_outputs": config["outputs"]}
+    # Trains and ships, which LPSim leaves out by design, are left out of SUMO's figures (counted apart).
+    off_road = frozenset(parsers.off_road_vtypes(cfg, config))
     reference, ref_outputs, ref_error = _reference(name, cfg, model, end, step_length, sumo_with(model, args.seed),
-                                                   scenario_dir, env, args, sumo_cache)
+                                                   scenario_dir, env, args, sumo_cache, off_road)
     candidate, cand_outputs, cand_error = _execute(name, candidate_label, candidate_command, cfg, scenario_dir,
                                                    env, args.timeout, args.candidate == "sumo")
     entry["reference"], entry["candidate"] = reference, candidate

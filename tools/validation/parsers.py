@@ -1,8 +1,14 @@
 """Readers for the SUMO-format files both simulators write (tripinfo, edgeData, summary, statistics) and for
 the few .sumocfg values the runner needs. Streaming (iterparse) so hour-long city runs stay small in memory."""
+import gzip
 import os
 import re
 import xml.etree.ElementTree as ET
+
+# Vehicle classes LPSim leaves out by design (no road lane carries them: trains, ships, walkers); their trips
+# in SUMO's outputs are not compared (counted apart).
+OFF_ROAD_VCLASSES = frozenset({"rail", "rail_urban", "rail_electric", "rail_fast", "subway", "cable_car", "ship",
+                               "aircraft", "pedestrian", "wheelchair"})
 
 
 class TripInfo:
@@ -15,6 +21,7 @@ class TripInfo:
         self.time_losses = []
         self.ids = set()
         self.unfinished = 0
+        self.off_road = 0  # arrived trips of off-road vTypes, left out of the figures above
 
     @property
     def arrived(self):
@@ -55,8 +62,9 @@ def _float(attrs, name, default=None):
     return float(text)
 
 
-def parse_tripinfo(path):
-    """Reads <tripinfo> elements (person <personinfo> are ignored). arrived = count of finished trips."""
+def parse_tripinfo(path, off_road_vtypes=frozenset()):
+    """Reads <tripinfo> elements (person <personinfo> are ignored). arrived = count of finished trips; those of
+    a vType in off_road_vtypes are only counted (TripInfo.off_road)."""
     trips = TripInfo()
     context = ET.iterparse(path, events=("start", "end"))
     root = None
@@ -71,6 +79,8 @@ def parse_tripinfo(path):
         arrival = _float(attrs, "arrival", 0.0)
         if arrival < 0:
             trips.unfinished += 1
+        elif attrs.get("vType") in off_road_vtypes:
+            trips.off_road += 1
         else:
             duration = _float(attrs, "duration")
             if duration is None:
@@ -230,6 +240,27 @@ def read_sumocfg(path):
     if config["end"] is not None and config["end"] < 0:
         config["end"] = None  # SUMO's -1: run until the network is empty
     return config
+
+
+def off_road_vtypes(cfg_path, config):
+    """Ids of the vTypes defined in the cfg's route and additional files whose vClass is one of
+    OFF_ROAD_VCLASSES (missing or unreadable files are passed over: the runs report those)."""
+    folder = os.path.dirname(os.path.abspath(cfg_path))
+    ids = set()
+    for key in ("route-files", "additional-files"):
+        for name in re.split(r"[,\s]+", config["options"].get(key, "")):
+            path = os.path.join(folder, name)
+            if not name or not os.path.isfile(path):
+                continue
+            opener = gzip.open if path.endswith(".gz") else open
+            try:
+                with opener(path, "rb") as handle:
+                    for _event, elem in ET.iterparse(handle):
+                        if _local(elem.tag) == "vType" and elem.get("vClass") in OFF_ROAD_VCLASSES:
+                            ids.add(elem.get("id"))
+            except (ET.ParseError, OSError):
+                continue
+    return ids
 
 
 def file_exists(path):

@@ -177,15 +177,16 @@ def describe(command):
     return " ".join(shlex.quote(part) for part in command)
 
 
-def load_outputs(result, is_sumo):
+def load_outputs(result, is_sumo, off_road_vtypes=frozenset()):
     """Parses a finished run's files into {'trips', 'edges', 'stats', 'cpu_s'}; raises ValueError with the
-    reason when the tripinfo or edgeData file is missing or unreadable."""
+    reason when the tripinfo or edgeData file is missing or unreadable. Trips of off_road_vtypes are counted
+    apart (parsers.parse_tripinfo)."""
     files = result.files
     for role in ("tripinfo", "edgedata"):
         if not parsers.file_exists(files[role]):
             raise ValueError("no %s output (%s)" % (role, files[role]))
     try:
-        trips = parsers.parse_tripinfo(files["tripinfo"])
+        trips = parsers.parse_tripinfo(files["tripinfo"], off_road_vtypes)
         edges = parsers.parse_edgedata(files["edgedata"])
     except Exception as bad:  # ParseError, bad numbers: report, do not abort the other scenarios
         raise ValueError("unreadable output: %s" % bad)

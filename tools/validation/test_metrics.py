@@ -309,6 +309,25 @@ class ParserTest(TempDirTest):
         self.assertEqual(parsers.parse_summary_last(path), {
             "loaded": 9, "inserted": 7, "running": 2, "waiting": 2, "arrived": 5, "teleports": 1})
 
+    def test_trains_are_counted_apart(self):
+        self.write("r.rou.xml", """
+            <routes><vType id="train" vClass="rail"/><vType id="car"/><vType id="boat" vClass="ship"/></routes>
+            """)
+        cfg = self.write("t.sumocfg", """
+            <configuration><input><route-files value="r.rou.xml, missing.rou.xml"/></input></configuration>
+            """)
+        off_road = parsers.off_road_vtypes(cfg, parsers.read_sumocfg(cfg))
+        self.assertEqual(off_road, {"train", "boat"})
+        path = self.write("ti.xml", """
+            <tripinfos>
+                <tripinfo id="t" depart="0" arrival="50" duration="50" routeLength="900" timeLoss="0" vType="train"/>
+                <tripinfo id="c" depart="0" arrival="20" duration="20" routeLength="300" timeLoss="1" vType="car"/>
+            </tripinfos>
+            """)
+        trips = parsers.parse_tripinfo(path, off_road)
+        self.assertEqual((trips.arrived, trips.off_road, trips.durations), (1, 1, [20.0]))
+        self.assertEqual(parsers.parse_tripinfo(path).arrived, 2)
+
     def test_read_sumocfg_times_and_outputs(self):
         path = self.write("a.sumocfg", """
             <configuration>
