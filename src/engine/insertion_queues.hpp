@@ -65,7 +65,17 @@ class InsertionQueues {
   std::vector<int32_t> lane_;
   std::vector<float> pos_, speed_;
   InsertBatch batch_{};
-  std::vector<uint32_t> still_;  // take_inserted's scratch
+  std::vector<uint32_t> still_;  // the edges still queued, built by take_inserted and drop_departures
+
+  // After edge e's queue changed: e stays listed while it has entries; an empty queue is reset.
+  void keep_listed_if_waiting(EdgeQueue& q, uint32_t e) {
+    if (q.head < q.entries.size()) {
+      still_.push_back(e);
+    } else {
+      q.entries.clear();
+      q.head = 0;
+    }
+  }
 };
 
 template <class Inserted>
@@ -93,12 +103,7 @@ void InsertionQueues::take_inserted(Inserted&& inserted) {
       --waiting_;
     }
     q.head = static_cast<uint32_t>(keep);
-    if (q.head < q.entries.size()) {
-      still_.push_back(e);
-    } else {
-      q.entries.clear();
-      q.head = 0;
-    }
+    keep_listed_if_waiting(q, e);
   }
   queued_edges_.swap(still_);
 }
@@ -118,12 +123,7 @@ void InsertionQueues::drop_departures(Drop&& drop) {
       q.entries[keep++] = entry;
     }
     q.entries.resize(keep);
-    if (q.head < q.entries.size()) {
-      still_.push_back(e);
-    } else {
-      q.entries.clear();
-      q.head = 0;
-    }
+    keep_listed_if_waiting(q, e);
   }
   queued_edges_.swap(still_);
 }
