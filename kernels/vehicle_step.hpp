@@ -151,6 +151,17 @@ LPSIM_HD uint32_t allowed_lane_bits(const NetView& net, uint32_t e, uint32_t vcl
 }
 
 constexpr uint32_t kNoStopAhead = 0xFFFFFFFFu;
+constexpr int32_t kNoLaneOffset = 1 << 20;
+
+/// Lanes between the lane of rank `rank` and the nearest lane set in `mask` (0: it is set; kNoLaneOffset:
+/// the mask is empty). Ranks past 32 count from lane 31.
+LPSIM_HD int32_t rank_offset_to_mask(uint32_t rank, uint32_t mask) {
+  const int32_t r = static_cast<int32_t>(rank < 32 ? rank : 31u);
+  int32_t d = kNoLaneOffset;
+  for (int32_t k = 0; k < 32; ++k)
+    if ((mask & (1u << k)) && (k > r ? k - r : r - k) < d) d = k > r ? k - r : r - k;
+  return d;
+}
 
 LPSIM_HD BestLanes best_lanes(const NetView& net, const uint32_t* route, uint32_t len, uint32_t rp,
                               uint32_t vclass, uint32_t stop_offset = kNoStopAhead, uint32_t stop_bit = 0) {
@@ -169,16 +180,22 @@ LPSIM_HD BestLanes best_lanes(const NetView& net, const uint32_t* route, uint32_
     const uint32_t e = route[rp + static_cast<uint32_t>(i)];
     const uint32_t next = route[rp + static_cast<uint32_t>(i) + 1];
     const uint32_t first = net.edge_first_lane[e];
-    uint32_t keep = 0, reach = 0;
+    // Each lane's fewest changes still to make on the next edge: 0 where it leads onto one of that edge's
+    // best lanes. Where no lane does, the lanes leading nearest to one are best (SUMO's best lanes rank a
+    // lane by its continuation and then by its connection's offset to the next edge's best lane), so that a
+    // vehicle moves over here, not all at once on the next edge.
+    uint32_t best = 0;
+    int32_t best_d = kNoLaneOffset;
     for (uint32_t k = 0; k < net.edge_num_lanes[e] && k < 32; ++k) {
       if (!lane_allows(net, first + k, vclass)) continue;
       for (uint32_t c = net.lane_conn_begin[first + k]; c < net.lane_conn_begin[first + k + 1]; ++c) {
         if (net.conn_to_edge[c] != next || !conn_allows(net, c, vclass)) continue;
-        reach |= 1u << k;
-        if (lane_bit(net, net.conn_to_lane[c]) & b.mask[i + 1]) keep |= 1u << k;
+        const int32_t d = rank_offset_to_mask(net.lane_rank[net.conn_to_lane[c]], b.mask[i + 1]);
+        if (d < best_d) best_d = d, best = 0;
+        if (d == best_d) best |= 1u << k;
       }
     }
-    b.mask[i] = stop_offset == static_cast<uint32_t>(i) ? stop_bit : (keep ? keep : reach);
+    b.mask[i] = stop_offset == static_cast<uint32_t>(i) ? stop_bit : best;
   }
   return b;
 }
