@@ -416,6 +416,81 @@ EOF
   write_sumocfg "$d" emissions_classes emissions_classes.rou.xml
 }
 
+# --- motorway_ramps: a 3-lane motorway (130 km/h) with an on-ramp whose lane runs on as a 4th lane for
+# 300 m and alone leads to the off-ramp after it (a weaving section: entering and exiting vehicles cross),
+# then a lane drop (3 -> 2, the left lane ends). Cars and 90 km/h trucks, step 0.5 s, flows for 30 min --
+make_motorway_ramps() {
+  local d=$OUT/motorway_ramps
+  rm -rf "$d" && mkdir -p "$d"
+  cat > "$TMP/mw.nod.xml" <<'EOF'
+<nodes>
+    <node id="A" x="0" y="0" type="priority"/>
+    <node id="R" x="1000" y="-100" type="priority"/>
+    <node id="B" x="1500" y="0" type="priority"/>
+    <node id="C" x="1800" y="0" type="priority"/>
+    <node id="O" x="2300" y="-100" type="priority"/>
+    <node id="D" x="2800" y="0" type="priority"/>
+    <node id="E" x="3800" y="0" type="priority"/>
+    <node id="F" x="4300" y="0" type="priority"/>
+</nodes>
+EOF
+  cat > "$TMP/mw.edg.xml" <<'EOF'
+<edges>
+    <edge id="AB" from="A" to="B" numLanes="3" speed="36.11" priority="13"/>
+    <edge id="RB" from="R" to="B" numLanes="1" speed="22.22" priority="9"/>
+    <edge id="BC" from="B" to="C" numLanes="4" speed="36.11" priority="13"/>
+    <edge id="CO" from="C" to="O" numLanes="1" speed="22.22" priority="9"/>
+    <edge id="CD" from="C" to="D" numLanes="3" speed="36.11" priority="13"/>
+    <edge id="DE" from="D" to="E" numLanes="2" speed="36.11" priority="13"/>
+    <edge id="EF" from="E" to="F" numLanes="2" speed="36.11" priority="13"/>
+</edges>
+EOF
+  cat > "$TMP/mw.con.xml" <<'EOF'
+<connections>
+    <connection from="RB" to="BC" fromLane="0" toLane="0"/>
+    <connection from="AB" to="BC" fromLane="0" toLane="1"/>
+    <connection from="AB" to="BC" fromLane="1" toLane="2"/>
+    <connection from="AB" to="BC" fromLane="2" toLane="3"/>
+    <connection from="BC" to="CO" fromLane="0" toLane="0"/>
+    <connection from="BC" to="CD" fromLane="1" toLane="0"/>
+    <connection from="BC" to="CD" fromLane="2" toLane="1"/>
+    <connection from="BC" to="CD" fromLane="3" toLane="2"/>
+    <connection from="CD" to="DE" fromLane="0" toLane="0"/>
+    <connection from="CD" to="DE" fromLane="1" toLane="1"/>
+    <connection from="DE" to="EF" fromLane="0" toLane="0"/>
+    <connection from="DE" to="EF" fromLane="1" toLane="1"/>
+</connections>
+EOF
+  # netconvert warns that junctions B and C's shapes lie off their positions (the ramps' angles): harmless.
+  netconvert -n "$TMP/mw.nod.xml" -e "$TMP/mw.edg.xml" -x "$TMP/mw.con.xml" --no-turnarounds \
+    -o "$d/motorway_ramps.net.xml" > /dev/null 2>&1
+  cat > "$d/motorway_ramps.rou.xml" <<'EOF'
+<routes>
+    <vType id="truck" vClass="truck" length="12" minGap="2.5" accel="1.0" decel="4.0" maxSpeed="25" speedDev="0.05"/>
+    <flow id="main_through" from="AB" to="EF" begin="0" end="1800" vehsPerHour="2100" departLane="best" departSpeed="max"/>
+    <flow id="main_trucks" type="truck" from="AB" to="EF" begin="0" end="1800" vehsPerHour="250" departLane="best" departSpeed="max"/>
+    <flow id="main_exit" from="AB" to="CO" begin="0" end="1800" vehsPerHour="500" departLane="best" departSpeed="max"/>
+    <flow id="ramp_through" from="RB" to="EF" begin="0" end="1800" vehsPerHour="500" departLane="best" departSpeed="max"/>
+    <flow id="ramp_exit" from="RB" to="CO" begin="0" end="1800" vehsPerHour="100" departLane="best" departSpeed="max"/>
+</routes>
+EOF
+  strip_generated_header "$d/motorway_ramps.net.xml"
+  cat > "$d/motorway_ramps.sumocfg" <<'EOF'
+<?xml version="1.0" encoding="UTF-8"?>
+<configuration xmlns:xsi="http://www.w3.org/2001/XMLSchema-instance" xsi:noNamespaceSchemaLocation="http://sumo.dlr.de/xsd/sumoConfiguration.xsd">
+    <input>
+        <net-file value="motorway_ramps.net.xml"/>
+        <route-files value="motorway_ramps.rou.xml"/>
+    </input>
+    <time>
+        <begin value="0"/>
+        <end value="2400"/>
+        <step-length value="0.5"/>
+    </time>
+</configuration>
+EOF
+}
+
 make_grid_tls
 make_random_net
 make_flows
@@ -426,9 +501,10 @@ make_cosim_line
 make_emissions_free
 make_emissions_redlight
 make_emissions_classes
+make_motorway_ramps
 
 for name in grid_tls random_net flows actuated_cross keep_clear cosim_line emissions_free emissions_redlight \
-  emissions_classes; do
+  emissions_classes motorway_ramps; do
   "$PY" "$ROOT/tools/sumo_reference.py" "$OUT/$name/$name.sumocfg" > "$OUT/$name/sumo_reference.txt"
 done
 du -sh "$OUT"
