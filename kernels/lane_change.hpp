@@ -10,8 +10,6 @@
 
 namespace lpsim {
 
-constexpr uint64_t kKeepRightRngSalt = 0x4B45455052494748ull;  // "KEEPRIGH"
-
 struct LaneChangeParams {
   float politeness;               // MOBIL p: weight of the followers' acceleration changes
   float threshold;                // MOBIL a_thr: minimum net gain to change for speed [m/s^2]
@@ -141,40 +139,6 @@ LPSIM_HD bool discretionary_change_wanted(const IdmParams& self, float self_spee
   const float gain = mobil_incentive(a_self_now, a_self_after, a_new_lag_now, a_new_lag_after, a_old_lag_now,
                                      a_old_lag_after, lc.politeness);
   return gain > lc.threshold + bias;
-}
-
-// SUMO's keep-right rule (MSLCM_LC2013, legacy acceptance time): a vehicle moves right once it could drive
-// at its maximum speed on the right lane for long enough, judged over time: the share of the acceptance
-// time (7 s per m/s of its speed, scaled by how its maximum compares with the speed limit) it could keep
-// that speed there accumulates until it amounts to kKeepRightTime seconds of full share.
-constexpr float kKeepRightAcceptance = 7.0f;
-constexpr float kKeepRightTime = 5.0f;
-
-/// Share in [0, 1] of the keep-right acceptance time for which a vehicle at `speed` could drive at its
-/// maximum `v_max` on the lane to its right: `right_dist` metres of that lane lead on along its route, less
-/// its braking distance from v_max; a leader there slower than v_max (`lead`) leaves the gap beyond its
-/// secure gap to close at the speed difference. road_speed_factor: v_max over the current lane's limit.
-LPSIM_HD float keep_right_share(const IdmParams& self, float speed, float v_max, float road_speed_factor,
-                                float right_dist, const LcNeighbor& lead, float dt) {
-  if (v_max <= 0.0f) return 0.0f;
-  const float acceptance = kKeepRightAcceptance * road_speed_factor * lp_fmaxf(1.0f, speed);
-  float full_gap = lp_fmaxf(0.0f, right_dist - (stopping_distance(v_max, self.decel, dt) + v_max * self.tau));
-  float seconds = lp_fminf(acceptance, full_gap / v_max);
-  if (lead.present && lead.speed < v_max) {
-    full_gap = lp_fmaxf(0.0f, lp_fminf(full_gap, lead.gap - cf_secure_gap(self, v_max, lead.speed, dt)));
-    seconds = lp_fminf(seconds, full_gap / (v_max - lead.speed));
-  }
-  return acceptance > 0.0f ? seconds / acceptance : 0.0f;
-}
-
-/// Whether a vehicle whose keep-right share is `share` moves right at this attempt, attempts coming every
-/// `attempt_interval` seconds on average: SUMO's accumulation over kKeepRightTime seconds of full share,
-/// drawn as a hazard of the same mean (the engine keeps no per-vehicle memory of it), keyed by (seed,
-/// vehicle, step).
-LPSIM_HD bool keep_right_now(float share, float attempt_interval, uint64_t seed, uint64_t vehicle,
-                             uint64_t step) {
-  const float p = share * attempt_interval / kKeepRightTime;
-  return share > 0.0f && rng_uniform(seed ^ kKeepRightRngSalt, vehicle, step) < p;
 }
 
 /// Slowest deceleration with which a blocked mandatory changer falls behind the target lane's leader [m/s^2].

@@ -613,10 +613,13 @@ LPSIM_HD float lane_occupation(const uint8_t* map, const NetView& net, int32_t l
   return static_cast<float>(occupied) + static_cast<float>(runs) * gap;
 }
 
-/// Metres a vehicle at `pos` on `lane` can drive along its route without changing lanes: to the end of the
-/// lane's continuation (the lanes its connections lead to, as far as they lead on, looked at up to about
-/// kMaxLookahead), or to a scheduled stop on this edge.
-LPSIM_HD float route_continuation(const StepContext& s, VehicleRef r, int32_t lane, float pos) {
+/// Metres a vehicle on a wrong lane can still drive before it must have changed lanes (SUMO's usableDist):
+/// to the end of its lane's continuation along the route (the lanes its connections lead to, as far as they
+/// lead on), less the occupation of the lane it changes to. A change need not be made on this edge when the
+/// lane leads on, and the queue on the target lane makes it urgent before the changer reaches its tail. With
+/// a scheduled stop on this edge: to the stop, less that occupation.
+LPSIM_HD float usable_distance(const StepContext& s, VehicleRef r, int32_t lane, float pos, int32_t target,
+                               float min_gap) {
   const NetView& net = s.net;
   float dist = net.lane_length[lane] - pos;
   int32_t l = lane;
@@ -625,13 +628,13 @@ LPSIM_HD float route_continuation(const StepContext& s, VehicleRef r, int32_t la
   const uint32_t vclass = vclass_of(s, r);
   // A scheduled stop on this edge: its lane must be reached before the stop.
   const int32_t stop = stop_on_edge(s, r.slot, rp);
-  if (stop >= 0) return s.trips.stop_end[stop] - pos;
+  if (stop >= 0) return s.trips.stop_end[stop] - pos - lane_occupation(s.map_now, net, target, min_gap);
   for (int h = 0; h < kMaxPathHops && dist < kMaxLookahead; ++h) {
     // Beyond the current lane, a connection that leads on along the route, found without the later edges'
     // best lanes (asking for them would evict the current edge's from the slot's two-entry cache).
     int32_t c = -1;
     if (h == 0)
-      c = l == s.veh.lane[r.slot] ? current_lane_connection(s, r, l, rp) : choose_connection(s, r, l, rp);
+      c = current_lane_connection(s, r, l, rp);
     else if (rp + 2 < len)
       c = conn_through(net, l, route_edge(s, r, rp + 1), route_edge(s, r, rp + 2), vclass);
     if (h > 0 && c < 0) c = conn_onto(net, l, route_edge(s, r, rp + 1), vclass);
@@ -652,17 +655,7 @@ LPSIM_HD float route_continuation(const StepContext& s, VehicleRef r, int32_t la
     dist += net.lane_length[l];
     if (rp + 1 >= len) break;
   }
-  return dist;
-}
-
-/// Metres a vehicle on a wrong lane can still drive before it must have changed lanes (SUMO's usableDist):
-/// to the end of its lane's continuation along the route (the lanes its connections lead to, as far as they
-/// lead on), less the occupation of the lane it changes to. A change need not be made on this edge when the
-/// lane leads on, and the queue on the target lane makes it urgent before the changer reaches its tail. With
-/// a scheduled stop on this edge: to the stop, less that occupation.
-LPSIM_HD float usable_distance(const StepContext& s, VehicleRef r, int32_t lane, float pos, int32_t target,
-                               float min_gap) {
-  return route_continuation(s, r, lane, pos) - lane_occupation(s.map_now, s.net, target, min_gap);
+  return dist - lane_occupation(s.map_now, net, target, min_gap);
 }
 
 /// Approach pass: the first vehicle on its lane (nothing ahead until the lane end) publishes itself, and
@@ -787,15 +780,6 @@ LPSIM_HD LaneChangeResult try_lane_change(const StepContext& s, VehicleRef me, i
     const float bias = target == net.lane_left[lane] ? 0.1f : 0.0f;  // mild keep-right preference
     ok = discretionary_change_wanted(p, speed, v0, length, cur_lead, lc_no_neighbor(), lead, lag, bias, lcp,
                                      dt);
-    if (!ok && target == net.lane_right[lane]) {
-      // Right attempts come every fourth step on average (odd steps, half of them: lane_change_attempt).
-      const float v_max = desired_speed(net.lane_speed[lane], s.veh.trip_speed_factor[me.slot],
-                                        s.types.max_speed[type], s.types.desired_max_speed[type]);
-      const float share = keep_right_share(p, speed, v_max, v_max / lp_fmaxf(net.lane_speed[lane], 0.1f),
-                                           route_continuation(s, me, target, pos), lead, dt);
-      ok = keep_right_now(share, 4.0f * dt, s.params.seed, me.id, s.params.step) &&
-           lc_gaps_acceptable(p, speed, v0, lead, lag, 0.0f, lcp, dt);
-    }
   }
   if (!ok) return r;
   r.change = true;

@@ -178,45 +178,5 @@ TEST(ModelsLaneChange, PropertyAcceptedChangesNeverCauseCollisions) {
   EXPECT_GE(accepted, 100);
 }
 
-// SUMO's keep-right (MSLCM_LC2013): the share of the acceptance time (7 s per m/s of speed, scaled by the
-// vehicle's maximum over the limit) it could drive at its maximum on the right lane.
-TEST(ModelsLaneChange, KeepRightShareHandComputed) {
-  IdmParams truck = kP;
-  truck.decel = 4.0f;
-  const float v_max = 25.0f, limit = 36.11f, dt = 1.0f;
-  const float acceptance = 7.0f * (v_max / limit) * v_max;
-  const float brake = stopping_distance(v_max, truck.decel, dt) + v_max * truck.tau;
-  // A free right lane leading on for 2 km.
-  EXPECT_NEAR(keep_right_share(truck, v_max, v_max, v_max / limit, 2000.0f, lc_no_neighbor(), dt),
-              (2000.0f - brake) / v_max / acceptance, 1e-5f);
-  // Leading on farther than the acceptance time at full speed: the whole share.
-  EXPECT_FLOAT_EQ(keep_right_share(truck, v_max, v_max, v_max / limit, 1e5f, lc_no_neighbor(), dt), 1.0f);
-  // A slower vehicle close ahead on the right lane: nothing to gain there.
-  EXPECT_FLOAT_EQ(keep_right_share(truck, v_max, v_max, v_max / limit, 2000.0f, neighbor(20.0f, 20.0f), dt),
-                  0.0f);
-  // A slower one far ahead: the time to close on it beyond its secure gap.
-  const float far = 400.0f;
-  const float closing = (far - cf_secure_gap(truck, v_max, 20.0f, dt)) / (v_max - 20.0f);
-  EXPECT_NEAR(keep_right_share(truck, v_max, v_max, v_max / limit, 2000.0f, neighbor(far, 20.0f), dt),
-              closing / acceptance, 1e-5f);
-  // A right lane that ends within the braking distance: none.
-  EXPECT_FLOAT_EQ(keep_right_share(truck, v_max, v_max, v_max / limit, 50.0f, lc_no_neighbor(), dt), 0.0f);
-}
-
-// The move right is drawn per attempt with probability share * interval / 5 s, keyed by (seed, vehicle,
-// step).
-TEST(ModelsLaneChange, KeepRightDrawHasTheMeanOfSumosAccumulation) {
-  int moved = 0;
-  const int n = 20000;
-  for (int step = 0; step < n; ++step)
-    moved += keep_right_now(0.5f, 2.0f, 7, 11, static_cast<uint64_t>(step));
-  EXPECT_NEAR(static_cast<double>(moved) / n, 0.5 * 2.0 / 5.0, 0.01);
-  EXPECT_EQ(keep_right_now(0.5f, 2.0f, 7, 11, 42), keep_right_now(0.5f, 2.0f, 7, 11, 42));
-  int none = 0;
-  for (int step = 0; step < 1000; ++step)
-    none += keep_right_now(0.0f, 2.0f, 7, 11, static_cast<uint64_t>(step));
-  EXPECT_EQ(none, 0);
-}
-
 }  // namespace
 }  // namespace lpsim
