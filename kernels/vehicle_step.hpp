@@ -157,10 +157,13 @@ constexpr int32_t kNoLaneOffset = 1 << 20;
 /// the mask is empty). Ranks past 32 count from lane 31.
 LPSIM_HD int32_t rank_offset_to_mask(uint32_t rank, uint32_t mask) {
   const int32_t r = static_cast<int32_t>(rank < 32 ? rank : 31u);
-  int32_t d = kNoLaneOffset;
-  for (int32_t k = 0; k < 32; ++k)
-    if ((mask & (1u << k)) && (k > r ? k - r : r - k) < d) d = k > r ? k - r : r - k;
-  return d;
+  // Outwards from the lane itself: best_lanes asks this for every connection of every lane in view, and
+  // the answer is mostly 0 or 1.
+  for (int32_t d = 0; d < 32; ++d) {
+    if (r - d >= 0 && (mask & (1u << (r - d)))) return d;
+    if (r + d < 32 && (mask & (1u << (r + d)))) return d;
+  }
+  return kNoLaneOffset;
 }
 
 LPSIM_HD BestLanes best_lanes(const NetView& net, const uint32_t* route, uint32_t len, uint32_t rp,
