@@ -767,7 +767,10 @@ LPSIM_HD LaneChangeResult try_lane_change(const StepContext& s, VehicleRef me, i
   if (gc >= 0) {
     const float lag_speed =
         decode_cell_speed(s.map_now[net.lane_cell_begin[target] + static_cast<uint32_t>(gc)]) + 0.25f;
-    lag = LcNeighbor{true, rear - static_cast<float>(gc + 1), lag_speed, v0, p};
+    // Its desired speed is not in the lane map either: at least the speed it drives. Taking the changer's
+    // own made a faster follower seem to brake down to it, so a slow vehicle (a truck, a bicycle) never
+    // changed in ahead of faster traffic however far behind.
+    lag = LcNeighbor{true, rear - static_cast<float>(gc + 1), lag_speed, lp_fmaxf(v0, lag_speed), p};
     // The lag does not see the changer this step: it must not be able to reach the changer's rear.
     if (lag.gap <= (lag_speed + s.params.max_accel * dt) * dt + 0.5f) return r;
   }
