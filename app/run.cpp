@@ -188,9 +188,9 @@ void Run::write_unfinished_trips() {
 // clock ran out.
 void Run::warn_teleports() const {
   for (const TeleportEvent& t : sim_.teleport_events())
-    std::fprintf(stderr, "Warning: Teleporting vehicle '%s'; waited too long (%s), lane='%s', time=%.2f.\n",
+    std::fprintf(stderr, "Warning: Teleporting vehicle '%s'; waited too long (%s%s), lane='%s', time=%.2f.\n",
                  demand().vehicle_id[t.vehicle].c_str(), teleport_cause(t.cause),
-                 scenario_.network.lane_id[t.lane].c_str(), sim_.time());
+                 t.highway ? ", highway" : "", scenario_.network.lane_id[t.lane].c_str(), sim_.time());
 }
 
 void Run::close_interval(MeanDataOutput& m, double until) {

@@ -21,6 +21,8 @@ SimulationOptions simulation_options(const ConfigSpec& config) {
   options.seed = static_cast<uint64_t>(config.seed);
   options.threads = config.threads > 0 ? config.threads : 1;
   options.time_to_teleport = config.time_to_teleport;
+  options.time_to_teleport_highways = config.time_to_teleport_highways;
+  options.highway_min_speed = config.time_to_teleport_highways_min_speed;
   options.time_to_impatience = config.time_to_impatience;
   options.max_depart_delay = config.max_depart_delay;
   options.ignore_junction_blocker = config.ignore_junction_blocker;

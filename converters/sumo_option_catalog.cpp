@@ -333,8 +333,6 @@ constexpr ForeignOption kForeign[] = {
   {"thread-rngs", "64", 0, Class::Inert},
   {"time-to-teleport.bidi", "-1", 0, Class::Scoped, OptionScope::BidiEdges},
   {"time-to-teleport.disconnected", "-1", 0, Class::Unsupported},
-  {"time-to-teleport.highways", "0", 0, Class::Unsupported},
-  {"time-to-teleport.highways.min-speed", "19.1667", 0, Class::Unsupported},
   {"time-to-teleport.remove", "false", 0, Class::Unsupported},
   {"time-to-teleport.ride", "-1", 0, Class::Unsupported},
   {"tls.actuated.detector-length", "0", 0, Class::Unsupported},

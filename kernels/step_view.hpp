@@ -326,7 +326,18 @@ struct StepParams {
   // SUMO's --ignore-junction-blocker in steps: foes no longer wait for vehicles standing this long on a
   // junction lane (read only where the step tracks junction stands, StepContext::junction_stand_now).
   uint32_t ignore_blocker_steps;
+  // SUMO's --time-to-teleport.highways in steps (0: never): a vehicle standing this long at the front of a
+  // lane that does not lead on along its route, on a road whose limit exceeds highway_min_speed, teleports.
+  uint32_t highway_teleport_steps;
+  float highway_min_speed;  // m/s
 };
+
+/// Stopped steps after which a vehicle may start a teleport for some reason (0: never).
+LPSIM_HD uint32_t first_teleport_steps(const StepParams& p) {
+  if (p.teleport_steps == 0) return p.highway_teleport_steps;
+  if (p.highway_teleport_steps == 0) return p.teleport_steps;
+  return p.teleport_steps < p.highway_teleport_steps ? p.teleport_steps : p.highway_teleport_steps;
+}
 
 /// A junction lane's entry of StepContext::junction_stand_*: no vehicle's front stood there.
 constexpr uint32_t kNoJunctionStand = 0xFFFFFFFFu;

@@ -1563,6 +1563,21 @@ LPSIM_HD void clear_old_footprint(StepContext& s, uint32_t /*i*/, uint32_t slot)
 /// No vehicle stood ahead of a front at `pos` on `lane` as the step began. SUMO teleports only the first
 /// vehicle of a lane (MSLane::executeMovements): the ones behind it keep waiting, and once it is gone they
 /// usually move up instead of teleporting in the same step.
+/// The vehicle in `slot`, at route position rp on `lane`, has stood long enough to teleport if it is the
+/// lane's first: --time-to-teleport, or --time-to-teleport.highways on a lane faster than its minimum speed
+/// that does not lead to the route's next edge (SUMO's "wrong lane" on a highway, MSLane::executeMovements).
+LPSIM_HD bool teleport_due(const StepContext& s, uint32_t slot, uint32_t rp, int32_t lane) {
+  const uint32_t stopped = s.veh.stopped_steps[slot];
+  const StepParams& p = s.params;
+  if (p.teleport_steps > 0 && stopped >= p.teleport_steps) return true;
+  if (p.highway_teleport_steps == 0 || stopped < p.highway_teleport_steps) return false;
+  const NetView& net = s.net;
+  if (net.lane_internal[lane] || net.lane_speed[lane] <= p.highway_min_speed) return false;
+  if (rp + 1 >= s.veh.trip_route_size[slot]) return false;
+  const VehicleRef r{slot, s.veh.vehicle[slot]};
+  return !lane_has_conn_to(net, lane, route_edge(s, r, rp + 1), vclass_of(s, r));
+}
+
 LPSIM_HD bool first_on_lane(const StepContext& s, int32_t lane, float pos) {
   const int32_t last = static_cast<int32_t>(lane_cells(s.net, lane)) - 1;
   const int32_t front = static_cast<int32_t>(cell_of(s.net, lane, pos));
@@ -1702,8 +1717,7 @@ LPSIM_HD_INLINED void commit_vehicle(StepContext& s, uint32_t i, uint32_t slot) 
     veh.speed[slot] = nspeed;
     return;  // no footprint: it left the network
   }
-  if (s.params.teleport_steps > 0 && veh.stopped_steps[slot] >= s.params.teleport_steps &&
-      first_on_lane(s, nlane, npos)) {
+  if (teleport_due(s, slot, rp, nlane) && first_on_lane(s, nlane, npos)) {
     veh.status[slot] = kTeleporting;  // the host moves it on along its route
     veh.lane[slot] = nlane;
     veh.pos[slot] = npos;

@@ -96,15 +96,18 @@ std::vector<std::string> cosim_sumo_arguments(const ConfigSpec& c, const std::st
   std::vector<std::string> additional = c.additional_files;
   if (!extra_additional.empty()) additional.push_back(extra_additional);
   if (!additional.empty()) ours.emplace_back("--additional-files", joined(additional));
-  ours.insert(ours.end(), {{"--begin", sumo_number(c.begin)},
-                           {"--step-length", sumo_number(c.step_length)},
-                           {"--seed", std::to_string(c.seed)},
-                           {"--time-to-teleport", sumo_number(c.time_to_teleport)},
-                           {"--time-to-impatience", sumo_number(c.time_to_impatience)},
-                           {"--default.carfollowmodel", c.default_car_follow_model},
-                           {"--no-step-log", "true"},
-                           {"--output-prefix", kSumoPrefix},
-                           {"--tripinfo-output", tripinfo}});
+  ours.insert(ours.end(),
+              {{"--begin", sumo_number(c.begin)},
+               {"--step-length", sumo_number(c.step_length)},
+               {"--seed", std::to_string(c.seed)},
+               {"--time-to-teleport", sumo_number(c.time_to_teleport)},
+               {"--time-to-teleport.highways", sumo_number(c.time_to_teleport_highways)},
+               {"--time-to-teleport.highways.min-speed", sumo_number(c.time_to_teleport_highways_min_speed)},
+               {"--time-to-impatience", sumo_number(c.time_to_impatience)},
+               {"--default.carfollowmodel", c.default_car_follow_model},
+               {"--no-step-log", "true"},
+               {"--output-prefix", kSumoPrefix},
+               {"--tripinfo-output", tripinfo}});
   const OutputSpec& o = c.outputs;
   if (!o.fcd.empty()) ours.emplace_back("--fcd-output", o.fcd);
   if (o.fcd_period > 0) ours.emplace_back("--device.fcd.period", sumo_number(o.fcd_period));

@@ -48,6 +48,8 @@ struct ConfigSpec {
   // SUMO's --default.carfollowmodel: the car-following model of every vType that names none.
   std::string default_car_follow_model = "Krauss";
   double time_to_teleport = 300;
+  double time_to_teleport_highways = 0;  // SUMO's --time-to-teleport.highways [s]; <= 0: never
+  double time_to_teleport_highways_min_speed = 69.0 / 3.6;  // its roads: speed limit above this [m/s]
   double time_to_impatience = 180;  // SUMO's --time-to-impatience [s]; <= 0: never impatient
   // SUMO's --ignore-junction-blocker [s]: a vehicle standing this long on a junction's internal lane no
   // longer blocks the foes crossing its path; < 0: never.

@@ -51,6 +51,7 @@ struct TeleportEvent {
   uint32_t vehicle = 0;
   uint32_t lane = 0;
   TeleportCause cause = TeleportCause::Jam;
+  bool highway = false;  // by --time-to-teleport.highways (SUMO's cause then adds ", highway")
 };
 
 /// One finished trip (tripinfo). Times in seconds.

@@ -85,6 +85,7 @@ Simulation::Simulation(const Network& net, Demand demand, const SimulationOption
     ++next_departure_;
   }
   teleport_steps_ = stopped_steps_for(opt_.time_to_teleport, step_length());
+  highway_teleport_steps_ = stopped_steps_for(opt_.time_to_teleport_highways, step_length());
   impatience_steps_ = stopped_steps_for(opt_.time_to_impatience, step_length());
   // 0 s ignores every vehicle on a junction lane, standing or not, as in SUMO.
   ignore_blocker_steps_ = stopped_steps_for(opt_.ignore_junction_blocker, step_length());
@@ -231,7 +232,9 @@ StepParams Simulation::step_params() const {
                     max_emergency_decel_,
                     teleport_steps_,
                     impatience_steps_,
-                    ignore_blocker_steps_};
+                    ignore_blocker_steps_,
+                    highway_teleport_steps_,
+                    static_cast<float>(opt_.highway_min_speed)};
 }
 
 void Simulation::step() {
@@ -309,8 +312,13 @@ void Simulation::handle_vehicle_ends(std::vector<VehicleEnd>& ends) {
       continue;
     }
     ++counts_.teleports;
-    teleport_events_.push_back(
-        TeleportEvent{v, static_cast<uint32_t>(e.lane), teleport_cause(e.limit_reason)});
+    const TeleportCause cause = teleport_cause(e.limit_reason);
+    // The wrong-lane rule of a fast road's lane clocks out first where its time is the shorter.
+    const bool highway =
+        cause == TeleportCause::WrongLane && highway_teleport_steps_ > 0 &&
+        (teleport_steps_ == 0 || highway_teleport_steps_ < teleport_steps_) &&
+        net_.lane_speed[static_cast<uint32_t>(e.lane)] > static_cast<float>(opt_.highway_min_speed);
+    teleport_events_.push_back(TeleportEvent{v, static_cast<uint32_t>(e.lane), cause, highway});
     if (e.route_pos + 1 >= d.route_length[v]) {
       // Teleported past the end of its route: the trip ends here.
       moves_.push_back(TeleportMove{v, e.slot, 1});

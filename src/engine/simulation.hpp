@@ -27,7 +27,11 @@ struct SimulationOptions {
   int64_t step_ms = 1000;  // the step length, in the one form the engine keeps it: whole milliseconds
   uint64_t seed = 23423;
   int threads = 1;
-  double time_to_teleport = 300;    // s; <= 0: never
+  double time_to_teleport = 300;  // s; <= 0: never
+  // s a vehicle on a wrong lane (one that does not lead on along its route) of a road faster than
+  // highway_min_speed may wait before it teleports (SUMO's --time-to-teleport.highways); <= 0: never
+  double time_to_teleport_highways = 0;
+  double highway_min_speed = 69.0 / 3.6;  // m/s
   double time_to_impatience = 180;  // s for a waiting vehicle's impatience to grow from 0 to 1; <= 0: never
   // SUMO's --max-depart-delay: a departure not inserted in a step that ends more than this after its depart
   // time is dropped (Counts::discarded); < 0: never. Vehicles re-entering after a teleport are never dropped.
@@ -258,10 +262,11 @@ class Simulation {
   double step_seconds_ = 0;
   Counts counts_;
   float max_accel_ = 2.6f, max_emergency_decel_ = 9.0f, min_decel_ = 4.5f;
-  uint32_t teleport_steps_ = 0;        // stopped steps before a teleport (0: never)
-  uint32_t impatience_steps_ = 0;      // stopped steps for impatience to reach 1 (0: never impatient)
-  uint32_t ignore_blocker_steps_ = 0;  // stood steps after which a junction blocker is ignored (if tracked)
-  int cur_ = 0;                        // the lane map the state is in (the next step reads it)
+  uint32_t teleport_steps_ = 0;          // stopped steps before a teleport (0: never)
+  uint32_t highway_teleport_steps_ = 0;  // the same on a highway's wrong lane (0: never)
+  uint32_t impatience_steps_ = 0;        // stopped steps for impatience to reach 1 (0: never impatient)
+  uint32_t ignore_blocker_steps_ = 0;    // stood steps after which a junction blocker is ignored (if tracked)
+  int cur_ = 0;                          // the lane map the state is in (the next step reads it)
 
   // Host bookkeeping: slots handed out, the queues, every trip's account.
   SlotPool slots_;

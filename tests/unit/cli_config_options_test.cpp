@@ -62,7 +62,7 @@ TEST_F(CliConfigOptionsTest, ResultChangingSumoOptionInACfgIsRefusedAtItsLine) {
   for (const std::string option :
        {"<mesosim value=\"true\"/>", "<remote-port value=\"8813\"/>",
         "<device.rerouting.probability value=\"0.5\"/>", "<save-state.times value=\"100\"/>",
-        "<time-to-teleport.highways value=\"10\"/>", "<emission-output value=\"em.xml\"/>",
+        "<time-to-teleport.disconnected value=\"10\"/>", "<emission-output value=\"em.xml\"/>",
         "<vehroute-output value=\"vr.xml\"/>", "<lanechange.duration value=\"3\"/>",
         "<lateral-resolution value=\"0.8\"/>"}) {
     SCOPED_TRACE(option);

@@ -135,7 +135,7 @@ class CpuStepper final : public Stepper {
     size_t kept = 0;
     uint32_t running = 0;
     for (const uint32_t k : active_) {
-      const uint32_t kind = step_end_kind(veh, k, steps_done, ctx_.params.teleport_steps);
+      const uint32_t kind = step_end_kind(veh, k, steps_done, first_teleport_steps(ctx_.params));
       if (kind != kEndNone) outcome_.ends.push_back(vehicle_end(veh, k, kind));
       running += veh.status[k] == kRunning ? 1u : 0u;
       kept_[kept] = k;  // a branch on staying would be mispredicted

@@ -437,7 +437,7 @@ class CudaStepper final : public Stepper {
       VehicleEnd* ends = reinterpret_cast<VehicleEnd*>(outcome + kEndsOffset);
       LPSIM_CUDA_CHECK(cudaMemsetAsync(tally, 0, sizeof(StepTally)));
       LPSIM_LAUNCH(finish_kernel, blocks_for(n), kBlock)
-      (ctx_.veh, active_[cur_active_], n, steps_done, ctx_.params.teleport_steps, keep_, ends, tally);
+      (ctx_.veh, active_[cur_active_], n, steps_done, first_teleport_steps(ctx_.params), keep_, ends, tally);
       LPSIM_CUDA_CHECK_LAUNCH(finish_kernel);
       timer_.mark(6);
       guess_ = std::min(n, std::max<uint32_t>(LPSIM_GPU_MIN_ENDS_FETCHED, 2 * last_ends_));
