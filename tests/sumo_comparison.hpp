@@ -65,4 +65,20 @@ inline double flow_mean_duration(const std::string& tripinfo, const std::string&
   return f.mean_duration;
 }
 
+struct Teleport {
+  std::string id, cause;  // cause as SUMO words it: "jam", "yield", "wrong lane", "wrong lane, highway"
+  double time;
+};
+
+/// The "Teleporting vehicle 'X'; waited too long (CAUSE), lane='L', time=T." warnings of a run's output, in
+/// order (SUMO's and LPSim's words are the same).
+inline std::vector<Teleport> teleports(const std::string& log) {
+  const std::regex re(
+      R"re(Teleporting vehicle '([^']+)'; waited too long \(([a-z ,]+)\), lane='[^']*', time=([0-9.]+))re");
+  std::vector<Teleport> out;
+  for (auto it = std::sregex_iterator(log.begin(), log.end(), re); it != std::sregex_iterator(); ++it)
+    out.push_back(Teleport{(*it)[1], (*it)[2], std::stod((*it)[3])});
+  return out;
+}
+
 }  // namespace lpsim::test

@@ -14,28 +14,16 @@
 #include <vector>
 
 #include "lpsim_cli.hpp"
+#include "sumo_comparison.hpp"
 #include "temp_dir.hpp"
 
 namespace lpsim {
 namespace {
 
 using test::CliResult;
+using test::Teleport;
+using test::teleports;
 using test::TempDir;
-
-struct Teleport {
-  std::string id, cause;
-  double time;
-};
-
-// The "Teleporting vehicle 'X'; waited too long (CAUSE), lane='L', time=T." warnings, in order.
-std::vector<Teleport> teleports(const std::string& log) {
-  const std::regex re(
-      R"re(Teleporting vehicle '([^']+)'; waited too long \(([a-z ,]+)\), lane='[^']*', time=([0-9.]+))re");
-  std::vector<Teleport> out;
-  for (auto it = std::sregex_iterator(log.begin(), log.end(), re); it != std::sregex_iterator(); ++it)
-    out.push_back(Teleport{(*it)[1], (*it)[2], std::stod((*it)[3])});
-  return out;
-}
 
 class TeleportHighwaysTest : public ::testing::Test {
  protected:
