@@ -135,6 +135,7 @@ void visit(IO& io, Network& n) {
   io.field(n.skipped_non_car_lanes), io.field(n.skipped_connections), io.field(n.net_offset);
   io.field(n.edge_succ_begin), io.field(n.edge_succ), io.field(n.edge_succ_permissions);
   io.field(n.lane_permissions), io.field(n.edge_permissions);
+  io.field(n.lane_restriction_begin), io.field(n.restriction_vclass), io.field(n.restriction_speed);
 }
 
 template <class IO>

@@ -211,6 +211,8 @@ class NetParser {
         net_.roundabouts.push_back(std::move(r));
       } else if (name == "location") {
         net_.net_offset = parse_offset(xs_);
+      } else if (name == "type") {
+        read_edge_type();
       }
     }
     if (net_.edges.empty()) throw InputError(SourceLoc{xs_.path(), 0}, "network has no <edge> elements");
@@ -265,6 +267,30 @@ class NetParser {
     }
     check_lane_indices(e);
     net_.edges.push_back(std::move(e));
+  }
+
+  // SUMO gives a restriction's class its limit on every lane of the type's edges. A class name this version
+  // does not know is left out (no vehicle LPSim runs can have it), as unknown names in allow/disallow are.
+  void read_edge_type() {
+    EdgeTypeSpec t;
+    t.loc = xs_.loc();
+    t.id = xs_.get("id", "");
+    if (t.id.empty()) xs_.fail("<type> without an id");
+    const int depth = xs_.depth();
+    for (;;) {
+      auto ev = xs_.next();
+      if (ev == XmlStream::Event::Eof)
+        throw InputError(t.loc, "<type id=\"" + t.id + "\">: unexpected end of file");
+      if (ev == XmlStream::Event::End && xs_.depth() == depth) break;
+      if (ev != XmlStream::Event::Start || xs_.depth() != depth + 1 || xs_.name() != "restriction") continue;
+      const std::string vclass = xs_.get("vClass", "");
+      const std::string speed = xs_.get("speed", "");
+      if (vclass.empty()) xs_.fail("<restriction> of type '" + t.id + "' without a vClass");
+      const double limit = required_non_negative(xs_, "speed", speed.empty() ? nullptr : &speed);
+      if (vclass == "ignoring" || vclass_name_bit(vclass) != 0)
+        t.restrictions.push_back({vehicle_vclass_mask(vclass), limit});
+    }
+    if (!t.restrictions.empty()) net_.edge_types.push_back(std::move(t));
   }
 
   enum LaneAttr { kLaneId, kLaneIndex, kLaneSpeed, kLaneLength, kLaneAllow, kLaneDisallow, kLaneShape };

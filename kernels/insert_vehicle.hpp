@@ -120,7 +120,8 @@ struct DepartSpeedChoice {
 LPSIM_HD DepartSpeedChoice depart_speed(const StepContext& s, const DepartView& d, uint64_t seed, uint32_t v,
                                         uint32_t step, uint32_t l, const LaneScan& sc) {
   const uint32_t type = s.trips.type[v];
-  const float v0 = desired_speed(s.net.lane_speed[l], s.trips.speed_factor[v], s.types.max_speed[type],
+  const float lane_limit = lane_speed_for(s.net, l, s.types.vclass[type]);
+  const float v0 = desired_speed(lane_limit, s.trips.speed_factor[v], s.types.max_speed[type],
                                  s.types.desired_max_speed[type]);
   switch (d.speed_kind[v]) {
     case kDepartSpeedGiven:
@@ -138,7 +139,7 @@ LPSIM_HD DepartSpeedChoice depart_speed(const StepContext& s, const DepartView& 
                               : DepartSpeedChoice{lp_fminf(v0, sc.last_speed), false};
     case kDepartSpeedAvg:  // the lane's mean speed; an empty lane: its limit
       return sc.vehicles == 0
-                 ? DepartSpeedChoice{lp_fminf(v0, s.net.lane_speed[l]), true}
+                 ? DepartSpeedChoice{lp_fminf(v0, lane_limit), true}
                  : DepartSpeedChoice{lp_fminf(v0, sc.speed_sum / static_cast<float>(sc.vehicles)), false};
     default:  // 0
       return {0.0f, false};
@@ -156,8 +157,8 @@ LPSIM_HD float insertion_check(const StepContext& s, const InsertParams& p, cons
   const uint32_t type = s.trips.type[v];
   const float length = s.types.length[type];
   const IdmParams ip = idm_of(s, type);
-  const float v0 = desired_speed(net.lane_speed[l], s.trips.speed_factor[v], s.types.max_speed[type],
-                                 s.types.desired_max_speed[type]);
+  const float v0 = desired_speed(lane_speed_for(net, l, s.types.vclass[type]), s.trips.speed_factor[v],
+                                 s.types.max_speed[type], s.types.desired_max_speed[type]);
   const BodyCells body = body_cells(net, l, pos, length);
   if (first_occupied(map, net, l, body.rear, body.front) >= 0) return -1.0f;
   const int32_t cells = static_cast<int32_t>(lane_cells(net, l));

@@ -41,7 +41,22 @@ struct NetView {
   const uint8_t* conn_keep_clear;     // 1: entered only with room to leave the junction (Network's doc)
   const uint32_t* signal_link_begin;  // [num_signals+1] offset of each signal's links in link_state
   const uint32_t* lane_permissions;   // vClass mask of each lane (src/core/vclass.hpp)
+  // Speed limits by vehicle class (<restriction> of the edge's type): [lane_restriction_begin[l],
+  // lane_restriction_begin[l+1]) in restriction_vclass/restriction_speed. Null: none anywhere.
+  const uint32_t* lane_restriction_begin;
+  const uint32_t* restriction_vclass;
+  const float* restriction_speed;
 };
+
+/// The speed limit of lane `l` for a vehicle of vClass mask `vclass`: its class's restriction where the
+/// lane's edge type has one, else the lane's speed (SUMO's MSLane::getVehicleMaxSpeed). The mask must
+/// equal the restriction's, so "ignoring" (every bit) matches only a restriction for "ignoring".
+LPSIM_HD float lane_speed_for(const NetView& net, uint32_t l, uint32_t vclass) {
+  if (net.lane_restriction_begin != nullptr)
+    for (uint32_t i = net.lane_restriction_begin[l]; i < net.lane_restriction_begin[l + 1]; ++i)
+      if (net.restriction_vclass[i] == vclass) return net.restriction_speed[i];
+  return net.lane_speed[l];
+}
 
 /// Vehicle types, read-only.
 struct TypeView {

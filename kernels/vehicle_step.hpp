@@ -700,8 +700,8 @@ LPSIM_HD void approach_vehicle(StepContext& s, uint32_t i, uint32_t slot) {
   a.held = s.veh.held_at_line[slot] != 0 && a.speed < kHaltingSpeed ? 1u : 0u;
   a.reach = reach;
   const uint32_t type = s.veh.trip_type[slot];
-  a.v_max = desired_speed(s.net.lane_speed[lane], s.veh.trip_speed_factor[slot], s.types.max_speed[type],
-                          s.types.desired_max_speed[type]);
+  a.v_max = desired_speed(lane_speed_for(s.net, lane, s.types.vclass[type]), s.veh.trip_speed_factor[slot],
+                          s.types.max_speed[type], s.types.desired_max_speed[type]);
   s.approach[lane] = a;
 }
 
@@ -745,8 +745,9 @@ LPSIM_HD LaneChangeResult try_lane_change(const StepContext& s, VehicleRef me, i
   const int32_t rear_cell = r.tail_behind ? 0 : static_cast<int32_t>(cell_of(net, target, rear));
   const int32_t front_cell = static_cast<int32_t>(cell_of(net, target, pos));
   if (first_occupied(s.map_now, net, target, rear_cell, front_cell) >= 0) return r;
-  const float v0 = desired_speed(net.lane_speed[target], s.veh.trip_speed_factor[me.slot],
-                                 s.types.max_speed[type], s.types.desired_max_speed[type]);
+  const float v0 =
+      desired_speed(lane_speed_for(net, target, s.types.vclass[type]), s.veh.trip_speed_factor[me.slot],
+                    s.types.max_speed[type], s.types.desired_max_speed[type]);
   const float look = lookahead_distance(p, speed, dt);
   LcNeighbor lead = lc_no_neighbor();
   int32_t last = front_cell + 1 + metres_as_cells(look);
@@ -881,7 +882,8 @@ LPSIM_HD_INLINED PlanInput read_plan_input(const StepContext& s, VehicleRef r, u
                    .speed = s.veh.speed[slot],
                    .rp = s.veh.route_pos[slot],
                    .route_size = s.veh.trip_route_size[slot],
-                   .v0 = desired_speed(s.net.lane_speed[lane], speed_factor, max_speed, desired_max_speed),
+                   .v0 = desired_speed(lane_speed_for(s.net, lane, s.types.vclass[type]), speed_factor,
+                                       max_speed, desired_max_speed),
                    .waiting = s.veh.stopped_steps[slot] > 0,
                    .impatience = impatience_of(s.veh.stopped_steps[slot], s.params.impatience_steps)};
 }
@@ -1271,8 +1273,8 @@ LPSIM_HD_INLINED PathBounds walk_path_ahead(const StepContext& s, const PlanInpu
     }
     const int32_t via = net.conn_via_lane[c];
     const int32_t nxt = via >= 0 ? via : static_cast<int32_t>(net.conn_to_lane[c]);
-    const float v_lim =
-        desired_speed(net.lane_speed[nxt], in.speed_factor, in.max_speed, in.desired_max_speed);
+    const float v_lim = desired_speed(lane_speed_for(net, nxt, vclass_of(s, in.r)), in.speed_factor,
+                                      in.max_speed, in.desired_max_speed);
     if (v_lim < b.cand) b.cand = lp_fminf(b.cand, approach_speed_limit(end_dist, v_lim, in.p.decel, in.dt));
     path.lane[b.hops] = nxt;
     ++b.hops;
@@ -1668,8 +1670,9 @@ LPSIM_HD_INLINED void commit_vehicle(StepContext& s, uint32_t i, uint32_t slot) 
       stood_at_stop || (!arrives && begin_scheduled_stop(s, slot, rp, nlane, npos, nspeed, length));
 
   // Per-vehicle counters (tripinfo).
-  const float v0 = desired_speed(net.lane_speed[nlane], veh.trip_speed_factor[slot], s.types.max_speed[type],
-                                 s.types.desired_max_speed[type]);
+  const float v0 =
+      desired_speed(lane_speed_for(net, nlane, s.types.vclass[type]), veh.trip_speed_factor[slot],
+                    s.types.max_speed[type], s.types.desired_max_speed[type]);
   // Time lost this step against the desired speed [s]; no loss where the desired speed is 0.
   const float lost = v0 > 0.0f ? dt * lp_fmaxf(0.0f, (v0 - nspeed) / v0) : 0.0f;
   veh.route_length[slot] += driven;

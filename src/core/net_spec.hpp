@@ -76,6 +76,19 @@ struct TlLogicSpec {
   SourceLoc loc;
 };
 
+/// A speed limit one vehicle class keeps on the lanes of an edge type (<type><restriction vClass speed/>).
+struct SpeedRestrictionSpec {
+  uint32_t vclass = 0;  // the class's bit (core/vclass.hpp)
+  double speed = 0;     // m/s
+};
+
+/// An edge type of the net (<type id>): what LPSim reads of it are its speed restrictions by vClass.
+struct EdgeTypeSpec {
+  std::string id;
+  std::vector<SpeedRestrictionSpec> restrictions;
+  SourceLoc loc;
+};
+
 struct RoundaboutSpec {
   std::vector<std::string> nodes, edges;
 };
@@ -87,8 +100,9 @@ struct NetSpec {
   std::vector<ConnectionSpec> connections;
   std::vector<TlLogicSpec> tl_logics;
   std::vector<RoundaboutSpec> roundabouts;
-  Point net_offset;                   // <location netOffset>
-  int64_t skipped_non_car_lanes = 0;  // lanes no vehicle may use (sidewalks, crossings, walking areas)
+  std::vector<EdgeTypeSpec> edge_types;  // <type> elements (the edges name theirs in EdgeSpec::type)
+  Point net_offset;                      // <location netOffset>
+  int64_t skipped_non_car_lanes = 0;     // lanes no vehicle may use (sidewalks, crossings, walking areas)
 };
 
 }  // namespace lpsim

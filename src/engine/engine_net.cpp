@@ -158,6 +158,12 @@ NetView EngineNet::view(const Network& net) const {
   v.conn_keep_clear = net.conn_keep_clear.data();
   v.signal_link_begin = link_begin.data();
   v.lane_permissions = net.lane_permissions.data();
+  // Most nets restrict no class: a null table spares every speed lookup its loop.
+  if (!net.restriction_vclass.empty()) {
+    v.lane_restriction_begin = net.lane_restriction_begin.data();
+    v.restriction_vclass = net.restriction_vclass.data();
+    v.restriction_speed = net.restriction_speed.data();
+  }
   return v;
 }
 

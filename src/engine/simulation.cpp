@@ -673,6 +673,7 @@ SpeedSums Simulation::speed_sums() const {
   const Demand& d = trips_.demand();
   const VehicleTypes& t = d.types;
   const HostState& s = state(StateParts::Sample);
+  const NetView nv = engine_net_.view(net_);
   for (uint32_t i = 0; i < s.num_active; ++i) {
     const uint32_t k = s.active[i];
     if (s.veh.status[k] != kRunning) continue;
@@ -680,8 +681,10 @@ SpeedSums Simulation::speed_sums() const {
     const float speed = s.veh.speed[k];
     ++sums.running;
     sums.speed += std::llround(static_cast<double>(speed) * kSummaryUnits);
-    const float v0 = desired_speed(net_.lane_speed[s.veh.lane[k]], d.speed_factor[v],
-                                   t.max_speed[d.vehicle_type[v]], t.desired_max_speed[d.vehicle_type[v]]);
+    const uint32_t type = d.vehicle_type[v];
+    const float v0 =
+        desired_speed(lane_speed_for(nv, static_cast<uint32_t>(s.veh.lane[k]), t.vclass_mask[type]),
+                      d.speed_factor[v], t.max_speed[type], t.desired_max_speed[type]);
     if (v0 > 0) sums.relative += std::llround(static_cast<double>(speed / v0) * kSummaryUnits);
     if (speed < kHaltingSpeed) ++sums.halting;
     if (s.veh.stop_release[k] != 0) ++sums.stopped;  // standing at a scheduled stop

@@ -49,6 +49,11 @@ struct Network {
   std::vector<float> lane_length;          // m
   std::vector<float> lane_speed;           // m/s
   std::vector<uint32_t> lane_permissions;  // vClass mask of the lane (core/vclass.hpp)
+  // Speed limits by vehicle class from the edge's type (<restriction>): CSR [begin[l], begin[l+1]) in
+  // restriction_vclass (a vehicle's vClass mask, matched exactly) and restriction_speed (m/s); size lanes+1.
+  std::vector<uint32_t> lane_restriction_begin;
+  std::vector<uint32_t> restriction_vclass;
+  std::vector<float> restriction_speed;
   std::vector<uint64_t> lane_cell_begin;   // first cell in the lane map; size lanes+1 (last = total cells)
   std::vector<uint32_t> lane_conn_begin;   // outgoing connections [begin[l], begin[l+1]); size lanes+1
   std::vector<uint32_t> lane_shape_begin;  // points [begin[l], begin[l+1]) in shape_x/shape_y; size lanes+1

@@ -164,6 +164,11 @@ class Builder {
     net_.lane_speed.reserve(spec_lanes);
     net_.lane_permissions.reserve(spec_lanes);
 
+    std::unordered_map<std::string_view, const EdgeTypeSpec*> types;
+    for (const EdgeTypeSpec& t : spec_.edge_types) types.emplace(t.id, &t);
+    net_.lane_restriction_begin.reserve(spec_lanes + 1);
+    net_.lane_restriction_begin.push_back(0);
+
     uint32_t offset = 0;
     std::vector<uint32_t> order;
     for (uint32_t se = 0; se < edges.size(); ++se) {
@@ -208,6 +213,8 @@ class Builder {
       net_.edge_num_lanes.push_back(static_cast<uint8_t>(order.size()));
       float speed = 0;
       uint32_t edge_classes = 0;
+      // Internal edges have no type: SUMO restricts the lanes of normal edges only.
+      const auto type = internal || e.type.empty() ? types.end() : types.find(e.type);
       for (uint32_t k : order) {
         const LaneSpec& l = e.lanes[k];
         if (l.index < 0 || l.index > std::numeric_limits<uint8_t>::max())
@@ -224,6 +231,12 @@ class Builder {
         net_.lane_length.push_back(static_cast<float>(l.length));
         net_.lane_speed.push_back(static_cast<float>(l.speed));
         net_.lane_permissions.push_back(l.permissions);
+        if (type != types.end())
+          for (const SpeedRestrictionSpec& r : type->second->restrictions) {
+            net_.restriction_vclass.push_back(r.vclass);
+            net_.restriction_speed.push_back(static_cast<float>(r.speed));
+          }
+        net_.lane_restriction_begin.push_back(static_cast<uint32_t>(net_.restriction_vclass.size()));
         edge_classes |= l.permissions;
         speed = std::max(speed, static_cast<float>(l.speed));
       }

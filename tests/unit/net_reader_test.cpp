@@ -249,6 +249,34 @@ TEST_F(NetReaderTest, ReadsEveryElementOfAHandWrittenNet) {
   EXPECT_EQ(net.roundabouts[0].edges, (std::vector<std::string>{"E0", "E1"}));
 }
 
+// <type> elements: their speed restrictions by vClass; a type without any is not kept, an unknown class is
+// left out (as unknown names in allow/disallow are), "ignoring" is a class of its own.
+TEST_F(NetReaderTest, EdgeTypesKeepTheirSpeedRestrictions) {
+  const std::string types =
+      "    <type id=\"highway.primary\" priority=\"2\" numLanes=\"2\" speed=\"13.89\">\n"
+      "        <restriction vClass=\"truck\" speed=\"8.33\"/>\n"
+      "        <restriction vClass=\"hovercraft\" speed=\"3\"/>\n"
+      "        <restriction vClass=\"ignoring\" speed=\"5\"/>\n"
+      "    </type>\n"
+      "    <type id=\"plain\" speed=\"10\"/>\n"
+      "\n    <edge id=\":J1_0\"";
+  const NetSpec net = read_sumo_net(write("types.net.xml", net_with("\n    <edge id=\":J1_0\"", types)));
+  ASSERT_EQ(net.edge_types.size(), 1u);
+  const EdgeTypeSpec& t = net.edge_types[0];
+  EXPECT_EQ(t.id, "highway.primary");
+  ASSERT_EQ(t.restrictions.size(), 2u);
+  EXPECT_EQ(t.restrictions[0].vclass, vclass_name_bit("truck"));
+  EXPECT_DOUBLE_EQ(t.restrictions[0].speed, 8.33);
+  EXPECT_EQ(t.restrictions[1].vclass, kAllVClasses);
+  EXPECT_DOUBLE_EQ(t.restrictions[1].speed, 5);
+  EXPECT_EQ(edge(net, "E0").type, "highway.primary");
+
+  const std::string bad =
+      net_with("\n    <edge id=\":J1_0\"",
+               "\n    <type id=\"t\"><restriction speed=\"8\"/></type>\n    <edge id=\":J1_0\"");
+  EXPECT_NE(error_of(bad).find("without a vClass"), std::string::npos);
+}
+
 TEST_F(NetReaderTest, GzippedNetReadsTheSame) {
   NetSpec plain = read_sumo_net(write("plain.net.xml", kNet));
   NetSpec packed = read_sumo_net(write_gz("packed.net.xml.gz", kNet));

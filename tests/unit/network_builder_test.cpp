@@ -6,6 +6,7 @@
 #include <string>
 
 #include "kernels/lane_map.hpp"
+#include "kernels/step_view.hpp"
 #include "unit/test_nets.hpp"
 
 namespace lpsim {
@@ -182,6 +183,38 @@ TEST(NetworkBuilder, InternalJunctionFromIntLanesWhenIdDoesNotTell) {
   Network net = build_network(s);
   const uint32_t l = net.lane_index_by_id.at(":odd_lane");
   EXPECT_EQ(net.conn_junction[net.lane_conn_begin[l]], static_cast<int32_t>(net.junction_index.at("K1")));
+}
+
+// An edge type's <restriction>s give each lane of its normal edges a speed limit per vehicle class; the
+// kernels' lane_speed_for reads them (SUMO's MSLane::getVehicleMaxSpeed), other classes keep the lane's
+// speed.
+TEST(NetworkBuilder, EdgeTypeRestrictionsGiveLanesSpeedsByClass) {
+  NetSpec s = test::make_signal_spec(/*bus_lane=*/true, /*with_internal=*/true);
+  EdgeTypeSpec t;
+  t.id = "arterial";
+  t.restrictions = {{vclass_name_bit("truck"), 8.0}, {kAllVClasses, 6.0}};
+  s.edge_types.push_back(t);
+  for (auto& e : s.edges)
+    if (e.id == "WtoC" || e.id.rfind(":C", 0) == 0) e.type = "arterial";  // internal edges: no restriction
+  Network net = build_network(s);
+  ASSERT_EQ(net.lane_restriction_begin.size(), net.num_lanes() + 1);
+  NetView v{};
+  v.lane_speed = net.lane_speed.data();
+  v.lane_restriction_begin = net.lane_restriction_begin.data();
+  v.restriction_vclass = net.restriction_vclass.data();
+  v.restriction_speed = net.restriction_speed.data();
+  const uint32_t truck = vclass_name_bit("truck"), car = kVClassPassenger;
+  for (uint32_t l = 0; l < net.num_lanes(); ++l) {
+    const bool restricted = net.edge_id[net.lane_edge[l]] == "WtoC";
+    EXPECT_EQ(net.lane_restriction_begin[l + 1] - net.lane_restriction_begin[l], restricted ? 2u : 0u) << l;
+    EXPECT_FLOAT_EQ(lane_speed_for(v, l, truck), restricted ? 8.0f : net.lane_speed[l]) << net.lane_id[l];
+    EXPECT_FLOAT_EQ(lane_speed_for(v, l, car), net.lane_speed[l]) << net.lane_id[l];
+    EXPECT_FLOAT_EQ(lane_speed_for(v, l, kAllVClasses), restricted ? 6.0f : net.lane_speed[l])
+        << net.lane_id[l];
+  }
+  v.lane_restriction_begin = nullptr;  // a net without restrictions: the view holds no table
+  EXPECT_FLOAT_EQ(lane_speed_for(v, net.edge_first_lane[net.edge_index.at("WtoC")], truck),
+                  net.lane_speed[net.edge_first_lane[net.edge_index.at("WtoC")]]);
 }
 
 TEST(NetworkBuilder, BusLaneIsKeptWithItsPermissions) {

@@ -104,7 +104,7 @@ void copy_to_host(T* dst, const T* src, size_t n) {
 
 // The stepper lists the columns of these views by hand: a column added to one of them must be added here.
 // (The slot and plan columns are walked through their column lists.)
-static_assert(sizeof(NetView) == 25 * sizeof(void*) + sizeof(void*),
+static_assert(sizeof(NetView) == 28 * sizeof(void*) + sizeof(void*),
               "NetView changed: update upload_network");
 static_assert(sizeof(TypeView) == 12 * sizeof(void*) && sizeof(TripView) == 13 * sizeof(void*),
               "TypeView or TripView changed: update upload_types and DeviceTrips");
@@ -883,6 +883,12 @@ class CudaStepper final : public Stepper {
     d.conn_foe_block_cells = upload(h.conn_foe_block_cells, h.conn_foe_begin[nc]);
     d.conn_keep_clear = upload(h.conn_keep_clear, nc);
     d.lane_permissions = upload(h.lane_permissions, nl);
+    if (h.lane_restriction_begin != nullptr) {
+      const uint32_t nr = h.lane_restriction_begin[nl];
+      d.lane_restriction_begin = upload(h.lane_restriction_begin, nl + 1);
+      d.restriction_vclass = upload(h.restriction_vclass, nr);
+      d.restriction_speed = upload(h.restriction_speed, nr);
+    }
   }
 
   void upload_signals(const SignalTable& h) {
