@@ -49,7 +49,7 @@ Scenario load_scenario(const ConfigSpec& config) {
   DemandSpec demand;
   AdditionalSpec additional;
   for (const auto& f : config.additional_files) read_sumo_routes(f, demand, additional);
-  for (const auto& f : config.route_files) read_sumo_routes(f, demand, additional);
+  for (const auto& f : config.route_files) read_sumo_routes(f, demand, additional, config.route_steps > 0);
   if (!config.lpsim_od_csv.empty()) read_lpsim_od_csv(config.lpsim_od_csv, net, demand);
 
   if (config.tls_all_off) switch_signals_off(net, additional);
@@ -77,6 +77,13 @@ Scenario load_scenario(const ConfigSpec& config) {
         "SUMO does, the speed factor was raised to match for " +
         std::to_string(n) + (n == 1 ? " vehicle: '" : " vehicles, the first '") +
         sc.demand.first_raised_speed_factor + "'");
+  if (const int64_t n = demand.unsorted_ignored; n > 0)
+    sc.warnings.push_back(
+        "route file not sorted by departure time: as SUMO does, " + std::to_string(n) +
+        (n == 1 ? " vehicle or flow listed after a later departure was ignored: '"
+                : " vehicles and flows listed after a later departure were ignored, the first '") +
+        demand.first_unsorted_ignored + "' (" + demand.first_unsorted_loc.str() +
+        "); --route-steps 0 loads them");
   sc.mean_data = std::move(additional.mean_data);
   sc.load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return sc;

@@ -65,12 +65,13 @@ enum Key : uint8_t {
   kPerHour,
   kProbability,
   kNumber,
+  kLine,
   kKeyCount
 };
 constexpr std::array<std::string_view, kKeyCount> kKeyNames = {
     "id",   "type",   "depart",      "route",        "departLane",  "departPos", "departSpeed", "arrivalPos",
     "from", "to",     "via",         "fromJunction", "toJunction",  "fromTaz",   "toTaz",       "begin",
-    "end",  "period", "vehsPerHour", "perHour",      "probability", "number"};
+    "end",  "period", "vehsPerHour", "perHour",      "probability", "number",    "line"};
 
 struct TravellerAttrs {
   std::array<std::string, kKeyCount> value;
@@ -131,14 +132,16 @@ constexpr std::string_view kUnsupportedDeparts[] = {"triggered", "containerTrigg
 
 class RouteFileReader {
  public:
-  RouteFileReader(const std::string& path, DemandSpec& demand, AdditionalSpec& additional)
+  RouteFileReader(const std::string& path, DemandSpec& demand, AdditionalSpec& additional,
+                  bool sorted_by_depart)
       : xs_(path),
         demand_(demand),
         additional_(additional),
         folder_(std::filesystem::path(path).parent_path()),
         first_new_vehicle_(demand.vehicles.size()),
         first_new_flow_(demand.flows.size()),
-        edge_ids_(demand.edge_names) {
+        edge_ids_(demand.edge_names),
+        sorted_by_depart_(sorted_by_depart) {
     // Room for the vehicles a file of this size may hold, so the 380-byte specs are not moved (and their
     // pages touched twice) while the vector grows. Untouched capacity costs no memory.
     std::error_code ec;
@@ -443,6 +446,23 @@ class RouteFileReader {
     skip_children_counted();
   }
 
+  // SUMO's SUMORouteHandler::checkLastDepart: in a route file read ahead by departure time, a vehicle,
+  // trip or flow departing before the last one registered is ignored with a warning.
+  bool ignored_as_unsorted(double depart, const std::string& id, const SourceLoc& loc) {
+    if (!sorted_by_depart_ || depart >= last_depart_) return false;
+    if (demand_.unsorted_ignored++ == 0) {
+      demand_.first_unsorted_ignored = id;
+      demand_.first_unsorted_loc = loc;
+    }
+    return true;
+  }
+  // SUMO's registerLastDepart: public transport (a 'line') does not move the mark, so that lines may be
+  // listed ahead of the traffic.
+  void register_depart(double depart, bool line) {
+    if (!line) last_depart_ = depart;
+  }
+  bool public_transport() const { return attrs_.present[kLine] && !attrs_.value[kLine].empty(); }
+
   static bool has_endpoints(const std::string& from, const std::string& from_junction, const std::string& to,
                             const std::string& to_junction) {
     return (!from.empty() || !from_junction.empty()) && (!to.empty() || !to_junction.empty());
@@ -470,6 +490,8 @@ class RouteFileReader {
     v.id = id;
     v.source = source;
     v.depart = time_attr(kDepart, loc, element, id, 0);
+    if (ignored_as_unsorted(v.depart, id, loc)) return skip_subtree();
+    const bool line = public_transport();
     read_type_and_path(v);
     read_depart_spec(loc, element, id, v.depart_spec);
     read_path_children(loc, element, v.id, v.route, v.edges, v.stops, &v);
@@ -481,6 +503,7 @@ class RouteFileReader {
     if (source == DemandSource::Vehicle && v.route.empty() && v.edges.empty() && v.edge_ref_count == 0 &&
         !endpoints)
       fail(loc, element, v.id, "no route: give 'route', a nested <route>, or from/to");
+    register_depart(v.depart, line);
     demand_.vehicles.push_back(std::move(v));
   }
 
@@ -499,6 +522,10 @@ class RouteFileReader {
     f.end = time_attr(kEnd, loc, element, id, interval_end_.value_or(-1));
     if (f.end >= 0 && f.end < f.begin)
       fail(loc, element, id, "end " + attrs_.value[kEnd] + " lies before begin " + std::to_string(f.begin));
+    // SUMO closes a flow of no vehicles before it looks at the order.
+    const bool empty = attrs_.present[kNumber] && trim(attrs_.value[kNumber]) == "0";
+    if (!empty && ignored_as_unsorted(f.begin, id, loc)) return skip_subtree();
+    const bool line = public_transport();
 
     int rates = 0;
     if (attrs_.present[kPeriod]) {
@@ -543,6 +570,7 @@ class RouteFileReader {
     if (f.route.empty() && f.edges.empty() && !has_endpoints(f.from, f.from_junction, f.to, f.to_junction))
       fail(loc, element, f.id,
            "no route: give 'route', a nested <route>, from/to or fromJunction/toJunction");
+    if (!empty) register_depart(f.begin, line);
     demand_.flows.push_back(std::move(f));
   }
 
@@ -744,12 +772,15 @@ class RouteFileReader {
   std::unordered_set<std::string> type_ids_, route_ids_;
   std::optional<double> interval_begin_, interval_end_;
   TravellerAttrs attrs_;
+  const bool sorted_by_depart_;
+  double last_depart_ = -1;  // s: the departure of the last vehicle or flow registered (SUMO's myLastDepart)
 };
 
 }  // namespace
 
-void read_sumo_routes(const std::string& path, DemandSpec& demand, AdditionalSpec& additional) {
-  RouteFileReader(path, demand, additional).read();
+void read_sumo_routes(const std::string& path, DemandSpec& demand, AdditionalSpec& additional,
+                      bool sorted_by_depart) {
+  RouteFileReader(path, demand, additional, sorted_by_depart).read();
 }
 
 }  // namespace lpsim

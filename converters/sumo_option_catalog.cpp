@@ -14,7 +14,7 @@ using Class = ForeignOptionClass;
 
 // Every option of SUMO 1.15 (`sumo --save-template`) that LPSim does not implement, plus the synonyms
 // ndump/netstate/netstate-output and vehroutes; sorted by name for the binary search below. Inert are the
-// ones that only log, validate, drive the GUI or split SUMO's own work (route-steps, thread-rngs,
+// ones that only log, validate, drive the GUI or split SUMO's own work (thread-rngs,
 // device.rerouting.threads), save-configuration.relative/save-commented/write-license, which only shape
 // files LPSim does not write or a comment, routing-algorithm (every algorithm finds least-cost routes;
 // LPSim's router breaks ties its own way whichever is named) and collision.action (it acts on collisions,
@@ -301,7 +301,6 @@ constexpr ForeignOption kForeign[] = {
   {"remote-port", "0", 0, Class::Unsupported},
   {"replay-rerouting", "false", 0, Class::Unsupported},
   {"ride.stop-tolerance", "10", 0, Class::Scoped, OptionScope::Persons},
-  {"route-steps", "200", 's', Class::Inert},
   {"routing-algorithm", "dijkstra", 0, Class::Inert},
   {"save-commented", "false", 0, Class::Inert},
   {"save-configuration", "", 'C', Class::Unsupported},

@@ -57,6 +57,9 @@ struct ConfigSpec {
   // SUMO's --max-depart-delay [s]: a vehicle still not inserted this long after its depart time is dropped
   // (counted as discarded); < 0: never.
   double max_depart_delay = -1;
+  // SUMO's --route-steps [s]: > 0, route files are read ahead in steps, so a vehicle or flow departing before
+  // one listed ahead of it in the same file is ignored; <= 0, every one is loaded.
+  double route_steps = 200;
   // SUMO's --tls.all-off: every traffic light is off; its links keep the right of way the net's connection
   // states give them ('O' priority, 'o' yield).
   bool tls_all_off = false;

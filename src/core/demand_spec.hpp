@@ -145,6 +145,11 @@ struct DemandSpec {
   std::map<std::string, int64_t> skipped;  // element name -> count of unsupported elements (persons, ...)
   // Vehicles and flows with <param key="has.rerouting.device" value="true"/> (vTypes keep theirs in params).
   int64_t rerouting_device_requests = 0;
+  // Vehicles, trips and flows a route file lists after a later departure, which SUMO ignores (its route
+  // files are read ahead by departure time); the first one's id and place, for the warning.
+  int64_t unsorted_ignored = 0;
+  std::string first_unsorted_ignored;
+  SourceLoc first_unsorted_loc;
 };
 
 }  // namespace lpsim

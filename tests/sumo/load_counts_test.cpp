@@ -190,7 +190,7 @@ LoadedSumoScenario load(const std::string& name) {
   s.net_spec = read_sumo_net(cfg.net_file);
   AdditionalSpec additional;
   for (const auto& f : cfg.additional_files) read_sumo_routes(f, s.demand_spec, additional);
-  for (const auto& f : cfg.route_files) read_sumo_routes(f, s.demand_spec, additional);
+  for (const auto& f : cfg.route_files) read_sumo_routes(f, s.demand_spec, additional, cfg.route_steps > 0);
   return s;
 }
 

@@ -16,7 +16,9 @@ class RouteReaderTest : public ::testing::Test {
   std::string routes(const std::string& inner, const std::string& name = "r.rou.xml") {
     return write(name, "<routes>\n" + inner + "\n</routes>\n");
   }
-  void read(const std::string& path) { read_sumo_routes(path, demand_, additional_); }
+  void read(const std::string& path, bool sorted_by_depart = false) {
+    read_sumo_routes(path, demand_, additional_, sorted_by_depart);
+  }
 
   // Reads `inner` (placed on line 2) and returns the InputError message; fails the test if none is raised.
   std::string error_of(const std::string& inner) {
@@ -34,6 +36,35 @@ class RouteReaderTest : public ::testing::Test {
   DemandSpec demand_;
   AdditionalSpec additional_;
 };
+
+// SUMO reads route files ahead by departure time (--route-steps > 0) and ignores a vehicle, trip or flow
+// departing before the last one registered; public transport ('line') does not move the mark, nor does an
+// empty flow. Add-files and --route-steps 0 load every one.
+TEST_F(RouteReaderTest, UnsortedDeparturesAreIgnoredAsSumoIgnoresThem) {
+  const std::string path = routes(R"X(<vehicle id="a" depart="10"><route edges="e"/></vehicle>
+  <flow id="f" begin="20" end="30" period="5"><route edges="e"/></flow>
+  <vehicle id="late" depart="15"><route edges="e"/></vehicle>
+  <flow id="pt" begin="100" end="200" period="50" line="7"><route edges="e"/></flow>
+  <trip id="t" depart="20" from="e" to="e"/>
+  <flow id="none" begin="500" end="600" number="0"><route edges="e"/></flow>
+  <flow id="g" begin="5" end="60" period="5"><route edges="e"/></flow>
+  <vehicle id="b" depart="20"><route edges="e"/></vehicle>)X");
+  read(path, true);
+  std::vector<std::string> vehicles, flows;
+  for (const auto& v : demand_.vehicles) vehicles.push_back(v.id);
+  for (const auto& f : demand_.flows) flows.push_back(f.id);
+  EXPECT_EQ(vehicles, (std::vector<std::string>{"a", "t", "b"}));
+  EXPECT_EQ(flows, (std::vector<std::string>{"f", "pt", "none"}));
+  EXPECT_EQ(demand_.unsorted_ignored, 2);
+  EXPECT_EQ(demand_.first_unsorted_ignored, "late");
+  EXPECT_EQ(demand_.first_unsorted_loc.line, 4);
+
+  demand_ = DemandSpec{};
+  read(path, false);
+  EXPECT_EQ(demand_.vehicles.size(), 4u);
+  EXPECT_EQ(demand_.flows.size(), 4u);
+  EXPECT_EQ(demand_.unsorted_ignored, 0);
+}
 
 TEST_F(RouteReaderTest, VTypeAttributesDefaultsAndParams) {
   read(routes(R"X(<vType id="a" length="4.5" minGap="1.5" accel="3" decel="5" emergencyDecel="8" maxSpeed="30"
