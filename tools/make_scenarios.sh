@@ -491,6 +491,106 @@ EOF
 EOF
 }
 
+# A town's arterial with three signals, its side streets, cars, trucks held to 30 km/h on the arterial by its
+# edge type's <restriction>, and two bus lines with curb stops: on the arterial's right lane (traffic passes
+# on the left lane) and on a one-lane side street (traffic waits behind the bus).
+make_city_mixed() {
+  local d=$OUT/city_mixed
+  rm -rf "$d" && mkdir -p "$d"
+  cat > "$TMP/cm.nod.xml" <<'EOF'
+<nodes>
+    <node id="W" x="0" y="0" type="priority"/>
+    <node id="J1" x="300" y="0" type="traffic_light"/>
+    <node id="J2" x="600" y="0" type="traffic_light"/>
+    <node id="J3" x="900" y="0" type="traffic_light"/>
+    <node id="E" x="1200" y="0" type="priority"/>
+    <node id="N1" x="300" y="250" type="priority"/>
+    <node id="S1" x="300" y="-250" type="priority"/>
+    <node id="N2" x="600" y="250" type="priority"/>
+    <node id="S2" x="600" y="-250" type="priority"/>
+    <node id="N3" x="900" y="250" type="priority"/>
+    <node id="S3" x="900" y="-250" type="priority"/>
+</nodes>
+EOF
+  cat > "$TMP/cm.typ.xml" <<'EOF'
+<types>
+    <type id="arterial" priority="7" numLanes="2" speed="13.89">
+        <restriction vClass="truck" speed="8.33"/>
+    </type>
+    <type id="local" priority="5" numLanes="1" speed="11.11"/>
+</types>
+EOF
+  {
+    echo "<edges>"
+    local nodes=(W J1 J2 J3 E) k end
+    for k in 0 1 2 3; do
+      local a=${nodes[$k]} b=${nodes[$((k + 1))]}
+      echo "    <edge id=\"$a$b\" from=\"$a\" to=\"$b\" type=\"arterial\"/>"
+      echo "    <edge id=\"$b$a\" from=\"$b\" to=\"$a\" type=\"arterial\"/>"
+    done
+    for k in 1 2 3; do
+      for end in N S; do
+        echo "    <edge id=\"$end${k}J$k\" from=\"$end$k\" to=\"J$k\" type=\"local\"/>"
+        echo "    <edge id=\"J$k$end$k\" from=\"J$k\" to=\"$end$k\" type=\"local\"/>"
+      done
+    done
+    echo "</edges>"
+  } > "$TMP/cm.edg.xml"
+  netconvert -t "$TMP/cm.typ.xml" -n "$TMP/cm.nod.xml" -e "$TMP/cm.edg.xml" --no-turnarounds \
+    --tls.default-type static -o "$d/city_mixed.net.xml" > /dev/null 2>&1
+  strip_generated_header "$d/city_mixed.net.xml"
+  cat > "$d/city_mixed.add.xml" <<'EOF'
+<additional>
+    <busStop id="arterial_east" lane="J1J2_0" startPos="120" endPos="140"/>
+    <busStop id="arterial_west" lane="J2J1_0" startPos="120" endPos="140"/>
+    <busStop id="north_out" lane="J2N2_0" startPos="100" endPos="115"/>
+    <busStop id="north_in" lane="N2J2_0" startPos="100" endPos="115"/>
+</additional>
+EOF
+  # Sorted by departure: SUMO ignores a flow listed after a later one (route files are read ahead).
+  cat > "$d/city_mixed.rou.xml" <<'EOF'
+<routes>
+    <vType id="truck" vClass="truck" length="10" minGap="2.5" accel="1.0" decel="4.0" maxSpeed="25"/>
+    <vType id="bus" vClass="bus" length="12" minGap="2.5" accel="1.2" decel="4.0" maxSpeed="20"/>
+    <route id="bus_out" edges="WJ1 J1J2 J2N2">
+        <stop busStop="arterial_east" duration="20"/>
+        <stop busStop="north_out" duration="15"/>
+    </route>
+    <route id="bus_in" edges="N2J2 J2J1 J1W">
+        <stop busStop="north_in" duration="15"/>
+        <stop busStop="arterial_west" duration="20"/>
+    </route>
+    <flow id="car_we" from="WJ1" to="J3E" begin="0" end="1800" vehsPerHour="500" departLane="best"/>
+    <flow id="car_ew" from="EJ3" to="J1W" begin="0" end="1800" vehsPerHour="500" departLane="best"/>
+    <flow id="car_n1s3" from="N1J1" to="J3S3" begin="0" end="1800" vehsPerHour="120" departLane="best"/>
+    <flow id="car_s1n3" from="S1J1" to="J3N3" begin="0" end="1800" vehsPerHour="120" departLane="best"/>
+    <flow id="car_n2e" from="N2J2" to="J3E" begin="0" end="1800" vehsPerHour="120" departLane="best"/>
+    <flow id="car_s2w" from="S2J2" to="J1W" begin="0" end="1800" vehsPerHour="120" departLane="best"/>
+    <flow id="car_n3w" from="N3J3" to="J1W" begin="0" end="1800" vehsPerHour="120" departLane="best"/>
+    <flow id="car_s3e" from="S3J3" to="J3E" begin="0" end="1800" vehsPerHour="120" departLane="best"/>
+    <flow id="truck_we" type="truck" from="WJ1" to="J3E" begin="0" end="1800" vehsPerHour="60" departLane="best"/>
+    <flow id="truck_ew" type="truck" from="EJ3" to="J1W" begin="0" end="1800" vehsPerHour="60" departLane="best"/>
+    <flow id="truck_s1e" type="truck" from="S1J1" to="J3E" begin="0" end="1800" vehsPerHour="40" departLane="best"/>
+    <flow id="bus_out" type="bus" route="bus_out" begin="30" end="1800" period="180" departLane="best"/>
+    <flow id="bus_in" type="bus" route="bus_in" begin="90" end="1800" period="180" departLane="best"/>
+</routes>
+EOF
+  cat > "$d/city_mixed.sumocfg" <<'EOF'
+<?xml version="1.0" encoding="UTF-8"?>
+<configuration xmlns:xsi="http://www.w3.org/2001/XMLSchema-instance" xsi:noNamespaceSchemaLocation="http://sumo.dlr.de/xsd/sumoConfiguration.xsd">
+    <input>
+        <net-file value="city_mixed.net.xml"/>
+        <route-files value="city_mixed.rou.xml"/>
+        <additional-files value="city_mixed.add.xml"/>
+    </input>
+    <time>
+        <begin value="0"/>
+        <end value="2400"/>
+    </time>
+</configuration>
+EOF
+}
+
 make_grid_tls
 make_random_net
 make_flows
@@ -502,9 +602,10 @@ make_emissions_free
 make_emissions_redlight
 make_emissions_classes
 make_motorway_ramps
+make_city_mixed
 
 for name in grid_tls random_net flows actuated_cross keep_clear cosim_line emissions_free emissions_redlight \
-  emissions_classes motorway_ramps; do
+  emissions_classes motorway_ramps city_mixed; do
   "$PY" "$ROOT/tools/sumo_reference.py" "$OUT/$name/$name.sumocfg" > "$OUT/$name/sumo_reference.txt"
 done
 du -sh "$OUT"
