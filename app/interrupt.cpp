@@ -46,6 +46,12 @@ InterruptGuard::~InterruptGuard() {
 
 int InterruptGuard::received() const { return g_received.load(); }
 
+bool interrupted_status(int code) {
+  for (int s : kSignals)
+    if (code == 128 + s) return true;
+  return false;
+}
+
 const char* signal_name(int signal) {
   switch (signal) {
     case SIGINT:

@@ -25,4 +25,7 @@ class InterruptGuard {
 /// "SIGINT", "SIGTERM" or "SIGHUP" (the signals a guard records), else "a signal".
 const char* signal_name(int signal);
 
+/// Whether exit status `code` is that of a run stopped by one of those signals (128 + the signal).
+bool interrupted_status(int code);
+
 }  // namespace lpsim

@@ -1,11 +1,14 @@
 // `lpsim run`: load, simulate, write SUMO outputs, print a SUMO-like summary. SIGINT, SIGTERM and SIGHUP
 // stop it at the end of the current step with every output closed well-formed (as SUMO does on Ctrl-C), one
-// line on stderr and exit status 128 + the signal.
+// line on stderr and exit status 128 + the signal. Under mpirun every rank records the signal it gets and
+// reports it to rank 0 with the step, so the job stops together however its ranks are signalled (mpirun
+// itself passes SIGINT and SIGTERM on to every rank as SIGTERM).
 #include <malloc.h>
 #include <unistd.h>
 
 #include <chrono>
 #include <cstdio>
+#include <optional>
 
 #include "app/commands.hpp"
 #include "app/device_select.hpp"
@@ -65,7 +68,13 @@ int command_run(const std::vector<std::string>& args) {
   std::unique_ptr<InProcessParts> others;
   std::unique_ptr<Transport> mpi;
   PartPlan rank_plan;
+  // From the guard on a signal is recorded, not fatal: the Run's constructor creates the output files, and
+  // the loop below stops at the first step boundary after a signal (to any rank), so that finish() closes
+  // them well-formed while the other ranks still serve it. Ranks install it before they build their tables,
+  // so that none dies while the others wait for it; a single process only once it has built them.
+  std::optional<InterruptGuard> interrupt;
   if (ranks > 1) {
+    interrupt.emplace();
     mpi = std::make_unique<MpiTransport>(kPartTimeout);
     mpi->check_same_build(build_id());
     rank_plan = part_plan(sc.network, edge_part, parts, longest_vehicle(sc.demand), mpi->rank());
@@ -76,10 +85,12 @@ int command_run(const std::vector<std::string>& args) {
     options.part = &rank_plan;
     options.transport = mpi.get();
     options.gpu_device = MpiSession::local_rank();  // ranks on one machine take its GPUs in turn
+    options.pending_signal = [&interrupt] { return interrupt->received(); };
     if (mpi->rank() != 0) {
       Simulation sim(sc.network, std::move(sc.demand), options);
       sim.serve_part();
-      return 0;
+      const int signal = interrupt->received();
+      return signal != 0 ? 128 + signal : 0;
     }
   } else if (parts > 1) {
     others = std::make_unique<InProcessParts>(
@@ -90,22 +101,24 @@ int command_run(const std::vector<std::string>& args) {
   using Clock = std::chrono::steady_clock;
   const auto wall0 = Clock::now();
   const double load_seconds = sc.load_seconds;
-  // From here on a signal is recorded, not fatal: the Run's constructor creates the output files, and the
-  // loop below stops at the first step boundary after a signal, so that finish() closes them well-formed.
-  const InterruptGuard interrupt;
+  if (!interrupt) interrupt.emplace();
   ProgressLog progress(stderr, isatty(fileno(stderr)) != 0, config.no_step_log, config.progress_interval,
                        config.end);
   int signal = 0;
   try {
     Run run(std::move(sc), config, options);
-    while (!run.done() && interrupt.received() == 0) {
+    auto signalled = [&] {
+      const int own = interrupt->received();
+      return own != 0 ? own : run.simulation().part_signal();
+    };
+    while (!run.done() && signalled() == 0) {
       run.step();
       progress.after_step(run.simulation());
     }
     run.finish();
     const double wall = std::chrono::duration<double>(Clock::now() - wall0).count();
     progress.end_line();
-    signal = interrupt.received();
+    signal = signalled();
     report_run_end(run, wall, load_seconds, signal);
   } catch (const std::exception&) {
     // Part 0's error names another part's failure when that is what stopped it (the transport's error).

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "app/commands.hpp"
+#include "app/interrupt.hpp"
 #include "core/error.hpp"
 #include "sumo_bridge/cosim_command.hpp"
 #include "transport/mpi/mpi_transport.hpp"
@@ -91,7 +92,9 @@ int main(int argc, char** argv) {
     }
   }
   const int code = dispatch(command, args);
-  // A rank that failed ends the job: the others would wait for it until their rounds time out.
-  if (code != 0 && mpi && lpsim::MpiSession::world_size() > 1) lpsim::MpiSession::abort_job(code);
+  // A rank that failed ends the job: the others would wait for it until their rounds time out. A signal
+  // stops every rank at the same step: they end together, as MPI expects.
+  if (code != 0 && !lpsim::interrupted_status(code) && mpi && lpsim::MpiSession::world_size() > 1)
+    lpsim::MpiSession::abort_job(code);
   return code;
 }

@@ -83,8 +83,9 @@ struct PartState {
   std::vector<TeleportEvent> teleport_events;
   std::vector<TripRecord> finished;
   double depart_delay_sum = 0, travel_time_sum = 0;
-  bool all_idle = false;                   // no part has a vehicle on the road or waiting to be inserted
-  std::vector<SampleEntry> sample;         // gathered by gather_sample(), ascending by vehicle
+  bool all_idle = false;            // no part has a vehicle on the road or waiting to be inserted
+  int signal = 0;                   // the first signal a part reported (SimulationOptions::pending_signal)
+  std::vector<SampleEntry> sample;  // gathered by gather_sample(), ascending by vehicle
   uint64_t sample_version = ~uint64_t{0};  // the Simulation's state version it was gathered at
 };
 

@@ -5,6 +5,7 @@
 // ledger and the counts. It never formats text: a Run (app/) samples it and hands the samples to the writers
 // in converters/.
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -59,6 +60,9 @@ struct SimulationOptions {
   // every other part runs serve_part() until part 0's Simulation is destroyed.
   const PartPlan* part = nullptr;
   Transport* transport = nullptr;
+  // A part's process: the signal it received and has not acted on (0: none). Each part reports it to part 0
+  // with the step, so that a job whose ranks are signalled one by one stops together (part_signal()).
+  std::function<int()> pending_signal;
   // Co-simulation: the lanes another simulator drives, 1 per lane of the network (null: none; outlives the
   // Simulation; one part only). A vehicle whose front reaches one, or whose trip departs on one, leaves this
   // simulation (Simulation::hand_outs()).
@@ -133,6 +137,9 @@ class Simulation {
   double step_seconds() const { return step_seconds_; }
   /// Part 0 of a partitioned run: every part's stats as of the last step (empty in a run of one part).
   std::vector<PartStats> part_stats() const;
+  /// Part 0 of a partitioned run: the first signal another part's process reported (in part order), once
+  /// one did; 0 before, and in a run of one part.
+  int part_signal() const;
   /// Trips that ended since the last call, in order of arrival then vehicle index.
   std::vector<TripRecord> take_finished_trips();
   /// Records of the trips that have not ended, for SUMO's tripinfo write-unfinished, as of `end` (the time

@@ -380,6 +380,7 @@ void Simulation::report_to_root() {
   w.put_array(ps.departures);
   ps.departures.clear();
   w.put(ps.stats);
+  w.put<int32_t>(opt_.pending_signal ? opt_.pending_signal() : 0);
   const std::vector<Bytes> all = gather_at_root(mine, "report");
   if (all.empty()) return;
   Counts sum;
@@ -404,6 +405,8 @@ void Simulation::report_to_root() {
     for (const TeleportEvent& t : r.get_array<TeleportEvent>()) events.push_back(t);
     for (const DepartDelay& dep : r.get_array<DepartDelay>()) departures.push_back(dep);
     ps.part_stats.push_back(r.get<PartStats>());
+    const int32_t signal = r.get<int32_t>();
+    if (ps.signal == 0) ps.signal = signal;
   }
   // Loaded and removed trips are counted where every part counts them alike: part 0's own.
   sum.loaded = counts_.loaded;
@@ -580,6 +583,8 @@ void Simulation::gather_counters() const {
         counter_column(const_cast<LaneCounters&>(lane_counters_), kept[c])[l[j]] += v[j * kept.size() + c];
   }
 }
+
+int Simulation::part_signal() const { return parts_ ? parts_->signal : 0; }
 
 std::vector<PartStats> Simulation::part_stats() const {
   return parts_ ? parts_->part_stats : std::vector<PartStats>{};
