@@ -21,6 +21,10 @@ std::vector<uint32_t> resolve_corridor(const CorridorSpec& spec, const Network& 
     }
     if (net.edge_is_internal[e])
       throw InputError(at, "'" + item.id + "' is inside a junction: a corridor is made of roads (edge:ID)");
+    if (net.edge_num_lanes[e] == 0)
+      throw InputError(at, "edge '" + item.id +
+                               "' has no lane a road vehicle may use (a footpath, a track): SUMO would have "
+                               "nothing of LPSim's to drive on it");
     edges.push_back(e);
   }
   std::sort(edges.begin(), edges.end());

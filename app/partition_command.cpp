@@ -1,13 +1,16 @@
 // `lpsim partition`: splits a scenario's network into K parts (or summarizes a given partition file),
 // writes the partition file, prints the table of parts and draws the map.
+#include <cctype>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <string>
 
 #include "app/commands.hpp"
 #include "app/output_paths.hpp"
 #include "app/partition_report.hpp"
 #include "app/partition_resolution.hpp"
+#include "app/partitioned_parts.hpp"
 #include "app/scenario_args.hpp"
 #include "converters/edge_entries_reader.hpp"
 #include "converters/partition_file.hpp"
@@ -18,6 +21,18 @@
 
 namespace lpsim {
 
+namespace {
+
+// The map writer draws PNG only: another name would get PNG bytes under a misleading extension.
+void refuse_non_png_map(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext != ".png")
+    throw InputError("--map draws a PNG image: give a file name ending in .png, not '" + path + "'");
+}
+
+}  // namespace
+
 int command_partition(const std::vector<std::string>& args) {
   ConfigSpec config;
   Scenario sc = scenario_from_args(args, &config, CliCommand::Partition);
@@ -26,6 +41,13 @@ int command_partition(const std::vector<std::string>& args) {
   std::vector<int32_t> junction_part;
   int32_t k = config.parts;
   std::string title;
+  refuse_method_without_parts(config);
+  if (!config.partition_map.empty()) refuse_non_png_map(config.partition_map);
+  auto write_map = [&](const std::vector<int32_t>& junction_part, int32_t parts) {
+    if (!config.partition_map.empty())
+      write_partition_map(config.partition_map, net,
+                          lane_parts(net, edge_parts_from_junctions(net, junction_part)), parts);
+  };
   if (!config.partition_file.empty()) {
     if (!config.output_file.empty())
       throw InputError("--partition-file summarizes a partition, -o writes a new one: give one of them");
@@ -33,6 +55,7 @@ int command_partition(const std::vector<std::string>& args) {
     junction_part = resolve_partition(spec, net, k);
     k = spec.parts;
     title = "partition " + config.partition_file + ": " + std::to_string(k) + " parts";
+    write_map(junction_part, k);
   } else {
     if (k < 1) throw InputError("partition needs --parts K (the number of parts)");
     if (config.output_file.empty()) throw InputError("partition needs -o <partition file>");
@@ -41,6 +64,8 @@ int command_partition(const std::vector<std::string>& args) {
     const JunctionGraph g = build_junction_graph(net, sc.demand, config.step_length);
     junction_part = partition_junctions(g, k, method, static_cast<uint64_t>(config.seed));
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    // Before the partition file: a map that cannot be written leaves no half-done result behind.
+    write_map(junction_part, k);
     const std::vector<int32_t> edge_part = edge_parts_from_junctions(net, junction_part);
     std::vector<std::string> ids;
     std::vector<int32_t> parts;
@@ -76,9 +101,6 @@ int command_partition(const std::vector<std::string>& args) {
     add_measured_migrations(summary, net, junction_part, entered);
   }
   std::fputs(describe_partition(summary, title).c_str(), stdout);
-  if (!config.partition_map.empty())
-    write_partition_map(config.partition_map, net,
-                        lane_parts(net, edge_parts_from_junctions(net, junction_part)), k);
   return 0;
 }
 

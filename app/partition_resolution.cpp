@@ -11,6 +11,12 @@ std::vector<int32_t> resolve_partition(const PartitionSpec& spec, const Network&
   if (expected_parts > 0 && spec.parts != expected_parts)
     throw InputError(spec.loc, "the partition file has " + std::to_string(spec.parts) +
                                    " parts, the run asks for " + std::to_string(expected_parts));
+  uint32_t junctions = 0;  // SUMO's internal junctions own no road: a part needs a real one
+  for (const JunctionType t : net.junction_type) junctions += t != JunctionType::Internal ? 1 : 0;
+  if (static_cast<uint32_t>(spec.parts) > junctions)
+    throw InputError(spec.loc, std::to_string(spec.parts) +
+                                   " parts need at least as many junctions; the network has " +
+                                   std::to_string(junctions) + " (SUMO's internal junctions not counted)");
   std::vector<int32_t> edge_part(net.num_edges(), kNone);
   std::vector<int> edge_line(net.num_edges(), 0);
   for (size_t i = 0; i < spec.edge_id.size(); ++i) {

@@ -10,10 +10,21 @@
 
 namespace lpsim {
 
+void refuse_method_without_parts(const ConfigSpec& config) {
+  if (!config.partition_method_given) return;
+  if (!config.partition_file.empty())
+    throw InputError(
+        "--partition-method chooses how --parts splits the network; --partition-file gives the "
+        "parts already: leave one out");
+  if (config.parts < 1)
+    throw InputError("--partition-method chooses how --parts K splits the network: give --parts K as well");
+}
+
 std::vector<int32_t> run_edge_parts(const ConfigSpec& config, const Scenario& sc, int32_t* parts) {
   const Network& net = sc.network;
   std::vector<int32_t> junction_part;
   int32_t k = config.parts;
+  refuse_method_without_parts(config);
   if (!config.partition_file.empty()) {
     const PartitionSpec spec = read_partition_file(config.partition_file);
     junction_part = resolve_partition(spec, net, k);

@@ -20,6 +20,9 @@ namespace lpsim {
 /// partitioned. InputError for a bad partition file or part count (file:line).
 std::vector<int32_t> run_edge_parts(const ConfigSpec& config, const Scenario& sc, int32_t* parts);
 
+/// InputError when --partition-method was given without --parts, or beside --partition-file.
+void refuse_method_without_parts(const ConfigSpec& config);
+
 /// The longest vehicle of the demand's types, metres (how far back a vehicle's tail reaches).
 double longest_vehicle(const Demand& demand);
 

@@ -8,6 +8,7 @@
 #include "converters/sumo_option_catalog.hpp"
 #include "converters/sumocfg_reader.hpp"
 #include "converters/xml_stream.hpp"
+#include "core/partition_spec.hpp"
 
 namespace lpsim {
 
@@ -31,7 +32,6 @@ struct Value {
 enum class Check { None, NonNegative, Positive, AtLeastOne, StepLength, ThreadCount };
 constexpr double kMinStepLength = 0.001, kMaxStepLength = 86400;
 constexpr long long kMaxThreads = 1024;
-constexpr long long kMaxParts = 1000000;
 
 // Which commands use an option: a bit per CliCommand.
 constexpr unsigned kInfo = 1, kConvert = 2, kRun = 4, kPartition = 8, kCosim = 16;
@@ -123,7 +123,7 @@ const OptionDef kOptions[] = {
   {"lpsim-od", "", 0, Kind::Path, Check::None, false, kLoad, "LPSim CSV origin-destination demand", [](ConfigSpec& c, Value&& v) { c.lpsim_od_csv = std::move(v.text); }},
   {"output", "", 'o', Kind::Path, Check::None, true, kConvert | kPartition, "the file to write: the snapshot (convert, .lpsim) or the partition file (partition)", [](ConfigSpec& c, Value&& v) { c.output_file = std::move(v.text); }},
   {"parts", "", 0, Kind::Integer, Check::Positive, true, kPartition | kRun, "the number of parts K (run: the network split into K parts, each stepped by its own threads)", [](ConfigSpec& c, Value&& v) { c.parts = static_cast<int>(v.integer); }},
-  {"partition-method", "", 0, Kind::Method, Check::None, true, kPartition | kRun, "metis (default: balanced k-way), leiden (communities merged into K parts by k-means) or random", [](ConfigSpec& c, Value&& v) { c.partition_method = std::move(v.text); }},
+  {"partition-method", "", 0, Kind::Method, Check::None, true, kPartition | kRun, "metis (default: balanced k-way), leiden (communities merged into K parts by k-means) or random", [](ConfigSpec& c, Value&& v) { c.partition_method = std::move(v.text); c.partition_method_given = true; }},
   {"partition-file", "", 0, Kind::Path, Check::None, true, kPartition | kRun, "a partition file: to summarize (and map) instead of computing one; run: the parts to run in", [](ConfigSpec& c, Value&& v) { c.partition_file = std::move(v.text); }},
   {"migrations-from", "", 0, Kind::Path, Check::None, true, kPartition, "an edgeData output of a run of the scenario: the vehicles of that run that crossed a cut", [](ConfigSpec& c, Value&& v) { c.migrations_from = std::move(v.text); }},
   {"map", "", 0, Kind::Path, Check::None, true, kPartition, "a PNG map of the network coloured by part", [](ConfigSpec& c, Value&& v) { c.partition_map = std::move(v.text); }},

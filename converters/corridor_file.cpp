@@ -12,6 +12,15 @@ std::string trimmed(const std::string& s) {
   return s.substr(b, s.find_last_not_of(" \t\r") + 1 - b);
 }
 
+// The kinds sumo-gui and netedit write are SUMO's element names: a lower-case letter, then letters and
+// digits (junction, poi, busStop, e1Detector). Anything else (Edge, a stray byte) is not a selection line.
+bool selection_kind(const std::string& kind) {
+  if (kind.empty() || kind[0] < 'a' || kind[0] > 'z') return false;
+  for (const char c : kind)
+    if (!((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9'))) return false;
+  return true;
+}
+
 }  // namespace
 
 CorridorSpec read_corridor_file(const std::string& path) {
@@ -21,6 +30,8 @@ CorridorSpec read_corridor_file(const std::string& path) {
   spec.file = path;
   std::string raw;
   for (int line = 1; std::getline(in, raw); ++line) {
+    // Editors on Windows start a UTF-8 file with a byte-order mark.
+    if (line == 1 && raw.compare(0, 3, "\xEF\xBB\xBF") == 0) raw.erase(0, 3);
     const std::string s = trimmed(raw);
     if (s.empty() || s[0] == '#') continue;
     if (s.find_first_of(" \t") != std::string::npos)
@@ -38,6 +49,11 @@ CorridorSpec read_corridor_file(const std::string& path) {
       spec.items.push_back({id, kind == "lane", line});
       continue;
     }
+    if (!selection_kind(kind))
+      throw InputError(SourceLoc{path, line}, "'" + kind +
+                                                  ":' is not a kind of object sumo-gui selects (a corridor "
+                                                  "line is edge:ID, lane:ID or an edge id), got '" +
+                                                  s + "'");
     auto it = spec.other_kinds.begin();
     while (it != spec.other_kinds.end() && it->first != kind) ++it;
     if (it == spec.other_kinds.end())

@@ -5,9 +5,11 @@
 //   edge:<id>      an edge
 //   lane:<id>      a lane: its edge
 //   <kind>:<id>    another kind of object (junction, vehicle, ...): not part of the corridor, counted
+//                  (the caller warns); a kind SUMO has no element for (Edge:, ...) is an error
 //   <id>           an edge (a plain list of edge ids)
 //
-// Blank lines and lines starting with '#' are ignored; surrounding whitespace is not part of an id.
+// Blank lines and lines starting with '#' are ignored; surrounding whitespace and a UTF-8 byte-order mark
+// are not part of an id.
 #include <string>
 
 #include "core/corridor_spec.hpp"

@@ -60,7 +60,9 @@ PartitionSpec read_partition_file(const std::string& path) {
                        "'" + std::string(value) + "' is not a whole number (line '" + std::string(s) + "')");
     if (spec.parts == 0) {
       if (key != "parts") throw InputError(where, "the file must declare 'parts K' before its first edge");
-      if (number < 1) throw InputError(where, "parts must be at least 1, not " + std::to_string(number));
+      if (number < 1 || number > kMaxParts)
+        throw InputError(
+            where, "parts must lie in 1.." + std::to_string(kMaxParts) + ", not " + std::to_string(number));
       spec.parts = number;
       spec.loc = where;
       continue;

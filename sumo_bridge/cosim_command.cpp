@@ -58,8 +58,16 @@ int run_cosim(const std::vector<std::string>& args) {
   refuse_overwrites(sc, CliCommand::Cosim);
   if (config.corridor_file.empty())
     throw InputError("cosim needs --corridor <file> (the edges SUMO simulates)");
-  const std::vector<uint32_t> selected =
-      resolve_corridor(read_corridor_file(config.corridor_file), sc.network);
+  const CorridorSpec corridor_spec = read_corridor_file(config.corridor_file);
+  if (!corridor_spec.other_kinds.empty()) {
+    std::string kinds;
+    for (const auto& [kind, n] : corridor_spec.other_kinds)
+      kinds += (kinds.empty() ? "" : ", ") + std::to_string(n) + " " + kind;
+    std::fprintf(stderr,
+                 "lpsim: warning: corridor %s: left out what is not a road (%s): a corridor is its edges\n",
+                 config.corridor_file.c_str(), kinds.c_str());
+  }
+  const std::vector<uint32_t> selected = resolve_corridor(corridor_spec, sc.network);
   const std::vector<uint32_t> edges = close_corridor(selected, sc.network);
   if (edges.size() > selected.size())
     std::fprintf(

@@ -92,6 +92,7 @@ struct ConfigSpec {
   // computing one, the PNG map to draw, and a run's edgeData to count migrations from.
   int parts = 0;
   std::string partition_method = "metis";
+  bool partition_method_given = false;  // named on the command line (it then needs --parts)
   std::string partition_file, partition_map;
   std::string migrations_from;  // an edgeData output whose entries count the vehicles crossing the cuts
   // `lpsim cosim`: the corridor file, SUMO as a program over TraCI (empty: libsumo in process) and the

@@ -9,6 +9,9 @@
 
 namespace lpsim {
 
+/// The most parts a run may have (--parts, a partition file's `parts`); a network's junctions bound it too.
+inline constexpr int32_t kMaxParts = 1000000;
+
 struct PartitionSpec {
   SourceLoc loc;      // the file (line 0) and, for `parts`, where it was set
   int32_t parts = 0;  // the part count the file declares

@@ -27,20 +27,31 @@ JunctionGraph build_junction_graph(const Network& net, const Demand& demand, dou
   const std::vector<int64_t> uses = count_route_uses(demand, ne).uses;
 
   JunctionGraph g;
-  g.vertex_weight.assign(nj, 1);
-  g.x.assign(net.junction_x.begin(), net.junction_x.end());
-  g.y.assign(net.junction_y.begin(), net.junction_y.end());
-  std::vector<std::vector<std::pair<int32_t, int64_t>>> links(nj);
+  g.num_junctions = nj;
+  std::vector<int32_t> vertex(nj, -1);
+  for (uint32_t j = 0; j < nj; ++j) {
+    if (j < net.junction_type.size() && net.junction_type[j] == JunctionType::Internal) continue;
+    vertex[j] = static_cast<int32_t>(g.junction.size());
+    g.junction.push_back(j);
+    g.x.push_back(net.junction_x[j]);
+    g.y.push_back(net.junction_y[j]);
+  }
+  const auto nv = static_cast<uint32_t>(g.junction.size());
+  g.vertex_weight.assign(nv, 1);
+  std::vector<std::vector<std::pair<int32_t, int64_t>>> links(nv);
   for (uint32_t e = 0; e < ne; ++e) {
     if (net.edge_is_internal[e]) continue;
-    const int32_t from = net.edge_from_junction[e], to = net.edge_to_junction[e];
+    const int32_t from =
+        net.edge_from_junction[e] >= 0 ? vertex[static_cast<uint32_t>(net.edge_from_junction[e])] : -1;
+    const int32_t to =
+        net.edge_to_junction[e] >= 0 ? vertex[static_cast<uint32_t>(net.edge_to_junction[e])] : -1;
     if (to >= 0) g.vertex_weight[static_cast<uint32_t>(to)] += uses[e] * free_flow_steps(net, e, dt);
     if (from < 0 || to < 0 || from == to) continue;
     links[static_cast<uint32_t>(from)].emplace_back(to, uses[e]);
     links[static_cast<uint32_t>(to)].emplace_back(from, uses[e]);
   }
-  g.adj_begin.assign(nj + 1, 0);
-  for (uint32_t j = 0; j < nj; ++j) {
+  g.adj_begin.assign(nv + 1, 0);
+  for (uint32_t j = 0; j < nv; ++j) {
     auto& l = links[j];
     std::sort(l.begin(), l.end());
     for (size_t i = 0; i < l.size(); ++i) {

@@ -13,12 +13,16 @@
 
 namespace lpsim {
 
+/// One vertex per junction of the road network; SUMO's internal junctions (waiting places inside an
+/// intersection, type "internal") are none: no road leads to them, and a part of them alone would be empty.
 struct JunctionGraph {
+  std::vector<uint32_t> junction;  // the network junction of each vertex
+  uint32_t num_junctions = 0;      // the network's, internal ones included
   // CSR adjacency (each undirected edge listed from both ends, neighbours ascending, no self-loops).
-  std::vector<int32_t> adj_begin;   // size junctions + 1
-  std::vector<int32_t> adj;         // neighbour junctions
+  std::vector<int32_t> adj_begin;   // size vertices + 1
+  std::vector<int32_t> adj;         // neighbour vertices
   std::vector<int64_t> adj_weight;  // 1 + vehicles whose route uses a road between the two junctions
-  // Per junction: expected vehicle-steps on the roads leading to it (each route's free-flow traversal of
+  // Per vertex: expected vehicle-steps on the roads leading to it (each route's free-flow traversal of
   // each road, in whole steps, at least one), plus one so that empty junctions weigh something.
   std::vector<int64_t> vertex_weight;
   std::vector<float> x, y;  // junction positions (net coordinates)

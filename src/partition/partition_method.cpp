@@ -36,17 +36,23 @@ std::vector<int32_t> partition_junctions(const JunctionGraph& g, int32_t k, Part
   if (k < 1) throw InputError("the number of parts must be at least 1, not " + std::to_string(k));
   if (static_cast<uint32_t>(k) > g.num_vertices())
     throw InputError(std::to_string(k) + " parts need at least as many junctions; the network has " +
-                     std::to_string(g.num_vertices()));
-  if (k == 1) return std::vector<int32_t>(g.num_vertices(), 0);
-  switch (m) {
-    case PartitionMethod::Metis:
-      return metis_partition(g, k, seed);
-    case PartitionMethod::Leiden:
-      return leiden_kmeans_partition(g, k, seed);
-    case PartitionMethod::Random:
-      return random_partition(g, k, seed);
-  }
-  return {};
+                     std::to_string(g.num_vertices()) + " (SUMO's internal junctions not counted)");
+  std::vector<int32_t> vertex_part(g.num_vertices(), 0);
+  if (k > 1) switch (m) {
+      case PartitionMethod::Metis:
+        vertex_part = metis_partition(g, k, seed);
+        break;
+      case PartitionMethod::Leiden:
+        vertex_part = leiden_kmeans_partition(g, k, seed);
+        break;
+      case PartitionMethod::Random:
+        vertex_part = random_partition(g, k, seed);
+        break;
+    }
+  // An internal junction owns nothing: part 0, as a partition file's junctions without roads.
+  std::vector<int32_t> part(g.num_junctions, 0);
+  for (uint32_t v = 0; v < g.num_vertices(); ++v) part[g.junction[v]] = vertex_part[v];
+  return part;
 }
 
 std::vector<int32_t> random_partition(const JunctionGraph& g, int32_t k, uint64_t seed) {

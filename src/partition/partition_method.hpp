@@ -20,8 +20,9 @@ enum class PartitionMethod {
 std::optional<PartitionMethod> partition_method_from_name(std::string_view name);
 const char* partition_method_name(PartitionMethod m);
 
-/// The part (0..k-1) of each junction of g. k must be at least 1 and at most the number of junctions
-/// (InputError otherwise).
+/// The part (0..k-1) of each junction of the network g was built from (internal junctions: 0). k must be at
+/// least 1 and at most the number of g's vertices (InputError otherwise). The methods below give the part of
+/// each vertex.
 std::vector<int32_t> partition_junctions(const JunctionGraph& g, int32_t k, PartitionMethod m, uint64_t seed);
 
 std::vector<int32_t> metis_partition(const JunctionGraph& g, int32_t k, uint64_t seed);

@@ -43,7 +43,9 @@ PartitionSummary summarize_partition(const Network& net, const Demand& demand,
                                      const std::vector<int32_t>& junction_part, int32_t k, double dt) {
   PartitionSummary s;
   s.parts.resize(static_cast<size_t>(k));
-  for (int32_t p : junction_part) ++s.parts[static_cast<size_t>(p)].junctions;
+  for (uint32_t j = 0; j < junction_part.size(); ++j)
+    if (j >= net.junction_type.size() || net.junction_type[j] != JunctionType::Internal)
+      ++s.parts[static_cast<size_t>(junction_part[j])].junctions;
   // A departure is no migration: a cut road's entries are.
   const auto [uses, entries] = count_route_uses(demand, net.num_edges());
   const std::vector<int32_t> edge_part = edge_parts_from_junctions(net, junction_part);

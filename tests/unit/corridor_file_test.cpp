@@ -13,7 +13,9 @@
 #include "app/scenario.hpp"
 #include "converters/cli_options.hpp"
 #include "core/error.hpp"
+#include "net/network_builder.hpp"
 #include "temp_dir.hpp"
+#include "unit/test_nets.hpp"
 
 namespace lpsim {
 namespace {
@@ -60,6 +62,12 @@ TEST_F(CorridorFileTest, ReadsASumoGuiSelectionAndPlainIds) {
   EXPECT_EQ(spec.items[2].line, 8);
   const std::vector<std::pair<std::string, int>> others{{"junction", 2}, {"vehicle", 1}};
   EXPECT_EQ(spec.other_kinds, others);
+  // A UTF-8 byte-order mark before the first line is not part of it (before, it hid that line's edge).
+  const CorridorSpec bom =
+      read_corridor_file(file("\xEF\xBB\xBF"
+                              "edge:A0B0\n"));
+  ASSERT_EQ(bom.items.size(), 1u);
+  EXPECT_EQ(bom.items[0].id, "A0B0");
 
   const Network& net = grid().network;
   const std::vector<uint32_t> edges = resolve_corridor(spec, net);
@@ -82,11 +90,35 @@ TEST_F(CorridorFileTest, RefusesWhatIsNotACorridorWithFileAndLine) {
             dir.path().string() + "/corridor.txt: the corridor file names no edge");
   EXPECT_NE(error(":B0_0\n").find("1: ':B0_0' is inside a junction"), std::string::npos) << error(":B0_0\n");
   EXPECT_NE(error("").find("names no edge"), std::string::npos);
+  // A kind sumo-gui never writes is not a selection line (before, 'Edge:A0B0' was dropped silently).
+  EXPECT_EQ(
+      error("edge:A0B0\nEdge:B0C0\n"),
+      at + "2: 'Edge:' is not a kind of object sumo-gui selects (a corridor line is edge:ID, lane:ID or an "
+           "edge id), got 'Edge:B0C0'");
+  EXPECT_NE(error("edge:A0B0\nj\x01x:B0\n").find(at + "2: "), std::string::npos);
   try {
     read_corridor_file(dir.path().string() + "/missing.txt");
     FAIL();
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("missing.txt: cannot open corridor file"), std::string::npos);
+  }
+}
+
+// A road no vehicle may use (a footpath) has nothing of LPSim's for SUMO to drive: refused with file:line.
+TEST_F(CorridorFileTest, RefusesAnEdgeWithoutVehicleLanes) {
+  NetSpec spec = test::make_signal_spec();
+  for (auto& e : spec.edges)
+    if (e.id == "WtoC")
+      for (auto& l : e.lanes) l.permissions = kVClassPedestrian;
+  const Network net = build_network(spec);
+  ASSERT_EQ(net.edge_num_lanes[net.edge_index.at("WtoC")], 0);
+  try {
+    resolve_corridor(read_corridor_file(file("edge:NtoC\nedge:WtoC\n")), net);
+    FAIL() << "a footpath taken into the corridor";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("corridor.txt:2: edge 'WtoC' has no lane a road vehicle may use"),
+              std::string::npos)
+        << e.what();
   }
 }
 

@@ -46,7 +46,11 @@ std::vector<int32_t> metis_lane_parts(int32_t k, uint64_t seed) {
 TEST(PartitionTest, JunctionGraphIsSymmetricAndWeighsTheDemand) {
   const Scenario& sc = grid();
   const JunctionGraph g = build_junction_graph(sc.network, sc.demand, 1.0);
-  ASSERT_EQ(g.num_vertices(), sc.network.num_junctions());
+  // One vertex per junction but SUMO's internal ones.
+  uint32_t real = 0;
+  for (const JunctionType t : sc.network.junction_type) real += t != JunctionType::Internal ? 1 : 0;
+  ASSERT_EQ(g.num_vertices(), real);
+  ASSERT_EQ(g.junction.size(), real);
   std::set<std::pair<int32_t, int32_t>> pairs;
   for (uint32_t u = 0; u < g.num_vertices(); ++u)
     for (int32_t a = g.adj_begin[u]; a < g.adj_begin[u + 1]; ++a) {
@@ -79,6 +83,21 @@ TEST(PartitionTest, EveryMethodGivesKNonEmptyPartsDeterministically) {
       }
       for (int32_t p = 0; p < k; ++p) EXPECT_GT(count[static_cast<size_t>(p)], 0) << partition_method_name(m);
     }
+  }
+  // The parts are counted in real junctions (grid_tls: 25 of its 145; the others are SUMO's internal ones,
+  // which no road leads to): K may be 25, not 26, and the summary counts 25 junctions.
+  const auto most = static_cast<int32_t>(g.num_vertices());
+  EXPECT_EQ(most, 25);
+  const PartitionSummary s = summarize_partition(
+      sc.network, sc.demand, partition_junctions(g, most, PartitionMethod::Random, 1), most, 1.0);
+  uint32_t junctions = 0;
+  for (const auto& p : s.parts) junctions += p.junctions;
+  EXPECT_EQ(junctions, 25u);
+  try {
+    partition_junctions(g, most + 1, PartitionMethod::Metis, 1);
+    ADD_FAILURE() << "26 parts of 25 junctions accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("the network has 25"), std::string::npos) << e.what();
   }
   EXPECT_THROW(partition_junctions(g, 0, PartitionMethod::Metis, 1), InputError);
   EXPECT_THROW(partition_junctions(g, static_cast<int32_t>(g.num_vertices()) + 1, PartitionMethod::Metis, 1),
@@ -361,6 +380,35 @@ TEST_F(PartitionFileTest, RunTakesAPartitionFileAndRefusesABadOne) {
       test::run_lpsim(dir.path(), {"run", "-c", kConfig, "--end", "60", "--partition-file", "q.txt"});
   EXPECT_EQ(missing.exit_code, 2);
   EXPECT_NE(missing.err.find("q.txt"), std::string::npos) << missing.err;
+}
+
+// Partition input that used to be taken silently or to grow without bound: a part count beyond the limit or
+// beyond the network's real junctions (grid_tls: 25; SUMO's 120 internal ones own no road), a method without
+// --parts or beside a partition file, a map that is not a PNG; a map that cannot be written leaves no
+// partition file behind. Each is one error line and exit 2.
+TEST_F(PartitionFileTest, RefusesUnboundedOrMeaninglessPartitionInput) {
+  auto refused = [&](const std::vector<std::string>& args, const std::string& says) {
+    const test::CliResult r = test::run_lpsim(dir.path(), args);
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_EQ(test::lines_of(r.err).size(), 1u) << r.err;
+    EXPECT_NE(r.err.find(says), std::string::npos) << r.err;
+  };
+  write("parts 1000000000\nA0B0 0\n");
+  refused({"run", "-c", kConfig, "--partition-file", "q.txt"}, "q.txt:1: parts must lie in 1..1000000");
+  write("parts 26\nA0B0 0\n");
+  refused({"run", "-c", kConfig, "--partition-file", "q.txt"},
+          "26 parts need at least as many junctions; the network has 25");
+  refused({"partition", "-c", kConfig, "--parts", "26", "-o", "p.txt"}, "the network has 25");
+  refused({"run", "-c", kConfig, "--partition-method", "leiden"}, "give --parts K as well");
+  write("parts 3\n");
+  refused({"run", "-c", kConfig, "--partition-method", "leiden", "--partition-file", "q.txt"},
+          "--partition-file gives the parts already");
+  refused({"partition", "-c", kConfig, "--parts", "2", "-o", "p.txt", "--map", "p.jpg"}, "ending in .png");
+  refused({"partition", "-c", kConfig, "--parts", "2", "-o", "p.txt", "--map", "nodir/p.png"}, "p.png");
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "p.txt"));
+  const test::CliResult most =
+      test::run_lpsim(dir.path(), {"partition", "-c", kConfig, "--parts", "25", "-o", "p.txt"});
+  EXPECT_EQ(most.exit_code, 0) << most.err;
 }
 
 // The vehicles of a run that cross a cut, counted from its edgeData: on the grid every vehicle completes
