@@ -26,10 +26,6 @@ namespace lpsim {
 
 namespace {
 
-// How long a part waits for another in one round: a part's step, or its start (building its tables), takes
-// far less; past this the other part has stopped.
-constexpr double kPartTimeout = 600;
-
 // What ranks of one job must share to exchange their state as bytes: the version, the build, and the sizes
 // of what crosses between them.
 std::string build_id() {
@@ -75,7 +71,7 @@ int command_run(const std::vector<std::string>& args) {
   std::optional<InterruptGuard> interrupt;
   if (ranks > 1) {
     interrupt.emplace();
-    mpi = std::make_unique<MpiTransport>(kPartTimeout);
+    mpi = std::make_unique<MpiTransport>(config.part_timeout);
     mpi->check_same_build(build_id());
     rank_plan = part_plan(sc.network, edge_part, parts, longest_vehicle(sc.demand), mpi->rank());
     if (mpi->rank() != 0) release_name_indexes(sc.network);
@@ -94,7 +90,8 @@ int command_run(const std::vector<std::string>& args) {
     }
   } else if (parts > 1) {
     others = std::make_unique<InProcessParts>(
-        sc, options, part_plans(sc.network, edge_part, parts, longest_vehicle(sc.demand)), kPartTimeout);
+        sc, options, part_plans(sc.network, edge_part, parts, longest_vehicle(sc.demand)),
+        config.part_timeout);
     options = others->part0_options(options);
   }
 

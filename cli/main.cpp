@@ -65,6 +65,10 @@ int dispatch(const std::string& command, const std::vector<std::string>& args) {
   } catch (const std::bad_alloc&) {
     std::fprintf(stderr, "lpsim: error: out of memory\n");
     return 1;
+  } catch (const lpsim::TransportError& e) {
+    // A part that stopped or died is a fault of the job, not of LPSim.
+    std::fprintf(stderr, "lpsim: error: %s\n", e.what());
+    return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "lpsim: internal error: %s\n", e.what());
     return 1;

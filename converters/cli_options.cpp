@@ -117,12 +117,14 @@ const OptionDef kOptions[] = {
   {"lanedata-output", "", 0, Kind::Path, Check::None, false, kRuns, "SUMO laneData output, one interval for the whole run", [](ConfigSpec& c, Value&& v) { c.outputs.lanedata = std::move(v.text); }},
   {"corridor", "", 0, Kind::Path, Check::None, true, kCosim, "the edges SUMO simulates: a sumo-gui/netedit selection file (edge:ID, lane:ID lines) or plain edge ids", [](ConfigSpec& c, Value&& v) { c.corridor_file = std::move(v.text); }},
   {"sumo-binary", "", 0, Kind::Text, Check::None, true, kCosim, "run SUMO as this program (sumo, sumo-gui, or a path) over TraCI on 127.0.0.1 instead of in process (libsumo)", [](ConfigSpec& c, Value&& v) { c.sumo_binary = std::move(v.text); }},
+  {"sumo-timeout", "", 0, Kind::Time, Check::Positive, true, kCosim, "over TraCI (--sumo-binary): seconds SUMO may take to answer one call before it is taken for hung and killed (default 300)", [](ConfigSpec& c, Value&& v) { c.sumo_timeout = v.seconds; }},
   {"sumo-args", "", 0, Kind::Text, Check::None, true, kCosim, "further SUMO options, as on its command line (quoted: --sumo-args \"--lateral-resolution 0.8\")", [](ConfigSpec& c, Value&& v) { c.sumo_args = std::move(v.text); }},
   {"lpsim-nodes", "", 0, Kind::Path, Check::None, false, kLoad, "LPSim CSV nodes (with --lpsim-edges, instead of a SUMO network)", [](ConfigSpec& c, Value&& v) { c.lpsim_nodes_csv = std::move(v.text); }},
   {"lpsim-edges", "", 0, Kind::Path, Check::None, false, kLoad, "LPSim CSV edges (with --lpsim-nodes)", [](ConfigSpec& c, Value&& v) { c.lpsim_edges_csv = std::move(v.text); }},
   {"lpsim-od", "", 0, Kind::Path, Check::None, false, kLoad, "LPSim CSV origin-destination demand", [](ConfigSpec& c, Value&& v) { c.lpsim_od_csv = std::move(v.text); }},
   {"output", "", 'o', Kind::Path, Check::None, true, kConvert | kPartition, "the file to write: the snapshot (convert, .lpsim) or the partition file (partition)", [](ConfigSpec& c, Value&& v) { c.output_file = std::move(v.text); }},
   {"parts", "", 0, Kind::Integer, Check::Positive, true, kPartition | kRun, "the number of parts K (run: the network split into K parts, each stepped by its own threads)", [](ConfigSpec& c, Value&& v) { c.parts = static_cast<int>(v.integer); }},
+  {"part-timeout", "", 0, Kind::Time, Check::Positive, true, kRun, "seconds a part waits for another in one exchange before it takes it for stopped and ends the run with an error (default 600)", [](ConfigSpec& c, Value&& v) { c.part_timeout = v.seconds; }},
   {"partition-method", "", 0, Kind::Method, Check::None, true, kPartition | kRun, "metis (default: balanced k-way), leiden (communities merged into K parts by k-means) or random", [](ConfigSpec& c, Value&& v) { c.partition_method = std::move(v.text); c.partition_method_given = true; }},
   {"partition-file", "", 0, Kind::Path, Check::None, true, kPartition | kRun, "a partition file: to summarize (and map) instead of computing one; run: the parts to run in", [](ConfigSpec& c, Value&& v) { c.partition_file = std::move(v.text); }},
   {"migrations-from", "", 0, Kind::Path, Check::None, true, kPartition, "an edgeData output of a run of the scenario: the vehicles of that run that crossed a cut", [](ConfigSpec& c, Value&& v) { c.migrations_from = std::move(v.text); }},
@@ -184,6 +186,7 @@ Value convert(const OptionDef& def, std::string_view name, const std::string& va
       auto t = parse_sumo_time(value);
       if (!t) bad_value(where, name, value, "expected a time (seconds, h:m:s or d:h:m:s)");
       if (def.check == Check::NonNegative && *t < 0) bad_value(where, name, value, "expected a time >= 0");
+      if (def.check == Check::Positive && !(*t > 0)) bad_value(where, name, value, "expected a time > 0");
       if (def.check == Check::StepLength && !(*t >= kMinStepLength && *t <= kMaxStepLength))
         bad_value(where, name, value, "expected a step length from 0.001 to 86400 s");
       if (!time_in_range(*t)) bad_value(where, name, value, "expected a time within +-1e12 s");

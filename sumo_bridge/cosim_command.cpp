@@ -19,6 +19,7 @@
 #include "converters/corridor_file.hpp"
 #include "core/error.hpp"
 #include "sumo_bridge/cosimulation.hpp"
+#include "sumo_bridge/sumo_arguments.hpp"
 
 namespace lpsim {
 
@@ -81,6 +82,8 @@ int run_cosim(const std::vector<std::string>& args) {
   cosim.mode = config.sumo_binary.empty() ? SumoMode::Libsumo : SumoMode::Traci;
   if (!config.sumo_binary.empty()) cosim.sumo_binary = config.sumo_binary;
   cosim.sumo_args = split_sumo_args(config.sumo_args);
+  refuse_waiting_sumo_options(cosim.sumo_args);  // before any output file exists
+  cosim.answer_timeout_s = config.sumo_timeout;
 
   SimulationOptions options = simulation_options(config);
   const DeviceChoice device = select_device(config.device);

@@ -83,9 +83,20 @@ std::string sumo_side_path(const std::string& path) {
   return (p.parent_path() / (std::string(kSumoPrefix) + p.filename().string())).string();
 }
 
+void refuse_waiting_sumo_options(const std::vector<std::string>& user_args) {
+  for (const std::string& a : user_args) {
+    const std::string name = a.substr(0, a.find('='));
+    if (name == "--remote-port" || name == "--num-clients")
+      throw InputError("--sumo-args: " + name +
+                       " makes SUMO wait for TraCI clients, and the co-simulation is its only one: the run "
+                       "would hang (--sumo-binary runs a SUMO of its own over TraCI)");
+  }
+}
+
 std::vector<std::string> cosim_sumo_arguments(const ConfigSpec& c, const std::string& tripinfo,
                                               const std::string& extra_additional,
                                               const std::vector<std::string>& user_args) {
+  refuse_waiting_sumo_options(user_args);
   // The co-simulation's options, as (name, value) pairs.
   std::vector<std::pair<std::string, std::string>> ours{{"--net-file", c.net_file}};
   // The route files for their vTypes (and distributions) only: SUMO drops every vehicle and flow at scale 0.

@@ -22,6 +22,10 @@ std::string sumo_number(double x);
 /// `extra_additional`, begin, step length, seed, teleport and impatience times, the default car-following
 /// model, and outputs written as sumo_side_path() of LPSim's (tripinfo to `tripinfo`); then `user_args`,
 /// whose options replace those of the same name (an InputError for the ones the co-simulation depends on).
+/// InputError for a SUMO option in `user_args` that makes SUMO wait for TraCI clients (--remote-port,
+/// --num-clients): the co-simulation is SUMO's only client, so the run would hang.
+void refuse_waiting_sumo_options(const std::vector<std::string>& user_args);
+
 std::vector<std::string> cosim_sumo_arguments(const ConfigSpec& config, const std::string& tripinfo,
                                               const std::string& extra_additional,
                                               const std::vector<std::string>& user_args);

@@ -93,6 +93,10 @@ struct ConfigSpec {
   int parts = 0;
   std::string partition_method = "metis";
   bool partition_method_given = false;  // named on the command line (it then needs --parts)
+  // How long a part waits for another in one exchange before it calls it stopped (s).
+  double part_timeout = 600;
+  // Co-simulation over TraCI: how long SUMO may take to answer one call before it is killed (s).
+  double sumo_timeout = 300;
   std::string partition_file, partition_map;
   std::string migrations_from;  // an edgeData output whose entries count the vehicles crossing the cuts
   // `lpsim cosim`: the corridor file, SUMO as a program over TraCI (empty: libsumo in process) and the

@@ -351,13 +351,15 @@ TEST(CosimulationTest, SumoKilledMidRunIsOneErrorAndLpsimsOutputsEndWellFormed) 
 
 TEST(CosimulationCliTest, RunsWithACorridorFileAndRefusesUnknownEdgesWithFileAndLine) {
   test::TempDir dir("cosim_cli");
-  const std::string corridor = dir.write("corridor.txt", "edge:A2B2\nedge:B2C2\n");
+  const std::string corridor = dir.write("corridor.txt", "edge:A2B2\nedge:B2C2\njunction:B2\njunction:C2\n");
   const test::CliResult ok =
       test::run_lpsim(dir.path(), {"cosim", "-c", kGrid, "--corridor", corridor, "--tripinfo-output",
                                    "ti.xml", "--edgedata-output", "ed.xml", "--no-step-log", "--end", "400",
                                    "--sumo-args", "--no-warnings true"});
   EXPECT_EQ(ok.exit_code, 0) << ok.err;
   EXPECT_NE(ok.out.find("Handed into SUMO: "), std::string::npos) << ok.out;
+  // The selection's junctions are named, not silently dropped.
+  EXPECT_NE(ok.err.find("left out what is not a road (2 junction)"), std::string::npos) << ok.err;
   // Outputs named relative to the working folder: SUMO's side lands beside LPSim's.
   for (const char* f : {"ti.xml", "sumo.ti.xml", "ed.xml", "sumo.ed.xml"})
     EXPECT_TRUE(fs::exists(fs::path(dir.path()) / f)) << f;
@@ -369,6 +371,19 @@ TEST(CosimulationCliTest, RunsWithACorridorFileAndRefusesUnknownEdgesWithFileAnd
   const test::CliResult none = test::run_lpsim(dir.path(), {"cosim", "-c", kGrid});
   EXPECT_EQ(none.exit_code, 2);
   EXPECT_NE(none.err.find("--corridor"), std::string::npos) << none.err;
+  // SUMO told to wait for TraCI clients would wait for ever: refused before any output exists.
+  for (const char* waits : {"--remote-port 8813", "--num-clients=2"}) {
+    const test::CliResult hang = test::run_lpsim(
+        dir.path(),
+        {"cosim", "-c", kGrid, "--corridor", corridor, "--tripinfo-output", "t3.xml", "--sumo-args", waits});
+    EXPECT_EQ(hang.exit_code, 2) << waits;
+    EXPECT_NE(hang.err.find("makes SUMO wait for TraCI clients"), std::string::npos) << hang.err;
+    EXPECT_FALSE(fs::exists(fs::path(dir.path()) / "t3.xml")) << waits;
+  }
+  const test::CliResult zero =
+      test::run_lpsim(dir.path(), {"cosim", "-c", kGrid, "--corridor", corridor, "--sumo-timeout", "0"});
+  EXPECT_EQ(zero.exit_code, 2);
+  EXPECT_NE(zero.err.find("expected a time > 0"), std::string::npos) << zero.err;
 }
 
 }  // namespace

@@ -143,5 +143,35 @@ TEST(MpiPartitionedRunTest, ARankKilledMidRunEndsTheJob) {
   EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(60));
 }
 
+// A rank that stops without dying (SIGSTOP, a debugger, a swapped-out node) ends the job after
+// --part-timeout with one error line naming it, and rank 0 waits for it without spinning a core (it polled
+// MPI every 20 us before: 1.4 cores).
+TEST(MpiPartitionedRunTest, AStoppedRankEndsTheJobAfterThePartTimeoutWithoutSpinning) {
+  if (!have_mpirun()) GTEST_SKIP() << "mpirun not installed";
+  test::TempDir tmp("lpsim_mpi_stop");
+  std::string cmd =
+      "cd " + test::shell_quote(tmp.path().string()) +
+      " && mine() { for p in $(pgrep -x lpsim); do "
+      "[ \"$(readlink /proc/$p/cwd)\" = \"$PWD\" ] && grep -qz \"^OMPI_COMM_WORLD_RANK=$1$\" "
+      "/proc/$p/environ "
+      "&& echo $p; done; }; (" +
+      test::shell_quote(LPSIM_MPIEXEC) + " -n 2 --allow-run-as-root --oversubscribe " +
+      test::shell_quote(LPSIM_BINARY) + " run " + test::shell_quote(scenario("grid_tls")) +
+      " --parts 2 --end 1000000 --part-timeout 4 --fcd-output fcd.xml --no-step-log > out.txt 2> err.txt & "
+      "job=$!; for i in $(seq 2000); do [ $(stat -c %s fcd.xml 2>/dev/null || echo 0) -gt 20000 ] && break; "
+      "sleep 0.005; done; r0=$(mine 0); r1=$(mine 1); kill -STOP $r1; sleep 1; "
+      "a=$(awk '{print $14+$15}' /proc/$r0/stat); sleep 2; b=$(awk '{print $14+$15}' /proc/$r0/stat); "
+      "echo $((b-a)) > ticks.txt; wait $job; echo $? > status.txt; kill -9 $r1 2>/dev/null; true)";
+  const auto t0 = std::chrono::steady_clock::now();
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  const std::string err = test::read_file(tmp.path() / "err.txt");
+  EXPECT_NE(std::stoi(test::read_file(tmp.path() / "status.txt")), 0) << err;
+  EXPECT_NE(err.find("lpsim: error: rank 0: receiving from rank 1 in round"), std::string::npos) << err;
+  EXPECT_NE(err.find("took more than 4 s: has it stopped?"), std::string::npos) << err;
+  // Clock ticks (1/100 s) rank 0 spent in 2 s of waiting: a spinning rank spends about 200.
+  EXPECT_LT(std::stoi(test::read_file(tmp.path() / "ticks.txt")), 40);
+  EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(60));
+}
+
 }  // namespace
 }  // namespace lpsim

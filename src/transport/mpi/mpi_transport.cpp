@@ -14,12 +14,20 @@ namespace {
 // poll, yielding the core, for this long before sleeping between polls.
 constexpr auto kPollBeforeSleep = std::chrono::microseconds(500);
 
-// Waits between two polls of a round started at `start`.
+// Waits between two polls of a round started at `start`. The longer a round waits, the longer the sleeps: a
+// peer that is slow this step is met within 20 us, one still building its tables or stopped (SIGSTOP, a
+// debugger) costs a few polls a second instead of a core spinning in MPI's progress engine.
 void pause(std::chrono::steady_clock::time_point start) {
-  if (std::chrono::steady_clock::now() - start < kPollBeforeSleep)
+  using std::chrono::microseconds, std::chrono::milliseconds;
+  const auto waited = std::chrono::steady_clock::now() - start;
+  if (waited < kPollBeforeSleep)
     std::this_thread::yield();
+  else if (waited < milliseconds(50))
+    std::this_thread::sleep_for(microseconds(20));
+  else if (waited < milliseconds(1000))
+    std::this_thread::sleep_for(milliseconds(1));
   else
-    std::this_thread::sleep_for(std::chrono::microseconds(20));
+    std::this_thread::sleep_for(milliseconds(20));
 }
 
 // Rounds go in lock-step, so a tag that wraps after 32,768 rounds (the least MPI_TAG_UB MPI allows) never
