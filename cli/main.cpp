@@ -8,6 +8,7 @@
 
 #include "app/commands.hpp"
 #include "app/interrupt.hpp"
+#include "converters/cli_options.hpp"
 #include "core/error.hpp"
 #include "sumo_bridge/cosim_command.hpp"
 #include "transport/mpi/mpi_transport.hpp"
@@ -35,15 +36,6 @@ commands:
 
 options follow SUMO's names; `lpsim <command> --help` lists those a command takes.
 )";
-
-// `lpsim <command> ... -h|--help|-?` anywhere among the command's arguments, as SUMO takes it.
-bool asks_for_help(const std::vector<std::string>& args) {
-  for (const auto& a : args) {
-    if (a == "--") return false;
-    if (a == "-h" || a == "--help" || a == "-?") return true;
-  }
-  return false;
-}
 
 // Runs a command: its exit status, errors printed as one line.
 int dispatch(const std::string& command, const std::vector<std::string>& args) {
@@ -88,12 +80,22 @@ int main(int argc, char** argv) {
   }
   const std::string command = args[0];
   args.erase(args.begin());
-  if (asks_for_help(args)) {
+  // -h, --help or -? among the command's options, as SUMO takes it (not as an option's value).
+  if (lpsim::help_requested(args)) {
     const std::string help = lpsim::command_help(command);
     if (!help.empty()) {
       std::fputs(help.c_str(), stdout);
       return 0;
     }
+  }
+  // Only a run is split over ranks: any other command would run once per rank, writing the same files.
+  if (mpi && lpsim::MpiSession::world_size() > 1 && command != "run") {
+    if (lpsim::MpiSession::world_rank() == 0)
+      std::fprintf(stderr,
+                   "lpsim: error: under mpirun only 'lpsim run' runs (one part per rank): start 'lpsim %s' "
+                   "without mpirun\n",
+                   command.c_str());
+    return lpsim::kExitBadInput;  // every rank alike: no rank waits for another
   }
   const int code = dispatch(command, args);
   // A rank that failed ends the job: the others would wait for it until their rounds time out. A signal

@@ -398,6 +398,25 @@ std::optional<bool> parse_sumo_bool(std::string_view text) {
   return std::nullopt;
 }
 
+bool help_requested(const std::vector<std::string>& args) {
+  for (size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    if (a == "--") return false;
+    if (a == "-h" || a == "--help" || a == "-?") return true;
+    if (!looks_like_option(a) || a.find('=') != std::string::npos) continue;
+    const OptionDef* def = a.rfind("--", 0) == 0 ? find_long(std::string_view(a).substr(2))
+                           : a.size() == 2       ? find_short(a[1])
+                                                 : nullptr;
+    // Free text takes the next word whatever it looks like (as the parser does); other values only when
+    // they do not look like an option.
+    if (def && def->kind == Kind::Text)
+      ++i;
+    else if (def && def->kind != Kind::Bool && i + 1 < args.size() && !looks_like_option(args[i + 1]))
+      ++i;
+  }
+  return false;
+}
+
 ConfigSpec parse_cli_options(const std::vector<std::string>& args, std::vector<std::string>* positional,
                              std::optional<CliCommand> command) {
   struct Given {

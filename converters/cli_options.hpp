@@ -57,4 +57,8 @@ void check_time_window(const ConfigSpec& config, const SourceLoc& where);
 /// One line per option `command` takes ("  -e, --end TIME   description"), from the option table itself.
 std::string describe_options(CliCommand command);
 
+/// Whether `args` (a command's, after its name) ask for help: -h, --help or -? where an option may stand,
+/// not as the value of one (--sumo-args --help passes --help on to SUMO), and not after "--".
+bool help_requested(const std::vector<std::string>& args);
+
 }  // namespace lpsim

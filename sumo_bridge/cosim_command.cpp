@@ -57,6 +57,7 @@ int run_cosim(const std::vector<std::string>& args) {
   ConfigSpec config;
   Scenario sc = scenario_from_args(args, &config, CliCommand::Cosim);
   refuse_overwrites(sc, CliCommand::Cosim);
+  refuse_what_cosim_cannot_run(sc, config);  // before the Run creates any output file
   if (config.corridor_file.empty())
     throw InputError("cosim needs --corridor <file> (the edges SUMO simulates)");
   const CorridorSpec corridor_spec = read_corridor_file(config.corridor_file);

@@ -39,18 +39,22 @@ std::vector<uint8_t> corridor_lanes(const Network& net, const std::vector<uint32
   return lanes;
 }
 
+void refuse_what_cosim_cannot_run(const Scenario& sc, const ConfigSpec& c) {
+  if (c.net_file.empty())
+    throw InputError("a co-simulation needs the scenario's SUMO files (-c or -n/-r), not a snapshot or CSV");
+  // The merge of the two simulators' edgeData (converters/meandata_merge) knows traffic measures only.
+  for (const MeanDataSpec& m : sc.mean_data)
+    if (m.type == MeanDataType::Emissions)
+      throw InputError(m.loc, std::string(m.lane_level ? "laneData" : "edgeData") + " '" + m.id +
+                                  "': emissions outputs are not supported in a co-simulation");
+}
+
 Cosimulation::Cosimulation(Run& run, const std::vector<uint8_t>& corridor_lanes, const CosimOptions& options)
     : run_(run), net_(run.scenario().network), corridor_(corridor_lanes), options_(options) {
   if (run_.options().outside_lanes != &corridor_)
     throw std::invalid_argument("the co-simulation's run must drive outside the corridor's lanes");
   const ConfigSpec& c = run_.config();
-  if (c.net_file.empty())
-    throw InputError("a co-simulation needs the scenario's SUMO files (-c or -n/-r), not a snapshot or CSV");
-  // The merge of the two simulators' edgeData (converters/meandata_merge) knows traffic measures only.
-  for (const MeanDataSpec& m : run_.scenario().mean_data)
-    if (m.type == MeanDataType::Emissions)
-      throw InputError(m.loc, std::string(m.lane_level ? "laneData" : "edgeData") + " '" + m.id +
-                                  "': emissions outputs are not supported in a co-simulation");
+  refuse_what_cosim_cannot_run(run_.scenario(), c);
   // SUMO's tripinfo is needed to complete the trips it drove part of: beside the run's, or a scratch file.
   if (!c.outputs.tripinfo.empty()) {
     sumo_tripinfo_ = c.outputs.tripinfo;

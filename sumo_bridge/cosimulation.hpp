@@ -26,6 +26,10 @@ struct CosimOptions {
   double answer_timeout_s = 300;       // over TraCI: a SUMO that does not answer a call within this is killed
 };
 
+/// InputError for a scenario a co-simulation cannot run: one without its SUMO files (a snapshot, a CSV
+/// network), or with an emissions edgeData/laneData. Called before any output exists.
+void refuse_what_cosim_cannot_run(const Scenario& sc, const ConfigSpec& config);
+
 /// 1 for each lane of the corridor's edges, 0 elsewhere (SimulationOptions::outside_lanes).
 std::vector<uint8_t> corridor_lanes(const Network& net, const std::vector<uint32_t>& corridor_edges);
 

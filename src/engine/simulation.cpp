@@ -262,8 +262,10 @@ void Simulation::step() {
   // joins its queue at the head (handle_vehicle_ends), a departure at the tail.
   enqueue_due(time_ms_ + dt_ms_);
   StepOutcome& out = s.finish_end_of_step();
-  counts_.vehicle_updates += num_active_;
   check_kept(out.kept);
+  // The vehicles the step moved: not the slots of those that left the road in the step before (they only
+  // cleared their footprint), so a vehicle that drives into another part counts once.
+  counts_.vehicle_updates += out.kept;
 
   time_ms_ += dt_ms_;
   ++step_;

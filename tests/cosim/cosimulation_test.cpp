@@ -380,6 +380,16 @@ TEST(CosimulationCliTest, RunsWithACorridorFileAndRefusesUnknownEdgesWithFileAnd
     EXPECT_NE(hang.err.find("makes SUMO wait for TraCI clients"), std::string::npos) << hang.err;
     EXPECT_FALSE(fs::exists(fs::path(dir.path()) / "t3.xml")) << waits;
   }
+  // A snapshot has no SUMO files for SUMO to load: refused before the outputs are created (before, an
+  // existing tripinfo was emptied first).
+  const test::CliResult snap = test::run_lpsim(dir.path(), {"convert", "-c", kGrid, "-o", "g.lpsim"});
+  ASSERT_EQ(snap.exit_code, 0) << snap.err;
+  dir.write("kept.xml", "keep me\n");
+  const test::CliResult from_snapshot = test::run_lpsim(
+      dir.path(), {"cosim", "g.lpsim", "--corridor", corridor, "--tripinfo-output", "kept.xml"});
+  EXPECT_EQ(from_snapshot.exit_code, 2);
+  EXPECT_NE(from_snapshot.err.find("not a snapshot"), std::string::npos) << from_snapshot.err;
+  EXPECT_EQ(test::read_file(fs::path(dir.path()) / "kept.xml"), "keep me\n");
   const test::CliResult zero =
       test::run_lpsim(dir.path(), {"cosim", "-c", kGrid, "--corridor", corridor, "--sumo-timeout", "0"});
   EXPECT_EQ(zero.exit_code, 2);

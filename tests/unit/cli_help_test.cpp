@@ -111,6 +111,23 @@ TEST(CliHelpTest, EveryListedOptionIsAcceptedByItsCommandAndHasADescription) {
   EXPECT_THROW(parse_cli_options({"-o", "f.lpsim"}, nullptr, CliCommand::Run), InputError);
 }
 
+// -h, --help and -? ask for help where an option may stand; as an option's value they are that value (before,
+// `--sumo-args --help` printed lpsim's help instead of reaching SUMO).
+TEST(CliHelpTest, HelpAsAnOptionsValueIsAValue) {
+  EXPECT_TRUE(help_requested({"-c", "a.sumocfg", "--help"}));
+  EXPECT_TRUE(help_requested({"--no-step-log", "-h"}));
+  EXPECT_TRUE(help_requested({"--end", "-?"}));  // a time cannot be "-?": asked for help, as the parser says
+  EXPECT_FALSE(help_requested({"--sumo-args", "--help"}));
+  EXPECT_FALSE(help_requested({"--sumo-args", "-h", "--end", "10"}));
+  EXPECT_FALSE(help_requested({"--sumo-args=--help"}));
+  EXPECT_FALSE(help_requested({"--", "--help"}));
+  EXPECT_TRUE(help_requested({"--sumo-args", "--help", "--help"}));
+  test::TempDir tmp("lpsim_help_value");
+  const auto r = test::run_lpsim(tmp.path(), {"run", "--sumo-args", "--help"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("'--sumo-args' is not used by this command"), std::string::npos) << r.err;
+}
+
 TEST(CliHelpTest, TopLevelHelpListsTheCommands) {
   test::TempDir tmp("lpsim_help");
   const auto r = test::run_lpsim(tmp.path(), {"--help"});

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <regex>
 #include <set>
 #include <string>
 
@@ -359,6 +360,13 @@ TEST_F(PartitionFileTest, RunTakesAPartitionFileAndRefusesABadOne) {
       {"run", "-c", kConfig, "--end", "600", "--partition-file", "p.txt", "--tripinfo-output", "three.xml"});
   ASSERT_EQ(three.exit_code, 0) << three.err;
   EXPECT_NE(three.out.find("Partitions: 3 parts"), std::string::npos) << three.out;
+  // Each vehicle update counted once, whichever part made it (a vehicle that drove into another part was
+  // counted by both in that step).
+  const std::regex updates("Vehicle updates: ([0-9]+) ");
+  std::smatch u1, u3;
+  ASSERT_TRUE(std::regex_search(one.out, u1, updates)) << one.out;
+  ASSERT_TRUE(std::regex_search(three.out, u3, updates)) << three.out;
+  EXPECT_EQ(u1[1].str(), u3[1].str());
   const std::string trips = test::read_file(dir.path() / "one.xml");
   EXPECT_GT(trips.size(), 10000u);
   EXPECT_TRUE(trips == test::read_file(dir.path() / "three.xml"));

@@ -56,6 +56,13 @@ int MpiSession::world_size() {
   return size;
 }
 
+int MpiSession::world_rank() {
+  if (world_size() == 1) return 0;
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  return rank;
+}
+
 int MpiSession::local_rank() {
   if (world_size() == 1) return 0;
   MPI_Comm local;

@@ -22,6 +22,8 @@ class MpiSession {
   static bool launched_by_mpirun();
   /// Ranks of the job; 1 where MPI is not initialised.
   static int world_size();
+  /// This rank's number in the job (0 where MPI is not initialised).
+  static int world_rank();
   /// This rank's number among the job's ranks on the same machine (0 where MPI is not initialised).
   static int local_rank();
 };
