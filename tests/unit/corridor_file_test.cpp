@@ -104,6 +104,20 @@ TEST_F(CorridorFileTest, RefusesWhatIsNotACorridorWithFileAndLine) {
   }
 }
 
+// Ids in error messages come from files and may hold any byte: control bytes are written as \\xNN (a NUL
+// used to end the message there, an escape sequence went to the terminal) and an id of megabytes is cut in
+// its middle, so that the error stays one readable line.
+TEST_F(CorridorFileTest, ErrorMessagesEscapeControlBytesAndCutHugeIds) {
+  const std::string at = dir.path().string() + "/corridor.txt:";
+  EXPECT_EQ(error(std::string("edge:A\0B\x1b[31m\n", 14)),
+            at + "1: edge 'A\\x00B\\x1b[31m' is not in the network");
+  const std::string huge = error("edge:" + std::string(3000000, 'x') + "\n");
+  EXPECT_LT(huge.size(), 2100u);
+  EXPECT_NE(huge.find(at + "1: edge 'xxx"), std::string::npos);
+  EXPECT_NE(huge.find("bytes left out ...]"), std::string::npos) << huge.substr(0, 200);
+  EXPECT_NE(huge.find("xxx' is not in the network"), std::string::npos);
+}
+
 // A road no vehicle may use (a footpath) has nothing of LPSim's for SUMO to drive: refused with file:line.
 TEST_F(CorridorFileTest, RefusesAnEdgeWithoutVehicleLanes) {
   NetSpec spec = test::make_signal_spec();
