@@ -56,6 +56,13 @@ std::vector<NamedPath> outputs_of(const Scenario& sc, CliCommand command) {
     if (!m.file.empty())
       out.push_back({std::string(m.lane_level ? "<laneData" : "<edgeData") + " id=\"" + m.id + "\"> file",
                      m.file, m.loc});
+  // SUMO's side of each (the statistics and the jam report are LPSim's alone).
+  if (command == CliCommand::Cosim) {
+    const size_t lpsim_outputs = out.size();
+    for (size_t i = 0; i < lpsim_outputs; ++i)
+      if (out[i].what != "--statistic-output" && out[i].what != "--jam-report")
+        out.push_back({"SUMO's side of " + out[i].what, sumo_side_path(out[i].path), out[i].loc});
+  }
   return out;
 }
 
@@ -86,9 +93,15 @@ bool same_file(const std::string& a, const std::string& b) {
 
 }  // namespace
 
-void refuse_overwrites(const Scenario& scenario, CliCommand command) {
+std::string sumo_side_path(const std::string& path) {
+  const fs::path p(path);
+  return (p.parent_path() / (std::string(kSumoSidePrefix) + p.filename().string())).string();
+}
+
+void refuse_overwrites(const Scenario& scenario, CliCommand command, const std::vector<ExtraOutput>& extra) {
   const std::vector<NamedPath> inputs = inputs_of(scenario.config);
-  const std::vector<NamedPath> outputs = outputs_of(scenario, command);
+  std::vector<NamedPath> outputs = outputs_of(scenario, command);
+  for (const ExtraOutput& e : extra) outputs.push_back({e.what, e.path, {}});
   for (size_t i = 0; i < outputs.size(); ++i) {
     for (const auto& in : inputs)
       if (same_file(outputs[i].path, in.path)) refuse(outputs[i], in, "input");

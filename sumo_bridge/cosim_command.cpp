@@ -56,7 +56,8 @@ namespace {
 int run_cosim(const std::vector<std::string>& args) {
   ConfigSpec config;
   Scenario sc = scenario_from_args(args, &config, CliCommand::Cosim);
-  refuse_overwrites(sc, CliCommand::Cosim);
+  const std::vector<std::string> sumo_args = split_sumo_args(config.sumo_args);
+  refuse_overwrites(sc, CliCommand::Cosim, sumo_args_outputs(sumo_args));
   refuse_what_cosim_cannot_run(sc, config);  // before the Run creates any output file
   if (config.corridor_file.empty())
     throw InputError("cosim needs --corridor <file> (the edges SUMO simulates)");
@@ -82,7 +83,7 @@ int run_cosim(const std::vector<std::string>& args) {
   CosimOptions cosim;
   cosim.mode = config.sumo_binary.empty() ? SumoMode::Libsumo : SumoMode::Traci;
   if (!config.sumo_binary.empty()) cosim.sumo_binary = config.sumo_binary;
-  cosim.sumo_args = split_sumo_args(config.sumo_args);
+  cosim.sumo_args = sumo_args;
   refuse_waiting_sumo_options(cosim.sumo_args);  // before any output file exists
   cosim.answer_timeout_s = config.sumo_timeout;
 

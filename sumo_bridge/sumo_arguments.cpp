@@ -11,10 +11,6 @@ namespace lpsim {
 
 namespace {
 
-// SUMO writes its side of every output beside LPSim's, under this prefix of the file name (SUMO's
-// --output-prefix, which also covers the outputs the scenario's additional files define).
-constexpr const char* kSumoPrefix = "sumo.";
-
 std::string joined(const std::vector<std::string>& items) {
   std::string out;
   for (const std::string& s : items) out += (out.empty() ? "" : ",") + s;
@@ -78,9 +74,41 @@ std::string sumo_number(double x) {
   return buf;
 }
 
-std::string sumo_side_path(const std::string& path) {
-  const std::filesystem::path p(path);
-  return (p.parent_path() / (std::string(kSumoPrefix) + p.filename().string())).string();
+namespace {
+
+// An option of `args` at i and its value: "--name=value", or "--name" and the word after it.
+struct OptionAt {
+  std::string name, value;
+  size_t words = 1;  // how many words it takes
+};
+OptionAt option_at(const std::vector<std::string>& args, size_t i) {
+  const std::string& a = args[i];
+  const size_t eq = a.find('=');
+  if (eq != std::string::npos) return {a.substr(0, eq), a.substr(eq + 1), 1};
+  if (i + 1 < args.size()) return {a, args[i + 1], 2};
+  return {a, "", 1};
+}
+
+bool output_option(const std::string& name) {
+  const std::string suffix = "-output";
+  return (name.size() > suffix.size() &&
+          name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0) ||
+         name == "--log" || name == "-l" || name == "--message-log" || name == "--error-log";
+}
+
+}  // namespace
+
+std::vector<ExtraOutput> sumo_args_outputs(const std::vector<std::string>& user_args) {
+  std::vector<ExtraOutput> out;
+  for (size_t i = 0; i < user_args.size(); ++i) {
+    if (user_args[i].rfind("-", 0) != 0) continue;
+    const OptionAt o = option_at(user_args, i);
+    if (!output_option(o.name) || o.value.empty()) continue;
+    out.push_back({"SUMO's " + o.name + " in --sumo-args (written as " + sumo_side_path(o.value) + ")",
+                   sumo_side_path(o.value)});
+    i += o.words - 1;
+  }
+  return out;
 }
 
 void refuse_waiting_sumo_options(const std::vector<std::string>& user_args) {
@@ -106,6 +134,22 @@ std::vector<std::string> cosim_sumo_arguments(const ConfigSpec& c, const std::st
   }
   std::vector<std::string> additional = c.additional_files;
   if (!extra_additional.empty()) additional.push_back(extra_additional);
+  // Additional files the user gives SUMO join the co-simulation's (which carry the signal programs and the
+  // edgeData the merge reads) instead of replacing them.
+  std::vector<std::string> rest;
+  for (size_t i = 0; i < user_args.size(); ++i) {
+    const OptionAt o = option_at(user_args, i);
+    if (o.name == "-a" || o.name == "--additional-files" || o.name == "--additional") {
+      for (size_t from = 0, comma; from <= o.value.size(); from = comma + 1) {
+        comma = o.value.find(',', from);
+        if (comma == std::string::npos) comma = o.value.size();
+        if (comma > from) additional.push_back(o.value.substr(from, comma - from));
+      }
+      i += o.words - 1;
+    } else {
+      rest.push_back(user_args[i]);
+    }
+  }
   if (!additional.empty()) ours.emplace_back("--additional-files", joined(additional));
   ours.insert(ours.end(),
               {{"--begin", sumo_number(c.begin)},
@@ -117,7 +161,7 @@ std::vector<std::string> cosim_sumo_arguments(const ConfigSpec& c, const std::st
                {"--time-to-impatience", sumo_number(c.time_to_impatience)},
                {"--default.carfollowmodel", c.default_car_follow_model},
                {"--no-step-log", "true"},
-               {"--output-prefix", kSumoPrefix},
+               {"--output-prefix", kSumoSidePrefix},
                {"--tripinfo-output", tripinfo}});
   const OutputSpec& o = c.outputs;
   if (!o.fcd.empty()) ours.emplace_back("--fcd-output", o.fcd);
@@ -125,7 +169,7 @@ std::vector<std::string> cosim_sumo_arguments(const ConfigSpec& c, const std::st
   if (!o.summary.empty()) ours.emplace_back("--summary-output", o.summary);
   // SUMO refuses an option given twice: one the user passes replaces ours (its short forms too).
   std::unordered_set<std::string> given;
-  for (const std::string& a : user_args) {
+  for (const std::string& a : rest) {
     const std::string name = a.substr(0, a.find('='));
     given.insert(name == "-n"   ? "--net-file"
                  : name == "-r" ? "--route-files"
@@ -140,7 +184,7 @@ std::vector<std::string> cosim_sumo_arguments(const ConfigSpec& c, const std::st
   std::vector<std::string> a;
   for (const auto& [name, value] : ours)
     if (!given.count(name)) a.insert(a.end(), {name, value});
-  a.insert(a.end(), user_args.begin(), user_args.end());
+  a.insert(a.end(), rest.begin(), rest.end());
   return a;
 }
 

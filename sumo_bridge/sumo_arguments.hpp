@@ -5,14 +5,11 @@
 #include <string>
 #include <vector>
 
+#include "app/output_paths.hpp"
 #include "core/config_spec.hpp"
 #include "demand/demand.hpp"
 
 namespace lpsim {
-
-/// Where SUMO writes its side of an output of the co-simulation: "fcd.xml" -> "sumo.fcd.xml" (SUMO's
-/// --output-prefix, which also covers the outputs the scenario's additional files define).
-std::string sumo_side_path(const std::string& path);
 
 /// A number exactly as SUMO parses it back (no rounding to six digits, no locale).
 std::string sumo_number(double x);
@@ -22,6 +19,10 @@ std::string sumo_number(double x);
 /// `extra_additional`, begin, step length, seed, teleport and impatience times, the default car-following
 /// model, and outputs written as sumo_side_path() of LPSim's (tripinfo to `tripinfo`); then `user_args`,
 /// whose options replace those of the same name (an InputError for the ones the co-simulation depends on).
+/// The files SUMO will write for the output options in `user_args` (--<x>-output, the logs), under the
+/// co-simulation's prefix (sumo_side_path), so that they are checked as every output is.
+std::vector<ExtraOutput> sumo_args_outputs(const std::vector<std::string>& user_args);
+
 /// InputError for a SUMO option in `user_args` that makes SUMO wait for TraCI clients (--remote-port,
 /// --num-clients): the co-simulation is SUMO's only client, so the run would hang.
 void refuse_waiting_sumo_options(const std::vector<std::string>& user_args);

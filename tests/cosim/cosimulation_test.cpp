@@ -396,5 +396,47 @@ TEST(CosimulationCliTest, RunsWithACorridorFileAndRefusesUnknownEdgesWithFileAnd
   EXPECT_NE(zero.err.find("expected a time > 0"), std::string::npos) << zero.err;
 }
 
+// SUMO's side of every output (sumo.<name>) is an output like the others: checked against the inputs, the
+// other outputs and each other before anything is written, and so are the files --sumo-args names (SUMO
+// writes them under the same prefix). Additional files given in --sumo-args join the co-simulation's own.
+TEST(CosimulationCliTest, SumosSideOutputsAreCheckedAndItsAdditionalFilesAdded) {
+  test::TempDir dir("cosim_side");
+  const fs::path grid_dir = fs::path(kGrid).parent_path();
+  fs::copy_file(grid_dir / "grid_tls.net.xml", fs::path(dir.path()) / "sumo.net.xml");
+  fs::copy_file(grid_dir / "grid_tls.rou.xml", fs::path(dir.path()) / "sumo.rou.xml");
+  const std::string net_before = test::read_file(fs::path(dir.path()) / "sumo.net.xml");
+  const std::string corridor = dir.write("corridor.txt", "edge:A2B2\nedge:B2C2\n");
+  auto refused = [&](std::vector<std::string> args, const std::string& says) {
+    const test::CliResult r = test::run_lpsim(dir.path(), args);
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find(says), std::string::npos) << r.err;
+  };
+  const std::vector<std::string> base{"cosim",      "-n",     "sumo.net.xml", "-r",  "sumo.rou.xml",
+                                      "--corridor", corridor, "--end",        "100", "--no-step-log"};
+  auto with = [&](std::vector<std::string> more) {
+    std::vector<std::string> all = base;
+    all.insert(all.end(), more.begin(), more.end());
+    return all;
+  };
+  // SUMO would write sumo.net.xml and sumo.rou.xml over the scenario's own files.
+  refused(with({"--fcd-output", "rou.xml", "--tripinfo-output", "net.xml"}), "SUMO's side of --");
+  EXPECT_EQ(test::read_file(fs::path(dir.path()) / "sumo.net.xml"), net_before);
+  // SUMO's side of the tripinfo would be the summary.
+  refused(with({"--tripinfo-output", "ti.xml", "--summary-output", "sumo.ti.xml"}),
+          "output SUMO's side of --tripinfo-output 'sumo.ti.xml'");
+  // A file --sumo-args names lands under the prefix, and is checked there.
+  refused(with({"--tripinfo-output", "sumo.q.xml", "--sumo-args", "--queue-output q.xml"}),
+          "SUMO's --queue-output in --sumo-args");
+  EXPECT_FALSE(fs::exists(fs::path(dir.path()) / "ti.xml"));
+
+  dir.write("extra.add.xml", "<additional>\n    <edgeData id=\"x\" file=\"extra_ed.xml\"/>\n</additional>\n");
+  const test::CliResult ok = test::run_lpsim(dir.path(), with({"--edgedata-output", "ed.xml", "--sumo-args",
+                                                               "-a extra.add.xml --no-warnings true"}));
+  ASSERT_EQ(ok.exit_code, 0) << ok.err;
+  EXPECT_TRUE(fs::exists(fs::path(dir.path()) / "sumo.extra_ed.xml"));  // the user's
+  EXPECT_TRUE(fs::exists(fs::path(dir.path()) / "sumo.ed.xml"));        // the co-simulation's own
+  EXPECT_EQ(test::read_file(fs::path(dir.path()) / "sumo.net.xml"), net_before);
+}
+
 }  // namespace
 }  // namespace lpsim
