@@ -1,12 +1,15 @@
 #include "converters/sumo_tripinfo_reader.hpp"
 
+#include <filesystem>
+
 #include "converters/xml_stream.hpp"
 
 namespace lpsim {
 
-std::vector<SumoTripPiece> read_sumo_tripinfo(const std::string& path) {
+namespace {
+
+void read_pieces(const std::string& path, std::vector<SumoTripPiece>& pieces) {
   XmlStream xml(path);
-  std::vector<SumoTripPiece> pieces;
   for (XmlStream::Event e = xml.next(); e != XmlStream::Event::Eof; e = xml.next()) {
     if (e != XmlStream::Event::Start || xml.name() != "tripinfo") continue;
     SumoTripPiece p;
@@ -28,6 +31,23 @@ std::vector<SumoTripPiece> read_sumo_tripinfo(const std::string& path) {
     p.vaporized = !xml.get("vaporized", "").empty();
     pieces.push_back(std::move(p));
   }
+}
+
+}  // namespace
+
+std::vector<SumoTripPiece> read_sumo_tripinfo(const std::string& path, bool cut_off) {
+  std::vector<SumoTripPiece> pieces;
+  if (cut_off) {
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) return pieces;
+    try {
+      read_pieces(path, pieces);
+    } catch (const InputError&) {
+      // The cut: what was read before it is whole (an element counts once its start tag is complete).
+    }
+    return pieces;
+  }
+  read_pieces(path, pieces);
   return pieces;
 }
 

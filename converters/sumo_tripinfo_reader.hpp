@@ -19,6 +19,8 @@ struct SumoTripPiece {
 
 /// The tripinfo elements of a SUMO tripinfo output, in file order; InputError with file:line when the file
 /// is missing, malformed or an element lacks an attribute SUMO always writes.
-std::vector<SumoTripPiece> read_sumo_tripinfo(const std::string& path);
+/// `cut_off`: the file may end anywhere (SUMO died while writing it): the complete elements before the cut
+/// are returned, and a missing file is none. Otherwise every problem is an InputError.
+std::vector<SumoTripPiece> read_sumo_tripinfo(const std::string& path, bool cut_off = false);
 
 }  // namespace lpsim

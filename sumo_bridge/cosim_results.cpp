@@ -13,14 +13,14 @@ namespace lpsim {
 
 // One tripinfo line per trip that ended, for the whole trip: its start where it departed (LPSim's
 // departure, or SUMO's first piece), its end where it arrived, and the sums of both sides' pieces.
-void Cosimulation::merge_tripinfo() {
+void Cosimulation::merge_tripinfo(bool after_failure) {
   const Simulation& sim = run_.simulation();
   const Demand& d = sim.demand();
   std::unordered_map<std::string, uint32_t> visited_ids;
   for (uint32_t v = 0; v < visited_.size(); ++v)
     if (visited_[v]) visited_ids.emplace(d.vehicle_id[v], v);
   std::unordered_map<uint32_t, std::vector<SumoTripPiece>> pieces;
-  for (SumoTripPiece& p : read_sumo_tripinfo(sumo_side_path(sumo_tripinfo_))) {
+  for (SumoTripPiece& p : read_sumo_tripinfo(sumo_side_path(sumo_tripinfo_), after_failure)) {
     const auto it = visited_ids.find(p.id);
     if (it != visited_ids.end()) pieces[it->second].push_back(std::move(p));
   }
@@ -36,6 +36,7 @@ void Cosimulation::merge_tripinfo() {
     if (!visited_[v]) continue;
     const auto pit = pieces.find(v);
     const std::vector<SumoTripPiece>* ps = pit == pieces.end() ? nullptr : &pit->second;
+    if (after_failure && (visited_[v] == 255 || (ps == nullptr ? 0u : ps->size()) != visited_[v])) continue;
     const DepartRecord dep = sim.departure(v);
     TripRecord r;
     const auto held = held_trips_.find(v);

@@ -200,7 +200,7 @@ void Cosimulation::hand_into_sumo(const Simulation::HandOut& h) {
     }
   }
   sumo_->add(e);
-  visited_[v] = 1;
+  if (visited_[v] < 255) ++visited_[v];
   InSumo s;
   s.vehicle = v;
   s.route_pos = h.route_pos;
@@ -366,7 +366,7 @@ void Cosimulation::finish() {
   for (const auto& [id, s] : in_sumo_)
     if (s.pending || s.held) ++report_.in_handover_at_end;
   sumo_->close();
-  merge_tripinfo();
+  merge_tripinfo(false);
   run_.finish();
   merge_edge_data();
 }
@@ -378,6 +378,14 @@ void Cosimulation::abandon() {
     sumo_->close();
   } catch (const SumoError&) {
     // Already gone: what it wrote stays as it is.
+  }
+  // The trips that ended, with every piece SUMO drove of them in what SUMO wrote before it failed, are
+  // complete: they go into the tripinfo (a trip that reads wrong is worse than one left out, so the others
+  // stay out).
+  try {
+    merge_tripinfo(true);
+  } catch (const std::exception&) {
+    // SUMO's file cannot be read at all: only LPSim's own trips.
   }
   run_.finish();
 }

@@ -96,7 +96,9 @@ class Cosimulation {
   bool corridor_edge(uint32_t e) const;
   int32_t lpsim_lane(uint32_t edge, int sumo_index) const;
   void take_back_or_hold(const std::string& id, InSumo& s, uint32_t edge, const SumoVehicle& q);
-  void merge_tripinfo();
+  // `after_failure`: SUMO ended abnormally, its tripinfo may be cut off, and a trip is merged only when every
+  // visit it made to SUMO has its piece there.
+  void merge_tripinfo(bool after_failure);
   void merge_edge_data() const;
 
   Run& run_;
@@ -117,8 +119,8 @@ class Cosimulation {
   std::unique_ptr<SumoLink> sumo_;
   int64_t period_ms_ = 0, sumo_step_ms_ = 0;
   std::unordered_map<std::string, InSumo> in_sumo_;
-  std::unordered_set<std::string> removed_since_step_;   // SUMO may list a removal among the step's arrivals
-  std::vector<uint8_t> visited_;                         // per vehicle: it has been in SUMO
+  std::unordered_set<std::string> removed_since_step_;  // SUMO may list a removal among the step's arrivals
+  std::vector<uint8_t> visited_;  // per vehicle: the times it was handed into SUMO (255: as many or more)
   std::unordered_map<uint32_t, TripRecord> held_trips_;  // ended in LPSim after a visit: merged at finish()
   uint64_t arrived_in_sumo_ = 0;
   uint64_t pending_ = 0;  // of in_sumo_
