@@ -84,7 +84,7 @@ int run_cosim(const std::vector<std::string>& args) {
   cosim.mode = config.sumo_binary.empty() ? SumoMode::Libsumo : SumoMode::Traci;
   if (!config.sumo_binary.empty()) cosim.sumo_binary = config.sumo_binary;
   cosim.sumo_args = sumo_args;
-  refuse_waiting_sumo_options(cosim.sumo_args);  // before any output file exists
+  refuse_unsupported_sumo_args(cosim.sumo_args);  // before any output file exists
   cosim.answer_timeout_s = config.sumo_timeout;
 
   SimulationOptions options = simulation_options(config);

@@ -42,6 +42,13 @@ std::vector<uint8_t> corridor_lanes(const Network& net, const std::vector<uint32
 void refuse_what_cosim_cannot_run(const Scenario& sc, const ConfigSpec& c) {
   if (c.net_file.empty())
     throw InputError("a co-simulation needs the scenario's SUMO files (-c or -n/-r), not a snapshot or CSV");
+  // An unfinished trip may be in SUMO, or have pieces on both sides: merging them is not built yet.
+  if (c.outputs.tripinfo_write_unfinished || c.outputs.tripinfo_write_undeparted)
+    throw InputError(
+        std::string(c.outputs.tripinfo_write_undeparted ? "--tripinfo-output.write-undeparted"
+                                                        : "--tripinfo-output.write-unfinished") +
+        ": a co-simulation's tripinfo holds the trips that ended (unfinished ones are not merged "
+        "from both sides yet)");
   // The merge of the two simulators' edgeData (converters/meandata_merge) knows traffic measures only.
   for (const MeanDataSpec& m : sc.mean_data)
     if (m.type == MeanDataType::Emissions)

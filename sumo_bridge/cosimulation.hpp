@@ -27,7 +27,8 @@ struct CosimOptions {
 };
 
 /// InputError for a scenario a co-simulation cannot run: one without its SUMO files (a snapshot, a CSV
-/// network), or with an emissions edgeData/laneData. Called before any output exists.
+/// network), with an emissions edgeData/laneData, or asking for unfinished trips in the tripinfo. Called
+/// before any output exists.
 void refuse_what_cosim_cannot_run(const Scenario& sc, const ConfigSpec& config);
 
 /// 1 for each lane of the corridor's edges, 0 elsewhere (SimulationOptions::outside_lanes).

@@ -111,20 +111,25 @@ std::vector<ExtraOutput> sumo_args_outputs(const std::vector<std::string>& user_
   return out;
 }
 
-void refuse_waiting_sumo_options(const std::vector<std::string>& user_args) {
+void refuse_unsupported_sumo_args(const std::vector<std::string>& user_args) {
   for (const std::string& a : user_args) {
     const std::string name = a.substr(0, a.find('='));
     if (name == "--remote-port" || name == "--num-clients")
       throw InputError("--sumo-args: " + name +
                        " makes SUMO wait for TraCI clients, and the co-simulation is its only one: the run "
                        "would hang (--sumo-binary runs a SUMO of its own over TraCI)");
+    if (name == "--tripinfo-output.write-unfinished" || name == "--tripinfo-output.write-undeparted")
+      throw InputError(
+          "--sumo-args: " + name +
+          ": a co-simulation's tripinfo holds the trips that ended (unfinished ones are not merged "
+          "from both sides yet)");
   }
 }
 
 std::vector<std::string> cosim_sumo_arguments(const ConfigSpec& c, const std::string& tripinfo,
                                               const std::string& extra_additional,
                                               const std::vector<std::string>& user_args) {
-  refuse_waiting_sumo_options(user_args);
+  refuse_unsupported_sumo_args(user_args);
   // The co-simulation's options, as (name, value) pairs.
   std::vector<std::pair<std::string, std::string>> ours{{"--net-file", c.net_file}};
   // The route files for their vTypes (and distributions) only: SUMO drops every vehicle and flow at scale 0.

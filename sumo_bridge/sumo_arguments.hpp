@@ -24,8 +24,9 @@ std::string sumo_number(double x);
 std::vector<ExtraOutput> sumo_args_outputs(const std::vector<std::string>& user_args);
 
 /// InputError for a SUMO option in `user_args` that makes SUMO wait for TraCI clients (--remote-port,
-/// --num-clients): the co-simulation is SUMO's only client, so the run would hang.
-void refuse_waiting_sumo_options(const std::vector<std::string>& user_args);
+/// --num-clients: the co-simulation is SUMO's only client, so the run would hang), or that asks for the
+/// unfinished trips in the tripinfo (the co-simulation merges finished trips only).
+void refuse_unsupported_sumo_args(const std::vector<std::string>& user_args);
 
 std::vector<std::string> cosim_sumo_arguments(const ConfigSpec& config, const std::string& tripinfo,
                                               const std::string& extra_additional,

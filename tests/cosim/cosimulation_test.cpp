@@ -405,13 +405,21 @@ TEST(CosimulationCliTest, RunsWithACorridorFileAndRefusesUnknownEdgesWithFileAnd
   const test::CliResult none = test::run_lpsim(dir.path(), {"cosim", "-c", kGrid});
   EXPECT_EQ(none.exit_code, 2);
   EXPECT_NE(none.err.find("--corridor"), std::string::npos) << none.err;
-  // SUMO told to wait for TraCI clients would wait for ever: refused before any output exists.
-  for (const char* waits : {"--remote-port 8813", "--num-clients=2"}) {
+  // SUMO told to wait for TraCI clients would wait for ever, unfinished trips are not merged: refused before
+  // any output exists (LPSim's own --tripinfo-output.write-unfinished ended in a segmentation fault).
+  const test::CliResult unfinished =
+      test::run_lpsim(dir.path(), {"cosim", "-c", kGrid, "--corridor", corridor, "--tripinfo-output",
+                                   "t3.xml", "--tripinfo-output.write-unfinished", "true"});
+  EXPECT_EQ(unfinished.exit_code, 2) << unfinished.err;
+  EXPECT_NE(unfinished.err.find("unfinished ones are not merged"), std::string::npos) << unfinished.err;
+  EXPECT_FALSE(fs::exists(fs::path(dir.path()) / "t3.xml"));
+  for (const char* waits :
+       {"--remote-port 8813", "--num-clients=2", "--tripinfo-output.write-unfinished true"}) {
     const test::CliResult hang = test::run_lpsim(
         dir.path(),
         {"cosim", "-c", kGrid, "--corridor", corridor, "--tripinfo-output", "t3.xml", "--sumo-args", waits});
     EXPECT_EQ(hang.exit_code, 2) << waits;
-    EXPECT_NE(hang.err.find("makes SUMO wait for TraCI clients"), std::string::npos) << hang.err;
+    EXPECT_NE(hang.err.find("--sumo-args: --"), std::string::npos) << hang.err;
     EXPECT_FALSE(fs::exists(fs::path(dir.path()) / "t3.xml")) << waits;
   }
   // A snapshot has no SUMO files for SUMO to load: refused before the outputs are created (before, an
