@@ -46,6 +46,11 @@ InterruptGuard::~InterruptGuard() {
 
 int InterruptGuard::received() const { return g_received.load(); }
 
+int pending_interrupt() {
+  const int s = g_received.load();
+  return s > 0 ? s : 0;
+}
+
 bool interrupted_status(int code) {
   for (int s : kSignals)
     if (code == 128 + s) return true;

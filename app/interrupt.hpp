@@ -25,6 +25,10 @@ class InterruptGuard {
 /// "SIGINT", "SIGTERM" or "SIGHUP" (the signals a guard records), else "a signal".
 const char* signal_name(int signal);
 
+/// The signal a guard installed anywhere in the process has recorded, or 0 (also without a guard): for waits
+/// deep in a command (a SUMO starting) that must give up at once on a signal.
+int pending_interrupt();
+
 /// Whether exit status `code` is that of a run stopped by one of those signals (128 + the signal).
 bool interrupted_status(int code);
 

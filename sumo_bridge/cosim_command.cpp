@@ -7,6 +7,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <optional>
 
 #include "app/corridor_resolution.hpp"
 #include "app/device_select.hpp"
@@ -103,7 +104,17 @@ int run_cosim(const std::vector<std::string>& args) {
   Run run(std::move(sc), config, options);
   int signal = 0;
   {
-    Cosimulation co(run, corridor, cosim);
+    std::optional<Cosimulation> started;
+    try {
+      started.emplace(run, corridor, cosim);
+    } catch (const SumoStartInterrupted&) {
+      // Nothing has run: the outputs close empty and well-formed, as after a signal at the first step.
+      run.finish();
+      signal = interrupt.received();
+      report_run_end(run, std::chrono::duration<double>(Clock::now() - wall0).count(), load_seconds, signal);
+      return 128 + signal;
+    }
+    Cosimulation& co = *started;
     try {
       while (!co.done() && interrupt.received() == 0) {
         co.step();

@@ -16,6 +16,11 @@ struct SumoError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// A signal (SIGINT, SIGTERM, SIGHUP) came while a SUMO process was still starting: the start was given up.
+struct SumoStartInterrupted : SumoError {
+  using SumoError::SumoError;
+};
+
 /// A vehicle handed into SUMO: it enters at `pos` metres of lane `lane` of route.front() at up to `speed`
 /// (lower where SUMO finds that speed unsafe there; its maximum speed is `speed` until restore_max_speed()),
 /// then drives the rest of the route. With lane -1 it departs there as a trip does, by SUMO's depart

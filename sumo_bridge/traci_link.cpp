@@ -4,6 +4,7 @@
 #include <chrono>
 #include <thread>
 
+#include "app/interrupt.hpp"
 #include "sumo_bridge/api_link.hpp"
 
 namespace lpsim {
@@ -33,6 +34,10 @@ std::unique_ptr<SumoLink> start_traci(const std::string& binary, const std::vect
     if (process->ended(&status))
       throw SumoError("SUMO (" + binary + ") ended with status " + std::to_string(status) +
                       " while starting (SUMO's messages above)");
+    // A signal while SUMO loads its network (a region's takes minutes) ends the wait at once.
+    if (const int signal = pending_interrupt(); signal != 0)
+      throw SumoStartInterrupted("SUMO (" + binary + ") was still starting when " + signal_name(signal) +
+                                 " came");
     try {
       // One attempt each time: between them, whether SUMO is still starting or has failed is checked here.
       libtraci::Simulation::init(process->port(), 0, "127.0.0.1");

@@ -18,6 +18,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "app/corridor_resolution.hpp"
@@ -29,6 +30,7 @@
 #include "sumo_bridge/sumo_arguments.hpp"
 #include "sumo_schema.hpp"
 #include "temp_dir.hpp"
+#include "unit/spawned_lpsim.hpp"
 
 namespace lpsim {
 namespace {
@@ -478,6 +480,32 @@ TEST(CosimulationCliTest, SumosSideOutputsAreCheckedAndItsAdditionalFilesAdded) 
   EXPECT_TRUE(fs::exists(fs::path(dir.path()) / "sumo.extra_ed.xml"));  // the user's
   EXPECT_TRUE(fs::exists(fs::path(dir.path()) / "sumo.ed.xml"));        // the co-simulation's own
   EXPECT_EQ(test::read_file(fs::path(dir.path()) / "sumo.net.xml"), net_before);
+}
+
+// A signal while a SUMO process is still starting (a region's network takes minutes to load) ends the run at
+// once: exit 128 + the signal, the outputs closed well-formed and empty, the SUMO process gone. Before, the
+// start went on waiting for SUMO's port for up to 300 s. The "SUMO" here never opens its port.
+TEST(CosimulationCliTest, ASignalWhileSumoStartsEndsTheRunAtOnce) {
+  test::TempDir dir("cosim_start_signal");
+  const std::string corridor = dir.write("corridor.txt", "edge:A2B2\nedge:B2C2\n");
+  const std::string slow = dir.write("slow_sumo", "#!/bin/sh\nsleep 30\n");
+  fs::permissions(slow, fs::perms::owner_all);
+  test::SpawnedLpsim lpsim(dir.path(), {"cosim", "-c", kGrid, "--corridor", corridor, "--tripinfo-output",
+                                        "ti.xml", "--sumo-binary", slow, "--no-step-log"});
+  ASSERT_TRUE(lpsim.started());
+  ASSERT_TRUE(lpsim.wait_until([&] { return lpsim.err().find("lpsim: corridor:") != std::string::npos; }, 10))
+      << lpsim.err();
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  lpsim.send(SIGINT);
+  const auto t0 = std::chrono::steady_clock::now();
+  const int status = lpsim.wait_exit(5);
+  ASSERT_NE(status, -1) << "still running 5 s after SIGINT";
+  EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(2));
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 128 + SIGINT) << lpsim.err();
+  EXPECT_NE(lpsim.err().find("lpsim: interrupted by SIGINT"), std::string::npos) << lpsim.err();
+  const std::string trips = read_all(fs::path(dir.path()) / "ti.xml");
+  EXPECT_NE(trips.find("</tripinfos>"), std::string::npos) << trips;
 }
 
 }  // namespace
