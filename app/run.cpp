@@ -151,7 +151,24 @@ void Run::write_step_outputs() {
     if (hold_trip_ && hold_trip_(r)) continue;
     write_trip(r);
   }
-  if (summary_) summary_->write(sim_.summary_row());
+  if (summary_) {
+    SummaryRow row = sim_.summary_row();
+    if (outside_) {
+      // SUMO's vehicles join LPSim's; the means over inserted and arrived vehicles take in SUMO's sums (the
+      // speeds stay LPSim's: they are sampled from its running vehicles).
+      const OutsideCounts o = outside_();
+      const double delay_sum = row.mean_waiting_time * static_cast<double>(row.inserted) + o.depart_delay_sum;
+      const double travel_sum = row.mean_travel_time * static_cast<double>(row.arrived) + o.travel_time_sum;
+      row.inserted += o.inserted;
+      row.running += o.running;
+      row.waiting += o.waiting;
+      row.arrived += o.arrived;
+      row.ended += o.arrived;
+      row.mean_waiting_time = row.inserted > 0 ? delay_sum / static_cast<double>(row.inserted) : 0;
+      row.mean_travel_time = row.arrived > 0 ? travel_sum / static_cast<double>(row.arrived) : 0;
+    }
+    summary_->write(row);
+  }
 }
 
 void Run::write_trip(const TripRecord& r) {
@@ -210,8 +227,20 @@ void Run::flush_outputs() {
   if (jam_) jam_->flush();
 }
 
+Simulation::Counts Run::counts() const {
+  Simulation::Counts c = sim_.counts();
+  if (outside_) {
+    const OutsideCounts o = outside_();
+    c.inserted += o.inserted;
+    c.running += o.running;
+    c.waiting += o.waiting;
+    c.arrived += o.arrived;
+  }
+  return c;
+}
+
 RunStatistics Run::statistics() const {
-  const Simulation::Counts& c = sim_.counts();
+  const Simulation::Counts c = counts();
   RunStatistics s;
   s.loaded = c.loaded;
   s.inserted = c.inserted;
@@ -234,7 +263,7 @@ RunStatistics Run::statistics() const {
 void print_run_report(std::FILE* out, const Run& run, double wall, double load_seconds,
                       const char* interrupted_by) {
   const Simulation& sim = run.simulation();
-  const Simulation::Counts& c = sim.counts();
+  const Simulation::Counts c = run.counts();
   const Run::Totals& totals = run.totals();
   std::fprintf(out, "Simulation ended at time: %.2f\n", run.end_time());
   if (interrupted_by != nullptr)

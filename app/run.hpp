@@ -80,6 +80,19 @@ class Run {
   /// Writes a trip's tripinfo line and counts it in the totals. std::logic_error after finish().
   void write_trip(const TripRecord& r);
 
+  /// The vehicles another simulator drives for this run (a co-simulation's SUMO), as of now: its insertions
+  /// of trips that depart there, those on its roads or about to be, those waiting to depart there, its
+  /// arrivals, and the sums of its arrivals' trip durations and its insertions' delays.
+  struct OutsideCounts {
+    uint64_t inserted = 0, running = 0, waiting = 0, arrived = 0;
+    double travel_time_sum = 0, depart_delay_sum = 0;
+  };
+  /// From now on the summary, the statistics and the report count both sides: `outside` is asked for the
+  /// other side's counts each time they are written.
+  void count_outside(std::function<OutsideCounts()> outside) { outside_ = std::move(outside); }
+  /// The simulation's counts, with the other side's added (count_outside).
+  Simulation::Counts counts() const;
+
   Simulation& simulation() { return sim_; }
   const Simulation& simulation() const { return sim_; }
   const Totals& totals() const { return totals_; }
@@ -127,6 +140,7 @@ class Run {
   Totals totals_;
   double depart_delay_waiting_ = -1;  // the statistic's departDelayWaiting (write-undeparted)
   std::function<bool(const TripRecord&)> hold_trip_;
+  std::function<OutsideCounts()> outside_;
   bool closed_ = false;
 };
 

@@ -95,6 +95,7 @@ Cosimulation::Cosimulation(Run& run, const std::vector<uint8_t>& corridor_lanes,
     add.close();
   }
   visited_.assign(run_.simulation().demand().size(), 0);
+  run_.count_outside([this] { return outside_counts(); });
   run_.hold_trips([this](const TripRecord& r) {
     if (r.vehicle >= visited_.size() || !visited_[r.vehicle]) return false;
     held_trips_[r.vehicle] = r;
@@ -125,7 +126,28 @@ Cosimulation::Cosimulation(Run& run, const std::vector<uint8_t>& corridor_lanes,
                      sumo_number(run_.simulation().time()) + " s: give both the same --begin");
 }
 
-Cosimulation::~Cosimulation() = default;
+Cosimulation::~Cosimulation() { run_.count_outside(nullptr); }
+
+bool Cosimulation::departs_in_sumo(const InSumo& s) { return s.entry_lane < 0 && s.route_pos == 0; }
+
+void Cosimulation::count_sumo_departure(uint32_t v, double now) {
+  sumo_depart_[v] = now;
+  ++outside_.inserted;
+  outside_.depart_delay_sum += now - run_.simulation().demand().depart[v];
+}
+
+double Cosimulation::depart_time(uint32_t v) const {
+  const auto it = sumo_depart_.find(v);
+  return it != sumo_depart_.end() ? it->second : run_.simulation().departure(v).time;
+}
+
+// SUMO's side of the summary and statistics: vehicles on its roads or added there after driving in LPSim are
+// running; those added to depart there and not yet inserted are waiting.
+Run::OutsideCounts Cosimulation::outside_counts() const {
+  Run::OutsideCounts o = outside_;
+  for (const auto& [id, s] : in_sumo_) ++(s.pending && departs_in_sumo(s) ? o.waiting : o.running);
+  return o;
+}
 
 Cosimulation::ScratchFile::~ScratchFile() {
   std::error_code ignored;
@@ -154,9 +176,15 @@ void Cosimulation::step() {
       if (removed_since_step_.count(id)) continue;
       const auto it = in_sumo_.find(id);
       if (it == in_sumo_.end()) continue;
-      if (it->second.pending) --pending_;  // inserted and arrived within one step
+      const double now = static_cast<double>(t) / 1000.0;
+      if (it->second.pending) {  // inserted and arrived within one step
+        --pending_;
+        if (departs_in_sumo(it->second)) count_sumo_departure(it->second.vehicle, now);
+      }
       ++arrived_in_sumo_;
       ++report_.arrived_in_sumo;
+      outside_.arrived = arrived_in_sumo_;
+      outside_.travel_time_sum += now - depart_time(it->second.vehicle);
       in_sumo_.erase(it);
     }
     removed_since_step_.clear();
@@ -166,6 +194,8 @@ void Cosimulation::step() {
       if (it == in_sumo_.end() || !it->second.pending) continue;
       it->second.pending = false;
       --pending_;
+      if (departs_in_sumo(it->second))
+        count_sumo_departure(it->second.vehicle, static_cast<double>(t) / 1000.0);
       report_.longest_boundary_wait =
           std::max(report_.longest_boundary_wait, static_cast<double>(t) / 1000.0 - it->second.since);
       it->second.since = static_cast<double>(t) / 1000.0;

@@ -93,6 +93,10 @@ class Cosimulation {
   };
 
   void hand_into_sumo(const Simulation::HandOut& h);
+  static bool departs_in_sumo(const InSumo& s);  // its trip starts in SUMO (LPSim never inserted it)
+  void count_sumo_departure(uint32_t v, double now);
+  double depart_time(uint32_t v) const;  // its trip's departure, on either side
+  Run::OutsideCounts outside_counts() const;
   void after_sumo_step();
   bool corridor_edge(uint32_t e) const;
   int32_t lpsim_lane(uint32_t edge, int sumo_index) const;
@@ -124,7 +128,9 @@ class Cosimulation {
   std::vector<uint8_t> visited_;  // per vehicle: the times it was handed into SUMO (255: as many or more)
   std::unordered_map<uint32_t, TripRecord> held_trips_;  // ended in LPSim after a visit: merged at finish()
   uint64_t arrived_in_sumo_ = 0;
-  uint64_t pending_ = 0;  // of in_sumo_
+  Run::OutsideCounts outside_;                        // SUMO's departures and arrivals so far
+  std::unordered_map<uint32_t, double> sumo_depart_;  // when SUMO inserted the trips that depart there
+  uint64_t pending_ = 0;                              // of in_sumo_
   std::vector<Simulation::OutsideVehicle> mirror_;
   Report report_;
   bool finished_ = false;
