@@ -63,10 +63,11 @@ class ApiLink final : public SumoLink {
     const bool capped = e.lane >= 0 && e.speed >= kLeastCappedSpeed;
     call("vehicle.add " + e.id, [&] {
       if (e.lane < 0)
-        Api::Vehicle::add(e.id, route, e.type, "now", e.depart_lane, e.depart_pos, e.depart_speed);
+        Api::Vehicle::add(e.id, route, e.type, "now", e.depart_lane, e.depart_pos, e.depart_speed, "current",
+                          e.arrival_pos);
       else
         Api::Vehicle::add(e.id, route, e.type, "now", std::to_string(e.lane), number(e.pos),
-                          capped ? "max" : "0");
+                          capped ? "max" : "0", "current", e.arrival_pos);
     });
     if (capped) call("vehicle.setMaxSpeed " + e.id, [&] { Api::Vehicle::setMaxSpeed(e.id, e.speed); });
     if (e.route.size() > 1) call("vehicle.setRoute " + e.id, [&] { Api::Vehicle::setRoute(e.id, e.route); });

@@ -221,6 +221,17 @@ void Cosimulation::hand_into_sumo(const Simulation::HandOut& h) {
   for (uint32_t k = d.route_begin[v] + h.route_pos; k < d.route_begin[v] + d.route_length[v]; ++k)
     e.route.push_back(net_.edge_id[d.route_edges[k]]);
   e.speed_factor = d.speed_factor[v];
+  // Where the trip ends, should it end in SUMO (its route there runs to the trip's last edge).
+  switch (static_cast<ArrivalPos>(d.arrival_pos_kind[v])) {
+    case ArrivalPos::Given:
+      e.arrival_pos = sumo_number(d.arrival_pos[v]);
+      break;
+    case ArrivalPos::Random:
+      e.arrival_pos = "random";
+      break;
+    case ArrivalPos::Max:
+      break;
+  }
   if (h.lane >= 0) {
     e.lane = static_cast<int>(net_.lane_index[static_cast<uint32_t>(h.lane)]);
     e.pos = std::min(h.pos, net_.lane_length[static_cast<uint32_t>(h.lane)]);  // LPSim's front may overhang

@@ -31,7 +31,8 @@ struct SumoEntry {
   int lane = 0;
   double pos = 0, speed = 0;
   std::string depart_lane = "first", depart_pos = "base", depart_speed = "0";  // lane -1 only
-  double speed_factor = 0;  // > 0: the vehicle's own (as the other side drew it); else SUMO draws one
+  double speed_factor = 0;          // > 0: the vehicle's own (as the other side drew it); else SUMO draws one
+  std::string arrival_pos = "max";  // SUMO's arrivalPos on the route's last edge
 };
 
 /// Where a vehicle is in SUMO.

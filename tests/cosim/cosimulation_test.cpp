@@ -527,6 +527,31 @@ TEST(CosimulationCliTest, SummaryAndStatisticsCountBothSides) {
   EXPECT_EQ(last_summary("sb.xml", "arrived"), trips("tb.xml"));
 }
 
+// A trip that ends in the corridor ends at its arrivalPos there, as SUMO alone ends it (before, SUMO was not
+// told, and the trip ran to the lane's end: 179.2 m).
+TEST(CosimulationCliTest, ArrivalPosOnACorridorEdgeIsHonoured) {
+  test::TempDir dir("cosim_arrival_pos");
+  const std::string net = (fs::path(kGrid).parent_path() / "grid_tls.net.xml").string();
+  dir.write("ap.rou.xml",
+            "<routes>\n    <vehicle id=\"v\" depart=\"0\" arrivalPos=\"20\"><route edges=\"A1A2 "
+            "A2B2\"/></vehicle>\n"
+            "    <vehicle id=\"w\" depart=\"5\"><route edges=\"A1A2 A2B2\"/></vehicle>\n</routes>\n");
+  const std::string corridor = dir.write("corridor.txt", "edge:A2B2\n");
+  const test::CliResult r =
+      test::run_lpsim(dir.path(), {"cosim", "-n", net, "-r", "ap.rou.xml", "--corridor", corridor,
+                                   "--tripinfo-output", "t.xml", "--no-step-log"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::map<std::string, std::string> trips = trips_by_id(fs::path(dir.path()) / "t.xml");
+  ASSERT_EQ(trips.size(), 2u);
+  static const std::regex pos(" arrivalPos=\"([0-9.]+)\"");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(trips.at("v"), m, pos));
+  EXPECT_GE(std::stod(m[1]), 20.0);
+  EXPECT_LT(std::stod(m[1]), 25.0);
+  ASSERT_TRUE(std::regex_search(trips.at("w"), m, pos));
+  EXPECT_GT(std::stod(m[1]), 150.0);  // no arrivalPos: the lane's end
+}
+
 // A signal while a SUMO process is still starting (a region's network takes minutes to load) ends the run at
 // once: exit 128 + the signal, the outputs closed well-formed and empty, the SUMO process gone. Before, the
 // start went on waiting for SUMO's port for up to 300 s. The "SUMO" here never opens its port.
