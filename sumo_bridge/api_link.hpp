@@ -73,6 +73,12 @@ class ApiLink final : public SumoLink {
     if (e.route.size() > 1) call("vehicle.setRoute " + e.id, [&] { Api::Vehicle::setRoute(e.id, e.route); });
     if (e.speed_factor > 0)
       call("vehicle.setSpeedFactor " + e.id, [&] { Api::Vehicle::setSpeedFactor(e.id, e.speed_factor); });
+    for (const SumoEntry::Stop& s : e.stops)
+      call("vehicle.setStop " + e.id, [&] {
+        Api::Vehicle::setStop(
+            e.id, s.edge, s.end, s.lane, s.duration > 0 ? s.duration : libsumo::INVALID_DOUBLE_VALUE,
+            libsumo::STOP_DEFAULT, s.start, s.until >= 0 ? s.until : libsumo::INVALID_DOUBLE_VALUE);
+      });
   }
   std::vector<std::string> pending() override {
     return call("getPendingVehicles", [] { return Api::Simulation::getPendingVehicles(); });

@@ -247,6 +247,20 @@ void Cosimulation::hand_into_sumo(const Simulation::HandOut& h) {
       e.depart_lane = "best";
     }
   }
+  // The trip's stops on the corridor's edges it drives now (up to the first edge after the corridor, where
+  // LPSim takes it back and makes its later stops). On its entry edge only stops it can still brake for.
+  const StopTable& stops = d.stops;
+  uint32_t visit_end = h.route_pos;
+  while (visit_end < d.route_length[v] && corridor_edge(d.route_edges[d.route_begin[v] + visit_end]))
+    ++visit_end;
+  const double brake = e.speed * e.speed / (2.0 * d.types.decel[d.vehicle_type[v]]) + 1.0;
+  for (uint32_t i = stops.first(v); i < stops.last(v); ++i) {
+    if (stops.route_pos[i] < h.route_pos || stops.route_pos[i] >= visit_end) continue;
+    if (stops.route_pos[i] == h.route_pos && stops.end_pos[i] < e.pos + brake) continue;
+    e.stops.push_back({net_.edge_id[d.route_edges[d.route_begin[v] + stops.route_pos[i]]],
+                       static_cast<int>(net_.lane_index[stops.lane[i]]), stops.start_pos[i], stops.end_pos[i],
+                       stops.duration[i], stops.until[i]});
+  }
   sumo_->add(e);
   if (visited_[v] < 255) ++visited_[v];
   InSumo s;

@@ -552,6 +552,40 @@ TEST(CosimulationCliTest, ArrivalPosOnACorridorEdgeIsHonoured) {
   EXPECT_GT(std::stod(m[1]), 150.0);  // no arrivalPos: the lane's end
 }
 
+// A bus's scheduled stop on a corridor edge is made in SUMO, the others in LPSim: its stop time is all three
+// stops' 60 s, as in LPSim alone (before, SUMO drove past the corridor's stop: 40 s).
+TEST(CosimulationCliTest, ScheduledStopsOnCorridorEdgesAreMadeInSumo) {
+  test::TempDir dir("cosim_stops");
+  const std::string net = (fs::path(kGrid).parent_path() / "grid_tls.net.xml").string();
+  dir.write("bus.rou.xml",
+            "<routes>\n    <vType id=\"bus\" vClass=\"bus\" length=\"12\"/>\n"
+            "    <vehicle id=\"b\" type=\"bus\" depart=\"0\"><route edges=\"A1A2 A2B2 B2C2 C2D2\"/>\n"
+            "        <stop lane=\"A1A2_0\" endPos=\"100\" duration=\"20\"/>\n"
+            "        <stop lane=\"B2C2_0\" endPos=\"120\" duration=\"20\"/>\n"
+            "        <stop lane=\"C2D2_0\" endPos=\"100\" duration=\"20\"/>\n"
+            "    </vehicle>\n</routes>\n");
+  const std::string corridor = dir.write("corridor.txt", "edge:B2C2\n");
+  const test::CliResult co =
+      test::run_lpsim(dir.path(), {"cosim", "-n", net, "-r", "bus.rou.xml", "--corridor", corridor,
+                                   "--tripinfo-output", "co.xml", "--no-step-log"});
+  ASSERT_EQ(co.exit_code, 0) << co.err;
+  const test::CliResult alone = test::run_lpsim(
+      dir.path(), {"run", "-n", net, "-r", "bus.rou.xml", "--tripinfo-output", "alone.xml", "--no-step-log"});
+  ASSERT_EQ(alone.exit_code, 0) << alone.err;
+  static const std::regex stop_time(" stopTime=\"([0-9.]+)\"");
+  std::smatch m;
+  const std::string co_trip = trips_by_id(fs::path(dir.path()) / "co.xml").at("b");
+  ASSERT_TRUE(std::regex_search(co_trip, m, stop_time)) << co_trip;
+  EXPECT_DOUBLE_EQ(std::stod(m[1]), 60.0);
+  const std::string sumo_piece =
+      trips_by_id(sumo_side_path((fs::path(dir.path()) / "co.xml").string())).at("b");
+  ASSERT_TRUE(std::regex_search(sumo_piece, m, stop_time)) << sumo_piece;
+  EXPECT_DOUBLE_EQ(std::stod(m[1]), 20.0);  // the corridor's stop, made by SUMO
+  const std::string alone_trip = trips_by_id(fs::path(dir.path()) / "alone.xml").at("b");
+  ASSERT_TRUE(std::regex_search(alone_trip, m, stop_time)) << alone_trip;
+  EXPECT_DOUBLE_EQ(std::stod(m[1]), 60.0);
+}
+
 // A signal while a SUMO process is still starting (a region's network takes minutes to load) ends the run at
 // once: exit 128 + the signal, the outputs closed well-formed and empty, the SUMO process gone. Before, the
 // start went on waiting for SUMO's port for up to 300 s. The "SUMO" here never opens its port.
