@@ -61,12 +61,13 @@ class ApiLink final : public SumoLink {
     // vehicle with an error; "max" lets it lower the speed instead, and the vehicle's maximum speed, until it
     // is inserted (restore_max_speed), caps it at the speed it had.
     const bool capped = e.lane >= 0 && e.speed >= kLeastCappedSpeed;
+    const std::string depart = e.depart >= 0 ? number(e.depart) : "now";
     call("vehicle.add " + e.id, [&] {
       if (e.lane < 0)
-        Api::Vehicle::add(e.id, route, e.type, "now", e.depart_lane, e.depart_pos, e.depart_speed, "current",
+        Api::Vehicle::add(e.id, route, e.type, depart, e.depart_lane, e.depart_pos, e.depart_speed, "current",
                           e.arrival_pos);
       else
-        Api::Vehicle::add(e.id, route, e.type, "now", std::to_string(e.lane), number(e.pos),
+        Api::Vehicle::add(e.id, route, e.type, depart, std::to_string(e.lane), number(e.pos),
                           capped ? "max" : "0", "current", e.arrival_pos);
     });
     if (capped) call("vehicle.setMaxSpeed " + e.id, [&] { Api::Vehicle::setMaxSpeed(e.id, e.speed); });

@@ -130,6 +130,12 @@ Cosimulation::~Cosimulation() { run_.count_outside(nullptr); }
 
 bool Cosimulation::departs_in_sumo(const InSumo& s) { return s.entry_lane < 0 && s.route_pos == 0; }
 
+// A pending vehicle's step has run in SUMO (it was added to depart at `since`, and SUMO's last step ran at
+// its clock less a step): SUMO lists it as pending.
+bool Cosimulation::due_in_sumo(const InSumo& s) const {
+  return s.since <= sumo_->time() - static_cast<double>(sumo_step_ms_) / 1000.0 + 1e-9;
+}
+
 void Cosimulation::count_sumo_departure(uint32_t v, double now) {
   sumo_depart_[v] = now;
   ++outside_.inserted;
@@ -176,8 +182,9 @@ void Cosimulation::step() {
       if (removed_since_step_.count(id)) continue;
       const auto it = in_sumo_.find(id);
       if (it == in_sumo_.end()) continue;
-      const double now = static_cast<double>(t) / 1000.0;
-      if (it->second.pending) {  // inserted and arrived within one step
+      const double now =
+          static_cast<double>(t - sumo_step_ms_) / 1000.0;  // the step's time, as SUMO's outputs
+      if (it->second.pending) {                             // inserted and arrived within one step
         --pending_;
         if (departs_in_sumo(it->second)) count_sumo_departure(it->second.vehicle, now);
       }
@@ -194,11 +201,11 @@ void Cosimulation::step() {
       if (it == in_sumo_.end() || !it->second.pending) continue;
       it->second.pending = false;
       --pending_;
-      if (departs_in_sumo(it->second))
-        count_sumo_departure(it->second.vehicle, static_cast<double>(t) / 1000.0);
-      report_.longest_boundary_wait =
-          std::max(report_.longest_boundary_wait, static_cast<double>(t) / 1000.0 - it->second.since);
-      it->second.since = static_cast<double>(t) / 1000.0;
+      // Inserted in the step that ended at t: at that step's time, as SUMO reports its departure.
+      const double inserted = static_cast<double>(t - sumo_step_ms_) / 1000.0;
+      if (departs_in_sumo(it->second)) count_sumo_departure(it->second.vehicle, inserted);
+      report_.longest_boundary_wait = std::max(report_.longest_boundary_wait, inserted - it->second.since);
+      it->second.since = inserted;
       if (it->second.entry_lane >= 0) {  // its maximum speed capped its speed at the insertion
         const Demand& d = run_.simulation().demand();
         sumo_->restore_max_speed(id, d.types.max_speed[d.vehicle_type[it->second.vehicle]]);
@@ -221,6 +228,12 @@ void Cosimulation::hand_into_sumo(const Simulation::HandOut& h) {
   for (uint32_t k = d.route_begin[v] + h.route_pos; k < d.route_begin[v] + d.route_length[v]; ++k)
     e.route.push_back(net_.edge_id[d.route_edges[k]]);
   e.speed_factor = d.speed_factor[v];
+  // The SUMO step that inserts it: a trip departing in the corridor at the time LPSim found it due, as LPSim
+  // alone departs it; a vehicle driving in, in the step that runs alongside LPSim's step that handed it out
+  // (SUMO's clock then, one LPSim step behind LPSim's). "now", SUMO's clock when it is added, departed trips
+  // a step early and, with a coupling period of several steps, put vehicles into SUMO up to a period early.
+  const bool departing = h.lane < 0 && h.route_pos == 0;
+  e.depart = departing ? sim.time() : sim.time() - sim.step_length();
   // Where the trip ends, should it end in SUMO (its route there runs to the trip's last edge).
   switch (static_cast<ArrivalPos>(d.arrival_pos_kind[v])) {
     case ArrivalPos::Given:
@@ -268,7 +281,7 @@ void Cosimulation::hand_into_sumo(const Simulation::HandOut& h) {
   s.route_pos = h.route_pos;
   s.entry_lane = h.lane;
   s.entry_pos = static_cast<float>(e.pos);  // where SUMO is to insert it (on the lane)
-  s.since = sim.time();
+  s.since = e.depart;
   in_sumo_[e.id] = s;
   ++pending_;
   ++report_.into_sumo;
@@ -287,8 +300,9 @@ void Cosimulation::after_sumo_step() {
     for (std::string& id : sumo_->pending()) pending.insert(std::move(id));
     for (const auto& [id, s] : in_sumo_) {
       if (!s.pending) continue;
-      // SUMO drops a vehicle it will never insert (an error of its own above): that would lose it.
-      if (!pending.count(id))
+      // SUMO drops a vehicle it will never insert (an error of its own above): that would lose it. One due
+      // at a step SUMO has not run yet is not pending there yet.
+      if (!pending.count(id) && due_in_sumo(s))
         throw SumoError("SUMO dropped vehicle " + id +
                         " instead of inserting it (SUMO's messages above say why)");
       if (now - s.since > kLongestPending)
@@ -403,7 +417,11 @@ Cosimulation::Census Cosimulation::census() const {
     else
       ++c.in_lpsim;
   }
-  for (const auto& [id, s] : in_sumo_) ++(s.pending ? c.in_handover : c.in_sumo);
+  uint64_t not_yet_due = 0;
+  for (const auto& [id, s] : in_sumo_) {
+    ++(s.pending ? c.in_handover : c.in_sumo);
+    not_yet_due += s.pending && !due_in_sumo(s) ? 1 : 0;
+  }
   c.arrived = ended + arrived_in_sumo_;
   const auto fail = [](const std::string& what) { throw std::logic_error("co-simulation census: " + what); };
   if (migrated != in_sumo_.size() + arrived_in_sumo_)
@@ -412,7 +430,7 @@ Cosimulation::Census Cosimulation::census() const {
          " arrived there by the bridge's");
   const uint64_t sumo_running = static_cast<uint64_t>(sumo_->running());
   const uint64_t sumo_pending = sumo_->pending().size();
-  if (sumo_running != c.in_sumo || sumo_pending != c.in_handover)
+  if (sumo_running != c.in_sumo || sumo_pending != c.in_handover - not_yet_due)
     fail("SUMO runs " + std::to_string(sumo_running) + " and has " + std::to_string(sumo_pending) +
          " pending; the bridge counts " + std::to_string(c.in_sumo) + " and " +
          std::to_string(c.in_handover));

@@ -94,6 +94,7 @@ class Cosimulation {
 
   void hand_into_sumo(const Simulation::HandOut& h);
   static bool departs_in_sumo(const InSumo& s);  // its trip starts in SUMO (LPSim never inserted it)
+  bool due_in_sumo(const InSumo& s) const;
   void count_sumo_departure(uint32_t v, double now);
   double depart_time(uint32_t v) const;  // its trip's departure, on either side
   Run::OutsideCounts outside_counts() const;

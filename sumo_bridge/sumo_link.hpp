@@ -33,6 +33,7 @@ struct SumoEntry {
   std::string depart_lane = "first", depart_pos = "base", depart_speed = "0";  // lane -1 only
   double speed_factor = 0;          // > 0: the vehicle's own (as the other side drew it); else SUMO draws one
   std::string arrival_pos = "max";  // SUMO's arrivalPos on the route's last edge
+  double depart = -1;               // s: the SUMO step that is to insert it (< 0: SUMO's next)
   // Scheduled stops SUMO is to make on the way (an edge of `route`; until < 0: none; duration <= 0: until).
   struct Stop {
     std::string edge;
