@@ -45,10 +45,13 @@ std::vector<std::string> trip_lines(const std::string& text) {
   return out;
 }
 
-std::string mpirun_command(const std::string& args) {
+// `sigkill_wait`: mpirun's odls_base_sigkill_timeout, how long it lets ranks it passed a signal on to end
+// before it kills them (default 1 s). It also waits about that long, twice, whenever a rank ends non-zero.
+std::string mpirun_command(const std::string& args, int sigkill_wait = 1) {
   return test::shell_quote(LPSIM_MPIEXEC) +
-         " -n 2 --allow-run-as-root --oversubscribe --mca odls_base_sigkill_timeout 10 " +
-         test::shell_quote(LPSIM_BINARY) + " run " + test::shell_quote(kGrid) + " --parts 2 " + args;
+         " -n 2 --allow-run-as-root --oversubscribe --mca odls_base_sigkill_timeout " +
+         std::to_string(sigkill_wait) + " " + test::shell_quote(LPSIM_BINARY) + " run " +
+         test::shell_quote(kGrid) + " --parts 2 " + args;
 }
 
 // Besides grid_tls's hour of demand, a flow that never ends: trips arrive whenever the signal comes.
@@ -79,7 +82,7 @@ TEST_P(MpiInterruptTest, EveryRankStopsAtOneStepAndRankZeroClosesTheOutputs) {
       "cd " + test::shell_quote(cut_dir.string()) +
       " && mine() { for p in $(pgrep -x lpsim); do [ \"$(readlink /proc/$p/cwd)\" = \"$PWD\" ] "
       "&& echo $p; done; }; (" +
-      mpirun_command(std::string("--end 1000000") + kOutputs) +
+      mpirun_command(std::string("--end 1000000") + kOutputs, how == std::string("mpirun") ? 3 : 1) +
       " > out.txt 2> err.txt & job=$!; for i in $(seq 4000); do "
       "[ $(stat -c %s summary.xml 2>/dev/null || echo 0) -gt 40000 ] && break; sleep 0.005; done; " +
       signal + "; wait $job; echo $? > status.txt)";
