@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "lpsim_cli.hpp"
+#include "meandata_entries.hpp"
 #include "temp_dir.hpp"
 
 namespace lpsim::test {
@@ -19,6 +20,54 @@ inline bool have_sumo_and_netconvert() { return have_sumo_tool("sumo") && have_s
 inline void netconvert(const TempDir& dir, const std::vector<std::string>& args) {
   const CliResult r = run_program(dir.path(), {"netconvert"}, args);
   ASSERT_EQ(r.exit_code, 0) << r.err;
+}
+
+/// Copies bundled scenario `name` into `dir` and runs the real sumo and `lpsim run` on its .sumocfg with
+/// car-following model `model` and seed 42, each writing its statistic output, tripinfo and a whole-run
+/// laneData into <p>_stats.xml, <p>_trips.xml and <p>_lanes.xml, p = "s" (SUMO) or "l" (LPSim). `additional`:
+/// the cfg's own add-files, which --additional-files replaces. A failed run fails the test (call it through
+/// ASSERT_NO_FATAL_FAILURE).
+inline void run_bundled_with_lane_data(const TempDir& dir, const std::string& name, const std::string& model,
+                                       const std::string& additional = "") {
+  copy_scenario(name, dir.path());
+  auto args = [&](const std::string& p) {
+    dir.write(p + ".add.xml", "<additional>\n  <laneData id=\"lanes\" file=\"" + p +
+                                  "_lanes.xml\" excludeEmpty=\"true\"/>\n</additional>\n");
+    return std::vector<std::string>{"-c",
+                                    name + ".sumocfg",
+                                    "--default.carfollowmodel",
+                                    model,
+                                    "--additional-files",
+                                    (additional.empty() ? "" : additional + ",") + p + ".add.xml",
+                                    "--statistic-output",
+                                    p + "_stats.xml",
+                                    "--tripinfo-output",
+                                    p + "_trips.xml",
+                                    "--seed",
+                                    "42"};
+  };
+  std::vector<std::string> sumo_args = args("s");
+  sumo_args.push_back("--no-step-log");
+  const CliResult sumo = run_program(dir.path(), {"sumo"}, sumo_args);
+  ASSERT_EQ(sumo.exit_code, 0) << sumo.err;
+  std::vector<std::string> lpsim_args = args("l");
+  lpsim_args.insert(lpsim_args.begin(), "run");
+  const CliResult lpsim = run_lpsim(dir.path(), lpsim_args);
+  ASSERT_EQ(lpsim.exit_code, 0) << lpsim.err;
+}
+
+/// The vehicles inserted and the teleports of a statistic output (SUMO's or LPSim's); -1 where absent.
+struct InsertedAndTeleports {
+  int inserted = -1, teleports = -1;
+};
+inline InsertedAndTeleports inserted_and_teleports(const std::string& statistic) {
+  InsertedAndTeleports c;
+  std::smatch m;
+  if (std::regex_search(statistic, m, std::regex(R"re(<vehicles [^>]*inserted="([0-9]+)")re")))
+    c.inserted = std::stoi(m[1]);
+  if (std::regex_search(statistic, m, std::regex(R"re(<teleports total="([0-9]+)")re")))
+    c.teleports = std::stoi(m[1]);
+  return c;
 }
 
 struct SumoAndLpsim {

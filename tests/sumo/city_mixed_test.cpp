@@ -13,12 +13,12 @@
 
 #include "lpsim_cli.hpp"
 #include "meandata_entries.hpp"
+#include "sumo_comparison.hpp"
 #include "temp_dir.hpp"
 
 namespace lpsim {
 namespace {
 
-using test::CliResult;
 using test::read_file;
 using test::TempDir;
 
@@ -35,12 +35,10 @@ struct Totals {
 
 Totals read_totals(const TempDir& dir, const std::string& prefix) {
   Totals t;
-  const std::string stats = read_file(dir.path() / (prefix + "_stats.xml"));
-  std::smatch m;
-  if (std::regex_search(stats, m, std::regex(R"re(<vehicles [^>]*inserted="([0-9]+)")re")))
-    t.inserted = std::stoi(m[1]);
-  if (std::regex_search(stats, m, std::regex(R"re(<teleports total="([0-9]+)")re")))
-    t.teleports = std::stoi(m[1]);
+  const test::InsertedAndTeleports c =
+      test::inserted_and_teleports(read_file(dir.path() / (prefix + "_stats.xml")));
+  t.inserted = c.inserted;
+  t.teleports = c.teleports;
   const std::string trips = read_file(dir.path() / (prefix + "_trips.xml"));
   const std::regex tripinfo(R"re(<tripinfo ([^>]*)>)re");
   const std::regex attr(R"re(([A-Za-z]+)="([^"]*)")re");
@@ -72,33 +70,7 @@ class CityMixedTest : public ::testing::TestWithParam<const char*> {
 TEST_P(CityMixedTest, TrucksAndBusesAmongCarsAsSumo) {
   const std::string model = GetParam();
   TempDir dir("lpsim_city_mixed");
-  test::copy_scenario("city_mixed", dir.path());
-  for (const char* prefix : {"s", "l"})
-    dir.write(std::string(prefix) + ".add.xml",
-              std::string("<additional>\n  <laneData id=\"lanes\" file=\"") + prefix +
-                  "_lanes.xml\" excludeEmpty=\"true\"/>\n</additional>\n");
-  auto args = [&](const std::string& prefix) {
-    return std::vector<std::string>{"-c",
-                                    "city_mixed.sumocfg",
-                                    "--default.carfollowmodel",
-                                    model,
-                                    "--additional-files",
-                                    "city_mixed.add.xml," + prefix + ".add.xml",
-                                    "--statistic-output",
-                                    prefix + "_stats.xml",
-                                    "--tripinfo-output",
-                                    prefix + "_trips.xml",
-                                    "--seed",
-                                    "42"};
-  };
-  std::vector<std::string> sumo_args = args("s");
-  sumo_args.push_back("--no-step-log");
-  const CliResult sumo = test::run_program(dir.path(), {"sumo"}, sumo_args);
-  ASSERT_EQ(sumo.exit_code, 0) << sumo.err;
-  std::vector<std::string> lpsim_args = args("l");
-  lpsim_args.insert(lpsim_args.begin(), "run");
-  const CliResult lpsim = test::run_lpsim(dir.path(), lpsim_args);
-  ASSERT_EQ(lpsim.exit_code, 0) << lpsim.err;
+  ASSERT_NO_FATAL_FAILURE(test::run_bundled_with_lane_data(dir, "city_mixed", model, "city_mixed.add.xml"));
 
   Totals s = read_totals(dir, "s"), l = read_totals(dir, "l");
   ASSERT_EQ(s.inserted, 960);
