@@ -28,7 +28,7 @@ void read_pieces(const std::string& path, std::vector<SumoTripPiece>& pieces) {
     p.waiting_count = xml.integer("waitingCount", 0);
     p.stop_time = xml.number("stopTime", 0);
     p.time_loss = xml.number("timeLoss", 0);
-    p.vaporized = !xml.get("vaporized", "").empty();
+    p.vaporized = xml.get("vaporized", "");
     pieces.push_back(std::move(p));
   }
 }

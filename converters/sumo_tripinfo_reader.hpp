@@ -14,7 +14,9 @@ struct SumoTripPiece {
   double arrival = 0, arrival_pos = 0, arrival_speed = 0;
   double route_length = 0, waiting_time = 0, stop_time = 0, time_loss = 0;
   long long waiting_count = 0;
-  bool vaporized = false;  // SUMO took it out before its arrival (a hand-over back, or the end of the run)
+  // Why SUMO ended it short of its arrival: "traci" (taken out by a client: a hand-over back), "teleport"
+  // (teleported beyond its route's last edge), "end" (still running at the end); empty: it arrived.
+  std::string vaporized;
 };
 
 /// The tripinfo elements of a SUMO tripinfo output, in file order; InputError with file:line when the file

@@ -24,7 +24,8 @@ constexpr uint64_t kDepartRngSalt = 0x4445504152545F31ull;
 // Entries of one edge's queue offered per step. More than this many insertions on one edge in one step would
 // need that many free places on its lanes at once; the rest wait a step (both backends alike).
 constexpr uint32_t kMaxInsertPerEdge = 16;
-// Entry flag: a teleported vehicle re-entering (best free lane, at the lane start, speed 0, not a departure).
+// Entry flag: a vehicle re-entering, not departing: after a teleport (best free lane, at the lane start,
+// speed 0) or handed back by a co-simulated SUMO (its lane, position and speed there).
 constexpr uint32_t kInsertTeleported = 0x80000000u;
 
 /// Per-vehicle depart attributes (read-only).
@@ -52,6 +53,9 @@ struct InsertBatch {
   // [entries] the lane a re-entering vehicle must take (a handed-back vehicle's lane in SUMO, chosen there
   // for its route); -1: the best free lane (after a teleport). Departures ignore it.
   const int32_t* enter_lane;
+  // [entries] where a re-entering vehicle's front is to be (a handed-back vehicle continuing where SUMO had
+  // it), tried before the lane start; -1: at the lane start (after a teleport). Departures ignore it.
+  const float* enter_pos;
   uint32_t* inserted;  // out [num_slots]: entries of the slot inserted
   int32_t* out_lane;   // out [entries]: where an inserted vehicle was placed
   float* out_pos;
@@ -308,12 +312,13 @@ LPSIM_HD int32_t free_lane(const NetView& net, uint32_t first, uint32_t nlanes, 
 /// Lanes an edge's insertion looks at (SUMO's 64-bit masks); lanes beyond are not used for departures.
 constexpr uint32_t kMaxInsertLanes = 64;
 
-/// Tries to put a teleported (or handed-back) vehicle back on the road at the start of route edge `rp`: on
-/// `lane_wanted` if >= 0, else best lanes first, then the others its class may use; at the lane start, at up
-/// to `speed_wanted` (lowered to fit). Returns false, changing nothing, when none has room.
+/// Tries to put a teleported (or handed-back) vehicle back on the road on route edge `rp`: on `lane_wanted`
+/// if >= 0, else best lanes first, then the others its class may use; with its front at `pos_wanted` if >= 0,
+/// else (or where that has no room) at the lane start; at up to `speed_wanted` (lowered to fit). Returns
+/// false, changing nothing, when none has room.
 LPSIM_HD bool try_reenter(const StepContext& s, const InsertParams& p, uint8_t* map, uint32_t v, uint32_t rp,
-                          float speed_wanted, int32_t lane_wanted, int32_t* out_lane, float* out_pos,
-                          float* out_speed) {
+                          float speed_wanted, int32_t lane_wanted, float pos_wanted, int32_t* out_lane,
+                          float* out_pos, float* out_speed) {
   const NetView& net = s.net;
   const uint32_t e = trip_route_edge(s, v, rp);
   const uint32_t first = net.edge_first_lane[e], nlanes = net.edge_num_lanes[e];
@@ -323,22 +328,25 @@ LPSIM_HD bool try_reenter(const StepContext& s, const InsertParams& p, uint8_t* 
   const uint32_t best =
       best_lanes(net, s.trips.route_edges + s.trips.route_begin[v], s.trips.route_length[v], rp, vclass)
           .mask[0];
-  for (int pass = 0; pass < 2; ++pass) {
-    for (uint32_t l = first; l < first + nlanes; ++l) {
-      if (((lane_bit(net, l) & best) != 0) != (pass == 0) || !lane_allows(net, l, vclass)) continue;
-      if (lane_wanted >= 0 && static_cast<int32_t>(l) != lane_wanted) continue;
-      const int32_t li = static_cast<int32_t>(l);
-      const float pos = base_pos(net.lane_length[l], length);
-      const float speed = insertion_check(s, p, map, v, li, pos, speed_wanted, true);
-      if (speed < 0.0f) continue;
-      apply_footprint(map, net, Footprint{li, -1, -1, pos}, length, encode_cell_speed(speed));
-      if (p.cnt_entered != nullptr) atomic_add_i64(&p.cnt_entered[l], 1);
-      *out_lane = li;
-      *out_pos = pos;
-      *out_speed = speed;
-      return true;
+  // Where it is wanted first, then (no room there) at the lane start, as after a teleport.
+  for (int at_start = pos_wanted < 0.0f ? 1 : 0; at_start < 2; ++at_start)
+    for (int pass = 0; pass < 2; ++pass) {
+      for (uint32_t l = first; l < first + nlanes; ++l) {
+        if (((lane_bit(net, l) & best) != 0) != (pass == 0) || !lane_allows(net, l, vclass)) continue;
+        if (lane_wanted >= 0 && static_cast<int32_t>(l) != lane_wanted) continue;
+        const int32_t li = static_cast<int32_t>(l);
+        const float start = base_pos(net.lane_length[l], length);
+        const float pos = at_start ? start : lp_fmaxf(start, lp_fminf(pos_wanted, net.lane_length[l]));
+        const float speed = insertion_check(s, p, map, v, li, pos, speed_wanted, true);
+        if (speed < 0.0f) continue;
+        apply_footprint(map, net, Footprint{li, -1, -1, pos}, length, encode_cell_speed(speed));
+        if (p.cnt_entered != nullptr) atomic_add_i64(&p.cnt_entered[l], 1);
+        *out_lane = li;
+        *out_pos = pos;
+        *out_speed = speed;
+        return true;
+      }
     }
-  }
   return false;
 }
 
@@ -363,8 +371,8 @@ LPSIM_HD void insert_queue_head(const StepContext& s, const DepartView& d, const
     const uint32_t entry = b.entry[i];
     const uint32_t v = entry & ~kInsertTeleported;
     if (entry & kInsertTeleported) {
-      if (try_reenter(s, p, map, v, b.route_pos[i], b.enter_speed[i], b.enter_lane[i], &b.out_lane[i],
-                      &b.out_pos[i], &b.out_speed[i])) {
+      if (try_reenter(s, p, map, v, b.route_pos[i], b.enter_speed[i], b.enter_lane[i], b.enter_pos[i],
+                      &b.out_lane[i], &b.out_pos[i], &b.out_speed[i])) {
         ++n;
         scanned = 0;
       }

@@ -2,6 +2,7 @@
 // SumoLink over one of SUMO's two C++ client libraries, which offer the same classes in two namespaces
 // (libsumo:: in process, libtraci:: over a socket): Api names them (libsumo_link.cpp, traci_link.cpp). Every
 // call's exception becomes a SumoError naming the call.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <exception>
@@ -47,7 +48,19 @@ class ApiLink final : public SumoLink {
     return call("getTime", [] { return Api::Simulation::getTime(); });
   }
   void step_to(double t) override {
-    call("simulationStep", [&] { Api::Simulation::step(t); });
+    bool stale_subscription = false;
+    call("simulationStep", [&] {
+      try {
+        Api::Simulation::step(t);
+      } catch (const libsumo::TraCIException& e) {
+        // SUMO 1.15 answers the subscription of a vehicle it removed without an arrival (one that teleported
+        // beyond its route's end) with an error, once. The step itself ran; its subscription results are
+        // incomplete.
+        if (Api::kReadsDirectly || std::string(e.what()).rfind("Subscription response error", 0) != 0) throw;
+        stale_subscription = true;
+      }
+    });
+    if (stale_subscription) drop_stale_subscriptions();
   }
 
   void add(const SumoEntry& e) override {
@@ -87,15 +100,14 @@ class ApiLink final : public SumoLink {
   std::vector<std::string> arrived() override {
     std::vector<std::string> ids =
         call("getArrivedIDList", [] { return Api::Simulation::getArrivedIDList(); });
-    for (const std::string& id : ids) watched_.erase(id);  // SUMO ends an arrived vehicle's subscription
+    for (const std::string& id : ids) {  // SUMO ends an arrived vehicle's subscription
+      watched_.erase(id);
+      gone_.erase(std::remove(gone_.begin(), gone_.end(), id), gone_.end());
+    }
     return ids;
   }
   SumoVehicle vehicle(const std::string& id) override {
-    return call("vehicle " + id, [&] {
-      return SumoVehicle{Api::Vehicle::getRoadID(id), Api::Vehicle::getLaneIndex(id),
-                         Api::Vehicle::getLanePosition(id), Api::Vehicle::getSpeed(id),
-                         Api::Vehicle::getRouteIndex(id)};
-    });
+    return call("vehicle " + id, [&] { return read_vehicle(id); });
   }
   std::vector<std::string> departed() override {
     return call("getDepartedIDList", [] { return Api::Simulation::getDepartedIDList(); });
@@ -106,16 +118,42 @@ class ApiLink final : public SumoLink {
     watched_.insert(id);
   }
   std::vector<std::pair<std::string, SumoVehicle>> watched() override {
-    if (Api::kReadsDirectly) {
-      std::vector<std::pair<std::string, SumoVehicle>> out;
-      out.reserve(watched_.size());
+    std::vector<std::pair<std::string, SumoVehicle>> out;
+    out.reserve(watched_.size());
+    if (Api::kReadsDirectly) {  // in this process: a call cannot hang, and SUMO says which id it lacks
+      for (auto it = watched_.begin(); it != watched_.end();) {
+        try {
+          out.emplace_back(*it, read_vehicle(*it));
+          ++it;
+        } catch (const libsumo::TraCIException&) {
+          if (known(*it)) {
+            out.emplace_back(*it, vehicle(*it));  // another failure: a SumoError naming it
+            ++it;
+            continue;
+          }
+          out.emplace_back(*it, gone());
+          it = watched_.erase(it);
+        }
+      }
+      return out;
+    }
+    if (!gone_.empty() || reread_) {  // this step's subscription results are incomplete: one call each
+      for (const std::string& id : gone_) out.emplace_back(id, gone());
+      gone_.clear();
+      reread_ = false;
       for (const std::string& id : watched_) out.emplace_back(id, vehicle(id));
       return out;
     }
     const auto results =
         call("vehicle.getAllSubscriptionResults", [] { return Api::Vehicle::getAllSubscriptionResults(); });
-    std::vector<std::pair<std::string, SumoVehicle>> out;
-    out.reserve(results.size());
+    for (auto it = watched_.begin(); it != watched_.end();) {  // its subscription ended with it
+      if (results.count(*it)) {
+        ++it;
+      } else {
+        out.emplace_back(*it, gone());
+        it = watched_.erase(it);
+      }
+    }
     for (const auto& [id, values] : results) {
       SumoVehicle v;
       for (const auto& [variable, value] : values) {
@@ -188,6 +226,35 @@ class ApiLink final : public SumoLink {
     return false;
   }
 
+  // The watched vehicles SUMO no longer has (SUMO ended their subscriptions with that error): watched()
+  // reports them gone.
+  void drop_stale_subscriptions() {
+    const std::vector<std::string> ids = call("vehicle.getIDList", [] { return Api::Vehicle::getIDList(); });
+    const std::set<std::string> running(ids.begin(), ids.end());
+    for (auto it = watched_.begin(); it != watched_.end();) {
+      if (running.count(*it)) {
+        ++it;
+        continue;
+      }
+      gone_.push_back(*it);
+      it = watched_.erase(it);
+    }
+    reread_ = true;
+  }
+  static SumoVehicle read_vehicle(const std::string& id) {
+    return SumoVehicle{Api::Vehicle::getRoadID(id), Api::Vehicle::getLaneIndex(id),
+                       Api::Vehicle::getLanePosition(id), Api::Vehicle::getSpeed(id),
+                       Api::Vehicle::getRouteIndex(id)};
+  }
+  bool known(const std::string& id) {
+    const std::vector<std::string> ids = call("vehicle.getIDList", [] { return Api::Vehicle::getIDList(); });
+    return std::find(ids.begin(), ids.end(), id) != ids.end();
+  }
+  static SumoVehicle gone() {
+    SumoVehicle v;
+    v.gone = true;
+    return v;
+  }
   static int as_int(const libsumo::TraCIResult& r) {
     const auto* i = dynamic_cast<const libsumo::TraCIInt*>(&r);
     return i != nullptr ? i->value : std::stoi(r.getString());
@@ -210,6 +277,8 @@ class ApiLink final : public SumoLink {
   bool open_ = true;
   std::set<std::string> entry_routes_;
   std::set<std::string> watched_;
+  std::vector<std::string> gone_;  // found gone after a step whose subscription results were incomplete
+  bool reread_ = false;            // those results are incomplete
 };
 
 }  // namespace lpsim

@@ -1,6 +1,7 @@
 // The co-simulation's results completed at its end from SUMO's: one tripinfo line per trip, and SUMO's
 // measurements on the corridor's edges in each edgeData/laneData output.
 #include <algorithm>
+#include <string>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -10,6 +11,13 @@
 #include "sumo_bridge/sumo_arguments.hpp"
 
 namespace lpsim {
+
+namespace {
+
+// How SUMO's tripinfo marks a piece that ended with a hand-over back (TraCI's vehicle.remove).
+const std::string kHandedBack = "traci";
+
+}  // namespace
 
 // One tripinfo line per trip that ended, for the whole trip: its start where it departed (LPSim's
 // departure, or SUMO's first piece), its end where it arrived, and the sums of both sides' pieces.
@@ -42,7 +50,7 @@ void Cosimulation::merge_tripinfo(bool after_failure) {
     const auto held = held_trips_.find(v);
     if (held != held_trips_.end()) {  // it arrived in LPSim, whose record sums LPSim's pieces
       r = held->second;
-    } else if (ps != nullptr && !ps->back().vaporized) {  // it arrived in SUMO
+    } else if (ps != nullptr && ps->back().vaporized != kHandedBack) {  // its trip ended in SUMO
       const SumoTripPiece& last = ps->back();
       r.vehicle = v;
       r.arrival = last.arrival;
@@ -73,6 +81,8 @@ void Cosimulation::merge_tripinfo(bool after_failure) {
       r.depart_pos = static_cast<float>(first.depart_pos);
       r.depart_speed = static_cast<float>(first.depart_speed);
     }
+    if (const auto between = driven_between_.find(v); between != driven_between_.end())
+      r.route_length += static_cast<float>(between->second);
     if (ps != nullptr)
       for (const SumoTripPiece& p : *ps) {
         r.route_length += p.route_length;

@@ -24,6 +24,9 @@ constexpr int64_t kLongestPeriodMs = 60000;
 // A vehicle SUMO has not inserted for this long (s) after it was handed over is stuck for good: SUMO retries
 // a pending vehicle at the same place for ever, which would keep the run from ending.
 constexpr double kLongestPending = 3600;
+// SUMO 1.15's LC2013 keeps a look-ahead speed with a memory factor of 1 - 0.1 * action step, asserted
+// positive (MSLCM_LC2013::_wantsChange): Debian's build aborts at action steps of 10 s or more.
+constexpr int64_t kLc2013LongestStepMs = 10000;
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -119,7 +122,13 @@ Cosimulation::Cosimulation(Run& run, const std::vector<uint8_t>& corridor_lanes,
                      " s to couple them at (the least is " +
                      sumo_number(static_cast<double>(period_ms_) / 1000.0) +
                      " s): give step lengths that divide one another");
+  if (sumo_step_ms_ >= kLc2013LongestStepMs)
+    throw InputError(
+        "SUMO's step length " + sumo_number(sumo_step) +
+        " s: SUMO 1.15 aborts on an assertion in its LC2013 lane-change model at action steps of " +
+        sumo_number(kLc2013LongestStepMs / 1000.0) + " s or more (give a shorter one)");
   report_.period = static_cast<double>(period_ms_) / 1000.0;
+  begin_ms_ = next_sumo_ms_ = run_.simulation().time_ms();
   const double sumo_begin = sumo_->time();
   if (std::fabs(sumo_begin - run_.simulation().time()) > 1e-6)
     throw InputError("SUMO starts at " + sumo_number(sumo_begin) + " s, LPSim at " +
@@ -173,26 +182,22 @@ void Cosimulation::step() {
     for (const Simulation::HandOut& h : sim.hand_outs()) hand_into_sumo(h);
     report_.handover_seconds += seconds_since(t0);
   }
-  // SUMO's steps over the same period, one by one: it lists the arrivals of its last step only.
-  for (int64_t t = target_ms - period_ms_ + sumo_step_ms_; t <= target_ms; t += sumo_step_ms_) {
+  // SUMO's steps over the same period, one by one, up to the state LPSim is at: its step "at" time t (the one
+  // its outputs label t, after which its clock shows t + step) ends in the state LPSim's clock calls t. It
+  // lists the arrivals of its last step only. With an end time, not past SUMO's own last step before it.
+  const int64_t last_ms = sim.time_ms();
+  const int64_t end_ms = has_end ? std::llround(run_.config().end * 1000.0) : INT64_MAX;
+  for (; next_sumo_ms_ <= last_ms && next_sumo_ms_ + sumo_step_ms_ <= end_ms;
+       next_sumo_ms_ += sumo_step_ms_) {
+    const int64_t t = next_sumo_ms_;
+    const double now = static_cast<double>(t) / 1000.0;  // the step's time, as SUMO's outputs say
     const auto t0 = std::chrono::steady_clock::now();
-    sumo_->step_to(static_cast<double>(t) / 1000.0);
+    sumo_->step_to(static_cast<double>(t + sumo_step_ms_) / 1000.0);
     report_.sumo_seconds += seconds_since(t0);
     for (const std::string& id : sumo_->arrived()) {
       if (removed_since_step_.count(id)) continue;
       const auto it = in_sumo_.find(id);
-      if (it == in_sumo_.end()) continue;
-      const double now =
-          static_cast<double>(t - sumo_step_ms_) / 1000.0;  // the step's time, as SUMO's outputs
-      if (it->second.pending) {                             // inserted and arrived within one step
-        --pending_;
-        if (departs_in_sumo(it->second)) count_sumo_departure(it->second.vehicle, now);
-      }
-      ++arrived_in_sumo_;
-      ++report_.arrived_in_sumo;
-      outside_.arrived = arrived_in_sumo_;
-      outside_.travel_time_sum += now - depart_time(it->second.vehicle);
-      in_sumo_.erase(it);
+      if (it != in_sumo_.end()) arrived_in_sumo(it, now);
     }
     removed_since_step_.clear();
     // What SUMO inserted reports where it is with every step from now on.
@@ -201,8 +206,8 @@ void Cosimulation::step() {
       if (it == in_sumo_.end() || !it->second.pending) continue;
       it->second.pending = false;
       --pending_;
-      // Inserted in the step that ended at t: at that step's time, as SUMO reports its departure.
-      const double inserted = static_cast<double>(t - sumo_step_ms_) / 1000.0;
+      // Inserted in the step at t, as SUMO reports its departure.
+      const double inserted = now;
       if (departs_in_sumo(it->second)) count_sumo_departure(it->second.vehicle, inserted);
       report_.longest_boundary_wait = std::max(report_.longest_boundary_wait, inserted - it->second.since);
       it->second.since = inserted;
@@ -218,6 +223,18 @@ void Cosimulation::step() {
   report_.handover_seconds += seconds_since(t0);
 }
 
+void Cosimulation::arrived_in_sumo(std::unordered_map<std::string, InSumo>::iterator it, double now) {
+  if (it->second.pending) {  // inserted and arrived within one step
+    --pending_;
+    if (departs_in_sumo(it->second)) count_sumo_departure(it->second.vehicle, now);
+  }
+  ++arrived_in_sumo_;
+  ++report_.arrived_in_sumo;
+  outside_.arrived = arrived_in_sumo_;
+  outside_.travel_time_sum += now - depart_time(it->second.vehicle);
+  in_sumo_.erase(it);
+}
+
 void Cosimulation::hand_into_sumo(const Simulation::HandOut& h) {
   const Simulation& sim = run_.simulation();
   const Demand& d = sim.demand();
@@ -228,12 +245,15 @@ void Cosimulation::hand_into_sumo(const Simulation::HandOut& h) {
   for (uint32_t k = d.route_begin[v] + h.route_pos; k < d.route_begin[v] + d.route_length[v]; ++k)
     e.route.push_back(net_.edge_id[d.route_edges[k]]);
   e.speed_factor = d.speed_factor[v];
-  // The SUMO step that inserts it: a trip departing in the corridor at the time LPSim found it due, as LPSim
-  // alone departs it; a vehicle driving in, in the step that runs alongside LPSim's step that handed it out
-  // (SUMO's clock then, one LPSim step behind LPSim's). "now", SUMO's clock when it is added, departed trips
-  // a step early and, with a coupling period of several steps, put vehicles into SUMO up to a period early.
+  // When SUMO is to insert it: a trip departing in the corridor at the time LPSim found it due, as LPSim
+  // alone departs it (SUMO inserts it at its first step from then on); a vehicle driving in at SUMO's first
+  // step from the time LPSim's state shows it on the corridor's lane, a SUMO step being longer than LPSim's
+  // (below: as far on as it drives by then).
+  const int64_t now_ms = sim.time_ms();
+  const int64_t entry_ms =
+      begin_ms_ + (now_ms - begin_ms_ + sumo_step_ms_ - 1) / sumo_step_ms_ * sumo_step_ms_;
   const bool departing = h.lane < 0 && h.route_pos == 0;
-  e.depart = departing ? sim.time() : sim.time() - sim.step_length();
+  e.depart = static_cast<double>(departing ? now_ms : entry_ms) / 1000.0;
   // Where the trip ends, should it end in SUMO (its route there runs to the trip's last edge).
   switch (static_cast<ArrivalPos>(d.arrival_pos_kind[v])) {
     case ArrivalPos::Given:
@@ -246,9 +266,15 @@ void Cosimulation::hand_into_sumo(const Simulation::HandOut& h) {
       break;
   }
   if (h.lane >= 0) {
+    const float lane_length = net_.lane_length[static_cast<uint32_t>(h.lane)];
     e.lane = static_cast<int>(net_.lane_index[static_cast<uint32_t>(h.lane)]);
-    e.pos = std::min(h.pos, net_.lane_length[static_cast<uint32_t>(h.lane)]);  // LPSim's front may overhang
+    // Short of the lane's end only (beyond it lies a junction SUMO has not let it through yet).
+    const double on = h.pos + h.speed * static_cast<double>(entry_ms - now_ms) / 1000.0;
+    e.pos = std::min<double>(on < lane_length ? on : h.pos, lane_length);  // LPSim's front may overhang
     e.speed = h.speed;
+    // Neither side drives the distance from where LPSim left it to where SUMO inserts it: the trip's
+    // route length has it still.
+    driven_between_[v] += e.pos - std::min<double>(h.pos, lane_length);
   } else {
     e.lane = -1;
     if (h.route_pos == 0) {  // its trip departs here, as its depart attributes say
@@ -328,6 +354,10 @@ void Cosimulation::after_sumo_step() {
   for (const auto& [v, i] : order) {
     const std::string& id = running[i].first;
     const SumoVehicle& q = running[i].second;
+    if (q.gone) {  // as an arrival in SUMO's last step
+      arrived_in_sumo(in_sumo_.find(id), static_cast<double>(next_sumo_ms_ - sumo_step_ms_) / 1000.0);
+      continue;
+    }
     InSumo& s = in_sumo_.at(id);
     if (q.edge.empty() || q.edge[0] == ':') continue;  // inside a junction: SUMO's until the next edge
     const auto e = net_.edge_index.find(q.edge);
@@ -391,7 +421,8 @@ void Cosimulation::take_back_or_hold(const std::string& id, InSumo& s, uint32_t 
   // Its piece of the trip in SUMO is in SUMO's tripinfo (merged at the end).
   // On the lane SUMO chose for its route (SUMO's own lane-change model got it there), or any best lane
   // where LPSim does not have that lane.
-  sim.take_back(s.vehicle, rp, lpsim_lane(edge, q.lane), static_cast<float>(q.speed));
+  sim.take_back(s.vehicle, rp, lpsim_lane(edge, q.lane), static_cast<float>(q.pos),
+                static_cast<float>(q.speed));
   sumo_->remove(id);
   removed_since_step_.insert(id);
   in_sumo_.erase(id);

@@ -2,10 +2,11 @@
 // The co-simulation: a Run of the whole scenario in which the corridor's lanes are driven by SUMO (a
 // SumoLink), vehicles handed across the boundary both ways. Each coupling period LPSim steps first; the
 // vehicles whose front reached a corridor lane (or whose trip starts on one) are added to SUMO where and as
-// fast as they were; SUMO then steps the same period; a SUMO vehicle that reached an edge outside the
-// corridor is taken back by LPSim (queued at that edge's lane starts with its speed) when LPSim has room
-// there, else held in SUMO; and SUMO's vehicles on corridor lanes are mirrored into LPSim's lane map, so that
-// LPSim's traffic queues behind them. A vehicle leaves one side only when the other holds it (SUMO's pending
+// fast as they were, at SUMO's first step from then on; SUMO then steps the same period, up to the state
+// LPSim is at; a SUMO vehicle that reached an edge outside the corridor is taken back by LPSim (queued to
+// re-enter where it drives to in LPSim's next step, on its lane at its speed) when LPSim has room there, else
+// held in SUMO; and SUMO's vehicles on corridor lanes are mirrored into LPSim's lane map, so that LPSim's
+// traffic queues behind them. A vehicle leaves one side only when the other holds it (SUMO's pending
 // vehicles stand in LPSim's lane map at their entry); every vehicle is at each moment in exactly one place.
 #include <cstdint>
 #include <memory>
@@ -99,6 +100,8 @@ class Cosimulation {
   double depart_time(uint32_t v) const;  // its trip's departure, on either side
   Run::OutsideCounts outside_counts() const;
   void after_sumo_step();
+  // Vehicle `it` ended its route in SUMO's step at `now` (s): it leaves the bridge's account.
+  void arrived_in_sumo(std::unordered_map<std::string, InSumo>::iterator it, double now);
   bool corridor_edge(uint32_t e) const;
   int32_t lpsim_lane(uint32_t edge, int sumo_index) const;
   void take_back_or_hold(const std::string& id, InSumo& s, uint32_t edge, const SumoVehicle& q);
@@ -124,10 +127,14 @@ class Cosimulation {
   ScratchFile mean_data_file_;    // the additional file defining SUMO's side of edgeData/laneData outputs
   std::unique_ptr<SumoLink> sumo_;
   int64_t period_ms_ = 0, sumo_step_ms_ = 0;
+  int64_t begin_ms_ = 0;      // both clocks' begin
+  int64_t next_sumo_ms_ = 0;  // SUMO's next step: the state after it is the one LPSim's clock calls this
   std::unordered_map<std::string, InSumo> in_sumo_;
   std::unordered_set<std::string> removed_since_step_;  // SUMO may list a removal among the step's arrivals
   std::vector<uint8_t> visited_;  // per vehicle: the times it was handed into SUMO (255: as many or more)
   std::unordered_map<uint32_t, TripRecord> held_trips_;  // ended in LPSim after a visit: merged at finish()
+  std::unordered_map<uint32_t, double>
+      driven_between_;  // m, per vehicle: waiting for SUMO's step to insert it
   uint64_t arrived_in_sumo_ = 0;
   Run::OutsideCounts outside_;                        // SUMO's departures and arrivals so far
   std::unordered_map<uint32_t, double> sumo_depart_;  // when SUMO inserted the trips that depart there

@@ -49,6 +49,9 @@ struct SumoVehicle {
   int lane = 0;
   double pos = 0, speed = 0;
   int route_index = 0;  // of its current (or, on an internal edge, last) edge in the route SUMO drives
+  // SUMO no longer has it, and did not list it among its arrivals: it teleported beyond its route's last
+  // edge (SUMO 1.15 removes such a vehicle without reporting it as arrived).
+  bool gone = false;
 };
 
 class SumoLink {
@@ -77,7 +80,8 @@ class SumoLink {
   /// From now on watched() reports where the running vehicle `id` is, until it arrives or is removed (over
   /// TraCI a subscription, so that one call per step reads them all; in process, getters).
   virtual void watch(const std::string& id) = 0;
-  /// Where every watched vehicle is after SUMO's last step, by id.
+  /// Where every watched vehicle is after SUMO's last step, by id; one SUMO removed without an arrival is
+  /// reported gone once, and no longer watched.
   virtual std::vector<std::pair<std::string, SumoVehicle>> watched() = 0;
   /// Takes a vehicle out of SUMO (running or pending), as a hand-over out of the corridor does; it is no
   /// longer watched.

@@ -29,15 +29,14 @@ void InsertionQueues::push_front(uint32_t e, uint32_t entry) {
 
 // Up to kMaxInsertPerEdge entries of each queue, from its head: the insertion tries them in order, and as
 // SUMO any of them may go in while one before it waits.
-const InsertBatch& InsertionQueues::offer(const std::vector<uint32_t>& resume_rp,
-                                          const std::vector<float>& resume_speed,
-                                          const std::vector<int32_t>& resume_lane) {
+const InsertBatch& InsertionQueues::offer(const ReentryWants& wants) {
   edge_.clear();
   begin_.assign(1, 0);
   entry_.clear();
   rp_.clear();
   enter_speed_.clear();
   enter_lane_.clear();
+  enter_pos_.clear();
   for (const uint32_t e : queued_edges_) {
     const EdgeQueue& q = queue_[e];
     const size_t end = std::min<size_t>(q.entries.size(), q.head + kMaxInsertPerEdge);
@@ -45,9 +44,11 @@ const InsertBatch& InsertionQueues::offer(const std::vector<uint32_t>& resume_rp
       const uint32_t offered = q.entries[i];
       entry_.push_back(offered);
       const bool reentry = (offered & kInsertTeleported) != 0;
-      rp_.push_back(reentry ? resume_rp[offered & ~kInsertTeleported] : 0u);
-      enter_speed_.push_back(reentry ? resume_speed[offered & ~kInsertTeleported] : 0.0f);
-      enter_lane_.push_back(reentry ? resume_lane[offered & ~kInsertTeleported] : -1);
+      const uint32_t v = offered & ~kInsertTeleported;
+      rp_.push_back(reentry ? wants.route_pos[v] : 0u);
+      enter_speed_.push_back(reentry ? wants.speed[v] : 0.0f);
+      enter_lane_.push_back(reentry ? wants.lane[v] : -1);
+      enter_pos_.push_back(reentry ? wants.pos[v] : -1.0f);
     }
     edge_.push_back(e);
     begin_.push_back(static_cast<uint32_t>(entry_.size()));
@@ -64,6 +65,7 @@ const InsertBatch& InsertionQueues::offer(const std::vector<uint32_t>& resume_rp
                        rp_.data(),
                        enter_speed_.data(),
                        enter_lane_.data(),
+                       enter_pos_.data(),
                        inserted_.data(),
                        lane_.data(),
                        pos_.data(),

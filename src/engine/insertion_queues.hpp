@@ -16,6 +16,15 @@ constexpr uint32_t kMaxVehicles = 0x40000000u;
 /// The queue entry of vehicle v, departing or re-entering after a teleport.
 inline uint32_t queue_entry(uint32_t v, bool teleported) { return v | (teleported ? kInsertTeleported : 0u); }
 
+/// Per vehicle, what a re-entering one asks for: its route position, lane (-1: any best lane), front position
+/// (-1: the lane start) and speed (the trip ledger's account).
+struct ReentryWants {
+  const uint32_t* route_pos;
+  const int32_t* lane;
+  const float* pos;
+  const float* speed;
+};
+
 class InsertionQueues {
  public:
   explicit InsertionQueues(const Network& net);
@@ -34,11 +43,9 @@ class InsertionQueues {
   }
 
   /// The batch of this step: up to kMaxInsertPerEdge heads of each queue, edges ascending, with the route
-  /// position each enters at (resume_rp[v] for a teleported vehicle, 0 for a departure) and the speed and
-  /// lane a re-entering vehicle asks for (resume_speed[v], resume_lane[v]). Its output arrays are sized for
-  /// the backend to fill.
-  const InsertBatch& offer(const std::vector<uint32_t>& resume_rp, const std::vector<float>& resume_speed,
-                           const std::vector<int32_t>& resume_lane);
+  /// position each enters at (0 for a departure) and, for a re-entering vehicle, the lane, position and
+  /// speed it asks for, all from `wants`. Its output arrays are sized for the backend to fill.
+  const InsertBatch& offer(const ReentryWants& wants);
   uint32_t offered_entries() const { return static_cast<uint32_t>(entry_.size()); }
   /// After the backend filled the batch: calls inserted(i) for each inserted entry i of the batch, in batch
   /// order, and removes those entries from their queues.
@@ -60,7 +67,7 @@ class InsertionQueues {
   uint64_t waiting_ = 0;
   // The batch (InsertBatch's arrays).
   std::vector<uint32_t> edge_, begin_, entry_, rp_, inserted_;
-  std::vector<float> enter_speed_;
+  std::vector<float> enter_speed_, enter_pos_;
   std::vector<int32_t> enter_lane_;
   std::vector<int32_t> lane_;
   std::vector<float> pos_, speed_;

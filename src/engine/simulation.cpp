@@ -385,8 +385,7 @@ void Simulation::enqueue(uint32_t v) {
 }
 
 void Simulation::insert_waiting(int map_index) {
-  const InsertBatch& batch =
-      queues_.offer(ledger_.resume_route_positions(), ledger_.resume_speeds(), ledger_.resume_lanes());
+  const InsertBatch& batch = queues_.offer(ledger_.reentry_wants());
   // The step length as a float in the one way the insertion checks have always used it.
   const InsertParams params{static_cast<float>(step_length()),
                             opt_.seed,

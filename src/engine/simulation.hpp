@@ -198,12 +198,13 @@ class Simulation {
   void mirror_outside_vehicles(const std::vector<OutsideVehicle>& vehicles);
   /// Vehicles handed out so far.
   uint64_t handed_out() const { return handed_out_; }
-  /// A handed-out vehicle v comes back at route position `route_pos` (an edge this simulation drives): it
-  /// queues there to re-enter at the start of `lane` (one of the edge's; -1: its best free lane, as a
-  /// teleported vehicle does), at up to `speed`, carrying the counters it left with (the other simulator
-  /// reports its piece of the trip itself). std::invalid_argument, naming it, when it was not handed out,
-  /// the edge is driven outside or the lane is not the edge's.
-  void take_back(uint32_t v, uint32_t route_pos, int32_t lane, float speed);
+  /// A handed-out vehicle v comes back at route position `route_pos` (an edge this simulation drives), its
+  /// front at `pos` on `lane` (one of the edge's; -1: its best free lane) at `speed` at time(): it queues
+  /// there to re-enter in the next step where it would have driven to in it (at the lane start when there
+  /// is no room there, as a teleported vehicle does), at up to `speed`, carrying the counters it left with
+  /// (the other simulator reports its piece of the trip itself, up to `pos`). std::invalid_argument, naming
+  /// it, when it was not handed out, the edge is driven outside or the lane is not the edge's.
+  void take_back(uint32_t v, uint32_t route_pos, int32_t lane, float pos, float speed);
   /// Whether edge `edge` takes one more vehicle back now: fewer are queued to enter there than it has lanes
   /// (the insertion then finds room at a lane start, or the queue holds the next one in the other simulator).
   bool has_entry_room(uint32_t edge) const;

@@ -71,7 +71,7 @@ bool Simulation::outside_edge(uint32_t edge) const {
          (*opt_.outside_lanes)[net_.edge_first_lane[edge]];
 }
 
-void Simulation::take_back(uint32_t v, uint32_t route_pos, int32_t lane, float speed) {
+void Simulation::take_back(uint32_t v, uint32_t route_pos, int32_t lane, float pos, float speed) {
   if (!opt_.outside_lanes) throw std::logic_error("take_back() without outside lanes");
   const Demand& d = trips_.demand();
   if (v >= d.size() || ledger_.status(v) != kMigrated)
@@ -88,7 +88,13 @@ void Simulation::take_back(uint32_t v, uint32_t route_pos, int32_t lane, float s
                     static_cast<uint32_t>(lane) >= net_.edge_first_lane[edge] + net_.edge_num_lanes[edge]))
     throw std::invalid_argument("take_back: vehicle " + d.vehicle_id[v] + " re-enters on lane " +
                                 std::to_string(lane) + ", not one of edge " + net_.edge_id[edge]);
-  ledger_.handed_back(v, route_pos, lane, speed);
+  // The next step inserts it: where it gets to in that step at its speed, as it would have driven on. Short
+  // of the lane's end only (beyond it lies a junction it has not been let through), else where it is.
+  const float lane_length =
+      net_.lane_length[lane >= 0 ? static_cast<uint32_t>(lane) : net_.edge_first_lane[edge]];
+  const float on = std::max(0.0f, pos) + std::max(0.0f, speed) * static_cast<float>(step_length());
+  const float wanted = on < lane_length ? on : std::min(std::max(0.0f, pos), lane_length);
+  ledger_.handed_back(v, route_pos, lane, std::max(0.0f, pos), wanted, speed);
   queues_.push_back(edge, queue_entry(v, true));
 }
 

@@ -9,6 +9,7 @@ void TripLedger::resize(uint32_t n) {
   resume_rp_.resize(n, 0);
   resume_speed_.resize(n, 0);
   resume_lane_.resize(n, -1);
+  resume_pos_.resize(n, -1);
   depart_time_.resize(n, 0);
   depart_pos_.resize(n, 0);
   depart_speed_.resize(n, 0);
@@ -35,6 +36,7 @@ void TripLedger::teleporting(const VehicleEnd& e, uint32_t rp) {
   resume_rp_[e.vehicle] = rp;
   resume_speed_[e.vehicle] = 0;
   resume_lane_[e.vehicle] = -1;
+  resume_pos_[e.vehicle] = -1;
   carried_[e.vehicle] = trip_counters(e);
 }
 
@@ -43,17 +45,21 @@ void TripLedger::handed_out(uint32_t v, const TripCounters& counters) {
   carried_[v] = counters;
 }
 
-void TripLedger::handed_back(uint32_t v, uint32_t rp, int32_t lane, float speed) {
+void TripLedger::handed_back(uint32_t v, uint32_t rp, int32_t lane, float pos_left, float pos_wanted,
+                             float speed) {
   status_[v] = kTeleporting;  // off the road, queued to re-enter with what handed_out() kept
   resume_rp_[v] = rp;
   resume_speed_[v] = speed;
   resume_lane_[v] = lane;
+  resume_pos_[v] = pos_wanted;
+  // reentering() adds the position it enters at: the length then counts from where the other side stopped.
+  carried_.at(v).route_length -= pos_left;
 }
 
 uint32_t TripLedger::reentering(SlotInit& init) {
   const auto c = carried_.find(init.vehicle);
   if (c == carried_.end()) throw std::logic_error("a vehicle re-enters that did not teleport");
-  init.route_length = c->second.route_length;
+  init.route_length = c->second.route_length + (resume_pos_[init.vehicle] >= 0 ? init.pos : 0.0f);
   init.time_loss = c->second.time_loss;
   init.waiting_steps = c->second.waiting_steps;
   init.waiting_count = c->second.waiting_count;

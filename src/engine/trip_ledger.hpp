@@ -6,6 +6,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "engine/insertion_queues.hpp"
 #include "engine/samples.hpp"
 #include "kernels/step_view.hpp"
 
@@ -40,24 +41,26 @@ class TripLedger {
   void set_status(uint32_t v, uint8_t s) { status_[v] = s; }
   uint32_t resume_route_pos(uint32_t v) const { return resume_rp_[v]; }
   void set_resume_route_pos(uint32_t v, uint32_t rp) { resume_rp_[v] = rp; }
-  /// Route position each trip re-enters at after a teleport (read for the insertion batch).
-  const std::vector<uint32_t>& resume_route_positions() const { return resume_rp_; }
-  /// The speed and lane each re-entering trip asks for (0 and -1, any best lane, after a teleport).
-  const std::vector<float>& resume_speeds() const { return resume_speed_; }
-  const std::vector<int32_t>& resume_lanes() const { return resume_lane_; }
+  /// Where and how each re-entering trip asks to enter (after a teleport: any best lane, its start,
+  /// standing).
+  ReentryWants reentry_wants() const {
+    return ReentryWants{resume_rp_.data(), resume_lane_.data(), resume_pos_.data(), resume_speed_.data()};
+  }
 
   /// Vehicle v, due at `depart_due` (s), was inserted at time `now` where `init` says.
   void departed(uint32_t v, double now, double depart_due, const SlotInit& init);
   /// A teleporting vehicle waits to re-enter at route position `rp`, carrying the counters of `end`.
   void teleporting(const VehicleEnd& end, uint32_t rp);
-  /// A teleported vehicle re-enters: `init` takes the counters it carried. Returns the first of its
-  /// scheduled stops it had not made.
+  /// A teleported or handed-back vehicle re-enters: `init` takes the counters it carried. Returns the first
+  /// of its scheduled stops it had not made.
   uint32_t reentering(SlotInit& init);
   /// Vehicle v left for another simulator with `counters` (status kMigrated).
   void handed_out(uint32_t v, const TripCounters& counters);
-  /// A handed-out vehicle comes back to re-enter at route position `rp` on `lane` (-1: any best lane),
-  /// asking for `speed`, with the counters it left with (the other simulator reports its own piece).
-  void handed_back(uint32_t v, uint32_t rp, int32_t lane, float speed);
+  /// A handed-out vehicle comes back to re-enter at route position `rp` on `lane` (-1: any best lane) with
+  /// its front at `pos_wanted` (-1: the lane start), asking for `speed`, with the counters it left with. The
+  /// other simulator reports its own piece, which ends at `pos_left`: the route length it drives in LPSim
+  /// counts from there, wherever it re-enters.
+  void handed_back(uint32_t v, uint32_t rp, int32_t lane, float pos_left, float pos_wanted, float speed);
   /// The counters a teleporting or handed-out vehicle carries (null: none).
   const TripCounters* carried(uint32_t v) const {
     const auto c = carried_.find(v);
@@ -80,7 +83,7 @@ class TripLedger {
  private:
   std::vector<uint8_t> status_;
   std::vector<uint32_t> resume_rp_;
-  std::vector<float> resume_speed_;
+  std::vector<float> resume_speed_, resume_pos_;
   std::vector<int32_t> resume_lane_;
   std::unordered_map<uint32_t, TripCounters> carried_;
   // Departure records for tripinfo.

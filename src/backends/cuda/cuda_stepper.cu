@@ -490,7 +490,7 @@ class CudaStepper final : public Stepper {
     if (slots == 0 || num_entries == 0) return;
     ++version_;
     // One upload of the slots' edges, bounds and entries; one download of what was inserted and where.
-    const size_t in_words = 2 * static_cast<size_t>(slots) + 1 + 4 * static_cast<size_t>(num_entries);
+    const size_t in_words = 2 * static_cast<size_t>(slots) + 1 + 5 * static_cast<size_t>(num_entries);
     uint32_t* in = batch_in_.get(in_words);
     uint32_t* staged = staging_in_.get(in_words);
     std::copy_n(batch.edge, slots, staged);
@@ -501,6 +501,8 @@ class CudaStepper final : public Stepper {
                 num_entries * sizeof(float));
     std::memcpy(staged + 2 * slots + 1 + 3 * static_cast<size_t>(num_entries), batch.enter_lane,
                 num_entries * sizeof(int32_t));
+    std::memcpy(staged + 2 * slots + 1 + 4 * static_cast<size_t>(num_entries), batch.enter_pos,
+                num_entries * sizeof(float));
     LPSIM_CUDA_CHECK(cudaMemcpyAsync(in, staged, in_words * sizeof(uint32_t), cudaMemcpyHostToDevice));
     const size_t out_words = static_cast<size_t>(slots) + 3 * static_cast<size_t>(num_entries);
     uint32_t* out = batch_out_.get(out_words);
@@ -512,6 +514,7 @@ class CudaStepper final : public Stepper {
         in + 2 * slots + 1 + num_entries,
         reinterpret_cast<const float*>(in + 2 * slots + 1 + 2 * static_cast<size_t>(num_entries)),
         reinterpret_cast<const int32_t*>(in + 2 * slots + 1 + 3 * static_cast<size_t>(num_entries)),
+        reinterpret_cast<const float*>(in + 2 * slots + 1 + 4 * static_cast<size_t>(num_entries)),
         out,
         reinterpret_cast<int32_t*>(out + slots),
         reinterpret_cast<float*>(out + slots + num_entries),
