@@ -12,6 +12,7 @@
 
 #include "app/commands.hpp"
 #include "app/device_select.hpp"
+#include "app/error_report.hpp"
 #include "app/interrupt.hpp"
 #include "app/output_paths.hpp"
 #include "app/partitioned_parts.hpp"
@@ -33,34 +34,63 @@ std::string build_id() {
          std::to_string(sizeof(TripRecord)) + "/" + std::to_string(sizeof(PartStats));
 }
 
+// What `lpsim run` loads before any part runs: everything that can fail on bad input.
+struct LoadedRun {
+  ConfigSpec config;
+  Scenario sc;
+  SimulationOptions options;
+  int32_t parts = 1;
+  std::vector<int32_t> edge_part;
+};
+
+void load_run(const std::vector<std::string>& args, int ranks, LoadedRun* l) {
+  l->sc = scenario_from_args(args, &l->config);
+  refuse_overwrites(l->sc, CliCommand::Run);
+  const ConfigSpec& config = l->config;
+  l->options = simulation_options(config);
+  const DeviceChoice device = select_device(config.device);
+  l->options.gpu = device.gpu;
+  l->options.lane_counters = Run::needs_lane_counters(l->sc, config.outputs);
+  l->options.emission_sums = Run::needs_emission_sums(l->sc, config.outputs);
+  if (config.device != ComputeDevice::Cpu)
+    std::fprintf(stderr, "lpsim: device %s\n", device.description.c_str());
+  l->edge_part = run_edge_parts(config, l->sc, &l->parts);
+  if (ranks > 1 && l->parts != ranks)
+    throw InputError("mpirun -n " + std::to_string(ranks) + " runs one part per rank: give --parts " +
+                     std::to_string(ranks) + " or a partition file of " + std::to_string(ranks) +
+                     " parts (not " + std::to_string(l->parts) + ")");
+  if (l->parts > 1 && !config.jam_report.empty())
+    throw InputError("--jam-report reads one part's vehicles: leave out --parts and --partition-file");
+}
+
 }  // namespace
 
 int command_run(const std::vector<std::string>& args) {
-  ConfigSpec config;
-  // Loading writes nothing, so a signal until the Run is built may end the process as usual.
-  Scenario sc = scenario_from_args(args, &config);
-  refuse_overwrites(sc, CliCommand::Run);
-
-  SimulationOptions options = simulation_options(config);
-  const DeviceChoice device = select_device(config.device);
-  options.gpu = device.gpu;
-  options.lane_counters = Run::needs_lane_counters(sc, config.outputs);
-  options.emission_sums = Run::needs_emission_sums(sc, config.outputs);
-  if (config.device != ComputeDevice::Cpu)
-    std::fprintf(stderr, "lpsim: device %s\n", device.description.c_str());
+  // Loading writes nothing, so a signal until the Run is built may end the process as usual. Under mpirun
+  // every rank loads the scenario, and all of them learn whether any failed before a part starts: an error
+  // is printed once, by the lowest rank that met it, and every rank ends with its status.
+  const int ranks = MpiSession::world_size();
+  LoadedRun loaded;
+  if (ranks > 1) {
+    std::exception_ptr error;
+    try {
+      load_run(args, ranks, &loaded);
+    } catch (...) {
+      error = std::current_exception();
+    }
+    agree_on_load(error);
+  } else {
+    load_run(args, ranks, &loaded);
+  }
+  const ConfigSpec& config = loaded.config;
+  Scenario& sc = loaded.sc;
+  SimulationOptions& options = loaded.options;
+  const int32_t parts = loaded.parts;
+  const std::vector<int32_t>& edge_part = loaded.edge_part;
 
   // A partitioned run: under mpirun one part per rank, part 0 (rank 0) running the outputs and the others
   // serving it; else parts 1..K-1 on threads of this process, started before part 0's Run, as they build
   // alongside it.
-  int32_t parts = 1;
-  const std::vector<int32_t> edge_part = run_edge_parts(config, sc, &parts);
-  const int ranks = MpiSession::world_size();
-  if (ranks > 1 && parts != ranks)
-    throw InputError("mpirun -n " + std::to_string(ranks) + " runs one part per rank: give --parts " +
-                     std::to_string(ranks) + " or a partition file of " + std::to_string(ranks) +
-                     " parts (not " + std::to_string(parts) + ")");
-  if (parts > 1 && !config.jam_report.empty())
-    throw InputError("--jam-report reads one part's vehicles: leave out --parts and --partition-file");
   std::unique_ptr<InProcessParts> others;
   std::unique_ptr<Transport> mpi;
   PartPlan rank_plan;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "app/commands.hpp"
+#include "app/error_report.hpp"
 #include "app/interrupt.hpp"
 #include "converters/cli_options.hpp"
 #include "core/error.hpp"
@@ -37,8 +38,9 @@ commands:
 options follow SUMO's names; `lpsim <command> --help` lists those a command takes.
 )";
 
-// Runs a command: its exit status, errors printed as one line.
-int dispatch(const std::string& command, const std::vector<std::string>& args) {
+// Runs a command: its exit status, errors printed as one line. `job_ended` is set when the ranks of an MPI
+// job agreed to end together (none waits for another).
+int dispatch(const std::string& command, const std::vector<std::string>& args, bool* job_ended) {
   try {
     if (command == "info") return lpsim::command_info(args);
     if (command == "convert") return lpsim::command_convert(args);
@@ -51,19 +53,12 @@ int dispatch(const std::string& command, const std::vector<std::string>& args) {
     }
     std::fprintf(stderr, "lpsim: error: unknown command '%s'\n%s", command.c_str(), kUsage);
     return lpsim::kExitBadInput;
-  } catch (const lpsim::InputError& e) {
-    std::fprintf(stderr, "lpsim: error: %s\n", e.what());
-    return lpsim::kExitBadInput;
-  } catch (const std::bad_alloc&) {
-    std::fprintf(stderr, "lpsim: error: out of memory\n");
-    return 1;
-  } catch (const lpsim::TransportError& e) {
-    // A part that stopped or died is a fault of the job, not of LPSim.
-    std::fprintf(stderr, "lpsim: error: %s\n", e.what());
-    return 1;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "lpsim: internal error: %s\n", e.what());
-    return 1;
+  } catch (const lpsim::JobEnded& e) {
+    *job_ended = true;
+    if (e.cause) lpsim::report_error(e.cause);
+    return e.code;
+  } catch (...) {
+    return lpsim::report_error(std::current_exception());
   }
 }
 
@@ -97,10 +92,13 @@ int main(int argc, char** argv) {
                    command.c_str());
     return lpsim::kExitBadInput;  // every rank alike: no rank waits for another
   }
-  const int code = dispatch(command, args);
-  // A rank that failed ends the job: the others would wait for it until their rounds time out. A signal
-  // stops every rank at the same step: they end together, as MPI expects.
-  if (code != 0 && !lpsim::interrupted_status(code) && mpi && lpsim::MpiSession::world_size() > 1)
+  bool job_ended = false;
+  const int code = dispatch(command, args, &job_ended);
+  // A rank that failed while the others ran ends the job: they would wait for it until their rounds time
+  // out. A signal stops every rank at the same step, and an error while loading every rank at once: they end
+  // together, as MPI expects.
+  if (code != 0 && !job_ended && !lpsim::interrupted_status(code) && mpi &&
+      lpsim::MpiSession::world_size() > 1)
     lpsim::MpiSession::abort_job(code);
   return code;
 }

@@ -118,6 +118,30 @@ TEST(MpiPartitionedRunTest, PartsOtherThanRanksIsBadInput) {
   EXPECT_NE(r.err.find("mpirun -n 2 runs one part per rank: give --parts 2"), std::string::npos) << r.err;
 }
 
+// Bad input every rank meets while loading is printed once (by rank 0), and the ranks end together with
+// status 2, none aborting the job: no MPI_ABORT report. With mpirun's --quiet nothing else is printed.
+// Before, every rank printed the error and each called MPI_Abort.
+TEST(MpiPartitionedRunTest, BadInputIsPrintedOnceAndEndsEveryRankWithoutAnAbort) {
+  if (!have_mpirun()) GTEST_SKIP() << "mpirun not installed";
+  test::TempDir tmp("lpsim_mpi_bad_input");
+  const std::string routes =
+      "<routes>\n    <vehicle id=\"v\" type=\"nope\" depart=\"0\"><route "
+      "edges=\"A0B0\"/></vehicle>\n</routes>\n";
+  tmp.write("bad.rou.xml", routes);
+  const std::string net = std::string(LPSIM_SOURCE_DIR) + "/scenarios/grid_tls/grid_tls.net.xml";
+  for (const int ranks : {2, 3}) {
+    const test::CliResult r =
+        test::run_program(tmp.path(), {LPSIM_MPIEXEC},
+                          {"--quiet", "-n", std::to_string(ranks), "--allow-run-as-root", "--oversubscribe",
+                           LPSIM_BINARY, "run", "-n", net, "-r", "bad.rou.xml", "--parts",
+                           std::to_string(ranks), "--tripinfo-output", "t.xml", "--no-step-log"});
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_EQ(r.err, "lpsim: error: bad.rou.xml:2: unknown vType 'nope' for vehicle 'v'\n")
+        << ranks << " ranks";
+    EXPECT_FALSE(fs::exists(tmp.path() / "t.xml"));
+  }
+}
+
 TEST(MpiPartitionedRunTest, ARankKilledMidRunEndsTheJob) {
   if (!have_mpirun()) GTEST_SKIP() << "mpirun not installed";
   test::TempDir tmp("lpsim_mpi_kill");

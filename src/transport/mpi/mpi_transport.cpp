@@ -45,6 +45,27 @@ void MpiSession::abort_job(int code) {
   std::exit(code);  // not reached: MPI_Abort ends the process
 }
 
+namespace {
+
+void wait_for(MPI_Request* request) {
+  const auto start = std::chrono::steady_clock::now();
+  for (int done = 0; MPI_Test(request, &done, MPI_STATUS_IGNORE), !done;) pause(start);
+}
+
+}  // namespace
+
+MpiSession::Failure MpiSession::first_failure(bool failed, int code) {
+  const int size = world_size();
+  int mine = failed ? world_rank() : size, first = size;
+  MPI_Request request;
+  MPI_Iallreduce(&mine, &first, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD, &request);
+  wait_for(&request);
+  if (first == size) return Failure{size, 0};
+  MPI_Ibcast(&code, 1, MPI_INT, first, MPI_COMM_WORLD, &request);
+  wait_for(&request);
+  return Failure{first, code};
+}
+
 bool MpiSession::launched_by_mpirun() { return std::getenv("OMPI_COMM_WORLD_SIZE") != nullptr; }
 
 int MpiSession::world_size() {

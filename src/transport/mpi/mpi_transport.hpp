@@ -18,6 +18,13 @@ class MpiSession {
   MpiSession& operator=(const MpiSession&) = delete;
   /// Ends every rank of the job with `code` (after an error on this one, so the others do not wait).
   [[noreturn]] static void abort_job(int code);
+  /// Every rank calls it at the same point, each saying whether it failed and with which exit status: the
+  /// lowest rank that failed and its status, the same on every rank ({world_size(), 0} when none did).
+  /// Waits without spinning a core on a rank that is still working.
+  struct Failure {
+    int rank, code;
+  };
+  static Failure first_failure(bool failed, int code);
   /// This process was started by OpenMPI's mpirun (its environment says so): MPI is to be initialised.
   static bool launched_by_mpirun();
   /// Ranks of the job; 1 where MPI is not initialised.
