@@ -52,8 +52,13 @@ std::string attributes(const XmlStream& xml) {
   return out;
 }
 
-// SUMO's entries of the corridor's edges: interval begin -> (escaped edge id -> the entry's lines).
-using Entries = std::map<double, std::map<std::string, std::string>>;
+// SUMO's entries of the corridor's edges per interval: interval begin -> its end and (escaped edge id -> the
+// entry's lines).
+struct SumoInterval {
+  double end = 0;
+  std::map<std::string, std::string> entries;
+};
+using Entries = std::map<double, SumoInterval>;
 
 Entries read_sumo_entries(const std::string& path, const std::unordered_set<std::string>& corridor) {
   XmlStream xml(path);
@@ -64,7 +69,9 @@ Entries read_sumo_entries(const std::string& path, const std::unordered_set<std:
   for (XmlStream::Event e = xml.next(); e != XmlStream::Event::Eof; e = xml.next()) {
     if (e == XmlStream::Event::Start) {
       if (xml.name() == "interval") {
-        interval = &out[xml.required_number("begin")];
+        SumoInterval& i = out[xml.required_number("begin")];
+        i.end = xml.required_number("end");
+        interval = &i.entries;
       } else if (xml.name() == "edge" && interval != nullptr) {
         const std::string id = xml.required("id");
         entry = corridor.count(id) ? &(*interval)[escaped(id)] : nullptr;
@@ -109,9 +116,11 @@ std::string read_whole(const std::string& path) {
   return text;
 }
 
-void write_merged(const std::string& text, const std::string& lpsim_file, const std::string& sumo_file,
-                  const Entries& sumo, const std::unordered_set<std::string>& corridor,
-                  const std::string& merging) {
+std::vector<MeanDataSpanDiff> write_merged(const std::string& text, const std::string& lpsim_file,
+                                           const std::string& sumo_file, const Entries& sumo,
+                                           const std::unordered_set<std::string>& corridor,
+                                           const std::string& merging) {
+  std::vector<MeanDataSpanDiff> diffs;
   {
     OutputFile out(merging);
     const std::map<std::string, std::string>* interval = nullptr;
@@ -137,8 +146,11 @@ void write_merged(const std::string& text, const std::string& lpsim_file, const 
           throw InputError(lpsim_file + ":" + std::to_string(line_no) + ": interval begin=\"" +
                            std::string(attribute_in(line, "begin")) + "\" has no interval in SUMO's " +
                            sumo_file);
-        interval = &it->second;
+        interval = &it->second.entries;
         written.clear();
+        const std::optional<double> end = parse_double(attribute_in(line, "end"));
+        if (end && std::fabs(*end - it->second.end) > 1e-6)
+          diffs.push_back(MeanDataSpanDiff{*begin, *end, it->second.end});
       } else if (tag.rfind("</interval>", 0) == 0 && interval != nullptr) {
         for (const auto& [id, entry] : *interval)
           if (!written.count(id)) out.text(entry);
@@ -160,12 +172,13 @@ void write_merged(const std::string& text, const std::string& lpsim_file, const 
     }
     out.close();
   }
+  return diffs;
 }
 
 }  // namespace
 
-void merge_meandata(const std::string& lpsim_file, const std::string& sumo_file,
-                    const std::unordered_set<std::string>& corridor_edges) {
+std::vector<MeanDataSpanDiff> merge_meandata(const std::string& lpsim_file, const std::string& sumo_file,
+                                             const std::unordered_set<std::string>& corridor_edges) {
   const Entries sumo = read_sumo_entries(sumo_file, corridor_edges);
   const std::string text = read_whole(lpsim_file);
   std::unordered_set<std::string> corridor;  // as the ids appear in the file
@@ -173,14 +186,16 @@ void merge_meandata(const std::string& lpsim_file, const std::string& sumo_file,
 
   const std::filesystem::path p(lpsim_file);
   const std::string merging = (p.parent_path() / ("merging." + p.filename().string())).string();
+  std::vector<MeanDataSpanDiff> diffs;
   try {
-    write_merged(text, lpsim_file, sumo_file, sumo, corridor, merging);
+    diffs = write_merged(text, lpsim_file, sumo_file, sumo, corridor, merging);
   } catch (...) {
     std::error_code ignored;
     std::filesystem::remove(merging, ignored);
     throw;
   }
   std::filesystem::rename(merging, lpsim_file);
+  return diffs;
 }
 
 }  // namespace lpsim

@@ -1,6 +1,7 @@
 // The co-simulation's results completed at its end from SUMO's: one tripinfo line per trip, and SUMO's
 // measurements on the corridor's edges in each edgeData/laneData output.
 #include <algorithm>
+#include <cstdio>
 #include <string>
 #include <unordered_map>
 #include <unordered_set>
@@ -107,7 +108,16 @@ void Cosimulation::merge_edge_data() const {
   std::vector<std::string> files{run_.config().outputs.edgedata, run_.config().outputs.lanedata};
   for (const MeanDataSpec& m : run_.scenario().mean_data) files.push_back(m.file);
   for (const std::string& f : files)
-    if (!f.empty()) merge_meandata(f, sumo_side_path(f), corridor);
+    if (!f.empty())
+      for (const MeanDataSpanDiff& d : merge_meandata(f, sumo_side_path(f), corridor))
+        if (!run_.config().no_warnings)
+          std::fprintf(
+              stderr,
+              "Warning: %s: the interval from %s s ends at %s s in LPSim's measurements and at %s s in "
+              "SUMO's, whose last step runs past the end: the corridor's entries cover SUMO's (an end "
+              "on the coupling period's grid makes them equal)\n",
+              f.c_str(), sumo_number(d.begin).c_str(), sumo_number(d.lpsim_end).c_str(),
+              sumo_number(d.sumo_end).c_str());
 }
 
 }  // namespace lpsim

@@ -184,11 +184,11 @@ void Cosimulation::step() {
   }
   // SUMO's steps over the same period, one by one, up to the state LPSim is at: its step "at" time t (the one
   // its outputs label t, after which its clock shows t + step) ends in the state LPSim's clock calls t. It
-  // lists the arrivals of its last step only. With an end time, not past SUMO's own last step before it.
+  // lists the arrivals of its last step only. With an end time, the steps SUMO alone runs (those at times
+  // before it).
   const int64_t last_ms = sim.time_ms();
   const int64_t end_ms = has_end ? std::llround(run_.config().end * 1000.0) : INT64_MAX;
-  for (; next_sumo_ms_ <= last_ms && next_sumo_ms_ + sumo_step_ms_ <= end_ms;
-       next_sumo_ms_ += sumo_step_ms_) {
+  for (; next_sumo_ms_ <= last_ms && next_sumo_ms_ < end_ms; next_sumo_ms_ += sumo_step_ms_) {
     const int64_t t = next_sumo_ms_;
     const double now = static_cast<double>(t) / 1000.0;  // the step's time, as SUMO's outputs say
     const auto t0 = std::chrono::steady_clock::now();

@@ -147,6 +147,39 @@ TEST(CosimulationTimingTest, VehiclesSumoRemovesWithoutAnArrivalAreArrivedThere)
   }
 }
 
+// SUMO's side outputs cover the whole run, as LPSim's do (before, SUMO's clock ran a step behind and its FCD
+// and summary ended a step early); with SUMO's step longer than LPSim's and an end between SUMO's steps, the
+// merged edgeData's last interval is named in a warning.
+TEST(CosimulationTimingTest, SumosSideOutputsEndWithLpsims) {
+  test::TempDir dir("cosim_side_end");
+  const std::string corridor = dir.write("row.txt", "edge:A2B2\nedge:B2C2\nedge:C2D2\nedge:D2E2\n");
+  const std::string grid = kScenarios + "/grid_tls/grid_tls.sumocfg";
+  const auto last_step = [&](const std::string& file, const std::string& tag) {
+    const std::string text = read_all(fs::path(dir.path()) / file);
+    const size_t at = text.rfind("<" + tag + " time=\"");
+    return at == std::string::npos ? std::string()
+                                   : text.substr(at, text.find('"', at + tag.size() + 8) - at);
+  };
+  const test::CliResult r = test::run_lpsim(
+      dir.path(), {"cosim", "-c", grid, "--corridor", corridor, "--end", "250", "--fcd-output", "f.xml",
+                   "--summary-output", "s.xml", "--edgedata-output", "e.xml", "--no-step-log"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(last_step("f.xml", "timestep"), "<timestep time=\"249.00");
+  EXPECT_EQ(last_step("sumo.f.xml", "timestep"), "<timestep time=\"249.00");
+  EXPECT_EQ(last_step("s.xml", "step"), "<step time=\"249.00");
+  EXPECT_EQ(last_step("sumo.s.xml", "step"), "<step time=\"249.00");
+  EXPECT_EQ(r.err.find("Warning: e.xml"), std::string::npos) << r.err;
+
+  const test::CliResult eight =
+      test::run_lpsim(dir.path(), {"cosim", "-c", grid, "--corridor", corridor, "--end", "250", "--sumo-args",
+                                   "--step-length 8", "--edgedata-output", "e.xml", "--no-step-log"});
+  ASSERT_EQ(eight.exit_code, 0) << eight.err;
+  EXPECT_NE(
+      eight.err.find("the interval from 0 s ends at 250 s in LPSim's measurements and at 256 s in SUMO's"),
+      std::string::npos)
+      << eight.err;
+}
+
 // SUMO 1.15's LC2013 lane-change model aborts the process on an assertion at action steps of 10 s or more: a
 // SUMO step that long is refused up front, not a crash of LPSim's own process (libsumo).
 TEST(CosimulationTimingTest, SumoStepsLcTwentyThirteenCannotTakeAreRefused) {

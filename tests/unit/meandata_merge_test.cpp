@@ -48,7 +48,7 @@ TEST(MeanDataMerge, CorridorEdgesComeFromSumoIntervalByInterval) {
     </interval>
 </meandata>
 )");
-  merge_meandata(lpsim, sumo, {"b", "c&d"});
+  EXPECT_TRUE(merge_meandata(lpsim, sumo, {"b", "c&d"}).empty());
   EXPECT_EQ(read_all(lpsim), R"(<?xml version="1.0" encoding="UTF-8"?>
 <meandata>
     <interval begin="0.00" end="100.00" id="e">
@@ -113,6 +113,28 @@ TEST(MeanDataMerge, AnIntervalSumoLacksIsAnErrorNamingTheLine) {
     EXPECT_NE(std::string(e.what()).find("ed.xml:8"), std::string::npos) << e.what();
   }
   EXPECT_EQ(read_all(lpsim), kLpsimEdges);  // left as it was
+}
+
+// SUMO's last step may run past the end when its step is longer than LPSim's: the merge says which interval
+// ends at different times on the two sides (the co-simulation warns), and merges it all the same.
+TEST(MeanDataMerge, IntervalsEndingAtDifferentTimesAreReported) {
+  test::TempDir dir("merge_span");
+  const std::string lpsim = dir.write("ed.xml", kLpsimEdges);
+  const std::string sumo = dir.write("sumo.ed.xml", R"(<meandata>
+    <interval begin="0.00" end="100.00" id="e">
+        <edge id="b" sampledSeconds="20.50"/>
+    </interval>
+    <interval begin="100.00" end="208.00" id="e">
+        <edge id="b" sampledSeconds="50.00"/>
+    </interval>
+</meandata>
+)");
+  const std::vector<MeanDataSpanDiff> diffs = merge_meandata(lpsim, sumo, {"b"});
+  ASSERT_EQ(diffs.size(), 1u);
+  EXPECT_DOUBLE_EQ(diffs[0].begin, 100.0);
+  EXPECT_DOUBLE_EQ(diffs[0].lpsim_end, 200.0);
+  EXPECT_DOUBLE_EQ(diffs[0].sumo_end, 208.0);
+  EXPECT_NE(read_all(lpsim).find("<edge id=\"b\" sampledSeconds=\"50.00\"/>"), std::string::npos);
 }
 
 }  // namespace
