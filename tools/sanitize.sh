@@ -11,7 +11,9 @@ generator=()
 command -v ninja >/dev/null && generator=(-G Ninja)
 # -Wno-maybe-uninitialized: with the sanitizers' instrumentation g++ 12 warns falsely inside libstdc++'s
 # <regex> (used by tests); the optimised build stays warning-clean with every warning on.
-flags="-O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined,float-cast-overflow -fno-sanitize-recover=all"
+# -g1: line tables only, which is what the sanitizers' reports print (file:line of each frame); full debug
+# information made the build about a third slower (11.5 s against 7.5 s for src/engine/simulation.cpp).
+flags="-O1 -g1 -fno-omit-frame-pointer -fsanitize=address,undefined,float-cast-overflow -fno-sanitize-recover=all"
 flags+=" -Wno-maybe-uninitialized"
 # Configured on every run (cheap), so that a changed flag reaches an existing build-sanitize/.
 [ -f build-sanitize/CMakeCache.txt ] && generator=()
