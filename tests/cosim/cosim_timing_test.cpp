@@ -4,9 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
 #include <regex>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -20,20 +18,13 @@ namespace fs = std::filesystem;
 
 const std::string kScenarios = LPSIM_SCENARIOS_DIR;
 
-std::string read_all(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
 // One trip's tripinfo values.
 struct Trip {
   double depart = -1, duration = -1, route_length = -1;
 };
 
 Trip trip_of(const fs::path& tripinfo, const std::string& id) {
-  const std::string text = read_all(tripinfo);
+  const std::string text = test::read_file(tripinfo);
   const std::regex line("<tripinfo id=\"" + id + "\"[^\n]*");
   std::smatch m;
   if (!std::regex_search(text, m, line)) return {};
@@ -138,7 +129,7 @@ TEST(CosimulationTimingTest, VehiclesSumoRemovesWithoutAnArrivalAreArrivedThere)
     const test::CliResult r = test::run_lpsim(dir.path(), args);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.err.find("teleports beyond arrival edge"), std::string::npos) << "no such vehicle: no test";
-    const std::string trips = read_all(fs::path(dir.path()) / "t.xml");
+    const std::string trips = test::read_file(fs::path(dir.path()) / "t.xml");
     EXPECT_EQ(count_of(trips, "<tripinfo "), 1000);
     if (first.empty())
       first = trips;
@@ -155,7 +146,7 @@ TEST(CosimulationTimingTest, SumosSideOutputsEndWithLpsims) {
   const std::string corridor = dir.write("row.txt", "edge:A2B2\nedge:B2C2\nedge:C2D2\nedge:D2E2\n");
   const std::string grid = kScenarios + "/grid_tls/grid_tls.sumocfg";
   const auto last_step = [&](const std::string& file, const std::string& tag) {
-    const std::string text = read_all(fs::path(dir.path()) / file);
+    const std::string text = test::read_file(fs::path(dir.path()) / file);
     const size_t at = text.rfind("<" + tag + " time=\"");
     return at == std::string::npos ? std::string()
                                    : text.substr(at, text.find('"', at + tag.size() + 8) - at);
