@@ -32,6 +32,7 @@ void refuse_inputs_beside_snapshot(const ConfigSpec& c, const std::string& snaps
   const char* load_only =
       c.ignore_route_errors != defaults.ignore_route_errors             ? "--ignore-route-errors"
       : c.minor_penalty != defaults.minor_penalty                       ? "--weights.minor-penalty"
+      : c.routing_algorithm != defaults.routing_algorithm               ? "--routing-algorithm"
       : c.max_lane_map_gb != defaults.max_lane_map_gb                   ? "--max-lane-map-gb"
       : c.tls_all_off != defaults.tls_all_off                           ? "--tls.all-off"
       : c.weights_random_factor != defaults.weights_random_factor       ? "--weights.random-factor"

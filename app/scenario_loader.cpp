@@ -68,6 +68,7 @@ Scenario load_scenario(const ConfigSpec& config) {
   opt.end = config.end;
   opt.step_length = config.step_length;
   opt.minor_penalty = config.minor_penalty;
+  opt.contraction_hierarchy = config.routing_algorithm == "CH" || config.routing_algorithm == "CHWrapper";
   opt.random_factor = config.weights_random_factor;
   opt.default_car_follow_model = config.default_car_follow_model;
   sc.demand = build_demand(demand, sc.network, opt);

@@ -14,7 +14,7 @@ namespace lpsim {
 
 namespace {
 
-enum class Kind { Path, PathList, Time, Bool, Integer, Number, Device, Name, Method, Text };
+enum class Kind { Path, PathList, Time, Bool, Integer, Number, Device, Name, Method, Algorithm, Text };
 
 // A checked value, handed to the option's store function.
 struct Value {
@@ -94,6 +94,7 @@ const OptionDef kOptions[] = {
   // Loading applies it (the network is built without signals), so every command takes it.
   {"tls.all-off", "", 0, Kind::Bool, Check::None, false, kLoad, "switch every traffic light off: its links give way as the net's connection states say (o: yield, O: priority)", [](ConfigSpec& c, Value&& v) { c.tls_all_off = v.flag; }},
   {"weights.random-factor", "", 0, Kind::Number, Check::AtLeastOne, false, kLoad, "multiply the routing cost of each edge by a factor drawn in [1, F) per trip and edge (default 1)", [](ConfigSpec& c, Value&& v) { c.weights_random_factor = v.number; }},
+  {"routing-algorithm", "", 0, Kind::Algorithm, Check::None, false, kLoad, "router of trips: dijkstra (default) or astar, or CH or CHWrapper (a customizable contraction hierarchy: the same costs, faster on many trips)", [](ConfigSpec& c, Value&& v) { c.routing_algorithm = std::move(v.text); }},
   {"weights.minor-penalty", "", 0, Kind::Time, Check::NonNegative, false, kLoad, "routing cost of a minor link, in s (default 1.5)", [](ConfigSpec& c, Value&& v) { c.minor_penalty = v.seconds; }},
   {"no-warnings", "", 'W', Kind::Bool, Check::None, false, kRuns, "no teleport warnings on stderr", [](ConfigSpec& c, Value&& v) { c.no_warnings = v.flag; }},
   {"no-step-log", "", 0, Kind::Bool, Check::None, false, kRuns, "no progress lines on stderr", [](ConfigSpec& c, Value&& v) { c.no_step_log = v.flag; }},
@@ -231,6 +232,11 @@ Value convert(const OptionDef& def, std::string_view name, const std::string& va
         bad_value(where, name, value, "expected metis, leiden or random");
       v.text = value;
       break;
+    case Kind::Algorithm:  // SUMO's names; SUMO's own router takes no other
+      if (value != "dijkstra" && value != "astar" && value != "CH" && value != "CHWrapper")
+        bad_value(where, name, value, "expected dijkstra, astar, CH or CHWrapper");
+      v.text = value;
+      break;
     case Kind::Device:
       if (value == "auto")
         v.device = ComputeDevice::Auto;
@@ -340,6 +346,9 @@ std::string describe_options(CliCommand command) {
         break;
       case Kind::Method:
         left += " METHOD";
+        break;
+      case Kind::Algorithm:
+        left += " ALGORITHM";
         break;
     }
     if (!d.synonym.empty()) left += " (or --" + std::string(d.synonym) + ")";

@@ -16,8 +16,7 @@ using Class = ForeignOptionClass;
 // ndump/netstate/netstate-output and vehroutes; sorted by name for the binary search below. Inert are the
 // ones that only log, validate, drive the GUI or split SUMO's own work (thread-rngs,
 // device.rerouting.threads), save-configuration.relative/save-commented/write-license, which only shape
-// files LPSim does not write or a comment, routing-algorithm (every algorithm finds least-cost routes;
-// LPSim's router breaks ties its own way whichever is named) and collision.action (it acts on collisions,
+// files LPSim does not write or a comment, and collision.action (it acts on collisions,
 // which LPSim's vehicles never have: no two share a cell). Scoped are the ones that act only on something a
 // scenario may lack (bidirectional edges, rerouting devices, parking areas, persons): decided once it is
 // loaded (app/option_scopes.hpp). Every other one could change what a run computes or writes.
@@ -301,7 +300,6 @@ constexpr ForeignOption kForeign[] = {
   {"remote-port", "0", 0, Class::Unsupported},
   {"replay-rerouting", "false", 0, Class::Unsupported},
   {"ride.stop-tolerance", "10", 0, Class::Scoped, OptionScope::Persons},
-  {"routing-algorithm", "dijkstra", 0, Class::Inert},
   {"save-commented", "false", 0, Class::Inert},
   {"save-configuration", "", 'C', Class::Unsupported},
   {"save-configuration.relative", "false", 0, Class::Inert},

@@ -66,6 +66,10 @@ struct ConfigSpec {
   // SUMO's --weights.random-factor (>= 1): each routed trip's edge costs are multiplied by factors drawn
   // in [1, F), per trip and edge, from the seed.
   double weights_random_factor = 1;
+  // SUMO's --routing-algorithm: dijkstra and astar route trips with the Dijkstra router, CH and CHWrapper
+  // with the contraction hierarchy (net/cch_router.hpp). Every one finds least-cost routes; among routes of
+  // equal cost each picks its own, as SUMO's do.
+  std::string routing_algorithm = "dijkstra";
   double minor_penalty =
       1.5;                   // SUMO's --weights.minor-penalty: routing cost of a crossing on a minor link [s]
   bool no_warnings = false;  // SUMO's --no-warnings: no teleport warnings on stderr

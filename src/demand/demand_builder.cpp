@@ -69,7 +69,8 @@ class Builder {
     for (uint32_t f = 0; f < spec_.flows.size(); ++f) add_flow(f, flow_times[f]);
     flow_times.clear();
     demand_.routing.seconds = trips_.route_all(
-        opt_.threads, opt_.minor_penalty, RandomWeights{opt_.random_factor, opt_.seed ^ kSeedRandomWeights});
+        opt_.threads, opt_.minor_penalty, RandomWeights{opt_.random_factor, opt_.seed ^ kSeedRandomWeights},
+        opt_.contraction_hierarchy);
     demand_.routing.requests = trips_.num_requests();
     check_unique_ids();
     assemble();

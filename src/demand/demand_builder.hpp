@@ -14,6 +14,8 @@ struct DemandOptions {
   int threads = 0;                   // routing threads; 0: all hardware threads
   double step_length = 1.0;          // s; the grid on which probability flows draw
   double minor_penalty = kMinorLinkPenalty;  // s; routing cost of crossing on a link without priority
+  // SUMO's --routing-algorithm CH/CHWrapper: trips routed with the contraction hierarchy (same costs).
+  bool contraction_hierarchy = false;
   // SUMO's --weights.random-factor: above 1, every trip (each flow vehicle too) is routed on its own with
   // its edge costs multiplied by factors drawn in [1, F) from the seed and its id (RandomWeights).
   double random_factor = 1;

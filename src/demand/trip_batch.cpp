@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "kernels/rng.hpp"
+#include "net/cch_router.hpp"
 
 namespace lpsim {
 namespace {
@@ -134,11 +135,13 @@ uint32_t TripBatch::add_request(RouteRequest&& request, const TripEnds& ends, co
   return slot;
 }
 
-double TripBatch::route_all(int threads, double minor_penalty, RandomWeights random) {
+double TripBatch::route_all(int threads, double minor_penalty, RandomWeights random,
+                            bool contraction_hierarchy) {
   if (requests_.empty()) return 0;
   const auto t0 = std::chrono::steady_clock::now();
   Router router(net_, minor_penalty, random);
-  const auto paths = router.route_all(requests_, threads);
+  const auto paths = contraction_hierarchy ? CchRouter(net_).route_all(router, requests_, threads)
+                                           : router.route_all(requests_, threads);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   for (size_t i = 0; i < pending_.size(); ++i) {
     if (paths[i].empty()) {

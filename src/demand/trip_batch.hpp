@@ -35,10 +35,12 @@ class TripBatch {
   uint32_t add(const TripEnds& ends, uint32_t vclass, std::string_view kind, std::string_view id,
                const SourceLoc& loc, uint64_t random_stream = 0);
 
-  /// Routes every pending request in one Router::route_all call and fills their slots. A request without
-  /// a path: InputError "no route from X to Y for trip T" at the first trip's location, or a broken slot.
-  /// Returns the wall time spent in the router (s).
-  double route_all(int threads, double minor_penalty = kMinorLinkPenalty, RandomWeights random = {});
+  /// Routes every pending request in one Router::route_all call (CchRouter::route_all with
+  /// `contraction_hierarchy`: the same costs) and fills their slots. A request without a path: InputError
+  /// "no route from X to Y for trip T" at the first trip's location, or a broken slot. Returns the wall time
+  /// spent in the router (s), the hierarchy's construction included.
+  double route_all(int threads, double minor_penalty = kMinorLinkPenalty, RandomWeights random = {},
+                   bool contraction_hierarchy = false);
   size_t num_requests() const { return requests_.size(); }
 
  private:

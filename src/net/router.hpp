@@ -45,6 +45,8 @@ class Router {
   double cost(const std::vector<uint32_t>& path) const;
   /// Cost of entering net.edge_succ[i] from its predecessor edge: the crossing plus the edge (seconds).
   double step_cost(uint32_t i) const { return step_cost_[i]; }
+  /// Cost of edge e as a path's first edge (seconds; infinite at speed 0).
+  double edge_cost(uint32_t e) const { return edge_cost_[e]; }
 
  private:
   const Network& net_;

@@ -98,6 +98,7 @@ TEST(CliHelpTest, EveryListedOptionIsAcceptedByItsCommandAndHasADescription) {
       const std::string value = meta == "FILE" || meta == "FILE[,FILE]" ? "x.xml"
                                 : meta == "DEVICE"                      ? "cpu"
                                 : meta == "METHOD"                      ? "metis"
+                                : meta == "ALGORITHM"                   ? "CH"
                                 : meta == "[BOOL]"                      ? "true"
                                                                         : "1";
       if (name == "--configuration-file") continue;  // reads the file
