@@ -268,9 +268,8 @@ void Cosimulation::hand_into_sumo(const Simulation::HandOut& h) {
   if (h.lane >= 0) {
     const float lane_length = net_.lane_length[static_cast<uint32_t>(h.lane)];
     e.lane = static_cast<int>(net_.lane_index[static_cast<uint32_t>(h.lane)]);
-    // Short of the lane's end only (beyond it lies a junction SUMO has not let it through yet).
-    const double on = h.pos + h.speed * static_cast<double>(entry_ms - now_ms) / 1000.0;
-    e.pos = std::min<double>(on < lane_length ? on : h.pos, lane_length);  // LPSim's front may overhang
+    e.pos = position_driven_on<double>(h.pos, h.speed, static_cast<double>(entry_ms - now_ms) / 1000.0,
+                                       lane_length);
     e.speed = h.speed;
     // Neither side drives the distance from where LPSim left it to where SUMO inserts it: the trip's
     // route length has it still.

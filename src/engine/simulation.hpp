@@ -4,6 +4,7 @@
 // state it owns, and the host bookkeeping between them: the slots handed out, the insertion queues, the trip
 // ledger and the counts. It never formats text: a Run (app/) samples it and hands the samples to the writers
 // in converters/.
+#include <algorithm>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -70,6 +71,17 @@ struct SimulationOptions {
 };
 
 struct PartState;  // src/engine/part_state.hpp
+
+/// Where a vehicle's front at `pos` on a lane `lane_length` long gets to in `seconds` at `speed`, as it
+/// drives on while it waits to be handed over: short of the lane's end only (beyond it lies a junction it has
+/// not been let through), else where it is (at most the lane's end). Both directions of a co-simulation's
+/// hand-over place a vehicle so.
+template <class T>
+T position_driven_on(T pos, T speed, T seconds, T lane_length) {
+  const T at = std::max(T{0}, pos);
+  const T on = at + std::max(T{0}, speed) * seconds;
+  return on < lane_length ? on : std::min(at, lane_length);
+}
 
 /// The summary's sums over the running vehicles (speeds in units of 2^-24 m/s, and of the desired speed).
 struct SpeedSums {

@@ -88,12 +88,10 @@ void Simulation::take_back(uint32_t v, uint32_t route_pos, int32_t lane, float p
                     static_cast<uint32_t>(lane) >= net_.edge_first_lane[edge] + net_.edge_num_lanes[edge]))
     throw std::invalid_argument("take_back: vehicle " + d.vehicle_id[v] + " re-enters on lane " +
                                 std::to_string(lane) + ", not one of edge " + net_.edge_id[edge]);
-  // The next step inserts it: where it gets to in that step at its speed, as it would have driven on. Short
-  // of the lane's end only (beyond it lies a junction it has not been let through), else where it is.
+  // The next step inserts it where it gets to in that step, as it would have driven on.
   const float lane_length =
       net_.lane_length[lane >= 0 ? static_cast<uint32_t>(lane) : net_.edge_first_lane[edge]];
-  const float on = std::max(0.0f, pos) + std::max(0.0f, speed) * static_cast<float>(step_length());
-  const float wanted = on < lane_length ? on : std::min(std::max(0.0f, pos), lane_length);
+  const float wanted = position_driven_on(pos, speed, static_cast<float>(step_length()), lane_length);
   ledger_.handed_back(v, route_pos, lane, std::max(0.0f, pos), wanted, speed);
   queues_.push_back(edge, queue_entry(v, true));
 }

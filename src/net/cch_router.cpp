@@ -274,13 +274,9 @@ std::vector<std::vector<uint32_t>> CchRouter::route_all(const Router& dijkstra,
   std::vector<size_t> others_at;
   std::map<uint32_t, Metric> metrics;  // per vehicle class
   std::vector<size_t> mine;
+  check_request_edges(requests, num_nodes());
   for (size_t i = 0; i < requests.size(); ++i) {
     const RouteRequest& r = requests[i];
-    for (const auto* list : {&r.origins, &r.destinations, &r.via})
-      for (const uint32_t e : *list)
-        if (e >= num_nodes())
-          throw std::out_of_range("route request " + std::to_string(i) + " names edge index " +
-                                  std::to_string(e) + " of " + std::to_string(num_nodes()));
     if (r.origins.size() == 1 && r.destinations.size() == 1 && r.random_stream == 0) {
       if (!metrics.count(r.vclass)) metrics.emplace(r.vclass, customize(dijkstra, r.vclass));
       mine.push_back(i);

@@ -229,6 +229,15 @@ double crossing_cost(const Network& net, uint32_t c, double minor_penalty) {
 
 }  // namespace
 
+void check_request_edges(const std::vector<RouteRequest>& requests, uint32_t num_edges) {
+  for (size_t i = 0; i < requests.size(); ++i)
+    for (const auto* list : {&requests[i].origins, &requests[i].destinations, &requests[i].via})
+      for (uint32_t e : *list)
+        if (e >= num_edges)
+          throw std::out_of_range("route request " + std::to_string(i) + " names edge index " +
+                                  std::to_string(e) + " of " + std::to_string(num_edges));
+}
+
 Router::Router(const Network& net, double minor_penalty, RandomWeights random)
     : net_(net), random_(random), edge_cost_(net.num_edges()), step_cost_(net.edge_succ.size()) {
   for (uint32_t e = 0; e < net.num_edges(); ++e)
@@ -269,13 +278,7 @@ double Router::cost(const std::vector<uint32_t>& path) const {
 
 std::vector<std::vector<uint32_t>> Router::route_all(const std::vector<RouteRequest>& requests,
                                                      int threads) const {
-  const uint32_t edges = net_.num_edges();
-  for (size_t i = 0; i < requests.size(); ++i)
-    for (const auto* list : {&requests[i].origins, &requests[i].destinations, &requests[i].via})
-      for (uint32_t e : *list)
-        if (e >= edges)
-          throw std::out_of_range("route request " + std::to_string(i) + " names edge index " +
-                                  std::to_string(e) + " of " + std::to_string(edges));
+  check_request_edges(requests, net_.num_edges());
 
   // Work items: one per distinct origin set and vClass (requests without via sharing them, e.g. trips between
   // junctions or zones, share one one-to-many search), and one per request with via or random weights. A

@@ -17,6 +17,9 @@ struct RouteRequest {
   uint64_t random_stream = 0;
 };
 
+/// std::out_of_range naming the first request that names an edge index at or above `num_edges`.
+void check_request_edges(const std::vector<RouteRequest>& requests, uint32_t num_edges);
+
 /// SUMO's --weights.random-factor F: each edge's cost is multiplied by a factor drawn uniformly in [1, F),
 /// here one per (request, edge) from the counter-based RNG keyed by `seed` and the request's random_stream,
 /// so that routes depend on the seed and the vehicle only (SUMO draws one per cost evaluation from its
