@@ -1,6 +1,8 @@
 #include "app/option_scopes.hpp"
 
 #include <algorithm>
+#include <set>
+#include <string>
 #include <string_view>
 
 #include "converters/cli_options.hpp"
@@ -9,12 +11,6 @@
 namespace lpsim {
 
 namespace {
-
-const ScopedOption* given(const ConfigSpec& config, std::string_view name) {
-  for (const ScopedOption& o : config.scoped_options)
-    if (o.name == name) return &o;
-  return nullptr;
-}
 
 int64_t skipped(const DemandSpec& demand, const char* element) {
   const auto it = demand.skipped.find(element);
@@ -30,45 +26,20 @@ bool has_bidi_road(const NetSpec& net) {
   return false;
 }
 
-bool routed_at_insertion(const VehicleSpec& v) {
-  return v.route.empty() && v.edges.empty() && v.edge_ref_count == 0;
-}
-
-// Trips and flows whose path SUMO computes (from/to, junctions): SUMO equips them with the rerouting device
-// implicitly.
-bool has_trips(const DemandSpec& demand) {
+// Whether a vehicle or flow of the scenario is a bicycle (its vType, or a member of its distribution).
+bool has_bicycles(const DemandSpec& demand) {
+  std::set<std::string> bicycle_types;
+  for (const VTypeSpec& t : demand.vtypes)
+    if (t.vclass == "bicycle") bicycle_types.insert(t.id);
+  if (bicycle_types.empty()) return false;
+  for (const VTypeDistSpec& d : demand.vtype_dists)
+    for (const WeightedId& m : d.members)
+      if (bicycle_types.count(m.id) > 0) bicycle_types.insert(d.id);
   for (const VehicleSpec& v : demand.vehicles)
-    if (routed_at_insertion(v)) return true;
+    if (bicycle_types.count(v.type) > 0) return true;
   for (const FlowSpec& f : demand.flows)
-    if (f.route.empty() && f.edges.empty()) return true;
+    if (bicycle_types.count(f.type) > 0) return true;
   return false;
-}
-
-// Why vehicles of this scenario get SUMO's rerouting device beyond the routing of trips at insertion, or "".
-std::string rerouting_equipment(const ConfigSpec& config, const DemandSpec& demand) {
-  if (const ScopedOption* p = given(config, "device.rerouting.probability")) {
-    const auto x = parse_double(p->value);
-    if (x && *x > 0 && (!demand.vehicles.empty() || !demand.flows.empty()))
-      return "device.rerouting.probability " + p->value + " equips vehicles with the rerouting device";
-  }
-  if (const ScopedOption* e = given(config, "device.rerouting.explicit"))
-    if (e->value.find_first_not_of(" \t,") != std::string::npos)
-      return "device.rerouting.explicit equips vehicles with the rerouting device";
-  for (const VTypeSpec& t : demand.vtypes) {
-    const auto it = t.params.find("has.rerouting.device");
-    if (it != t.params.end() && parse_sumo_bool(it->second).value_or(false))
-      return "vType '" + t.id + "' asks for the rerouting device (has.rerouting.device)";
-  }
-  if (demand.rerouting_device_requests > 0)
-    return std::to_string(demand.rerouting_device_requests) +
-           " vehicles or flows ask for the rerouting device (has.rerouting.device)";
-  if (const ScopedOption* period = given(config, "device.rerouting.period")) {
-    const auto t = parse_sumo_time(period->value);
-    if (t && *t > 0 && !given(config, "device.rerouting.probability") && has_trips(demand))
-      return "device.rerouting.period " + period->value +
-             " reroutes the trips and flows SUMO routes (from/to) while they drive";
-  }
-  return "";
 }
 
 }  // namespace
@@ -76,8 +47,6 @@ std::string rerouting_equipment(const ConfigSpec& config, const DemandSpec& dema
 std::string decide_scoped_options(const ConfigSpec& config, const NetSpec& net, const DemandSpec& demand) {
   if (config.scoped_options.empty()) return "";
   const bool bidi = has_bidi_road(net);
-  const std::string equipped = rerouting_equipment(config, demand);
-  const bool trips = has_trips(demand);
   const int64_t persons = skipped(demand, "person") + skipped(demand, "personFlow") +
                           skipped(demand, "container") + skipped(demand, "containerFlow");
   const int64_t parking_stops = skipped(demand, "stop (parkingArea)");
@@ -93,14 +62,19 @@ std::string decide_scoped_options(const ConfigSpec& config, const NetSpec& net, 
           idle_because = "no bidirectional road edges";
         break;
       case OptionScope::ReroutingDevice:
-        if (!equipped.empty())
-          acts_because = equipped + ", and LPSim does not reroute vehicles";
-        else if (trips)
-          idle_because =
-              "the device only routes trips and flows from/to, when SUMO inserts them, on the travel times "
-              "these options tune; LPSim routes them when loading, on free-flow travel times";
-        else
-          idle_because = "no vehicle gets the rerouting device";
+        // The device's options LPSim does not implement (it implements the others).
+        if (o.name == "device.rerouting.bike-speeds") {
+          if (has_bicycles(demand))
+            acts_because = "the scenario has bicycles, whose own mean speeds LPSim does not keep for routing";
+          else
+            idle_because = "no bicycles";
+        } else if (o.name == "device.rerouting.with-taz") {
+          idle_because = "LPSim leaves out trips between TAZ";
+        } else if (o.name == "device.rerouting.init-with-loaded-weights") {
+          idle_because = "no edge weights are loaded";
+        } else {
+          idle_because = "LPSim does not simulate rail vehicles";
+        }
         break;
       case OptionScope::ParkingAreaStops:
         if (parking_stops > 0)

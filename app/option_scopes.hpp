@@ -3,12 +3,9 @@
 // the scenario's files are read. An option that would act here is refused, as an option LPSim does not model
 // that would change the results; one that cannot act here is named in one warning, with why.
 //  - BidiEdges (time-to-teleport.bidi): acts where a road edge has a bidi partner.
-//  - ReroutingDevice (device.rerouting.*): acts where a vehicle is equipped with the rerouting device (by
-//    probability > 0, explicit, or has.rerouting.device on its vType or itself), or where trips and flows
-//    from/to are rerouted en route (period > 0 with the probability left at SUMO's default). Trips and
-//    flows from/to alone: LPSim routes them when loading on free-flow travel times, whatever these options
-//    say (SUMO routes them when inserting them, on the travel times the adaptation options tune): accepted,
-//    and the warning says so.
+//  - ReroutingDevice: the rerouting device's options LPSim does not implement. bike-speeds acts where the
+//    scenario has bicycles; with-taz (LPSim leaves TAZ trips out), init-with-loaded-weights (no weight files)
+//    and railsignal (no rail vehicles) never act.
 //  - ParkingAreaStops (parking.maneuver): acts where a vehicle stops at a parkingArea.
 //  - Persons (pedestrian.*, persontrip.*, person-device.*, ride.stop-tolerance): acts where the scenario has
 //    persons or containers; pedestrian.model nonInteracting never acts (LPSim's persons never meet its

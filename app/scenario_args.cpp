@@ -37,6 +37,9 @@ void refuse_inputs_beside_snapshot(const ConfigSpec& c, const std::string& snaps
       : c.tls_all_off != defaults.tls_all_off                           ? "--tls.all-off"
       : c.weights_random_factor != defaults.weights_random_factor       ? "--weights.random-factor"
       : c.default_car_follow_model != defaults.default_car_follow_model ? "--default.carfollowmodel"
+      : c.rerouting.probability != defaults.rerouting.probability       ? "--device.rerouting.probability"
+      : !c.rerouting.explicit_ids.empty()                               ? "--device.rerouting.explicit"
+      : c.rerouting.deterministic != defaults.rerouting.deterministic   ? "--device.rerouting.deterministic"
                                                                         : nullptr;
   if (load_only)
     throw InputError(SourceLoc{"command line", 0}, std::string(load_only) + " given beside the snapshot '" +

@@ -71,6 +71,7 @@ Scenario load_scenario(const ConfigSpec& config) {
   opt.contraction_hierarchy = config.routing_algorithm == "CH" || config.routing_algorithm == "CHWrapper";
   opt.random_factor = config.weights_random_factor;
   opt.default_car_follow_model = config.default_car_follow_model;
+  opt.rerouting = config.rerouting;
   sc.demand = build_demand(demand, sc.network, opt);
   if (const uint64_t n = sc.demand.raised_speed_factors; n > 0)
     sc.warnings.push_back(

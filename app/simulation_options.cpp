@@ -27,6 +27,18 @@ SimulationOptions simulation_options(const ConfigSpec& config) {
   options.max_depart_delay = config.max_depart_delay;
   options.ignore_junction_blocker = config.ignore_junction_blocker;
   options.volumetric_fuel = config.volumetric_fuel;
+  const ReroutingSpec& r = config.rerouting;
+  auto ms = [](double s) { return std::llround(s * 1000.0); };
+  options.rerouting.adaptation_interval_ms = ms(r.adaptation_interval);
+  // As SUMO: a moving average over adaptation-steps samples, unless only the weight is given.
+  options.rerouting.adaptation_steps =
+      r.adaptation_weight == 0 || r.adaptation_steps_given ? r.adaptation_steps : 0;
+  options.rerouting.adaptation_weight = r.adaptation_weight;
+  options.rerouting.period_ms = ms(r.period);
+  options.rerouting.pre_period_ms = ms(r.pre_period);
+  options.rerouting.synchronize = r.synchronize;
+  options.rerouting.minor_penalty = config.minor_penalty;
+  options.rerouting.random_factor = config.weights_random_factor;
   return options;
 }
 

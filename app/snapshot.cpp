@@ -131,7 +131,7 @@ void visit(IO& io, Network& n) {
   io.field(n.signal_max_gap), io.field(n.signal_detector_gap), io.field(n.signal_passing_time);
   io.field(n.signal_det_begin), io.field(n.det_lane), io.field(n.det_pos), io.field(n.phase_det_begin);
   io.field(n.phase_det);
-  io.field(n.roundabout_edges);
+  io.field(n.roundabout_edges), io.field(n.edge_other_lanes), io.field(n.edge_other_lane_speeds);
   io.field(n.skipped_non_car_lanes), io.field(n.skipped_connections), io.field(n.net_offset);
   io.field(n.edge_succ_begin), io.field(n.edge_succ), io.field(n.edge_succ_permissions);
   io.field(n.lane_permissions), io.field(n.edge_permissions);
@@ -164,6 +164,7 @@ void visit(IO& io, Demand& d) {
   io.field(d.depart_speed), io.field(d.arrival_pos_kind), io.field(d.arrival_pos), io.field(d.route_edges);
   io.field(d.stops.vehicle_begin), io.field(d.stops.route_pos), io.field(d.stops.lane);
   io.field(d.stops.start_pos), io.field(d.stops.end_pos), io.field(d.stops.duration), io.field(d.stops.until);
+  io.field(d.rerouting), io.field(d.via_begin), io.field(d.via_edges);
   uint64_t n = d.unroutable.size();
   io.field(n);
   d.unroutable.resize(n);

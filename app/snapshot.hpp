@@ -9,9 +9,10 @@
 
 namespace lpsim {
 
-inline constexpr uint32_t kSnapshotVersion = 9;  // 2: car-following model; 3: actuated loops; 4: vClasses;
-                                                 // 5: keepClear links; 6: scheduled stops; 7: emissions;
-                                                 // 8: desiredMaxSpeed; 9: speed restrictions by vClass
+inline constexpr uint32_t kSnapshotVersion = 10;  // 2: car-following model; 3: actuated loops; 4: vClasses;
+                                                  // 5: keepClear links; 6: scheduled stops; 7: emissions;
+                                                  // 8: desiredMaxSpeed; 9: speed restrictions by vClass;
+                                                  // 10: the rerouting device
 
 void write_snapshot(const Scenario& scenario, const std::string& path);
 Scenario read_snapshot(const std::string& path);

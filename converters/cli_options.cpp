@@ -69,6 +69,20 @@ struct OptionDef {
   void (*store)(ConfigSpec&, Value&&);
 };
 
+// SUMO's string vectors: ids separated by commas and/or blanks.
+std::vector<std::string> split_id_list(const std::string& text) {
+  std::vector<std::string> ids;
+  size_t i = 0;
+  while (i < text.size()) {
+    const size_t start = text.find_first_not_of(", \t\n", i);
+    if (start == std::string::npos) break;
+    const size_t end = std::min(text.find_first_of(", \t\n", start), text.size());
+    ids.push_back(text.substr(start, end - start));
+    i = end;
+  }
+  return ids;
+}
+
 constexpr std::string_view kConfigFile = "configuration-file";
 
 // clang-format off
@@ -95,6 +109,15 @@ const OptionDef kOptions[] = {
   {"tls.all-off", "", 0, Kind::Bool, Check::None, false, kLoad, "switch every traffic light off: its links give way as the net's connection states say (o: yield, O: priority)", [](ConfigSpec& c, Value&& v) { c.tls_all_off = v.flag; }},
   {"weights.random-factor", "", 0, Kind::Number, Check::AtLeastOne, false, kLoad, "multiply the routing cost of each edge by a factor drawn in [1, F) per trip and edge (default 1)", [](ConfigSpec& c, Value&& v) { c.weights_random_factor = v.number; }},
   {"routing-algorithm", "", 0, Kind::Algorithm, Check::None, false, kLoad, "router of trips: dijkstra (default) or astar, or CH or CHWrapper (a customizable contraction hierarchy: the same costs, faster on many trips)", [](ConfigSpec& c, Value&& v) { c.routing_algorithm = std::move(v.text); }},
+  {"device.rerouting.probability", "", 0, Kind::Number, Check::None, false, kLoad, "probability that a vehicle gets the rerouting device (trips and flows from/to always have it; < 0: not given)", [](ConfigSpec& c, Value&& v) { c.rerouting.probability = v.number; }},
+  {"device.rerouting.explicit", "", 0, Kind::Text, Check::None, false, kLoad, "ids of vehicles that get the rerouting device (comma- or space-separated)", [](ConfigSpec& c, Value&& v) { c.rerouting.explicit_ids = split_id_list(v.text); }},
+  {"device.rerouting.deterministic", "", 0, Kind::Bool, Check::None, false, kLoad, "equip exactly the fraction given by device.rerouting.probability", [](ConfigSpec& c, Value&& v) { c.rerouting.deterministic = v.flag; }},
+  {"device.rerouting.period", "", 0, Kind::Time, Check::NonNegative, false, kLoad, "equipped vehicles re-route while driving every this many s; 0 (default): never", [](ConfigSpec& c, Value&& v) { c.rerouting.period = v.seconds; }},
+  {"device.rerouting.pre-period", "", 0, Kind::Time, Check::NonNegative, false, kLoad, "equipped vehicles waiting to be inserted re-route every this many s (default 60)", [](ConfigSpec& c, Value&& v) { c.rerouting.pre_period = v.seconds; }},
+  {"device.rerouting.adaptation-interval", "", 0, Kind::Time, Check::None, false, kLoad, "s between samples of the edges' mean speeds for routing (default 1; <= 0: free-flow travel times throughout)", [](ConfigSpec& c, Value&& v) { c.rerouting.adaptation_interval = v.seconds; }},
+  {"device.rerouting.adaptation-steps", "", 0, Kind::Integer, Check::NonNegative, false, kLoad, "samples in the moving average of the edges' speeds (default 180)", [](ConfigSpec& c, Value&& v) { c.rerouting.adaptation_steps = static_cast<int>(v.integer); c.rerouting.adaptation_steps_given = true; }},
+  {"device.rerouting.adaptation-weight", "", 0, Kind::Number, Check::NonNegative, false, kLoad, "weight of the old value in the exponential average of the edges' speeds (used when adaptation-steps is not given; >= 1: no updates)", [](ConfigSpec& c, Value&& v) { c.rerouting.adaptation_weight = v.number; }},
+  {"device.rerouting.synchronize", "", 0, Kind::Bool, Check::None, false, kLoad, "count the re-routing period from time 0 rather than from each vehicle's departure", [](ConfigSpec& c, Value&& v) { c.rerouting.synchronize = v.flag; }},
   {"weights.minor-penalty", "", 0, Kind::Time, Check::NonNegative, false, kLoad, "routing cost of a minor link, in s (default 1.5)", [](ConfigSpec& c, Value&& v) { c.minor_penalty = v.seconds; }},
   {"no-warnings", "", 'W', Kind::Bool, Check::None, false, kRuns, "no teleport warnings on stderr", [](ConfigSpec& c, Value&& v) { c.no_warnings = v.flag; }},
   {"no-step-log", "", 0, Kind::Bool, Check::None, false, kRuns, "no progress lines on stderr", [](ConfigSpec& c, Value&& v) { c.no_step_log = v.flag; }},

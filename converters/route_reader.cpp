@@ -311,7 +311,7 @@ class RouteFileReader {
   // by the million) a nested route's edges are interned into it instead of filling `edges`.
   void read_path_children(const SourceLoc& loc, std::string_view element, const std::string& id,
                           std::string& route, std::vector<std::string>& edges, std::vector<StopSpec>& stops,
-                          VehicleSpec* interned = nullptr) {
+                          int8_t& rerouting_param, VehicleSpec* interned = nullptr) {
     for_each_child(loc, element, id, [&] {
       const bool has_path = !route.empty() || !edges.empty() || (interned && interned->edge_ref_count > 0);
       if (xs_.name() == "route") {
@@ -343,8 +343,8 @@ class RouteFileReader {
       } else if (xs_.name() == "stop") {
         read_stop(stops);
       } else if (xs_.name() == "param" && xs_.get("key", "") == kReroutingParam) {
-        // Decides whether scoped rerouting options can act (app/option_scopes.hpp).
-        if (parse_sumo_bool(trim(xs_.get("value", ""))).value_or(false)) ++demand_.rerouting_device_requests;
+        // Equips it with the rerouting device, or keeps it from one (demand_builder), whatever the options.
+        rerouting_param = parse_sumo_bool(trim(xs_.get("value", ""))).value_or(false) ? 1 : 0;
         skip_subtree();
       } else {
         skip_counted();
@@ -494,7 +494,7 @@ class RouteFileReader {
     const bool line = public_transport();
     read_type_and_path(v);
     read_depart_spec(loc, element, id, v.depart_spec);
-    read_path_children(loc, element, v.id, v.route, v.edges, v.stops, &v);
+    read_path_children(loc, element, v.id, v.route, v.edges, v.stops, v.rerouting_param, &v);
 
     const bool endpoints = has_endpoints(v.from, v.from_junction, v.to, v.to_junction);
     // SUMO starts a trip without 'from' at its first stop and ends one without 'to' at its last.
@@ -566,7 +566,7 @@ class RouteFileReader {
 
     read_type_and_path(f);
     read_depart_spec(loc, element, id, f.depart_spec);
-    read_path_children(loc, element, f.id, f.route, f.edges, f.stops);
+    read_path_children(loc, element, f.id, f.route, f.edges, f.stops, f.rerouting_param);
     if (f.route.empty() && f.edges.empty() && !has_endpoints(f.from, f.from_junction, f.to, f.to_junction))
       fail(loc, element, f.id,
            "no route: give 'route', a nested <route>, from/to or fromJunction/toJunction");

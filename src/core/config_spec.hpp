@@ -22,7 +22,7 @@ struct OutputSpec {
 /// would change the results) and otherwise named in one warning (it cannot act there).
 enum class OptionScope : uint8_t {
   BidiEdges,         // edges with a `bidi` partner (time-to-teleport.bidi)
-  ReroutingDevice,   // vehicles equipped with the rerouting device (device.rerouting.*)
+  ReroutingDevice,   // what the rerouting device's options LPSim lacks act on (device.rerouting.*)
   ParkingAreaStops,  // stops at a parkingArea (parking.maneuver)
   Persons,           // persons (pedestrian.model, ride.stop-tolerance, person-device.*)
 };
@@ -32,6 +32,20 @@ struct ScopedOption {
   std::string name, value;
   SourceLoc loc;
   OptionScope scope;
+};
+
+/// SUMO's rerouting device options (MSDevice_Routing, MSRoutingEngine), SUMO's defaults.
+struct ReroutingSpec {
+  double probability = -1;                // < 0: not given
+  std::vector<std::string> explicit_ids;  // device.rerouting.explicit
+  bool deterministic = false;             // equip exactly the fraction `probability`, by a counter
+  double period = 0;                      // s between en-route re-routings of equipped vehicles; 0: never
+  double pre_period = 60;                 // s between re-routings while a vehicle waits to be inserted
+  double adaptation_interval = 1;         // s between samples of the edges' mean speeds; <= 0: never
+  int adaptation_steps = 180;             // samples averaged (a moving average); 0: exponential
+  bool adaptation_steps_given = false;    // SUMO averages exponentially when only the weight is given
+  double adaptation_weight = 0;           // the exponential average's weight of the old value
+  bool synchronize = false;               // periods counted from time 0, not from each vehicle's departure
 };
 
 /// Where `lpsim run` steps the simulation (--device): auto takes a usable CUDA device, else the CPU.
@@ -70,6 +84,9 @@ struct ConfigSpec {
   // with the contraction hierarchy (net/cch_router.hpp). Every one finds least-cost routes; among routes of
   // equal cost each picks its own, as SUMO's do.
   std::string routing_algorithm = "dijkstra";
+  // SUMO's rerouting device (--device.rerouting.*): which vehicles get it beyond the trips and flows LPSim
+  // routes (from/to), which always do; how often they re-route; how the travel times are averaged.
+  ReroutingSpec rerouting;
   double minor_penalty =
       1.5;                   // SUMO's --weights.minor-penalty: routing cost of a crossing on a minor link [s]
   bool no_warnings = false;  // SUMO's --no-warnings: no teleport warnings on stderr

@@ -114,6 +114,7 @@ struct VehicleSpec {
   std::vector<std::string> via;
   DepartSpec depart_spec;
   std::vector<StopSpec> stops;
+  int8_t rerouting_param = -1;  // <param key="has.rerouting.device">: -1 none, 0 false, 1 true
   SourceLoc loc;
 };
 
@@ -129,6 +130,7 @@ struct FlowSpec {
   std::vector<std::string> via;
   DepartSpec depart_spec;
   std::vector<StopSpec> stops;  // `until` counts from begin: each vehicle's is later by its depart - begin
+  int8_t rerouting_param = -1;  // <param key="has.rerouting.device">: -1 none, 0 false, 1 true
   SourceLoc loc;
 };
 
@@ -143,8 +145,6 @@ struct DemandSpec {
   std::vector<std::string> edge_names;     // each edge id of the interned inline routes, once
   std::vector<uint32_t> edge_refs;         // interned inline routes: indices into edge_names
   std::map<std::string, int64_t> skipped;  // element name -> count of unsupported elements (persons, ...)
-  // Vehicles and flows with <param key="has.rerouting.device" value="true"/> (vTypes keep theirs in params).
-  int64_t rerouting_device_requests = 0;
   // Vehicles, trips and flows a route file lists after a later departure, which SUMO ignores (its route
   // files are read ahead by departure time); the first one's id and place, for the warning.
   int64_t unsorted_ignored = 0;

@@ -53,6 +53,11 @@ struct StopTable {
   void append(const StopTable& from, uint32_t first, uint32_t last);
 };
 
+/// How a vehicle re-routes (SUMO's rerouting device): kRerouteAtInsertion, when it is inserted (and every
+/// pre-period while it waits to be), from its first edge to its last; kRerouteWhileDriving, also every
+/// period while it drives, from where it is.
+enum RerouteFlags : uint8_t { kRerouteAtInsertion = 1, kRerouteWhileDriving = 2 };
+
 struct Demand {
   VehicleTypes types;
 
@@ -75,6 +80,12 @@ struct Demand {
 
   std::vector<uint32_t> route_edges;  // edge indices; routes shared by id are stored once
   StopTable stops;
+
+  // SUMO's rerouting device (engine/rerouting.hpp), per vehicle: RerouteFlags. Empty: no vehicle has it.
+  std::vector<uint8_t> rerouting;
+  // The via edges of trips that re-route (in order), [via_begin[v], via_begin[v + 1]) of via_edges; empty
+  // while no such trip has any.
+  std::vector<uint32_t> via_begin, via_edges;
 
   // --- what was not turned into vehicles ---
   struct Skipped {

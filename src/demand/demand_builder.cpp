@@ -11,6 +11,7 @@
 #include "demand/departure.hpp"
 #include "demand/flat_index.hpp"
 #include "demand/flow_expansion.hpp"
+#include "demand/rerouting_equipment.hpp"
 #include "demand/route_table.hpp"
 #include "demand/stop_resolution.hpp"
 #include "demand/trip_batch.hpp"
@@ -28,6 +29,7 @@ struct PendingVehicle {
   float speed_factor;
   uint32_t origin;
   bool from_flow;
+  bool routed;  // a trip or flow routed here (from/to): SUMO gives it the rerouting device
 };
 
 const char* kind_name(DemandSource s) {
@@ -98,7 +100,9 @@ class Builder {
                         types_.types().vclass_mask[type], kind_name(v.source), v.id, v.loc,
                         random_stream(stream));
     }
-    pending_.push_back({v.depart, type, slot, types_.speed_factor(type, opt_.seed, stream), i, false});
+    const bool routed = v.route.empty() && v.edges.empty() && v.edge_ref_count == 0;
+    pending_.push_back(
+        {v.depart, type, slot, types_.speed_factor(type, opt_.seed, stream), i, false, routed});
     ids_.push_back(v.id);
   }
 
@@ -132,7 +136,8 @@ class Builder {
                                                               random_stream(stream))
                             : flow.route.empty() ? shared_slot
                                                  : routes_.named(flow.route, id, opt_.seed, stream, flow.loc);
-      pending_.push_back({times[n], type, slot, types_.speed_factor(type, opt_.seed, stream), f, true});
+      pending_.push_back({times[n], type, slot, types_.speed_factor(type, opt_.seed, stream), f, true,
+                          flow.route.empty() && flow.edges.empty()});
       ids_.push_back(id);
     }
   }
@@ -326,6 +331,7 @@ class Builder {
           d.first_raised_speed_factor = d.vehicle_id[v];
       }
     }
+    assign_rerouting(order);
     d.types = types_.take();
     d.unsupported = spec_.skipped;
     // Stopping places on rail, tram or pedestrian lanes: skipped, with the vehicles using them (trains).
@@ -335,6 +341,42 @@ class Builder {
     if (const uint64_t n = stops_.dropped_stops(); n > 0)
       d.unsupported["stop (position off its lane, dropped as SUMO drops it)"] += static_cast<int64_t>(n);
     for (auto src : d.source) d.routing.vehicles += src != DemandSource::Vehicle ? 1 : 0;
+  }
+
+  // Demand::rerouting and the via edges of the trips that re-route, by the vehicles' final order. A vehicle
+  // with stops keeps the route it was loaded with: its stops are placed by their positions in that route.
+  void assign_rerouting(const std::vector<uint32_t>& order) {
+    Demand& d = demand_;
+    const ReroutingEquipment equipment(opt_.rerouting, spec_, types_.types(), opt_.seed);
+    std::vector<uint8_t> flags(order.size(), 0);
+    bool any = false;
+    std::vector<uint32_t> via_begin(order.size() + 1, 0), via_edges;
+    std::string reason;
+    for (size_t v = 0; v < order.size(); ++v) {
+      via_begin[v] = static_cast<uint32_t>(via_edges.size());
+      const PendingVehicle& p = pending_[order[v]];
+      if (d.stops.first(static_cast<uint32_t>(v)) != d.stops.last(static_cast<uint32_t>(v))) continue;
+      const int8_t param =
+          p.from_flow ? spec_.flows[p.origin].rerouting_param : spec_.vehicles[p.origin].rerouting_param;
+      const bool is_trip =
+          p.routed && (p.from_flow || spec_.vehicles[p.origin].source != DemandSource::OdCsv);
+      uint8_t f = is_trip ? kRerouteAtInsertion : 0;
+      if (equipment.equipped(d.vehicle_id[v], draw_stream(d.vehicle_id[v]), static_cast<uint32_t>(v), p.type,
+                             param))
+        f |= kRerouteAtInsertion | kRerouteWhileDriving;
+      flags[v] = f;
+      any = any || f != 0;
+      if (f == 0 || !p.routed) continue;
+      for (const std::string& name : p.from_flow ? spec_.flows[p.origin].via : spec_.vehicles[p.origin].via)
+        if (const auto e = routes_.edges().drivable(name, reason)) via_edges.push_back(*e);
+    }
+    via_begin[order.size()] = static_cast<uint32_t>(via_edges.size());
+    if (!any) return;
+    d.rerouting = std::move(flags);
+    if (!via_edges.empty()) {
+      d.via_begin = std::move(via_begin);
+      d.via_edges = std::move(via_edges);
+    }
   }
 
   const DemandSpec& spec_;

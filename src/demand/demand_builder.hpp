@@ -1,6 +1,7 @@
 #pragma once
 #include <string>
 
+#include "core/config_spec.hpp"
 #include "core/demand_spec.hpp"
 #include "demand/demand.hpp"
 #include "net/network.hpp"
@@ -23,6 +24,9 @@ struct DemandOptions {
   double begin = 0, end = -1;
   // SUMO's --default.carfollowmodel: the model of every vType that names none.
   std::string default_car_follow_model = "Krauss";
+  // SUMO's device.rerouting.probability / .explicit / .deterministic: which vehicles get the rerouting device
+  // (Demand::rerouting) besides the trips and flows routed here, which always do.
+  ReroutingSpec rerouting;
 };
 
 /// Resolves types, distributions and routes, expands flows, routes trips (fastest free-flow path over lane

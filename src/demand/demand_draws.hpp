@@ -15,6 +15,7 @@ namespace lpsim {
 inline constexpr uint64_t kDrawVTypeMember = 0x8000000000000001ull;
 inline constexpr uint64_t kDrawRouteMember = 0x8000000000000002ull;
 inline constexpr uint64_t kDrawSpeedFactor = 0x8000000000000100ull;  // + 2 per attempt
+inline constexpr uint64_t kDrawReroutingDevice = 0x8000000000000003ull;
 
 /// Mixed into the seed of the random edge-cost factors (--weights.random-factor), whose counters are edge
 /// indices: small numbers that per-step draws use too.

@@ -141,14 +141,18 @@ Simulation::Simulation(const Network& net, Demand demand, const SimulationOption
   setup.device = opt_.gpu_device;
   stepper_ = opt_.gpu ? make_cuda_stepper(setup) : make_cpu_stepper(setup);
 
+  init_rerouting();
   // The state at the begin time: its signals and its first insertions.
   stepper_->update_signals(time_ms_, time_ms_, cur_);
   if (parts_) share_signals();
+  if (reroute_) reroute_vehicles(time_ms_);
+  sync_trips();
   enqueue_due(time_ms_);
   insert_waiting(cur_);
   if (parts_) share_insertions(cur_);
   check_kept(0);
   start_inserted(0, 0);
+  if (reroute_) sample_routing_speeds();
   if (parts_) report_to_root();
 }
 
@@ -240,6 +244,7 @@ StepParams Simulation::step_params() const {
 void Simulation::step() {
   const auto t0 = std::chrono::steady_clock::now();
   if (parts_ && parts_->plan.part == 0) request(kRequestStep);
+  if (reroute_) reroute_vehicles(time_ms_ + dt_ms_);
   sync_trips();
   ++version_;
   Stepper& s = *stepper_;
@@ -277,6 +282,7 @@ void Simulation::step() {
   if (parts_) share_insertions(1 - cur_);
   cur_ = 1 - cur_;
   start_inserted(out.kept, out.running);
+  if (reroute_) sample_routing_speeds();
   if (parts_) {
     PartStats& st = parts_->stats;
     ++st.steps;

@@ -15,6 +15,7 @@
 #include "demand/trip_table.hpp"
 #include "engine/engine_net.hpp"
 #include "engine/insertion_queues.hpp"
+#include "engine/rerouting.hpp"
 #include "engine/samples.hpp"
 #include "engine/slot_pool.hpp"
 #include "engine/trip_ledger.hpp"
@@ -68,6 +69,8 @@ struct SimulationOptions {
   // Simulation; one part only). A vehicle whose front reaches one, or whose trip departs on one, leaves this
   // simulation (Simulation::hand_outs()).
   const std::vector<uint8_t>* outside_lanes = nullptr;
+  // SUMO's rerouting device: when the vehicles that have it (Demand::rerouting) re-route, and on what speeds.
+  ReroutingOptions rerouting;
 };
 
 struct PartState;  // src/engine/part_state.hpp
@@ -242,6 +245,12 @@ class Simulation {
   void start_inserted(uint32_t kept, uint32_t running);
   void sort_slots();
   void check_kept(uint32_t kept) const;
+  // The rerouting device (simulation_rerouting.cpp).
+  void init_rerouting();
+  void reroute_vehicles(int64_t end_ms);  // those due by end_ms
+  void share_new_routes(std::vector<NewRoute>& routes);
+  void apply_new_routes(const std::vector<NewRoute>& routes);
+  void sample_routing_speeds();
   // A partitioned run's rounds (simulation_parts.cpp), in the order the step makes them.
   void share_signals();
   void share_approaches();
@@ -321,8 +330,9 @@ class Simulation {
   uint64_t handed_out_ = 0;
   uint32_t handed_out_last_step_ = 0;
 
-  std::unique_ptr<Stepper> stepper_;  // last: made from the members above, gone before them
-  std::unique_ptr<PartState> parts_;  // a partitioned run's state (null: one part)
+  std::unique_ptr<Stepper> stepper_;       // last: made from the members above, gone before them
+  std::unique_ptr<PartState> parts_;       // a partitioned run's state (null: one part)
+  std::unique_ptr<RerouteState> reroute_;  // the rerouting device (null: no vehicle has it)
 
   // What outputs and tests derive from the backend's state, kept per version of it: the state changes in
   // step() and set_route(), each counting a new version.

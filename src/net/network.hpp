@@ -41,6 +41,10 @@ struct Network {
   std::vector<float> edge_speed;           // m/s, max over its lanes (as SUMO's edge speed)
   std::vector<uint32_t> edge_permissions;  // vClasses some lane of the edge allows (union of its lanes')
   std::vector<int32_t> edge_priority;
+  // The lanes of an edge left out of the lane tables (sidewalks, rail): how many, and their speed limits'
+  // sum (m/s). SUMO's mean speed of an edge, which its rerouting device averages, counts them as empty lanes.
+  std::vector<uint8_t> edge_other_lanes;
+  std::vector<float> edge_other_lane_speeds;
 
   // --- lanes (vehicle lanes only) ---
   std::vector<std::string> lane_id;

@@ -198,12 +198,20 @@ class Builder {
       edge_spec_.push_back(se);
 
       order.clear();
+      uint32_t other_lanes = 0;
+      float other_speeds = 0;
       for (uint32_t k = 0; k < e.lanes.size(); ++k) {
-        if (vehicle_lane(e.lanes[k].permissions))
+        if (vehicle_lane(e.lanes[k].permissions)) {
           order.push_back(k);
-        else if (non_car_lanes_.insert(e.lanes[k].id).second && !internal)
+          continue;
+        }
+        ++other_lanes;
+        other_speeds += static_cast<float>(e.lanes[k].speed);
+        if (non_car_lanes_.insert(e.lanes[k].id).second && !internal)
           net_.left_out_lane_edge.emplace(e.lanes[k].id, ei);
       }
+      net_.edge_other_lanes.push_back(static_cast<uint8_t>(std::min<uint32_t>(other_lanes, 255)));
+      net_.edge_other_lane_speeds.push_back(other_speeds);
       std::stable_sort(order.begin(), order.end(),
                        [&](uint32_t a, uint32_t b) { return e.lanes[a].index < e.lanes[b].index; });
       if (order.size() > std::numeric_limits<uint8_t>::max())

@@ -206,18 +206,28 @@ std::vector<uint32_t> route_one(Search& search, const RouteRequest& r) {
   return path;
 }
 
+// SUMO's MSRoutingEngine::getEffort: length over the averaged speed (at least NUMERICAL_EPS), at least the
+// free-flow time (SUMO's minimum travel time, here at the speed limit).
+double congested_time(double length, double limit, double speed) {
+  constexpr double kNumericalEps = 0.001;
+  return std::max(length / limit, length / std::max(speed, kNumericalEps));
+}
+
 // Time to cross the junction-internal lanes of connection c: from its via lane on, through any internal
 // junction, to the next normal lane. Each internal lane costs its length / speed, and minor_penalty
 // when the link entering it has no priority (state not an upper-case letter) and no signal, as SUMO adds
 // to such internal edges' travel time.
-double crossing_cost(const Network& net, uint32_t c, double minor_penalty) {
+// With `speeds` (per edge), an internal lane takes at least its length at its internal edge's speed.
+double crossing_cost(const Network& net, uint32_t c, double minor_penalty,
+                     const std::vector<double>* speeds) {
   double total = 0;
   for (int parts = 0; parts < 8; ++parts) {  // a junction has at most a few internal lanes in a row
     const int32_t via = net.conn_via_lane[c];
     if (via < 0) return total;
     const float speed = net.lane_speed[via];
     if (speed <= 0) return std::numeric_limits<double>::infinity();
-    total += net.lane_length[via] / speed;
+    total += speeds ? congested_time(net.lane_length[via], speed, (*speeds)[net.lane_edge[via]])
+                    : net.lane_length[via] / speed;
     const char state = net.conn_state[c];
     if (net.conn_signal[c] < 0 && !(state >= 'A' && state <= 'Z')) total += minor_penalty;
     const uint32_t next = net.lane_conn_begin[via];
@@ -239,10 +249,12 @@ void check_request_edges(const std::vector<RouteRequest>& requests, uint32_t num
 }
 
 Router::Router(const Network& net, double minor_penalty, RandomWeights random)
-    : net_(net), random_(random), edge_cost_(net.num_edges()), step_cost_(net.edge_succ.size()) {
-  for (uint32_t e = 0; e < net.num_edges(); ++e)
-    edge_cost_[e] = net.edge_speed[e] > 0 ? net.edge_length[e] / net.edge_speed[e]
-                                          : std::numeric_limits<float>::infinity();
+    : net_(net),
+      random_(random),
+      minor_penalty_(minor_penalty),
+      edge_cost_(net.num_edges()),
+      step_cost_(net.edge_succ.size()),
+      crossing_(net.edge_succ.size(), -1) {
   for (uint32_t e = 0; e < net.num_edges(); ++e)
     for (uint32_t i = net.edge_succ_begin[e]; i < net.edge_succ_begin[e + 1]; ++i) {
       const uint32_t to = net.edge_succ[i];
@@ -255,9 +267,35 @@ Router::Router(const Network& net, double minor_penalty, RandomWeights random)
             first = static_cast<int32_t>(c);
             break;
           }
-      step_cost_[i] = edge_cost_[to] +
-                      (first >= 0 ? crossing_cost(net, static_cast<uint32_t>(first), minor_penalty) : 0.0);
+      crossing_[i] = first;
     }
+  set_costs(nullptr);
+}
+
+void Router::set_speeds(const std::vector<double>& edge_speed) {
+  if (edge_speed.size() != net_.num_edges())
+    throw std::invalid_argument("Router::set_speeds: " + std::to_string(edge_speed.size()) + " speeds for " +
+                                std::to_string(net_.num_edges()) + " edges");
+  set_costs(&edge_speed);
+}
+
+void Router::set_costs(const std::vector<double>* speeds) {
+  const Network& net = net_;
+  for (uint32_t e = 0; e < net.num_edges(); ++e) {
+    const float limit = net.edge_speed[e];
+    if (limit <= 0)
+      edge_cost_[e] = std::numeric_limits<float>::infinity();
+    else if (speeds)
+      edge_cost_[e] = static_cast<float>(congested_time(net.edge_length[e], limit, (*speeds)[e]));
+    else
+      edge_cost_[e] = net.edge_length[e] / limit;
+  }
+  for (uint32_t i = 0; i < step_cost_.size(); ++i) {
+    const int32_t first = crossing_[i];
+    step_cost_[i] =
+        edge_cost_[net.edge_succ[i]] +
+        (first >= 0 ? crossing_cost(net, static_cast<uint32_t>(first), minor_penalty_, speeds) : 0.0);
+  }
 }
 
 double Router::cost(const std::vector<uint32_t>& path) const {

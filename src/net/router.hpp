@@ -50,12 +50,20 @@ class Router {
   double step_cost(uint32_t i) const { return step_cost_[i]; }
   /// Cost of edge e as a path's first edge (seconds; infinite at speed 0).
   double edge_cost(uint32_t e) const { return edge_cost_[e]; }
+  /// Costs from now on on the travel times of the rerouting device (SUMO's MSRoutingEngine::getEffort):
+  /// each edge, and each junction-internal lane by its internal edge, takes its length over `edge_speed`
+  /// (per edge of the network, m/s), at least its free-flow time. std::invalid_argument on a wrong size.
+  void set_speeds(const std::vector<double>& edge_speed);
 
  private:
+  void set_costs(const std::vector<double>* speeds);  // null: free flow
+
   const Network& net_;
   RandomWeights random_;
+  double minor_penalty_;
   std::vector<float> edge_cost_;
   std::vector<double> step_cost_;  // parallel to net.edge_succ
+  std::vector<int32_t> crossing_;  // parallel to net.edge_succ: the connection crossed onto it (-1: none)
 };
 
 }  // namespace lpsim

@@ -110,8 +110,10 @@ TEST(SumoSettingsTest, VehiclesNotInsertedInTimeAreDroppedAsInSumo) {
 }
 
 // Trips routed with random edge-cost factors: on two ways from O to D, the upper 4.4 % longer, everyone takes
-// the lower without them; with F = 1.5 SUMO sends 27-40 of 100 vehicles up (seeds 1-3), LPSim must send a
-// comparable share (within 15), the same routes for the same seed and other routes for another.
+// the lower without them (all at the speed limit, so that the rerouting device's averaged speeds, which route
+// the trips at insertion, stay free-flow ones); with F = 1.5 SUMO sends 27-40 of 100 vehicles up (seeds 1-3),
+// LPSim must send a comparable share (within 15), the same routes for the same seed and other routes for
+// another.
 TEST(SumoSettingsTest, RandomWeightsSpreadTripsOverRoutesAsInSumo) {
   if (!test::have_sumo_and_netconvert()) GTEST_SKIP() << "SUMO not installed";
   TempDir dir("lpsim_random_weights");
@@ -127,7 +129,7 @@ TEST(SumoSettingsTest, RandomWeightsSpreadTripsOverRoutesAsInSumo) {
   dir.write("n.edg.xml", edges + "</edges>\n");
   dir.write(
       "r.rou.xml",
-      "<routes><vType id=\"t\" sigma=\"0\"/>"
+      "<routes><vType id=\"t\" sigma=\"0\" speedDev=\"0\"/>"
       "<flow id=\"f\" type=\"t\" begin=\"0\" end=\"1000\" period=\"10\" from=\"OA\" to=\"BD\"/></routes>\n");
   ASSERT_NO_FATAL_FAILURE(test::netconvert(dir, {"-n", "n.nod.xml", "-e", "n.edg.xml", "-o", "n.net.xml"}));
   // Upper-route trips: 1438.90 m driven against 1395.00 m.

@@ -65,48 +65,33 @@ void expect_accepted(const CliResult& r, const std::vector<std::string>& words) 
     EXPECT_NE(r.err.find(w, at), std::string::npos) << "'" << w << "' missing: " << r.err;
 }
 
-TEST_F(OptionScopesTest, ReroutingOptionsWithoutAnEquippedVehicleAreNamedInTheWarning) {
-  // osmWebWizard's own settings, on routed vehicles (no device in SUMO) and on trips (SUMO routes them at
-  // insertion; LPSim when loading, which the warning says).
-  write_cfg("routed.rou.xml", {"<device.rerouting.adaptation-steps value=\"18\"/>",
-                               "<device.rerouting.adaptation-interval value=\"10\"/>"});
-  expect_accepted(info(), {"device.rerouting.adaptation-steps (no vehicle gets the rerouting device)",
-                           "device.rerouting.adaptation-interval"});
-  write_cfg("trips.rou.xml", {"<device.rerouting.adaptation-steps value=\"18\"/>"});
-  expect_accepted(info(), {"device.rerouting.adaptation-steps",
-                           "LPSim routes them when loading, on free-flow travel times"});
+// The rerouting device's options LPSim implements are taken as given (osmWebWizard's own settings, and an
+// equipped fleet); those it lacks are decided by the scenario.
+TEST_F(OptionScopesTest, ReroutingOptionsLpsimImplementsAreAcceptedSilently) {
+  write_cfg("trips.rou.xml",
+            {"<device.rerouting.adaptation-steps value=\"18\"/>",
+             "<device.rerouting.adaptation-interval value=\"10\"/>",
+             "<device.rerouting.probability value=\"1\"/>", "<device.rerouting.period value=\"300\"/>"});
+  const CliResult r = info({"--device.rerouting.explicit", "t0", "--device.rerouting.pre-period", "30"});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err.find("device.rerouting"), std::string::npos) << r.err;
 }
 
-TEST_F(OptionScopesTest, ReroutingOptionsWhereVehiclesGetTheDeviceAreRefused) {
-  write_cfg("routed.rou.xml", {"<device.rerouting.adaptation-steps value=\"18\"/>",
-                               "<device.rerouting.probability value=\"1\"/>"});
-  expect_refused(info(), "s.sumocfg:5", {"<device.rerouting.adaptation-steps>", "'18'", "probability 1"});
-  write_cfg("routed.rou.xml", {});
-  expect_refused(info({"--device.rerouting.explicit", "v0"}), "command line",
-                 {"--device.rerouting.explicit", "equips vehicles"});
-  // Trips are rerouted en route when a period is set and the probability is left at SUMO's default.
-  write_cfg("trips.rou.xml", {"<device.rerouting.period value=\"300\"/>"});
-  expect_refused(info(), "s.sumocfg:5", {"<device.rerouting.period>", "while they drive"});
-  write_cfg("routed.rou.xml", {"<device.rerouting.period value=\"300\"/>"});
-  expect_accepted(info(), {"device.rerouting.period (no vehicle gets the rerouting device)"});
-  // A vType asking for the device.
-  tmp_.write(
-      "typed.rou.xml",
-      "<routes>\n<vType id=\"t\"><param key=\"has.rerouting.device\" value=\"true\"/></vType>\n"
-      "<vehicle id=\"v0\" type=\"t\" depart=\"0\"><route edges=\"A0A1 A1A2\"/></vehicle>\n</routes>\n");
-  write_cfg("typed.rou.xml", {"<device.rerouting.adaptation-steps value=\"18\"/>"});
-  expect_refused(info(), "s.sumocfg:5", {"vType 't' asks for the rerouting device"});
-  // A vehicle asking for it.
-  tmp_.write("asking.rou.xml",
-             "<routes>\n<vehicle id=\"v0\" depart=\"0\"><route edges=\"A0A1 A1A2\"/>"
-             "<param key=\"has.rerouting.device\" value=\"true\"/></vehicle>\n</routes>\n");
-  write_cfg("asking.rou.xml", {"<device.rerouting.adaptation-steps value=\"18\"/>"});
-  expect_refused(info(), "s.sumocfg:5", {"1 vehicles or flows ask for the rerouting device"});
+TEST_F(OptionScopesTest, ReroutingOptionsLpsimLacksActOnlyWhereTheScenarioHasWhatTheyActOn) {
+  write_cfg("trips.rou.xml", {"<device.rerouting.with-taz value=\"true\"/>",
+                              "<device.rerouting.bike-speeds value=\"true\"/>"});
+  expect_accepted(info(), {"device.rerouting.with-taz (LPSim leaves out trips between TAZ)",
+                           "device.rerouting.bike-speeds (no bicycles)"});
+  tmp_.write("bikes.rou.xml",
+             "<routes>\n<vType id=\"b\" vClass=\"bicycle\"/>\n"
+             "<trip id=\"t0\" type=\"b\" depart=\"0\" from=\"A0A1\" to=\"A1A2\"/>\n</routes>\n");
+  write_cfg("bikes.rou.xml", {"<device.rerouting.bike-speeds value=\"true\"/>"});
+  expect_refused(info(), "s.sumocfg:5", {"<device.rerouting.bike-speeds>", "bicycles"});
 }
 
 TEST_F(OptionScopesTest, ALaterDefaultValueWithdrawsAnOption) {
-  write_cfg("routed.rou.xml", {"<device.rerouting.probability value=\"1\"/>"});
-  const CliResult r = info({"--device.rerouting.probability", "-1"});
+  write_cfg("routed.rou.xml", {"<device.rerouting.with-taz value=\"true\"/>"});
+  const CliResult r = info({"--device.rerouting.with-taz", "false"});
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.err.find("device.rerouting"), std::string::npos) << r.err;
 }
@@ -150,9 +135,14 @@ TEST_F(OptionScopesTest, ParkingManeuverActsOnlyWithParkingAreaStops) {
 TEST_F(OptionScopesTest, ScopedOptionsBesideASnapshotAreRefused) {
   write_cfg("routed.rou.xml", {});
   ASSERT_EQ(test::run_lpsim(tmp_.path(), {"convert", "-c", "s.sumocfg", "-o", "s.lpsim"}).exit_code, 0);
-  expect_refused(
-      test::run_lpsim(tmp_.path(), {"run", "s.lpsim", "--device.rerouting.adaptation-steps", "18"}),
-      "command line", {"--device.rerouting.adaptation-steps", "give it to lpsim convert"});
+  expect_refused(test::run_lpsim(tmp_.path(), {"run", "s.lpsim", "--device.rerouting.with-taz", "true"}),
+                 "command line", {"--device.rerouting.with-taz", "give it to lpsim convert"});
+  // Which vehicles get the rerouting device is decided while loading; how they use it, while running.
+  expect_refused(test::run_lpsim(tmp_.path(), {"run", "s.lpsim", "--device.rerouting.probability", "1"}),
+                 "command line", {"--device.rerouting.probability", "it acts while loading"});
+  const CliResult period =
+      test::run_lpsim(tmp_.path(), {"run", "s.lpsim", "--device.rerouting.period", "60", "--end", "10"});
+  EXPECT_EQ(period.exit_code, 0) << period.err;
 }
 
 }  // namespace

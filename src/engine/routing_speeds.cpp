@@ -1,0 +1,69 @@
+#include "engine/routing_speeds.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace lpsim {
+namespace {
+
+constexpr double kSpeedUnits = 16777216.0;  // 2^24 per m/s
+
+}  // namespace
+
+void LaneSpeedSums::add(uint32_t lane, float v) {
+  ++count[lane];
+  speed[lane] += std::llround(static_cast<double>(v) * kSpeedUnits);
+}
+
+void LaneSpeedSums::clear() {
+  std::fill(count.begin(), count.end(), 0);
+  std::fill(speed.begin(), speed.end(), 0);
+}
+
+RoutingSpeeds::RoutingSpeeds(const Network& net, int steps, double weight)
+    : net_(net), steps_(steps > 0 ? steps : 0), weight_(weight), speed_(net.num_edges()) {
+  for (uint32_t e = 0; e < net.num_edges(); ++e) speed_[e] = mean_speed(e, nullptr);
+  if (steps_ > 0) {
+    past_.resize(static_cast<size_t>(net.num_edges()) * static_cast<size_t>(steps_));
+    for (uint32_t e = 0; e < net.num_edges(); ++e)
+      std::fill_n(past_.begin() + static_cast<std::ptrdiff_t>(e) * steps_, steps_, speed_[e]);
+  }
+}
+
+double RoutingSpeeds::mean_speed(uint32_t e, const LaneSpeedSums* lanes) const {
+  double weighted = 0, vehicles = 0;
+  const uint32_t first = net_.edge_first_lane[e];
+  for (uint32_t l = first; l < first + net_.edge_num_lanes[e]; ++l) {
+    const uint32_t n = lanes ? lanes->count[l] : 0;
+    if (n == 0) {
+      weighted += net_.lane_speed[l];
+      vehicles += 1;
+    } else {
+      weighted += static_cast<double>(lanes->speed[l]) / kSpeedUnits;
+      vehicles += n;
+    }
+  }
+  if (e < net_.edge_other_lanes.size()) {
+    weighted += net_.edge_other_lane_speeds[e];
+    vehicles += net_.edge_other_lanes[e];
+  }
+  return vehicles > 0 ? weighted / vehicles : net_.edge_speed[e];
+}
+
+void RoutingSpeeds::add_sample(const LaneSpeedSums& lanes) {
+  for (uint32_t e = 0; e < net_.num_edges(); ++e) {
+    const double now = mean_speed(e, &lanes);
+    if (steps_ > 0) {
+      double& oldest =
+          past_[static_cast<size_t>(e) * static_cast<size_t>(steps_) + static_cast<size_t>(next_)];
+      speed_[e] += (now - oldest) / steps_;
+      oldest = now;
+    } else if (now != speed_[e]) {
+      speed_[e] = speed_[e] * weight_ + now * (1.0 - weight_);
+    }
+  }
+  if (steps_ > 0) next_ = (next_ + 1) % steps_;
+  ++samples_;
+}
+
+}  // namespace lpsim

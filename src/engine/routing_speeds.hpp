@@ -1,0 +1,49 @@
+#pragma once
+// The edge speeds SUMO's rerouting device routes on (MSRoutingEngine): every adaptation interval each edge's
+// current mean speed is sampled and averaged, over the last `steps` samples (a moving average) or
+// exponentially (steps 0: old * weight + new * (1 - weight)). An edge's mean speed is SUMO's
+// MSEdge::getMeanSpeed: over its lanes, each lane's mean vehicle speed weighted by its vehicle count, an
+// empty lane counting once at its speed limit (the lanes LPSim leaves out, sidewalks and rails, too).
+// Sampled from integer sums, so that the averages do not depend on the order the vehicles are met in.
+#include <cstdint>
+#include <vector>
+
+#include "net/network.hpp"
+
+namespace lpsim {
+
+/// Vehicles on each lane at one moment (front on it) and their speeds' sum, in units of 2^-24 m/s.
+struct LaneSpeedSums {
+  std::vector<uint32_t> count;
+  std::vector<int64_t> speed;
+
+  explicit LaneSpeedSums(uint32_t lanes = 0) : count(lanes, 0), speed(lanes, 0) {}
+  void add(uint32_t lane, float v);
+  void clear();
+};
+
+class RoutingSpeeds {
+ public:
+  /// Every edge starts at its mean speed when empty.
+  RoutingSpeeds(const Network& net, int steps, double weight);
+
+  /// One sample of every edge's mean speed from the lanes' vehicles now.
+  void add_sample(const LaneSpeedSums& lanes);
+  /// The averaged speed of each edge (normal and internal), m/s.
+  const std::vector<double>& speeds() const { return speed_; }
+  /// Samples taken so far.
+  uint64_t samples() const { return samples_; }
+  /// SUMO's MSEdge::getMeanSpeed of edge e from `lanes`.
+  double mean_speed(uint32_t e, const LaneSpeedSums* lanes) const;
+
+ private:
+  const Network& net_;
+  int steps_;
+  double weight_;
+  std::vector<double> speed_;
+  std::vector<double> past_;  // steps_ samples per edge: [e * steps_ + k]
+  int next_ = 0;              // the ring position the next sample replaces
+  uint64_t samples_ = 0;
+};
+
+}  // namespace lpsim
