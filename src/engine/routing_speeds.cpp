@@ -10,18 +10,28 @@ constexpr double kSpeedUnits = 16777216.0;  // 2^24 per m/s
 
 }  // namespace
 
-void LaneSpeedSums::add(uint32_t lane, float v) {
-  ++count[lane];
-  speed[lane] += std::llround(static_cast<double>(v) * kSpeedUnits);
+int64_t LaneSpeedSums::to_units(float v) { return std::llround(static_cast<double>(v) * kSpeedUnits); }
+
+void LaneSpeedSums::add(uint32_t lane, uint32_t vehicles, int64_t speed_units) {
+  if (count[lane] == 0) lanes.push_back(lane);
+  count[lane] += vehicles;
+  speed[lane] += speed_units;
 }
 
 void LaneSpeedSums::clear() {
-  std::fill(count.begin(), count.end(), 0);
-  std::fill(speed.begin(), speed.end(), 0);
+  for (const uint32_t l : lanes) {
+    count[l] = 0;
+    speed[l] = 0;
+  }
+  lanes.clear();
 }
 
 RoutingSpeeds::RoutingSpeeds(const Network& net, int steps, double weight)
-    : net_(net), steps_(steps > 0 ? steps : 0), weight_(weight), speed_(net.num_edges()) {
+    : net_(net),
+      steps_(steps > 0 ? steps : 0),
+      weight_(weight),
+      speed_(net.num_edges()),
+      driven_(net.num_edges(), 0) {
   for (uint32_t e = 0; e < net.num_edges(); ++e) speed_[e] = mean_speed(e, nullptr);
   if (steps_ > 0) {
     past_.resize(static_cast<size_t>(net.num_edges()) * static_cast<size_t>(steps_));
@@ -51,7 +61,16 @@ double RoutingSpeeds::mean_speed(uint32_t e, const LaneSpeedSums* lanes) const {
 }
 
 void RoutingSpeeds::add_sample(const LaneSpeedSums& lanes) {
-  for (uint32_t e = 0; e < net_.num_edges(); ++e) {
+  bool more = false;
+  for (const uint32_t l : lanes.lanes) {
+    const uint32_t e = net_.lane_edge[l];
+    if (driven_[e]) continue;
+    driven_[e] = 1;
+    driven_edges_.push_back(e);
+    more = true;
+  }
+  if (more) std::sort(driven_edges_.begin(), driven_edges_.end());
+  for (const uint32_t e : driven_edges_) {
     const double now = mean_speed(e, &lanes);
     if (steps_ > 0) {
       double& oldest =

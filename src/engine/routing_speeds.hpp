@@ -16,10 +16,13 @@ namespace lpsim {
 struct LaneSpeedSums {
   std::vector<uint32_t> count;
   std::vector<int64_t> speed;
+  std::vector<uint32_t> lanes;  // those with a vehicle, in the order first met
 
-  explicit LaneSpeedSums(uint32_t lanes = 0) : count(lanes, 0), speed(lanes, 0) {}
-  void add(uint32_t lane, float v);
+  explicit LaneSpeedSums(uint32_t num_lanes = 0) : count(num_lanes, 0), speed(num_lanes, 0) {}
+  void add(uint32_t lane, float v) { add(lane, 1, to_units(v)); }
+  void add(uint32_t lane, uint32_t vehicles, int64_t speed_units);
   void clear();
+  static int64_t to_units(float v);
 };
 
 class RoutingSpeeds {
@@ -27,7 +30,9 @@ class RoutingSpeeds {
   /// Every edge starts at its mean speed when empty.
   RoutingSpeeds(const Network& net, int steps, double weight);
 
-  /// One sample of every edge's mean speed from the lanes' vehicles now.
+  /// One sample of every edge's mean speed from the lanes' vehicles now. Only edges that have had a vehicle
+  /// are sampled (SUMO's "delayed" edges): an edge never driven keeps its empty speed, which every sample
+  /// of it would give.
   void add_sample(const LaneSpeedSums& lanes);
   /// The averaged speed of each edge (normal and internal), m/s.
   const std::vector<double>& speeds() const { return speed_; }
@@ -44,6 +49,8 @@ class RoutingSpeeds {
   std::vector<double> past_;  // steps_ samples per edge: [e * steps_ + k]
   int next_ = 0;              // the ring position the next sample replaces
   uint64_t samples_ = 0;
+  std::vector<uint8_t> driven_;         // per edge: it has had a vehicle
+  std::vector<uint32_t> driven_edges_;  // those edges, ascending
 };
 
 }  // namespace lpsim

@@ -223,14 +223,12 @@ void Simulation::sample_routing_speeds() {
       ByteWriter w(out);
       std::vector<uint32_t> lanes, counts;
       std::vector<int64_t> speeds;
-      for (uint32_t l = 0; l < r.lanes.count.size(); ++l)
-        if (r.lanes.count[l] > 0) {
-          lanes.push_back(l);
-          counts.push_back(r.lanes.count[l]);
-          speeds.push_back(r.lanes.speed[l]);
-          r.lanes.count[l] = 0;
-          r.lanes.speed[l] = 0;
-        }
+      for (const uint32_t l : r.lanes.lanes) {
+        lanes.push_back(l);
+        counts.push_back(r.lanes.count[l]);
+        speeds.push_back(r.lanes.speed[l]);
+      }
+      r.lanes.clear();
       w.put<uint8_t>(departed ? 1 : 0);
       w.put_array(lanes);
       w.put_array(counts);
@@ -243,10 +241,7 @@ void Simulation::sample_routing_speeds() {
       const auto lanes = rd.get_array<uint32_t>();
       const auto counts = rd.get_array<uint32_t>();
       const auto speeds = rd.get_array<int64_t>();
-      for (size_t i = 0; i < lanes.size(); ++i) {
-        r.lanes.count[lanes[i]] += counts[i];
-        r.lanes.speed[lanes[i]] += speeds[i];
-      }
+      for (size_t i = 0; i < lanes.size(); ++i) r.lanes.add(lanes[i], counts[i], speeds[i]);
     }
   }
   r.departed = r.departed || departed;
