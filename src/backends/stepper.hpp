@@ -82,6 +82,7 @@ struct TripChanges {
   uint32_t first_new_vehicle = 0;     // vehicles from here on were appended
   uint64_t first_new_route_edge = 0;  // route edges from here on were appended
   std::vector<uint32_t> new_routes;   // earlier vehicles whose route_begin / route_length changed
+  bool stops_moved = false;           // some stop's route position changed
 };
 
 /// What the host learns after a step's passes.

@@ -54,9 +54,18 @@ struct StopTable {
 };
 
 /// How a vehicle re-routes (SUMO's rerouting device): kRerouteAtInsertion, when it is inserted (and every
-/// pre-period while it waits to be), from its first edge to its last; kRerouteWhileDriving, also every
-/// period while it drives, from where it is.
-enum RerouteFlags : uint8_t { kRerouteAtInsertion = 1, kRerouteWhileDriving = 2 };
+/// pre-period while it waits to be), from its first edge to its last through its stops' edges;
+/// kRerouteWhileDriving, also every period while it drives, from where it is (vehicles without stops);
+/// kRerouteEquipped, it has the device by SUMO's options or params (not only as a trip): routed when due
+/// whatever the speeds (SUMO's first routing always happens; a trip's loaded route is that routing's result
+/// until speeds are sampled); kRerouteRepair, its loaded route is not connected (SUMO repairs an equipped
+/// vehicle's route so).
+enum RerouteFlags : uint8_t {
+  kRerouteAtInsertion = 1,
+  kRerouteWhileDriving = 2,
+  kRerouteEquipped = 4,
+  kRerouteRepair = 8
+};
 
 struct Demand {
   VehicleTypes types;

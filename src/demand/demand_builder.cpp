@@ -217,7 +217,7 @@ class Builder {
         return i == 0
                    ? who() + " is not allowed to depart on any lane of edge '" + net_.edge_id[edges[0]] + "'"
                    : who() + " is not allowed on edge '" + net_.edge_id[edges[i]] + "' of its route";
-      if (i > 0 && !net_.connected(edges[i - 1], edges[i], mask))
+      if (i > 0 && !net_.connected(edges[i - 1], edges[i], mask) && !repairs(k))
         return who() + " has no valid route: no connection between edge '" + net_.edge_id[edges[i - 1]] +
                "' and edge '" + net_.edge_id[edges[i]] + "' that its class may use";
     }
@@ -234,7 +234,25 @@ class Builder {
     return "";
   }
 
+  // Who SUMO equips with the rerouting device, by pending vehicle (load order: SUMO's quota counts vehicles
+  // as it loads them).
+  void equip() {
+    const ReroutingEquipment equipment(opt_.rerouting, spec_, types_.types(), opt_.seed);
+    equipped_.assign(pending_.size(), 0);
+    for (uint32_t k = 0; k < pending_.size(); ++k) {
+      const PendingVehicle& p = pending_[k];
+      const int8_t param =
+          p.from_flow ? spec_.flows[p.origin].rerouting_param : spec_.vehicles[p.origin].rerouting_param;
+      equipped_[k] = equipment.equipped(ids_[k], draw_stream(ids_[k]), k, p.type, param) ? 1 : 0;
+    }
+  }
+
+  // Whether pending vehicle k's route, if not connected, is repaired when it is due (SUMO: with
+  // --ignore-route-errors, by the rerouting device's routing at insertion).
+  bool repairs(uint32_t k) const { return equipped_[k] && routes_.ignore_route_errors(); }
+
   void assemble() {
+    equip();
     // Drop vehicles on broken routes (only possible with ignore_route_errors), in file order. Sorting
     // (depart, position) pairs is a stable sort by depart that touches only the pairs.
     std::vector<std::pair<double, uint32_t>> by_depart;
@@ -244,7 +262,12 @@ class Builder {
       const RouteSlot& slot = routes_.slot(pending_[k].slot);
       std::string reason;
       staged_begin_[k] = staged_.size();
-      if (slot.problem >= 0) {
+      // A route that is not connected is an error; with ignore_route_errors SUMO keeps it, and routing a
+      // vehicle with the rerouting device when due repairs it (any other vehicle is skipped here).
+      const bool repaired = slot.problem >= 0 && routes_.problem_repairable(slot.problem) && repairs(k);
+      if (slot.problem >= 0 && routes_.problem_repairable(slot.problem) && !routes_.ignore_route_errors())
+        throw InputError(loc_of(pending_[k]), routes_.problem(slot.problem));
+      if (slot.problem >= 0 && !repaired) {
         reason = routes_.problem(slot.problem);
         if (routes_.problem_outside_car_map(slot.problem)) {
           // The route uses an edge without road lanes (a footpath, a railway). A road vehicle cannot drive
@@ -343,27 +366,31 @@ class Builder {
     for (auto src : d.source) d.routing.vehicles += src != DemandSource::Vehicle ? 1 : 0;
   }
 
-  // Demand::rerouting and the via edges of the trips that re-route, by the vehicles' final order. A vehicle
-  // with stops keeps the route it was loaded with: its stops are placed by their positions in that route.
+  // Demand::rerouting and the via edges of the trips that re-route, by the vehicles' final order.
   void assign_rerouting(const std::vector<uint32_t>& order) {
     Demand& d = demand_;
-    const ReroutingEquipment equipment(opt_.rerouting, spec_, types_.types(), opt_.seed);
     std::vector<uint8_t> flags(order.size(), 0);
     bool any = false;
     std::vector<uint32_t> via_begin(order.size() + 1, 0), via_edges;
     std::string reason;
     for (size_t v = 0; v < order.size(); ++v) {
       via_begin[v] = static_cast<uint32_t>(via_edges.size());
-      const PendingVehicle& p = pending_[order[v]];
-      if (d.stops.first(static_cast<uint32_t>(v)) != d.stops.last(static_cast<uint32_t>(v))) continue;
-      const int8_t param =
-          p.from_flow ? spec_.flows[p.origin].rerouting_param : spec_.vehicles[p.origin].rerouting_param;
+      const uint32_t k = order[v];
+      const PendingVehicle& p = pending_[k];
       const bool is_trip =
           p.routed && (p.from_flow || spec_.vehicles[p.origin].source != DemandSource::OdCsv);
       uint8_t f = is_trip ? kRerouteAtInsertion : 0;
-      if (equipment.equipped(d.vehicle_id[v], draw_stream(d.vehicle_id[v]), static_cast<uint32_t>(v), p.type,
-                             param))
-        f |= kRerouteAtInsertion | kRerouteWhileDriving;
+      if (equipped_[k]) {
+        f |= kRerouteAtInsertion | kRerouteWhileDriving | kRerouteEquipped;
+        const RouteSlot& slot = routes_.slot(p.slot);
+        const uint32_t* edges = d.route_edges.data() + slot.begin;
+        for (uint32_t i = 1; i < slot.length; ++i)
+          if (!net_.connected(edges[i - 1], edges[i], types_.types().vclass_mask[p.type]))
+            f |= kRerouteRepair;
+      }
+      // A vehicle with stops re-routes only before it departs (through its stops' edges).
+      if (d.stops.first(static_cast<uint32_t>(v)) != d.stops.last(static_cast<uint32_t>(v)))
+        f &= static_cast<uint8_t>(~kRerouteWhileDriving);
       flags[v] = f;
       any = any || f != 0;
       if (f == 0 || !p.routed) continue;
@@ -390,6 +417,7 @@ class Builder {
   std::vector<std::string> via_buffer_;
   StopTable staged_;                    // stops in pending order, while vehicles may still be dropped
   std::vector<uint32_t> staged_begin_;  // [pending + 1]: each pending vehicle's first staged stop
+  std::vector<uint8_t> equipped_;       // [pending]: SUMO gives it the rerouting device (equip())
   std::vector<PendingVehicle> pending_;
   std::vector<std::string> ids_;
 };

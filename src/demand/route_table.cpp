@@ -112,22 +112,28 @@ uint32_t RouteTable::append_checked(size_t n, EdgeAt&& edge_at, IdAt&& id_at, Wh
                                     const SourceLoc& loc, const std::string& user) {
   if (n == 0) return add_broken(loc, "no edges in " + what(), false, user);
   const auto begin = route_edges_.size();
-  std::string reason;
+  std::string reason, disconnected;
   for (size_t i = 0; i < n; ++i) {
     std::optional<uint32_t> e = edge_at(i, reason);
     if (!e) {
       route_edges_.resize(begin);
       return add_broken(loc, reason + " in " + what(), EdgeLookup::outside_car_map(reason), user);
     }
-    if (i > 0 && !connected(route_edges_.back(), *e)) {
-      route_edges_.resize(begin);
-      return add_broken(
-          loc, "no connection from edge '" + id_at(i - 1) + "' to edge '" + id_at(i) + "' in " + what(),
-          false, user);
-    }
+    if (i > 0 && !connected(route_edges_.back(), *e) && disconnected.empty())
+      disconnected = "no connection from edge '" + id_at(i - 1) + "' to edge '" + id_at(i) + "' in " + what();
     route_edges_.push_back(*e);
   }
-  slots_.push_back({static_cast<uint32_t>(begin), static_cast<uint32_t>(n), -1});
+  int32_t problem = -1;
+  if (!disconnected.empty()) {
+    // Kept with its edges: a vehicle with the rerouting device is routed when due, which repairs it; for any
+    // other the builder refuses it (or skips it with ignore_route_errors).
+    problems_.push_back(disconnected + user);
+    outside_car_map_.push_back(0);
+    repairable_.resize(problems_.size(), 0);
+    repairable_.back() = 1;
+    problem = static_cast<int32_t>(problems_.size() - 1);
+  }
+  slots_.push_back({static_cast<uint32_t>(begin), static_cast<uint32_t>(n), problem});
   return static_cast<uint32_t>(slots_.size() - 1);
 }
 

@@ -80,6 +80,11 @@ class RouteTable {
   }
   const std::string& problem(int32_t p) const { return problems_[static_cast<size_t>(p)]; }
   bool problem_outside_car_map(int32_t p) const { return outside_car_map_[static_cast<size_t>(p)] != 0; }
+  /// Whether problem p is a route whose edges are not all connected, kept with its edges (the slot's begin
+  /// and length are valid): routing the vehicle repairs it.
+  bool problem_repairable(int32_t p) const {
+    return static_cast<size_t>(p) < repairable_.size() && repairable_[static_cast<size_t>(p)] != 0;
+  }
   bool ignore_route_errors() const { return ignore_; }
 
  private:
@@ -118,6 +123,7 @@ class RouteTable {
   std::vector<RouteSlot> slots_;
   std::vector<std::string> problems_;
   std::vector<uint8_t> outside_car_map_;
+  std::vector<uint8_t> repairable_;  // per problem (shorter: the rest are not)
 };
 
 }  // namespace lpsim

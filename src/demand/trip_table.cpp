@@ -1,5 +1,6 @@
 #include "demand/trip_table.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "demand/departure.hpp"
@@ -13,7 +14,7 @@ TripTable::TripTable(Demand demand) : d_(std::move(demand)) {
 
 bool TripTable::changed() const {
   return d_.size() > changes_.first_new_vehicle || d_.route_edges.size() > changes_.first_new_route_edge ||
-         !changes_.new_routes.empty();
+         !changes_.new_routes.empty() || changes_.stops_moved;
 }
 
 bool TripTable::connected(const Network& net, const std::vector<uint32_t>& edges, uint32_t vclass) {
@@ -69,6 +70,15 @@ void TripTable::set_route(uint32_t v, const std::vector<uint32_t>& edges) {
   d_.route_length[v] = static_cast<uint32_t>(edges.size());
   d_.route_edges.insert(d_.route_edges.end(), edges.begin(), edges.end());
   if (v < changes_.first_new_vehicle) changes_.new_routes.push_back(v);
+}
+
+void TripTable::set_stop_positions(uint32_t v, const std::vector<uint32_t>& route_pos) {
+  const uint32_t first = d_.stops.first(v);
+  if (route_pos.size() != d_.stops.last(v) - first)
+    throw std::invalid_argument("vehicle '" + d_.vehicle_id[v] + "': " + std::to_string(route_pos.size()) +
+                                " stop positions for " + std::to_string(d_.stops.last(v) - first) + " stops");
+  std::copy(route_pos.begin(), route_pos.end(), d_.stops.route_pos.begin() + first);
+  changes_.stops_moved = true;
 }
 
 TripTable::Changes TripTable::take_changes() {

@@ -37,6 +37,8 @@ class TripTable {
   /// Trip v drives `edges` from now on (appended; its old route stays where it was, unreferenced by v).
   /// The caller checks that they are connected and lead on from where the vehicle is.
   void set_route(uint32_t v, const std::vector<uint32_t>& edges);
+  /// Vehicle v's stops lie at these positions of its route from now on (one per stop, in order).
+  void set_stop_positions(uint32_t v, const std::vector<uint32_t>& route_pos);
   /// Whether each edge of `edges` is reachable from the one before (normal edges, in the net's edge graph).
   /// Whether a vehicle of class mask `vclass` can drive `edges` (each allows it, each move too).
   static bool connected(const Network& net, const std::vector<uint32_t>& edges,
@@ -47,6 +49,7 @@ class TripTable {
     uint32_t first_new_vehicle = 0;
     uint64_t first_new_route_edge = 0;
     std::vector<uint32_t> new_routes;  // earlier trips whose route changed
+    bool stops_moved = false;          // some stop's route position changed
   };
   bool changed() const;
   Changes take_changes();

@@ -152,6 +152,7 @@ Simulation::Simulation(const Network& net, Demand demand, const SimulationOption
   if (parts_) share_insertions(cur_);
   check_kept(0);
   start_inserted(0, 0);
+  ++version_;  // the insertions changed the state (the rerouting device may have read it before them)
   if (reroute_) sample_routing_speeds();
   if (parts_) report_to_root();
 }
@@ -221,7 +222,7 @@ TripTableView Simulation::trip_table_view() const {
 void Simulation::sync_trips() {
   if (!trips_.changed()) return;
   TripTable::Changes c = trips_.take_changes();
-  TripChanges changes{c.first_new_vehicle, c.first_new_route_edge, std::move(c.new_routes)};
+  TripChanges changes{c.first_new_vehicle, c.first_new_route_edge, std::move(c.new_routes), c.stops_moved};
   stepper_->update_trips(trip_table_view(), changes);
 }
 

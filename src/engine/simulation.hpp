@@ -335,7 +335,7 @@ class Simulation {
   std::unique_ptr<RerouteState> reroute_;  // the rerouting device (null: no vehicle has it)
 
   // What outputs and tests derive from the backend's state, kept per version of it: the state changes in
-  // step() and set_route(), each counting a new version.
+  // step(), set_route() and the constructor's insertions, each counting a new version.
   uint64_t version_ = 0;
   mutable std::vector<uint32_t> active_vehicles_;  // active(): their vehicles
   // The active list as vehicle << 32 | slot, ascending (active_by_vehicle()): outputs list vehicles in

@@ -23,6 +23,21 @@ namespace {
 
 int64_t depart_ms(double depart) { return std::llround(depart * 1000.0); }
 
+// Where each of vehicle v's stops lies on `route` (from its start): the first pass of its edge after the
+// stop before. Empty when one is not on it.
+std::vector<uint32_t> stop_positions(const Demand& d, const Network& net, uint32_t v,
+                                     const std::vector<uint32_t>& route) {
+  std::vector<uint32_t> at;
+  uint32_t pos = 0;
+  for (uint32_t k = d.stops.first(v); k < d.stops.last(v); ++k) {
+    const uint32_t edge = net.lane_edge[d.stops.lane[k]];
+    while (pos < route.size() && route[pos] != edge) ++pos;
+    if (pos == route.size()) return {};
+    at.push_back(pos);
+  }
+  return at;
+}
+
 }  // namespace
 
 void Simulation::init_rerouting() {
@@ -50,7 +65,7 @@ void Simulation::reroute_vehicles(int64_t end_ms) {
     q.destinations = {route[length - 1]};
     q.vclass = d.types.vclass_mask[d.vehicle_type[v]];
     if (r.options.random_factor > 1) q.random_stream = draw_stream(d.vehicle_id[v]) | 1;
-    if (!d.via_begin.empty()) {
+    if (!d.via_begin.empty() && d.via_begin[v] != d.via_begin[v + 1]) {
       // Via edges still ahead: those the current route passes from here on, in order (the ones already
       // driven past are not sought again).
       uint32_t at = from_pos;
@@ -68,6 +83,9 @@ void Simulation::reroute_vehicles(int64_t end_ms) {
           }
       }
     }
+    // Then its stops' edges (a vehicle with stops re-routes only before it departs: all are ahead).
+    for (uint32_t k = d.stops.first(v); k < d.stops.last(v); ++k)
+      q.via.push_back(net_.lane_edge[d.stops.lane[k]]);
     requests.push_back(std::move(q));
     who.push_back(v);
     kept.push_back(keep_edge);
@@ -84,7 +102,7 @@ void Simulation::reroute_vehicles(int64_t end_ms) {
     const uint32_t v = r.next_due++;
     if (d.rerouting[v] == 0 || d.route_length[v] == 0) continue;
     if (!holds_queue_of(d.route_edges[d.route_begin[v]])) continue;
-    if (sample > 0 || (d.rerouting[v] & kRerouteWhileDriving)) ask(v, 0, ~0u, true);
+    if (sample > 0 || (d.rerouting[v] & kRerouteEquipped)) ask(v, 0, ~0u, true);
     if (r.options.pre_period_ms > 0) r.waiting.emplace_back(end_ms + r.options.pre_period_ms, v);
   }
   // Waiting to be inserted since a pre-period or more.
@@ -192,6 +210,12 @@ void Simulation::apply_new_routes(const std::vector<NewRoute>& routes) {
   std::vector<std::pair<uint32_t, uint32_t>> running;  // (slot, vehicle)
   for (const NewRoute& n : routes) {
     if (n.edges.empty()) continue;
+    if (d.stops.first(n.vehicle) != d.stops.last(n.vehicle)) {
+      // Routed through its stops' edges, so each is on it; placed along it before it departs.
+      const std::vector<uint32_t> at = stop_positions(d, net_, n.vehicle, n.edges);
+      if (at.empty()) continue;
+      trips_.set_stop_positions(n.vehicle, at);
+    }
     trips_.set_route(n.vehicle, n.edges);
     if (const int32_t k = slot_of(n.vehicle); k >= 0)
       running.emplace_back(static_cast<uint32_t>(k), n.vehicle);

@@ -82,5 +82,34 @@ TEST(ReroutingDeviceNoSamplesTest, FreeFlowTimesKeepEveryTripOnTheShortWay) {
   EXPECT_EQ(detours_of(r.lpsim_tripinfo).trips, 121);
 }
 
+// A truck whose route skips an edge (`in short2`, not connected) with a stop on short2. With
+// --ignore-route-errors SUMO keeps the route, and routing a vehicle with the rerouting device when due
+// repairs it, through its stop's edge; without that option the route is an error in both.
+TEST(ReroutingDeviceRepairTest, AnEquippedVehiclesDisconnectedRouteIsRepairedAtInsertion) {
+  if (!test::have_sumo_and_netconvert()) GTEST_SKIP() << "SUMO not installed";
+  test::TempDir dir("lpsim_rerouting_repair");
+  const std::string net = std::string(LPSIM_SCENARIOS_DIR) + "/reroute_block/reroute_block.net.xml";
+  dir.write("r.rou.xml",
+            "<routes>\n<vehicle id=\"truck\" depart=\"0\"><route edges=\"in short2\"/>"
+            "<stop lane=\"short2_0\" endPos=\"300\" duration=\"30\"/></vehicle>\n</routes>\n");
+  const test::SumoAndLpsim r = test::run_sumo_and_lpsim(
+      dir, {"-n", net, "-r", "r.rou.xml", "--device.rerouting.probability", "1", "--ignore-route-errors"});
+  ASSERT_EQ(r.sumo.exit_code, 0) << r.sumo.err;
+  ASSERT_EQ(r.lpsim.exit_code, 0) << r.lpsim.err;
+  static const std::regex trip("routeLength=\"([0-9.]+)\"[^>]*stopTime=\"([0-9.]+)\"");
+  std::smatch s, l;
+  ASSERT_TRUE(std::regex_search(r.sumo_tripinfo, s, trip)) << r.sumo_tripinfo;
+  ASSERT_TRUE(std::regex_search(r.lpsim_tripinfo, l, trip)) << r.lpsim_tripinfo;
+  EXPECT_EQ(s[1], "1785.62");  // in, short1 and short2 with the junctions between them
+  EXPECT_EQ(l[1], s[1]);
+  EXPECT_EQ(l[2], "30.00");
+  const test::SumoAndLpsim strict =
+      test::run_sumo_and_lpsim(dir, {"-n", net, "-r", "r.rou.xml", "--device.rerouting.probability", "1"});
+  EXPECT_NE(strict.sumo.exit_code, 0);
+  EXPECT_EQ(strict.lpsim.exit_code, 2) << strict.lpsim.err;
+  EXPECT_NE(strict.lpsim.err.find("no connection from edge 'in' to edge 'short2'"), std::string::npos)
+      << strict.lpsim.err;
+}
+
 }  // namespace
 }  // namespace lpsim

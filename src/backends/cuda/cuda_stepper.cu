@@ -253,7 +253,8 @@ class DeviceTrips {
 
   /// Brings the device copy up to `host` (the host's table now): entries from `first_vehicle` and route
   /// edges from `first_route_edge` on are copied, the others are as they were.
-  void append(const TripTableView& host, uint32_t first_vehicle, uint64_t first_route_edge) {
+  void append(const TripTableView& host, uint32_t first_vehicle, uint64_t first_route_edge,
+              bool stops_moved) {
     if (host.num_vehicles > vehicle_capacity_) {
       const size_t c = std::max<size_t>(host.num_vehicles, vehicle_capacity_ + vehicle_capacity_ / 2);
       size_t k = 0;
@@ -280,7 +281,7 @@ class DeviceTrips {
     const uint64_t first_edge = std::min<uint64_t>(first_route_edge, host.num_route_edges);
     copy_to_device(const_cast<uint32_t*>(trips.route_edges) + first_edge, host.trips.route_edges + first_edge,
                    host.num_route_edges - first_edge);
-    if (host.num_stops != num_stops_) upload_stops(host);
+    if (host.num_stops != num_stops_ || stops_moved) upload_stops(host);
   }
 
   /// Bytes per trip and per route edge the device holds.
@@ -303,7 +304,8 @@ class DeviceTrips {
     f(d.lane_kind), f(d.lane), f(d.pos_kind), f(d.pos), f(d.speed_kind), f(d.speed);
   }
 
-  // The stop table, whole: trips added during a run make no stops, so it is uploaded once.
+  // The stop table, whole: trips added during a run make no stops, so it is uploaded once, and again when
+  // the rerouting device moved a vehicle's stops along its new route.
   void upload_stops(const TripTableView& host) {
     num_stops_ = host.num_stops;
     stop_buffers_.clear();
@@ -597,7 +599,7 @@ class CudaStepper final : public Stepper {
   }
 
   void update_trips(const TripTableView& now, const TripChanges& changes) override {
-    trips_.append(now, changes.first_new_vehicle, changes.first_new_route_edge);
+    trips_.append(now, changes.first_new_vehicle, changes.first_new_route_edge, changes.stops_moved);
     dev_.trips = trips_.trips;
     const uint32_t n = static_cast<uint32_t>(changes.new_routes.size());
     if (n > 0) {
