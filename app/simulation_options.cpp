@@ -39,6 +39,8 @@ SimulationOptions simulation_options(const ConfigSpec& config) {
   options.rerouting.synchronize = r.synchronize;
   options.rerouting.minor_penalty = config.minor_penalty;
   options.rerouting.random_factor = config.weights_random_factor;
+  options.rerouting.contraction_hierarchy =
+      config.routing_algorithm == "CH" || config.routing_algorithm == "CHWrapper";
   return options;
 }
 

@@ -3,10 +3,12 @@
 // them, and which vehicles re-route when. Host work between steps; what it decides is a function of the
 // state at the step's start, so every backend, thread count and part count decides alike.
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "demand/demand_draws.hpp"
 #include "engine/routing_speeds.hpp"
+#include "net/cch_router.hpp"
 #include "net/router.hpp"
 
 namespace lpsim {
@@ -23,6 +25,9 @@ struct ReroutingOptions {
   // SUMO's --weights.random-factor, which the device's router applies too: each vehicle's edge costs times
   // factors drawn per (vehicle, edge) as when its trip was routed while loading (RandomWeights).
   double random_factor = 1;
+  // SUMO's --routing-algorithm CH/CHWrapper, which the device's router follows too: the routes are the
+  // contraction hierarchy's (net/cch_router.hpp), customized on the speeds of each routing.
+  bool contraction_hierarchy = false;
 };
 
 /// A re-routing's outcome: the vehicle, and its new route from where it is (empty: it keeps its route).
@@ -39,7 +44,8 @@ struct RerouteState {
         lanes(net.num_lanes()) {}
 
   ReroutingOptions options;
-  Router router;  // on `speeds` once a sample was taken, on free-flow times before
+  Router router;                         // on `speeds` once a sample was taken, on free-flow times before
+  std::unique_ptr<CchRouter> hierarchy;  // with contraction_hierarchy: ordered and contracted once
   RoutingSpeeds speeds;
   LaneSpeedSums lanes;    // the sample's scratch
   uint32_t next_due = 0;  // loaded vehicles (by depart) before this one were routed when due

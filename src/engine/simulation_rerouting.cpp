@@ -45,6 +45,7 @@ void Simulation::init_rerouting() {
   if (d.rerouting.empty()) return;
   reroute_ = std::make_unique<RerouteState>(net_, opt_.rerouting, opt_.seed);
   reroute_->routed_at.assign(d.size(), 0);
+  if (opt_.rerouting.contraction_hierarchy) reroute_->hierarchy = std::make_unique<CchRouter>(net_);
   // Vehicles that depart before the begin time are not simulated: not routed either.
   reroute_->next_due = next_departure_;
 }
@@ -142,7 +143,9 @@ void Simulation::reroute_vehicles(int64_t end_ms) {
       r.router.set_speeds(r.speeds.speeds());
       r.router_sample = sample;
     }
-    const std::vector<std::vector<uint32_t>> paths = r.router.route_all(requests, opt_.threads);
+    const std::vector<std::vector<uint32_t>> paths =
+        r.hierarchy ? r.hierarchy->route_all(r.router, requests, opt_.threads)
+                    : r.router.route_all(requests, opt_.threads);
     r.reroutes += requests.size();
     const HostState* s = nullptr;
     for (size_t i = 0; i < requests.size(); ++i) {

@@ -159,6 +159,17 @@ TEST_F(EngineDeterminismTest, RerouteBlockSameOutputsForAnyPartCount) {
   check_parts("reroute_block", 121, {2, 3});
 }
 
+// The device's routes from the contraction hierarchy (--routing-algorithm CH): the same in any number of
+// parts, and the same trips sent the long way as with Dijkstra (no two routes of reroute_block cost alike).
+TEST_F(EngineDeterminismTest, RerouteBlockWithTheContractionHierarchy) {
+  const Outputs dijkstra = run("reroute_block", 1, "dijkstra");
+  const Outputs ch = run("reroute_block", 1, "ch", true, "--routing-algorithm CH");
+  expect_content(ch, 121);
+  expect_same(dijkstra, ch, "reroute_block Dijkstra vs CH");
+  expect_same(ch, run("reroute_block", 2, "ch_k3", true, "--routing-algorithm CH --parts 3"),
+              "reroute_block CH, one part vs 3");
+}
+
 TEST_F(EngineDeterminismTest, OutputsDoNotDependOnWhetherEdgeDataIsWritten) {
   Outputs with = run("grid_tls", 2, "with_edgedata");
   expect_content(with, 1000);
