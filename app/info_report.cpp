@@ -95,6 +95,21 @@ std::string describe_scenario(const Scenario& sc) {
   }
   out += "\n";
   if (d.size() > 0) out += fmt("  departures: %.2f s to %.2f s\n", d.depart.front(), d.depart.back());
+  if (!d.rerouting.empty()) {
+    // SUMO's rerouting device: who has it, and how it routes them (docs/MODELS.md, "The rerouting device").
+    uint64_t with = 0, equipped = 0, driving = 0, repaired = 0;
+    for (const uint8_t f : d.rerouting) {
+      with += f != 0 ? 1 : 0;
+      equipped += (f & kRerouteEquipped) ? 1 : 0;
+      driving += (f & kRerouteWhileDriving) ? 1 : 0;
+      repaired += (f & kRerouteRepair) ? 1 : 0;
+    }
+    out += fmt(
+        "  rerouting device: %llu (routed when due; equipped by options or params %llu, of them re-routing "
+        "while driving %llu; routes to repair %llu)\n",
+        static_cast<unsigned long long>(with), static_cast<unsigned long long>(equipped),
+        static_cast<unsigned long long>(driving), static_cast<unsigned long long>(repaired));
+  }
   // As SUMO, a run does not insert vehicles that depart before the begin time.
   const auto before_begin =
       std::lower_bound(d.depart.begin(), d.depart.end(), sc.config.begin) - d.depart.begin();

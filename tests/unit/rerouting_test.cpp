@@ -11,6 +11,7 @@
 #include "core/vclass.hpp"
 #include "demand/rerouting_equipment.hpp"
 #include "engine/routing_speeds.hpp"
+#include "lpsim_cli.hpp"
 #include "net/network_builder.hpp"
 #include "net/router.hpp"
 #include "unit/test_nets.hpp"
@@ -147,6 +148,25 @@ TEST(ReroutingEquipmentTest, AProbabilityEquipsThatShareRandomlyOrExactlyWhenDet
   EXPECT_EQ(quota, 300);
   EXPECT_NEAR(drawn, 300, 50);
   EXPECT_TRUE(counted.equipped("a", 0, 0, 0, -1));  // SUMO's quota takes the first vehicle
+}
+
+// `lpsim info` says who has the device: every vehicle of reroute_block (probability 1), all but the one with
+// a stop re-routing while driving; random_net's trips only by being trips.
+TEST(ReroutingInfoTest, InfoCountsTheVehiclesWithTheDevice) {
+  const std::string dir = LPSIM_SCENARIOS_DIR;
+  const test::CliResult block =
+      test::run_lpsim(".", {"info", "-c", dir + "/reroute_block/reroute_block.sumocfg"});
+  ASSERT_EQ(block.exit_code, 0) << block.err;
+  EXPECT_NE(
+      block.out.find("rerouting device: 121 (routed when due; equipped by options or params 121, of them "
+                     "re-routing while driving 120; routes to repair 0)"),
+      std::string::npos)
+      << block.out;
+  const test::CliResult trips = test::run_lpsim(".", {"info", "-c", dir + "/random_net/random_net.sumocfg"});
+  ASSERT_EQ(trips.exit_code, 0) << trips.err;
+  EXPECT_NE(trips.out.find("rerouting device: 300 (routed when due; equipped by options or params 0,"),
+            std::string::npos)
+      << trips.out;
 }
 
 }  // namespace
