@@ -9,6 +9,7 @@
 # Usage: bench/gpu_machine.sh tests|bench [regional_bench.sh options...]
 #        bench/gpu_machine.sh all [seconds, default 360]
 #        bench/gpu_machine.sh parts [end, default 3600]
+#        bench/gpu_machine.sh scenario CONFIG [run options]
 # `parts` runs the partitioned engine on the GPU (the parts in one process share it): grid_tls and the regional
 # 1M trips' first hour (bench/work/regional/1000000/regional.lpsim, made by `bench` when missing) in 1, 2 and
 # 4 parts with --device gpu, and prints each run's wall time, updates/s and per-part line, and whether the
@@ -91,5 +92,20 @@ case "$what" in
         echo "$k parts: tripinfo DIFFERS"; done
     done
     ;;
-  *) echo "usage: $0 tests|bench|all|parts [options]" >&2; exit 2 ;;
+  scenario)
+    # One scenario on the GPU and on the CPU backend (2 threads): each run's report lines and whether their
+    # tripinfo outputs are identical. Further options go to both runs.
+    cfg=$1
+    shift
+    out=${OUT:-bench/work/gpu_scenario}
+    mkdir -p "$out"
+    for dev in gpu cpu; do
+      "$build/lpsim" run -c "$cfg" --device "$dev" --threads 2 --no-step-log --no-warnings \
+        --tripinfo-output "$out/trip_$dev.xml" "$@" >"$out/run_$dev.log" 2>&1
+      echo "== $cfg on $dev: exit $?"
+      grep -E "Duration|UPS|Inserted|Teleports|routing" "$out/run_$dev.log"
+    done
+    cmp -s "$out/trip_gpu.xml" "$out/trip_cpu.xml" && echo "tripinfo identical" || echo "tripinfo DIFFERS"
+    ;;
+  *) echo "usage: $0 tests|bench|all|parts|scenario [options]" >&2; exit 2 ;;
 esac

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Prepares build-gpu/ here (where nvcc compiles but no GPU runs) for a lent GPU machine, which has CUDA,
-# cmake and ninja but no package registry: the CUDA build of lpsim and of the GPU tests, the shared libraries
+# cmake and ninja but no package registry: the CUDA build of lpsim (without `cosim`) and of the GPU tests, the shared libraries
 # lpsim needs that such a machine may lack (every one but the C and C++ runtimes, packed), GNU time as
 # gnu-time, and
 # the Bay Area base network the regional benchmark grows. Then pass the device tool
@@ -14,9 +14,11 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 arch=${1:-90}
 build=${BUILD:-build-gpu}
-if [[ ! -f "$build/CMakeCache.txt" ]]; then
-  cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DLPSIM_CUDA=ON -DCMAKE_CUDA_ARCHITECTURES="$arch"
-fi
+# Without the co-simulation: libsumocpp's libraries would not fit the device tool's 64 MiB carry.
+generator=()
+[[ -f "$build/CMakeCache.txt" ]] || generator=(-G Ninja)
+cmake -S . -B "$build" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release -DLPSIM_CUDA=ON \
+  -DCMAKE_CUDA_ARCHITECTURES="$arch" -DLPSIM_COSIM=OFF
 cmake --build "$build" --target lpsim lpsim_gpu_tests
 commit=$(git rev-parse --short HEAD)
 git diff --quiet HEAD -- . ':!bench/work' || commit="$commit+changes"

@@ -11,7 +11,9 @@
 #include "app/interrupt.hpp"
 #include "converters/cli_options.hpp"
 #include "core/error.hpp"
+#if LPSIM_COSIM
 #include "sumo_bridge/cosim_command.hpp"
+#endif
 #include "transport/mpi/mpi_transport.hpp"
 
 namespace {
@@ -46,7 +48,13 @@ int dispatch(const std::string& command, const std::vector<std::string>& args, b
     if (command == "convert") return lpsim::command_convert(args);
     if (command == "run") return lpsim::command_run(args);
     if (command == "partition") return lpsim::command_partition(args);
-    if (command == "cosim") return lpsim::command_cosim(args);
+    if (command == "cosim") {
+#if LPSIM_COSIM
+      return lpsim::command_cosim(args);
+#else
+      throw lpsim::InputError("this lpsim was built without the co-simulation (cmake -DLPSIM_COSIM=OFF)");
+#endif
+    }
     if (command == "version" || command == "--version") {
       std::printf("lpsim %s\n", LPSIM_VERSION);
       return 0;
