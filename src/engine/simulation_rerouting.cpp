@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "demand/trip_routes.hpp"
 #include "engine/part_state.hpp"
 #include "engine/rerouting.hpp"
 #include "engine/simulation.hpp"
@@ -22,21 +23,6 @@ namespace lpsim {
 namespace {
 
 int64_t depart_ms(double depart) { return std::llround(depart * 1000.0); }
-
-// Where each of vehicle v's stops lies on `route` (from its start): the first pass of its edge after the
-// stop before. Empty when one is not on it.
-std::vector<uint32_t> stop_positions(const Demand& d, const Network& net, uint32_t v,
-                                     const std::vector<uint32_t>& route) {
-  std::vector<uint32_t> at;
-  uint32_t pos = 0;
-  for (uint32_t k = d.stops.first(v); k < d.stops.last(v); ++k) {
-    const uint32_t edge = net.lane_edge[d.stops.lane[k]];
-    while (pos < route.size() && route[pos] != edge) ++pos;
-    if (pos == route.size()) return {};
-    at.push_back(pos);
-  }
-  return at;
-}
 
 }  // namespace
 

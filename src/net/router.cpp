@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -26,6 +27,13 @@ namespace {
 // reached its final cost, so among equal-cost paths the one through earlier-settled edges wins. The
 // outcome depends only on the request, never on the thread or on which requests share a search.
 
+// Edge e's cost when entered at time t on interval travel times: its time in t's interval, else `free_cost`.
+double interval_time(const IntervalTravelTimes& times, const std::vector<float>& free_cost, uint32_t e,
+                     double t) {
+  const float x = times.time[size_t(times.interval_at(t)) * times.num_edges + e];
+  return std::isnan(x) ? double(free_cost[e]) : double(x);
+}
+
 struct HeapItem {
   double dist;
   uint32_t edge;
@@ -40,10 +48,11 @@ inline bool heap_after(const HeapItem& a, const HeapItem& b) {
 class Search {
  public:
   Search(const Network& net, const std::vector<float>& cost, const std::vector<double>& step_cost,
-         const RandomWeights& random)
+         const std::vector<double>& crossing_cost, const RandomWeights& random)
       : net_(net),
         cost_(cost),
         step_cost_(step_cost),
+        crossing_cost_(crossing_cost),
         random_(random),
         dist_(net.num_edges()),
         pred_(net.num_edges()),
@@ -52,13 +61,15 @@ class Search {
         target_(net.num_edges(), 0),
         target_slot_(net.num_edges()) {}
 
-  /// Runs from `seeds` (each starting at its own cost) and calls on_settle(edge) for each settled edge in
-  /// order; stops when it returns true or nothing is left.
+  /// Runs from `seeds` (each starting at its own cost, or at seed_dist[k] when given) and calls
+  /// on_settle(edge) for each settled edge in order; stops when it returns true or nothing is left. A timed
+  /// search's distances are times (s since the request's departure) at the end of each edge.
   template <class OnSettle>
-  void run(const std::vector<uint32_t>& seeds, OnSettle&& on_settle) {
+  void run(const std::vector<uint32_t>& seeds, OnSettle&& on_settle, const double* seed_dist = nullptr) {
     heap_.clear();
-    for (uint32_t s : seeds) {
-      const double c = cost_[s] * factor(s);
+    for (size_t k = 0; k < seeds.size(); ++k) {
+      const uint32_t s = seeds[k];
+      const double c = seed_dist ? seed_dist[k] : timed_ ? edge_time(s, 0.0) : cost_[s] * factor(s);
       if (!std::isfinite(c) || net_.edge_is_internal[s] || (net_.edge_permissions[s] & vclass_) == 0)
         continue;
       if (seen_[s] != version_ || c < dist_[s]) {
@@ -79,7 +90,7 @@ class Search {
       for (uint32_t i = net_.edge_succ_begin[e]; i < net_.edge_succ_begin[e + 1]; ++i) {
         const uint32_t s = net_.edge_succ[i];
         if (settled_[s] == version_ || (net_.edge_succ_permissions[i] & vclass_) == 0) continue;
-        const double c = step_cost_[i] * factor(s);
+        const double c = timed_ ? timed_step(i, s, top.dist) : step_cost_[i] * factor(s);
         if (!std::isfinite(c)) continue;
         const double d = top.dist + c;
         if (seen_[s] != version_ || d < dist_[s]) {
@@ -97,6 +108,27 @@ class Search {
     vclass_ = vclass;
     stream_ = random_stream;
   }
+
+  /// Following searches are timed (null: not): edges cost their travel time in `times` at the time they are
+  /// entered, the request departing at `depart`.
+  void set_timed(const IntervalTravelTimes* times, double depart) {
+    timed_ = times;
+    depart_ = depart;
+  }
+
+  /// Edge e's cost when entered `since` seconds after the departure of a timed search.
+  double edge_time(uint32_t e, double since) const {
+    return interval_time(*timed_, cost_, e, depart_ + since);
+  }
+
+  /// Cost of move i onto edge s after reaching the end of its predecessor `since` seconds after departure.
+  double timed_step(uint32_t i, uint32_t s, double since) const {
+    const double crossing = crossing_cost_[i];
+    return crossing + edge_time(s, since + crossing);
+  }
+
+  /// The distance a search reached edge e at (valid for the edges it settled).
+  double dist(uint32_t e) const { return dist_[e]; }
 
   /// Starts a new search: all per-edge tags become stale.
   void next_version() {
@@ -118,15 +150,19 @@ class Search {
   }
 
   /// Fastest path from any of `origins` to any of `targets` (the first target settled); empty if none.
-  std::vector<uint32_t> segment(const std::vector<uint32_t>& origins, const std::vector<uint32_t>& targets) {
+  std::vector<uint32_t> segment(const std::vector<uint32_t>& origins, const std::vector<uint32_t>& targets,
+                                const double* seed_dist = nullptr) {
     next_version();
     for (uint32_t t : targets) target_[t] = version_;
     int32_t reached = kNone;
-    run(origins, [&](uint32_t e) {
-      if (target_[e] != version_) return false;
-      reached = static_cast<int32_t>(e);
-      return true;
-    });
+    run(
+        origins,
+        [&](uint32_t e) {
+          if (target_[e] != version_) return false;
+          reached = static_cast<int32_t>(e);
+          return true;
+        },
+        seed_dist);
     return reached == kNone ? std::vector<uint32_t>{} : path_to(static_cast<uint32_t>(reached));
   }
 
@@ -177,6 +213,7 @@ class Search {
   const Network& net_;
   const std::vector<float>& cost_;
   const std::vector<double>& step_cost_;
+  const std::vector<double>& crossing_cost_;
   const RandomWeights& random_;
   std::vector<double> dist_;
   std::vector<int32_t> pred_;
@@ -184,6 +221,8 @@ class Search {
   uint32_t version_ = 1;
   uint32_t vclass_ = kAllVClasses;
   uint64_t stream_ = 0;
+  const IntervalTravelTimes* timed_ = nullptr;
+  double depart_ = 0;
   std::vector<HeapItem> heap_;
   std::vector<std::pair<uint32_t, uint32_t>> pairs_;
   std::vector<char> answered_;
@@ -204,6 +243,46 @@ std::vector<uint32_t> route_one(Search& search, const RouteRequest& r) {
   if (leg.empty()) return {};
   path.insert(path.end(), leg.begin() + (path.empty() ? 0 : 1), leg.end());
   return path;
+}
+
+// route_one on a timed search: each leg starts on the previous via edge at the time the last leg reached
+// its end. `cost` receives the path's travel time (infinite: none).
+std::vector<uint32_t> route_one_timed(Search& search, const RouteRequest& r, double* cost) {
+  search.set_request(r.vclass, 0);
+  *cost = std::numeric_limits<double>::infinity();
+  std::vector<uint32_t> path;
+  std::vector<uint32_t> sources = r.origins;
+  double at = 0;
+  auto leg_to = [&](const std::vector<uint32_t>& targets) {
+    const std::vector<uint32_t> leg = search.segment(sources, targets, path.empty() ? nullptr : &at);
+    if (leg.empty()) return false;
+    path.insert(path.end(), leg.begin() + (path.empty() ? 0 : 1), leg.end());
+    at = search.dist(leg.back());
+    sources = {leg.back()};
+    return true;
+  };
+  for (uint32_t v : r.via)
+    if (!leg_to({v})) return {};
+  if (!leg_to(r.destinations)) return {};
+  *cost = at;
+  return path;
+}
+
+// Runs job(worker's search, k) for k in [0, n) on `threads` threads (0: all), each with its own search.
+template <class Job>
+void for_each_parallel(size_t n, int threads, const std::function<Search()>& make_search, Job&& job) {
+  std::atomic<size_t> next{0};
+  auto worker = [&]() {
+    Search search = make_search();
+    for (size_t k; (k = next.fetch_add(1, std::memory_order_relaxed)) < n;) job(search, k);
+  };
+  size_t count =
+      threads > 0 ? static_cast<size_t>(threads) : std::max(1u, std::thread::hardware_concurrency());
+  count = std::min(count, std::max<size_t>(1, n));
+  if (count == 1) return worker();
+  std::vector<std::thread> pool;
+  for (size_t t = 0; t < count; ++t) pool.emplace_back(worker);
+  for (auto& t : pool) t.join();
 }
 
 // SUMO's MSRoutingEngine::getEffort: length over the averaged speed (at least NUMERICAL_EPS), at least the
@@ -254,6 +333,7 @@ Router::Router(const Network& net, double minor_penalty, RandomWeights random)
       minor_penalty_(minor_penalty),
       edge_cost_(net.num_edges()),
       step_cost_(net.edge_succ.size()),
+      crossing_cost_(net.edge_succ.size()),
       crossing_(net.edge_succ.size(), -1) {
   for (uint32_t e = 0; e < net.num_edges(); ++e)
     for (uint32_t i = net.edge_succ_begin[e]; i < net.edge_succ_begin[e + 1]; ++i) {
@@ -292,10 +372,75 @@ void Router::set_costs(const std::vector<double>* speeds) {
   }
   for (uint32_t i = 0; i < step_cost_.size(); ++i) {
     const int32_t first = crossing_[i];
-    step_cost_[i] =
-        edge_cost_[net.edge_succ[i]] +
-        (first >= 0 ? crossing_cost(net, static_cast<uint32_t>(first), minor_penalty_, speeds) : 0.0);
+    crossing_cost_[i] =
+        first >= 0 ? crossing_cost(net, static_cast<uint32_t>(first), minor_penalty_, speeds) : 0.0;
+    step_cost_[i] = edge_cost_[net.edge_succ[i]] + crossing_cost_[i];
   }
+}
+
+void Router::set_interval_costs(const IntervalTravelTimes& times, uint32_t k) {
+  if (times.num_edges != net_.num_edges() || k >= times.intervals())
+    throw std::invalid_argument("Router::set_interval_costs: no interval " + std::to_string(k) +
+                                " of this network's edges");
+  set_costs(nullptr);
+  for (uint32_t e = 0; e < net_.num_edges(); ++e) {
+    const float t = times.time[size_t(k) * times.num_edges + e];
+    if (!std::isnan(t) && std::isfinite(edge_cost_[e])) edge_cost_[e] = t;
+  }
+  for (uint32_t i = 0; i < step_cost_.size(); ++i)
+    step_cost_[i] = edge_cost_[net_.edge_succ[i]] + crossing_cost_[i];
+}
+
+void IntervalTravelTimes::resize(uint32_t edges, uint32_t intervals) {
+  num_edges = edges;
+  time.assign(size_t(edges) * intervals, std::numeric_limits<float>::quiet_NaN());
+}
+
+uint32_t IntervalTravelTimes::interval_at(double t) const {
+  const uint32_t n = intervals();
+  if (n == 0) throw std::logic_error("IntervalTravelTimes: no interval");
+  const double k = std::floor((t - begin) / period);
+  if (!(k > 0)) return 0;
+  return k >= n - 1 ? n - 1 : static_cast<uint32_t>(k);
+}
+
+std::vector<std::vector<uint32_t>> Router::route_timed(const std::vector<RouteRequest>& requests,
+                                                       const std::vector<double>& depart,
+                                                       const IntervalTravelTimes& times, int threads,
+                                                       std::vector<double>* costs) const {
+  check_request_edges(requests, net_.num_edges());
+  if (depart.size() != requests.size())
+    throw std::invalid_argument("Router::route_timed: " + std::to_string(depart.size()) + " departures for " +
+                                std::to_string(requests.size()) + " requests");
+  if (times.num_edges != net_.num_edges() || times.intervals() == 0)
+    throw std::invalid_argument("Router::route_timed: travel times not sized to the network's edges");
+  std::vector<std::vector<uint32_t>> out(requests.size());
+  std::vector<double> cost(requests.size());
+  for_each_parallel(
+      requests.size(), threads, [&] { return Search(net_, edge_cost_, step_cost_, crossing_cost_, random_); },
+      [&](Search& search, size_t k) {
+        search.set_timed(&times, depart[k]);
+        out[k] = route_one_timed(search, requests[k], &cost[k]);
+      });
+  if (costs) *costs = std::move(cost);
+  return out;
+}
+
+double Router::timed_cost(const std::vector<uint32_t>& path, double depart,
+                          const IntervalTravelTimes& times) const {
+  if (path.empty()) return std::numeric_limits<double>::infinity();
+  // As a timed search costs it (Search::timed_step), move by move.
+  double at = interval_time(times, edge_cost_, path[0], depart);
+  for (size_t k = 1; k < path.size(); ++k) {
+    const uint32_t e = path[k - 1];
+    double step = std::numeric_limits<double>::infinity();
+    for (uint32_t i = net_.edge_succ_begin[e]; i < net_.edge_succ_begin[e + 1]; ++i)
+      if (net_.edge_succ[i] == path[k])
+        step = std::min(step, crossing_cost_[i] +
+                                  interval_time(times, edge_cost_, path[k], depart + at + crossing_cost_[i]));
+    at += step;
+  }
+  return at;
 }
 
 double Router::cost(const std::vector<uint32_t>& path) const {
@@ -353,32 +498,19 @@ std::vector<std::vector<uint32_t>> Router::route_all(const std::vector<RouteRequ
   for (uint32_t r : singles) items.push_back({0, 0, r});
 
   std::vector<std::vector<uint32_t>> out(requests.size());
-  std::atomic<size_t> next{0};
-  auto worker = [&]() {
-    Search search(net_, edge_cost_, step_cost_, random_);
-    std::vector<uint32_t> group;
-    for (size_t k; (k = next.fetch_add(1, std::memory_order_relaxed)) < items.size();) {
-      const Item& it = items[k];
-      if (it.single != kSingle) {
-        out[it.single] = route_one(search, requests[it.single]);
-        continue;
-      }
-      group.clear();
-      for (uint32_t i = it.first; i < it.last; ++i) group.push_back(by_origins[i]);
-      search.set_request(requests[group.front()].vclass, 0);
-      search.one_to_many(requests[group.front()].origins, group, requests, out);
-    }
-  };
-
-  size_t n = threads > 0 ? static_cast<size_t>(threads) : std::max(1u, std::thread::hardware_concurrency());
-  n = std::min(n, std::max<size_t>(1, items.size()));
-  if (n == 1) {
-    worker();
-  } else {
-    std::vector<std::thread> pool;
-    for (size_t t = 0; t < n; ++t) pool.emplace_back(worker);
-    for (auto& t : pool) t.join();
-  }
+  for_each_parallel(
+      items.size(), threads, [&] { return Search(net_, edge_cost_, step_cost_, crossing_cost_, random_); },
+      [&](Search& search, size_t k) {
+        const Item& it = items[k];
+        if (it.single != kSingle) {
+          out[it.single] = route_one(search, requests[it.single]);
+          return;
+        }
+        std::vector<uint32_t> group;
+        for (uint32_t i = it.first; i < it.last; ++i) group.push_back(by_origins[i]);
+        search.set_request(requests[group.front()].vclass, 0);
+        search.one_to_many(requests[group.front()].origins, group, requests, out);
+      });
   return out;
 }
 

@@ -29,6 +29,24 @@ struct RandomWeights {
   uint64_t seed = 0;
 };
 
+/// Edge travel times that change by time interval, as duarouter reads them from --weight-files (an edgeData
+/// output's traveltime per interval) with --weights.expand: interval k covers [begin + k * period, begin +
+/// (k + 1) * period); times before the first interval take the first's, times after the last the last's.
+struct IntervalTravelTimes {
+  double begin = 0;   // s
+  double period = 1;  // s
+  uint32_t num_edges = 0;
+  // [k * num_edges + e]: edge e's travel time in interval k (s); NaN where it was not measured, which costs
+  // the edge its free-flow time.
+  std::vector<float> time;
+
+  uint32_t intervals() const { return num_edges == 0 ? 0 : static_cast<uint32_t>(time.size() / num_edges); }
+  /// Interval `intervals` of NaN (all edges free-flow) for `num_edges` edges.
+  void resize(uint32_t edges, uint32_t intervals);
+  /// The interval time t falls in, clamped to the first and the last (needs at least one).
+  uint32_t interval_at(double t) const;
+};
+
 /// SUMO's default time penalty (--weights.minor-penalty) for crossing a junction on a link without
 /// priority that no signal controls [s].
 constexpr double kMinorLinkPenalty = 1.5;
@@ -55,6 +73,24 @@ class Router {
   /// (per edge of the network, m/s), at least its free-flow time. std::invalid_argument on a wrong size.
   void set_speeds(const std::vector<double>& edge_speed);
 
+  /// Costs from now on of interval k of `times`: each edge its travel time there (its free-flow time where
+  /// that is NaN), the junction crossings at free flow; a metric to customize a contraction hierarchy with
+  /// per interval, as SUMO's CH router takes the weights of each --weight-period. std::invalid_argument on
+  /// times of another network or an interval it lacks.
+  void set_interval_costs(const IntervalTravelTimes& times, uint32_t k);
+
+  /// Time-dependent fastest paths, as duarouter's Dijkstra routes on interval weights: each request departs
+  /// at depart[k]; an edge entered at time t costs its travel time in t's interval of `times` (its free-flow
+  /// time where that is NaN), each junction crossing its cost on this Router (free flow unless set_speeds).
+  /// Paths as route_all (empty: no path); `costs` (optional) receives each path's travel time in the same
+  /// measure (infinite: no path). One search per request; the same paths on any number of threads.
+  std::vector<std::vector<uint32_t>> route_timed(const std::vector<RouteRequest>& requests,
+                                                 const std::vector<double>& depart,
+                                                 const IntervalTravelTimes& times, int threads,
+                                                 std::vector<double>* costs = nullptr) const;
+  /// Travel time of `path` departing at `depart` in route_timed's measure (infinite: not a path).
+  double timed_cost(const std::vector<uint32_t>& path, double depart, const IntervalTravelTimes& times) const;
+
  private:
   void set_costs(const std::vector<double>* speeds);  // null: free flow
 
@@ -62,8 +98,9 @@ class Router {
   RandomWeights random_;
   double minor_penalty_;
   std::vector<float> edge_cost_;
-  std::vector<double> step_cost_;  // parallel to net.edge_succ
-  std::vector<int32_t> crossing_;  // parallel to net.edge_succ: the connection crossed onto it (-1: none)
+  std::vector<double> step_cost_;      // parallel to net.edge_succ
+  std::vector<double> crossing_cost_;  // parallel to net.edge_succ: the junction crossing alone
+  std::vector<int32_t> crossing_;      // parallel to net.edge_succ: the connection crossed onto it (-1: none)
 };
 
 }  // namespace lpsim
