@@ -41,10 +41,20 @@ Prints a table per part; --map draws the parts.
   lpsim partition -c scenario.sumocfg --partition-file parts.txt [--map parts.png]   (summarize a file)
 )";
 
+constexpr const char* kAssignUsage =
+    R"(usage: lpsim assign [options] -o assigned.rou.xml [scenario.sumocfg | scenario.lpsim]
+dynamic user assignment as SUMO's duaIterate.py runs it: each iteration routes every vehicle on the
+travel times the last one measured (per --aggregation interval, time-dependent), chooses among its route
+alternatives by Gawron's model, and simulates; prints per iteration the relative gap, the mean trip time,
+teleports and the CPU time of routing and simulation; writes the final routes (-o) and their alternatives
+(<routeDistribution> per vehicle, .rou.alt.xml beside), which sumo and lpsim run load
+  lpsim assign -c scenario.sumocfg -o assigned.rou.xml [--iterations 50] [--gap 0.01]
+)";
+
 constexpr const char* kTrailer = R"(
 Options take SUMO's names and may also come from the .sumocfg (except -c, -o, --device,
---max-lane-map-gb, --progress-interval, --jam-report*, --parts, --partition-*, --map, --corridor and
---sumo-*, which are LPSim's own). Other SUMO options:
+--max-lane-map-gb, --progress-interval, --jam-report*, --parts, --partition-*, --map, --corridor,
+--sumo-* and assign's, which are LPSim's own). Other SUMO options:
 those that cannot change the results (verbose, log, gui-settings-file, ...) are ignored with a warning;
 those that could (scale, mesosim, ...) are refused unless set to SUMO's default. No output may be the
 same file as an input or another output.
@@ -67,6 +77,9 @@ std::string command_help(const std::string& command) {
   } else if (command == "cosim") {
     usage = kCosimUsage;
     c = CliCommand::Cosim;
+  } else if (command == "assign") {
+    usage = kAssignUsage;
+    c = CliCommand::Assign;
   } else if (command == "partition") {
     usage = kPartitionUsage;
     c = CliCommand::Partition;

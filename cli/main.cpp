@@ -35,6 +35,8 @@ commands:
            [--sumo-binary sumo|sumo-gui (over TraCI; default: libsumo in process)] [--sumo-args "..."]
   partition  split the network into K parts (METIS, Leiden + k-means, random) for a partitioned run
            lpsim partition -c scenario.sumocfg --parts 4 -o parts.txt [--map parts.png]
+  assign   dynamic user assignment (duaIterate.py's iterations of routing and simulation, Gawron's model)
+           lpsim assign -c scenario.sumocfg -o assigned.rou.xml [--iterations 50] [--gap 0.01]
   version  print the version
 
 options follow SUMO's names; `lpsim <command> --help` lists those a command takes.
@@ -48,6 +50,7 @@ int dispatch(const std::string& command, const std::vector<std::string>& args, b
     if (command == "convert") return lpsim::command_convert(args);
     if (command == "run") return lpsim::command_run(args);
     if (command == "partition") return lpsim::command_partition(args);
+    if (command == "assign") return lpsim::command_assign(args);
     if (command == "cosim") {
 #if LPSIM_COSIM
       return lpsim::command_cosim(args);

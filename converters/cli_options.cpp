@@ -34,13 +34,15 @@ constexpr double kMinStepLength = 0.001, kMaxStepLength = 86400;
 constexpr long long kMaxThreads = 1024;
 
 // Which commands use an option: a bit per CliCommand.
-constexpr unsigned kInfo = 1, kConvert = 2, kRun = 4, kPartition = 8, kCosim = 16;
+constexpr unsigned kInfo = 1, kConvert = 2, kRun = 4, kPartition = 8, kCosim = 16, kAssign = 32;
 // Loading uses these (the demand is built with begin, end, step, seed, routing threads and penalties), so
 // every command takes them. Outputs, teleports and the device are `run`'s, -o is `convert`'s: given to
 // another command on its command line, they are refused rather than ignored.
-constexpr unsigned kLoad = kInfo | kConvert | kRun | kPartition | kCosim;
+constexpr unsigned kLoad = kInfo | kConvert | kRun | kPartition | kCosim | kAssign;
 // `cosim` takes what `run` does (outputs, teleports, the device), bar the partitioned run's options.
 constexpr unsigned kRuns = kRun | kCosim;
+// `assign` simulates too (how vehicles drive, the device, progress), but writes routes, not run outputs.
+constexpr unsigned kSimulates = kRuns | kAssign;
 
 unsigned command_bit(CliCommand c) {
   switch (c) {
@@ -54,6 +56,8 @@ unsigned command_bit(CliCommand c) {
       return kPartition;
     case CliCommand::Cosim:
       return kCosim;
+    case CliCommand::Assign:
+      return kAssign;
   }
   return 0;
 }
@@ -98,13 +102,13 @@ const OptionDef kOptions[] = {
   {"default.carfollowmodel", "", 0, Kind::Name, Check::None, false, kLoad, "car-following model of vTypes that name none: Krauss (default) or IDM; others run IDM", [](ConfigSpec& c, Value&& v) { c.default_car_follow_model = std::move(v.text); }},
   {"seed", "", 0, Kind::Integer, Check::None, false, kLoad, "random seed (default 23423)", [](ConfigSpec& c, Value&& v) { c.seed = v.integer; }},
   // Negative disables teleporting, as in SUMO.
-  {"time-to-impatience", "", 0, Kind::Time, Check::None, false, kRuns, "waiting time after which a vehicle at a link without priority counts on foes that can still brake to let it go (SUMO's impatience; default 180; <= 0: never)", [](ConfigSpec& c, Value&& v) { c.time_to_impatience = v.seconds; }},
-  {"time-to-teleport", "", 0, Kind::Time, Check::None, false, kRuns, "waiting time before a blocked vehicle teleports; < 0: never (default 300)", [](ConfigSpec& c, Value&& v) { c.time_to_teleport = v.seconds; }},
-  {"time-to-teleport.highways", "", 0, Kind::Time, Check::None, false, kRuns, "waiting time before a vehicle on a lane that does not lead on along its route, on a road faster than time-to-teleport.highways.min-speed, teleports; <= 0: never (default 0)", [](ConfigSpec& c, Value&& v) { c.time_to_teleport_highways = v.seconds; }},
-  {"time-to-teleport.highways.min-speed", "", 0, Kind::Number, Check::None, false, kRuns, "speed limit above which a road counts for time-to-teleport.highways, m/s (default 19.1667: 69 km/h)", [](ConfigSpec& c, Value&& v) { c.time_to_teleport_highways_min_speed = v.number; }},
-  {"ignore-junction-blocker", "", 0, Kind::Time, Check::None, false, kRuns, "a vehicle standing this long on a junction no longer blocks the foes crossing its path; < 0: never (default -1)", [](ConfigSpec& c, Value&& v) { c.ignore_junction_blocker = v.seconds; }},
+  {"time-to-impatience", "", 0, Kind::Time, Check::None, false, kSimulates, "waiting time after which a vehicle at a link without priority counts on foes that can still brake to let it go (SUMO's impatience; default 180; <= 0: never)", [](ConfigSpec& c, Value&& v) { c.time_to_impatience = v.seconds; }},
+  {"time-to-teleport", "", 0, Kind::Time, Check::None, false, kSimulates, "waiting time before a blocked vehicle teleports; < 0: never (default 300)", [](ConfigSpec& c, Value&& v) { c.time_to_teleport = v.seconds; }},
+  {"time-to-teleport.highways", "", 0, Kind::Time, Check::None, false, kSimulates, "waiting time before a vehicle on a lane that does not lead on along its route, on a road faster than time-to-teleport.highways.min-speed, teleports; <= 0: never (default 0)", [](ConfigSpec& c, Value&& v) { c.time_to_teleport_highways = v.seconds; }},
+  {"time-to-teleport.highways.min-speed", "", 0, Kind::Number, Check::None, false, kSimulates, "speed limit above which a road counts for time-to-teleport.highways, m/s (default 19.1667: 69 km/h)", [](ConfigSpec& c, Value&& v) { c.time_to_teleport_highways_min_speed = v.number; }},
+  {"ignore-junction-blocker", "", 0, Kind::Time, Check::None, false, kSimulates, "a vehicle standing this long on a junction no longer blocks the foes crossing its path; < 0: never (default -1)", [](ConfigSpec& c, Value&& v) { c.ignore_junction_blocker = v.seconds; }},
   {"route-steps", "", 's', Kind::Time, Check::None, false, kLoad, "> 0 (default 200): as SUMO, a vehicle or flow listed in a route file after a later-departing one is ignored; <= 0: every one is loaded", [](ConfigSpec& c, Value&& v) { c.route_steps = v.seconds; }},
-  {"max-depart-delay", "", 0, Kind::Time, Check::None, false, kRuns, "a vehicle not inserted this long after its depart time is dropped (discarded); < 0: never (default -1)", [](ConfigSpec& c, Value&& v) { c.max_depart_delay = v.seconds; }},
+  {"max-depart-delay", "", 0, Kind::Time, Check::None, false, kSimulates, "a vehicle not inserted this long after its depart time is dropped (discarded); < 0: never (default -1)", [](ConfigSpec& c, Value&& v) { c.max_depart_delay = v.seconds; }},
   // Loading applies it (the network is built without signals), so every command takes it.
   {"tls.all-off", "", 0, Kind::Bool, Check::None, false, kLoad, "switch every traffic light off: its links give way as the net's connection states say (o: yield, O: priority)", [](ConfigSpec& c, Value&& v) { c.tls_all_off = v.flag; }},
   {"weights.random-factor", "", 0, Kind::Number, Check::AtLeastOne, false, kLoad, "multiply the routing cost of each edge by a factor drawn in [1, F) per trip and edge (default 1)", [](ConfigSpec& c, Value&& v) { c.weights_random_factor = v.number; }},
@@ -119,14 +123,14 @@ const OptionDef kOptions[] = {
   {"device.rerouting.adaptation-weight", "", 0, Kind::Number, Check::NonNegative, false, kLoad, "weight of the old value in the exponential average of the edges' speeds (used when adaptation-steps is not given; >= 1: no updates)", [](ConfigSpec& c, Value&& v) { c.rerouting.adaptation_weight = v.number; }},
   {"device.rerouting.synchronize", "", 0, Kind::Bool, Check::None, false, kLoad, "count the re-routing period from time 0 rather than from each vehicle's departure", [](ConfigSpec& c, Value&& v) { c.rerouting.synchronize = v.flag; }},
   {"weights.minor-penalty", "", 0, Kind::Time, Check::NonNegative, false, kLoad, "routing cost of a minor link, in s (default 1.5)", [](ConfigSpec& c, Value&& v) { c.minor_penalty = v.seconds; }},
-  {"no-warnings", "", 'W', Kind::Bool, Check::None, false, kRuns, "no teleport warnings on stderr", [](ConfigSpec& c, Value&& v) { c.no_warnings = v.flag; }},
-  {"no-step-log", "", 0, Kind::Bool, Check::None, false, kRuns, "no progress lines on stderr", [](ConfigSpec& c, Value&& v) { c.no_step_log = v.flag; }},
+  {"no-warnings", "", 'W', Kind::Bool, Check::None, false, kSimulates, "no teleport warnings on stderr", [](ConfigSpec& c, Value&& v) { c.no_warnings = v.flag; }},
+  {"no-step-log", "", 0, Kind::Bool, Check::None, false, kSimulates, "no progress lines on stderr", [](ConfigSpec& c, Value&& v) { c.no_step_log = v.flag; }},
   {"ignore-route-errors", "", 0, Kind::Bool, Check::None, false, kLoad, "skip vehicles with broken routes instead of refusing the input", [](ConfigSpec& c, Value&& v) { c.ignore_route_errors = v.flag; }},
   {"threads", "", 0, Kind::Integer, Check::ThreadCount, false, kLoad, "threads for routing and stepping; 0: all for routing, 1 for stepping", [](ConfigSpec& c, Value&& v) { c.threads = static_cast<int>(v.integer); }},
   // Not a SUMO option: command line only, so a .sumocfg stays valid for SUMO.
-  {"device", "", 0, Kind::Device, Check::None, true, kRuns, "cpu (default), auto (a usable CUDA device, else the CPU) or gpu", [](ConfigSpec& c, Value&& v) { c.device = v.device; }},
+  {"device", "", 0, Kind::Device, Check::None, true, kSimulates, "cpu (default), auto (a usable CUDA device, else the CPU) or gpu", [](ConfigSpec& c, Value&& v) { c.device = v.device; }},
   {"max-lane-map-gb", "", 0, Kind::Number, Check::Positive, true, kLoad, "the most lane map (one byte per metre of lane) a network may need, GiB (default 16)", [](ConfigSpec& c, Value&& v) { c.max_lane_map_gb = v.number; }},
-  {"progress-interval", "", 0, Kind::Number, Check::Positive, true, kRuns, "wall seconds between progress lines when stderr is not a terminal (default 60)", [](ConfigSpec& c, Value&& v) { c.progress_interval = v.number; }},
+  {"progress-interval", "", 0, Kind::Number, Check::Positive, true, kSimulates, "wall seconds between progress lines when stderr is not a terminal (default 60)", [](ConfigSpec& c, Value&& v) { c.progress_interval = v.number; }},
   {"jam-report", "", 0, Kind::Path, Check::None, true, kRuns, "LPSim's jam report: each teleport and long stop, its cause and blockers", [](ConfigSpec& c, Value&& v) { c.jam_report = std::move(v.text); }},
   {"jam-report.stop-time", "", 0, Kind::Number, Check::Positive, true, kRuns, "the jam report's shortest stop, in s (default 60)", [](ConfigSpec& c, Value&& v) { c.jam_report_stop_time = v.number; }},
   {"fcd-output", "", 0, Kind::Path, Check::None, false, kRuns, "SUMO FCD output (.gz: compressed)", [](ConfigSpec& c, Value&& v) { c.outputs.fcd = std::move(v.text); }},
@@ -146,13 +150,23 @@ const OptionDef kOptions[] = {
   {"lpsim-nodes", "", 0, Kind::Path, Check::None, false, kLoad, "LPSim CSV nodes (with --lpsim-edges, instead of a SUMO network)", [](ConfigSpec& c, Value&& v) { c.lpsim_nodes_csv = std::move(v.text); }},
   {"lpsim-edges", "", 0, Kind::Path, Check::None, false, kLoad, "LPSim CSV edges (with --lpsim-nodes)", [](ConfigSpec& c, Value&& v) { c.lpsim_edges_csv = std::move(v.text); }},
   {"lpsim-od", "", 0, Kind::Path, Check::None, false, kLoad, "LPSim CSV origin-destination demand", [](ConfigSpec& c, Value&& v) { c.lpsim_od_csv = std::move(v.text); }},
-  {"output", "", 'o', Kind::Path, Check::None, true, kConvert | kPartition, "the file to write: the snapshot (convert, .lpsim) or the partition file (partition)", [](ConfigSpec& c, Value&& v) { c.output_file = std::move(v.text); }},
+  {"output", "", 'o', Kind::Path, Check::None, true, kConvert | kPartition | kAssign, "the file to write: the snapshot (convert, .lpsim), the partition file (partition) or the assigned routes (assign; their alternatives beside it as .rou.alt.xml)", [](ConfigSpec& c, Value&& v) { c.output_file = std::move(v.text); }},
   {"parts", "", 0, Kind::Integer, Check::Positive, true, kPartition | kRun, "the number of parts K (run: the network split into K parts, each stepped by its own threads)", [](ConfigSpec& c, Value&& v) { c.parts = static_cast<int>(v.integer); }},
   {"part-timeout", "", 0, Kind::Time, Check::Positive, true, kRun, "seconds a part waits for another in one exchange before it takes it for stopped and ends the run with an error (default 600)", [](ConfigSpec& c, Value&& v) { c.part_timeout = v.seconds; }},
   {"partition-method", "", 0, Kind::Method, Check::None, true, kPartition | kRun, "metis (default: balanced k-way), leiden (communities merged into K parts by k-means) or random", [](ConfigSpec& c, Value&& v) { c.partition_method = std::move(v.text); c.partition_method_given = true; }},
   {"partition-file", "", 0, Kind::Path, Check::None, true, kPartition | kRun, "a partition file: to summarize (and map) instead of computing one; run: the parts to run in", [](ConfigSpec& c, Value&& v) { c.partition_file = std::move(v.text); }},
   {"migrations-from", "", 0, Kind::Path, Check::None, true, kPartition, "an edgeData output of a run of the scenario: the vehicles of that run that crossed a cut", [](ConfigSpec& c, Value&& v) { c.migrations_from = std::move(v.text); }},
   {"map", "", 0, Kind::Path, Check::None, true, kPartition, "a PNG map of the network coloured by part", [](ConfigSpec& c, Value&& v) { c.partition_map = std::move(v.text); }},
+  {"iterations", "last-step", 'l', Kind::Integer, Check::AtLeastOne, true, kAssign, "iterations of routing and simulation at most (default 50, as duaIterate.py)", [](ConfigSpec& c, Value&& v) { c.assign.iterations = static_cast<int>(v.integer); }},
+  {"aggregation", "", 0, Kind::Time, Check::Positive, true, kAssign, "s per interval of the edge travel times routes are chosen on (default 900)", [](ConfigSpec& c, Value&& v) { c.assign.aggregation = v.seconds; }},
+  {"gawron.beta", "gBeta", 0, Kind::Number, Check::NonNegative, true, kAssign, "Gawron's beta: weight of the new travel time in a route's cost (default 0.9, as duaIterate.py)", [](ConfigSpec& c, Value&& v) { c.assign.gawron_beta = v.number; }},
+  {"gawron.a", "gA", 0, Kind::Number, Check::NonNegative, true, kAssign, "Gawron's a: how strongly cost differences shift the route probabilities (default 0.5, as duaIterate.py)", [](ConfigSpec& c, Value&& v) { c.assign.gawron_a = v.number; }},
+  {"max-alternatives", "", 0, Kind::Integer, Check::AtLeastOne, true, kAssign, "route alternatives kept per vehicle (default 5)", [](ConfigSpec& c, Value&& v) { c.assign.max_alternatives = static_cast<int>(v.integer); }},
+  {"keep-all-routes", "", 0, Kind::Bool, Check::None, true, kAssign, "keep alternatives whose probability fell to 0", [](ConfigSpec& c, Value&& v) { c.assign.keep_all_routes = v.flag; }},
+  {"gap", "", 0, Kind::Number, Check::Positive, true, kAssign, "stop once an iteration's relative gap is at most this (default: off)", [](ConfigSpec& c, Value&& v) { c.assign.gap = v.number; }},
+  {"max-convergence-deviation", "", 0, Kind::Number, Check::Positive, true, kAssign, "stop once the relative standard deviation of the mean trip time over the last convergence-iterations iterations is below this (duaIterate.py's measure; default: off)", [](ConfigSpec& c, Value&& v) { c.assign.max_convergence_deviation = v.number; }},
+  {"weight-files", "weights", 'w', Kind::Path, Check::None, true, kAssign, "an edgeData output (duaIterate's dump): print the relative gap of the loaded routes on its travel times instead of iterating", [](ConfigSpec& c, Value&& v) { c.assign.weight_files = std::move(v.text); }},
+  {"convergence-iterations", "", 0, Kind::Integer, Check::AtLeastOne, true, kAssign, "iterations max-convergence-deviation looks at (default 10)", [](ConfigSpec& c, Value&& v) { c.assign.convergence_iterations = static_cast<int>(v.integer); }},
 };
 // clang-format on
 

@@ -13,7 +13,7 @@
 namespace lpsim {
 
 /// The commands of `lpsim` that take options; each option says which of them use it.
-enum class CliCommand { Info, Convert, Run, Partition, Cosim };
+enum class CliCommand { Info, Convert, Run, Partition, Cosim, Assign };
 
 /// Where an option's value came from: names it in errors and anchors relative paths.
 struct OptionSource {

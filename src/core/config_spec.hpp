@@ -51,6 +51,20 @@ struct ReroutingSpec {
 /// Where `lpsim run` steps the simulation (--device): auto takes a usable CUDA device, else the CPU.
 enum class ComputeDevice { Auto, Cpu, Gpu };
 
+/// `lpsim assign`: dynamic user assignment as duaIterate.py runs it (its defaults).
+struct AssignSpec {
+  int iterations = 50;
+  double aggregation = 900;  // s
+  double gawron_beta = 0.9, gawron_a = 0.5;
+  int max_alternatives = 5;
+  bool keep_all_routes = false;
+  double gap = 0;                        // stop at this relative gap; 0: off
+  double max_convergence_deviation = 0;  // 0: off
+  int convergence_iterations = 10;
+  // Not iterating: the relative gap of the loaded routes on these travel times (an edgeData output).
+  std::string weight_files;
+};
+
 struct ConfigSpec {
   std::string config_file;    // the .sumocfg, if any
   std::string snapshot_file;  // the snapshot (`lpsim convert`'s output) the scenario was read from, if any
@@ -59,6 +73,7 @@ struct ConfigSpec {
   std::string lpsim_nodes_csv, lpsim_edges_csv, lpsim_od_csv;  // original LPSim format
   double begin = 0, end = -1, step_length = 1.0;               // end -1: until all vehicles arrived
   long long seed = 23423;
+  AssignSpec assign;
   // SUMO's --default.carfollowmodel: the car-following model of every vType that names none.
   std::string default_car_follow_model = "Krauss";
   double time_to_teleport = 300;

@@ -1,0 +1,219 @@
+#include "app/assignment.hpp"
+
+#include <time.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <thread>
+
+#include "converters/mean_data_writer.hpp"
+#include "demand/demand_draws.hpp"
+#include "demand/trip_routes.hpp"
+#include "kernels/rng.hpp"
+
+namespace lpsim {
+namespace {
+
+constexpr double kTimeSlack = 1e-6;  // s: float noise in comparisons of step times
+constexpr double kMinSamples = 1.0;  // s: duaIterate's edgeData minSamples
+constexpr uint64_t kDrawRouteChoice = 0x8000000000000004ull;
+
+double cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return double(t.tv_sec) + double(t.tv_nsec) * 1e-9;
+}
+
+// Runs job(k) for k in [0, n) on `threads` threads (0: all cores).
+template <class Job>
+void parallel_for(uint32_t n, int threads, Job&& job) {
+  std::atomic<uint32_t> next{0};
+  auto worker = [&] {
+    for (uint32_t k; (k = next.fetch_add(64)) < n;)
+      for (uint32_t i = k; i < std::min(n, k + 64); ++i) job(i);
+  };
+  unsigned count = threads > 0 ? unsigned(threads) : std::max(1u, std::thread::hardware_concurrency());
+  if (count <= 1 || n < 128) return worker();
+  std::vector<std::thread> pool;
+  for (unsigned t = 0; t < count; ++t) pool.emplace_back(worker);
+  for (auto& t : pool) t.join();
+}
+
+// The trips as routed vehicles: a trip's routing at insertion (SUMO's rerouting device for trips) is the
+// assignment's to do; vehicles equipped with the device by options or params keep it.
+Demand without_insertion_routing(Demand d) {
+  bool any = false;
+  for (uint8_t& flags : d.rerouting) {
+    if (!(flags & kRerouteEquipped)) flags = 0;
+    any = any || flags != 0;
+  }
+  if (!any) d.rerouting.clear();  // no device: the runs sample no speeds for it
+  return d;
+}
+
+}  // namespace
+
+GapSums gap_sums(const Router& router, const Demand& d, const IntervalTravelTimes& times,
+                 const std::vector<double>& best_cost) {
+  GapSums g;
+  for (uint32_t v = 0; v < d.size(); ++v) {
+    if (!std::isfinite(best_cost[v])) continue;
+    const std::vector<uint32_t> route(d.route_edges.begin() + d.route_begin[v],
+                                      d.route_edges.begin() + d.route_begin[v] + d.route_length[v]);
+    const double used = router.timed_cost(route, d.depart[v], times);
+    if (!std::isfinite(used)) continue;
+    g.route_cost_sum += used;
+    g.best_cost_sum += best_cost[v];
+    ++g.vehicles;
+  }
+  return g;
+}
+
+GapSums relative_gap(const Network& net, const Router& router, const Demand& d,
+                     const IntervalTravelTimes& times, int threads) {
+  std::vector<RouteRequest> requests(d.size());
+  for (uint32_t v = 0; v < d.size(); ++v) requests[v] = trip_request(d, net, v);
+  std::vector<double> best_cost;
+  router.route_timed(requests, d.depart, times, threads, &best_cost);
+  return gap_sums(router, d, times, best_cost);
+}
+
+Assignment::Assignment(const Network& net, Demand demand, SimulationOptions options, const AssignSpec& spec,
+                       double begin, double end, int threads, bool hierarchy)
+    : net_(net),
+      base_(without_insertion_routing(std::move(demand))),
+      assigned_(base_),
+      options_(options),
+      spec_(spec),
+      begin_(begin),
+      end_(end),
+      threads_(threads),
+      router_(net, options.rerouting.minor_penalty),
+      interval_router_(net, options.rerouting.minor_penalty) {
+  if (hierarchy) hierarchy_ = std::make_unique<CchRouter>(net);
+  options_.lane_counters = true;
+  gawron_.beta = spec.gawron_beta;
+  gawron_.a = spec.gawron_a;
+  gawron_.max_alternatives = static_cast<uint32_t>(std::max(1, spec.max_alternatives));
+  gawron_.keep_all_routes = spec.keep_all_routes;
+  requests_.resize(base_.size());
+  for (uint32_t v = 0; v < base_.size(); ++v)
+    if (end < 0 || base_.depart[v] <= end) requests_[v] = trip_request(base_, net, v);
+  times_.begin = begin;
+  times_.period = spec.aggregation;
+  times_.resize(net.num_edges(), 1);  // free flow
+  alternatives_.resize(base_.size());
+}
+
+void Assignment::route_all() {
+  if (!hierarchy_) {
+    best_ = router_.route_timed(requests_, base_.depart, times_, threads_, &best_cost_);
+    return;
+  }
+  // Per interval: the hierarchy customized on its times routes the vehicles departing in it.
+  best_.assign(requests_.size(), {});
+  best_cost_.assign(requests_.size(), std::numeric_limits<double>::infinity());
+  std::vector<std::vector<uint32_t>> by_interval(times_.intervals());
+  for (uint32_t v = 0; v < requests_.size(); ++v)
+    if (!requests_[v].origins.empty()) by_interval[times_.interval_at(base_.depart[v])].push_back(v);
+  for (uint32_t k = 0; k < by_interval.size(); ++k) {
+    if (by_interval[k].empty()) continue;
+    interval_router_.set_interval_costs(times_, k);
+    std::vector<RouteRequest> requests;
+    for (uint32_t v : by_interval[k]) requests.push_back(requests_[v]);
+    std::vector<std::vector<uint32_t>> paths = hierarchy_->route_all(interval_router_, requests, threads_);
+    for (size_t i = 0; i < paths.size(); ++i) best_[by_interval[k][i]] = std::move(paths[i]);
+  }
+  parallel_for(static_cast<uint32_t>(best_.size()), threads_, [&](uint32_t v) {
+    if (!best_[v].empty()) best_cost_[v] = router_.timed_cost(best_[v], base_.depart[v], times_);
+  });
+}
+
+void Assignment::choose_routes() {
+  std::vector<std::vector<uint32_t>> chosen(base_.size());
+  const uint64_t iteration = static_cast<uint64_t>(done_);
+  parallel_for(base_.size(), threads_, [&](uint32_t v) {
+    if (best_[v].empty()) return;  // no route: the loaded one stays
+    const double depart = base_.depart[v];
+    auto cost_of = [&](const std::vector<uint32_t>& edges) {
+      return router_.timed_cost(edges, depart, times_);
+    };
+    const double draw =
+        rng_uniform_double(options_.seed ^ kDrawRouteChoice, draw_stream(base_.vehicle_id[v]), iteration);
+    RouteAlternatives& alts = alternatives_[v];
+    const uint32_t k = choose_route(alts, best_[v], cost_of, gawron_, draw);
+    chosen[v] = alts.routes[k].edges;
+  });
+  assigned_ = base_;
+  replace_routes(assigned_, net_, chosen);
+}
+
+std::vector<TripRecord> Assignment::simulate(uint64_t* teleports) {
+  Simulation sim(net_, assigned_, options_);
+  const double dt = sim.step_length();
+  const double period = spec_.aggregation;
+  std::vector<LaneCounters> interval_counters;  // cumulative at each interval's end
+  double interval_end = begin_ + period;
+  std::vector<TripRecord> trips;
+  auto done = [&] {
+    if (end_ >= 0) return sim.time() + dt > end_ - kTimeSlack;
+    return sim.finished();
+  };
+  while (!done()) {
+    sim.step();
+    for (TripRecord& r : sim.take_finished_trips()) trips.push_back(r);
+    if (sim.time() + dt + kTimeSlack >= interval_end) {
+      interval_counters.push_back(sim.lane_counters());
+      interval_end += period;
+    }
+  }
+  interval_counters.push_back(sim.lane_counters());
+  *teleports = sim.counts().teleports;
+
+  // Each interval's travel times, from the counters' differences.
+  const uint32_t n = static_cast<uint32_t>(interval_counters.size());
+  times_.resize(net_.num_edges(), n);
+  LaneCounters zero;
+  zero.resize(net_.num_lanes());
+  for (uint32_t k = 0; k < n; ++k) {
+    const LaneCounters c = counters_since(interval_counters[k], k == 0 ? zero : interval_counters[k - 1]);
+    for (uint32_t e = 0; e < net_.num_edges(); ++e) {
+      if (net_.edge_is_internal[e]) continue;
+      const MeanDataTotals t = sum_lane_counters(c, net_.edge_first_lane[e], net_.edge_num_lanes[e], dt);
+      if (t.sampled_seconds < kMinSamples) continue;
+      const MeanDataMeasures m =
+          derive_mean_data(t, net_.edge_length[e], net_.edge_num_lanes[e], net_.edge_speed[e], period, 0);
+      if (m.has_traveltime) times_.time[size_t(k) * net_.num_edges() + e] = static_cast<float>(m.traveltime);
+    }
+  }
+  return trips;
+}
+
+IterationResult Assignment::iterate() {
+  IterationResult result;
+  result.iteration = done_;
+  result.vehicles = base_.size();
+  const double cpu0 = cpu_seconds();
+  if (done_ == 0) route_all();  // on free flow; later iterations take the last one's best responses
+  choose_routes();
+  const double cpu1 = cpu_seconds();
+  const std::vector<TripRecord> trips = simulate(&result.teleports);
+  const double cpu2 = cpu_seconds();
+  route_all();
+  result.gap = gap_sums(router_, assigned_, times_, best_cost_);
+  const double cpu3 = cpu_seconds();
+  for (const TripRecord& r : trips) {
+    if (r.unfinished) continue;
+    ++result.finished;
+    result.mean_trip_time += r.arrival - r.depart;
+  }
+  if (result.finished > 0) result.mean_trip_time /= double(result.finished);
+  result.routing_cpu_seconds = (cpu1 - cpu0) + (cpu3 - cpu2);
+  result.simulation_cpu_seconds = cpu2 - cpu1;
+  ++done_;
+  return result;
+}
+
+}  // namespace lpsim
