@@ -11,6 +11,7 @@
 #include "app/scenario_args.hpp"
 #include "app/simulation_options.hpp"
 #include "converters/edge_weights_reader.hpp"
+#include "converters/gap_plot_writer.hpp"
 #include "converters/route_file_writer.hpp"
 #include "core/error.hpp"
 
@@ -72,6 +73,7 @@ int command_assign(const std::vector<std::string>& args) {
                     alternatives_file = alternatives_path(config.output_file);
   refuse_input_as_output(config, routes_file);
   refuse_input_as_output(config, alternatives_file);
+  if (!config.assign.plot.empty()) refuse_input_as_output(config, config.assign.plot);
   SimulationOptions options = simulation_options(config);
   const DeviceChoice device = select_device(config.device);
   options.gpu = device.gpu;
@@ -84,6 +86,7 @@ int command_assign(const std::vector<std::string>& args) {
   std::printf("%9s %13s %14s %9s %9s %10s %10s\n", "iteration", "relative gap", "mean trip [s]", "finished",
               "teleports", "route CPU", "sim CPU");
   std::deque<double> means;
+  std::vector<double> gaps;
   for (int i = 0; i < spec.iterations; ++i) {
     const IterationResult r = assignment.iterate();
     std::printf("%9d %13.6f %14.2f %9llu %9llu %9.2fs %9.2fs\n", r.iteration, r.gap.relative_gap(),
@@ -91,6 +94,7 @@ int command_assign(const std::vector<std::string>& args) {
                 static_cast<unsigned long long>(r.teleports), r.routing_cpu_seconds,
                 r.simulation_cpu_seconds);
     std::fflush(stdout);
+    gaps.push_back(r.gap.relative_gap());
     if (spec.gap > 0 && r.gap.relative_gap() <= spec.gap) {
       std::printf("relative gap %.6f reached --gap %g\n", r.gap.relative_gap(), spec.gap);
       break;
@@ -108,6 +112,10 @@ int command_assign(const std::vector<std::string>& args) {
   write_route_file(routes_file, sc.network, assignment.assigned());
   write_route_file(alternatives_file, sc.network, assignment.assigned(), &assignment.alternatives());
   std::printf("routes: %s\nalternatives: %s\n", routes_file.c_str(), alternatives_file.c_str());
+  if (!config.assign.plot.empty()) {
+    write_gap_plot(config.assign.plot, gaps);
+    std::printf("plot: %s\n", config.assign.plot.c_str());
+  }
   return 0;
 }
 

@@ -63,6 +63,7 @@ struct AssignSpec {
   int convergence_iterations = 10;
   // Not iterating: the relative gap of the loaded routes on these travel times (an edgeData output).
   std::string weight_files;
+  std::string plot;  // PNG of the gap per iteration
 };
 
 struct ConfigSpec {

@@ -64,7 +64,9 @@ int long_way_routes(const std::string& routes) {
 
 TEST(AssignCli, TripsLearnTheBlockAndTheGapFalls) {
   test::TempDir dir("lpsim_assign");
-  const test::CliResult r = test::run_lpsim(dir.path(), assign_args("assigned.rou.xml", 1));
+  std::vector<std::string> args = assign_args("assigned.rou.xml", 1);
+  args.insert(args.end(), {"--plot", "gap.png"});
+  const test::CliResult r = test::run_lpsim(dir.path(), args);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::vector<Line> lines = iteration_lines(r.out);
   ASSERT_EQ(lines.size(), 6u) << r.out;
@@ -85,6 +87,7 @@ TEST(AssignCli, TripsLearnTheBlockAndTheGapFalls) {
   EXPECT_GT(long_way_routes(routes), 60);  // measured 110 of 121
   EXPECT_NE(alternatives.find("<routeDistribution last=\""), std::string::npos);
   EXPECT_NE(alternatives.find("probability=\""), std::string::npos);
+  EXPECT_EQ(test::read_file(dir.path() / "gap.png").substr(0, 8), "\x89PNG\r\n\x1a\n");
 }
 
 // The contraction hierarchy, customized per interval, routes each vehicle on its depart interval's times
