@@ -14,7 +14,7 @@ bool ends_with(const std::string& s, const std::string& suffix) {
 }
 
 // A snapshot holds network, demand and output definitions: input options beside it would be ignored.
-void refuse_inputs_beside_snapshot(const ConfigSpec& c, const std::string& snapshot) {
+void refuse_inputs_beside_snapshot(const ConfigSpec& c, const std::string& snapshot, CliCommand command) {
   const char* given = !c.config_file.empty()        ? "-c (configuration-file)"
                       : !c.net_file.empty()         ? "-n (net-file)"
                       : !c.route_files.empty()      ? "-r (route-files)"
@@ -27,20 +27,22 @@ void refuse_inputs_beside_snapshot(const ConfigSpec& c, const std::string& snaps
     throw InputError(SourceLoc{"command line", 0},
                      std::string(given) + " given beside the snapshot '" + snapshot +
                          "', which already holds network and demand; give one or the other");
-  // Options that act only while loading: the snapshot was loaded by `lpsim convert`, with its own.
+  // Options that act only while loading: the snapshot was loaded by `lpsim convert`, with its own. `assign`
+  // routes every iteration with the router and costs these name.
   const ConfigSpec defaults;
+  const bool routes_again = command == CliCommand::Assign;
   const char* load_only =
-      c.ignore_route_errors != defaults.ignore_route_errors             ? "--ignore-route-errors"
-      : c.minor_penalty != defaults.minor_penalty                       ? "--weights.minor-penalty"
-      : c.routing_algorithm != defaults.routing_algorithm               ? "--routing-algorithm"
-      : c.max_lane_map_gb != defaults.max_lane_map_gb                   ? "--max-lane-map-gb"
-      : c.tls_all_off != defaults.tls_all_off                           ? "--tls.all-off"
-      : c.weights_random_factor != defaults.weights_random_factor       ? "--weights.random-factor"
-      : c.default_car_follow_model != defaults.default_car_follow_model ? "--default.carfollowmodel"
-      : c.rerouting.probability != defaults.rerouting.probability       ? "--device.rerouting.probability"
-      : !c.rerouting.explicit_ids.empty()                               ? "--device.rerouting.explicit"
-      : c.rerouting.deterministic != defaults.rerouting.deterministic   ? "--device.rerouting.deterministic"
-                                                                        : nullptr;
+      c.ignore_route_errors != defaults.ignore_route_errors                ? "--ignore-route-errors"
+      : c.minor_penalty != defaults.minor_penalty && !routes_again         ? "--weights.minor-penalty"
+      : c.routing_algorithm != defaults.routing_algorithm && !routes_again ? "--routing-algorithm"
+      : c.max_lane_map_gb != defaults.max_lane_map_gb                      ? "--max-lane-map-gb"
+      : c.tls_all_off != defaults.tls_all_off                              ? "--tls.all-off"
+      : c.weights_random_factor != defaults.weights_random_factor          ? "--weights.random-factor"
+      : c.default_car_follow_model != defaults.default_car_follow_model    ? "--default.carfollowmodel"
+      : c.rerouting.probability != defaults.rerouting.probability          ? "--device.rerouting.probability"
+      : !c.rerouting.explicit_ids.empty()                                  ? "--device.rerouting.explicit"
+      : c.rerouting.deterministic != defaults.rerouting.deterministic ? "--device.rerouting.deterministic"
+                                                                      : nullptr;
   if (load_only)
     throw InputError(SourceLoc{"command line", 0}, std::string(load_only) + " given beside the snapshot '" +
                                                        snapshot +
@@ -88,7 +90,7 @@ Scenario scenario_from_args(const std::vector<std::string>& args, ConfigSpec* co
   if (positional.size() == 1) {
     const std::string& file = positional[0];
     if (is_snapshot(file)) {
-      refuse_inputs_beside_snapshot(config, file);
+      refuse_inputs_beside_snapshot(config, file, command);
       warn_inert(config);
       Scenario sc = read_snapshot(file);
       config.snapshot_file = file;
