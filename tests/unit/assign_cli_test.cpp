@@ -149,6 +149,23 @@ TEST(AssignCli, SameRoutesOnOneAndTwoThreads) {
   }
 }
 
+// A snapshot's routing options were applied by `lpsim convert`; assign routes anew and takes its own.
+TEST(AssignCli, RoutesASnapshotWithTheHierarchy) {
+  test::TempDir dir("lpsim_assign_snapshot");
+  const test::CliResult convert =
+      test::run_lpsim(dir.path(), {"convert", "-n", scenario("reroute_block.net.xml"), "-r",
+                                   scenario("reroute_block.rou.xml"), "-o", "block.lpsim"});
+  ASSERT_EQ(convert.exit_code, 0) << convert.err;
+  const test::CliResult a = test::run_lpsim(
+      dir.path(), {"assign", "block.lpsim", "-o", "assigned.rou.xml", "--iterations", "2", "--aggregation",
+                   "60", "--time-to-teleport", "-1", "--routing-algorithm", "CH"});
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  EXPECT_EQ(iteration_lines(a.out).size(), 2u);
+  const test::CliResult run =
+      test::run_lpsim(dir.path(), {"run", "block.lpsim", "--routing-algorithm", "CH"});
+  EXPECT_EQ(run.exit_code, 2) << "run beside a snapshot: the routing option acts only while loading";
+}
+
 TEST(AssignCli, WithoutOutputOrWithPartsIsBadInput) {
   test::TempDir dir("lpsim_assign_bad");
   const test::CliResult no_output = test::run_lpsim(
