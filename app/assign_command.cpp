@@ -8,6 +8,7 @@
 #include "app/assignment.hpp"
 #include "app/commands.hpp"
 #include "app/device_select.hpp"
+#include "app/partitioned_parts.hpp"
 #include "app/scenario_args.hpp"
 #include "app/simulation_options.hpp"
 #include "converters/edge_weights_reader.hpp"
@@ -81,8 +82,13 @@ int command_assign(const std::vector<std::string>& args) {
     std::fprintf(stderr, "lpsim: device %s\n", device.description.c_str());
 
   const AssignSpec& spec = config.assign;
+  int32_t parts = 1;
+  const std::vector<int32_t> edge_part = run_edge_parts(config, sc, &parts);
+  std::vector<PartPlan> plans;
+  if (parts > 1) plans = part_plans(sc.network, edge_part, parts, longest_vehicle(sc.demand));
   Assignment assignment(sc.network, std::move(sc.demand), options, spec, config.begin, config.end,
                         config.threads, options.rerouting.contraction_hierarchy);
+  if (parts > 1) assignment.run_in_parts(std::move(plans), config.part_timeout);
   std::printf("%9s %13s %14s %9s %9s %10s %10s\n", "iteration", "relative gap", "mean trip [s]", "finished",
               "teleports", "route CPU", "sim CPU");
   std::deque<double> means;

@@ -8,6 +8,7 @@
 #include <limits>
 #include <thread>
 
+#include "app/partitioned_parts.hpp"
 #include "converters/mean_data_writer.hpp"
 #include "demand/demand_draws.hpp"
 #include "demand/trip_routes.hpp"
@@ -150,8 +151,35 @@ void Assignment::choose_routes() {
   replace_routes(assigned_, net_, chosen);
 }
 
+void Assignment::run_in_parts(std::vector<PartPlan> plans, double timeout_s) {
+  plans_ = std::move(plans);
+  part_timeout_ = timeout_s;
+}
+
 std::vector<TripRecord> Assignment::simulate(uint64_t* teleports) {
-  Simulation sim(net_, assigned_, options_);
+  // Parts 1..K-1 (if any) on their threads, started before part 0 as `lpsim run` starts them.
+  std::unique_ptr<InProcessParts> others;
+  SimulationOptions options = options_;
+  if (plans_.size() > 1) {
+    others = std::make_unique<InProcessParts>(net_, assigned_, options_, plans_, part_timeout_);
+    options = others->part0_options(options_);
+  }
+  std::vector<TripRecord> trips;
+  try {
+    trips = simulate_part0(options, teleports);
+  } catch (const std::exception&) {
+    if (others) others->finish(true);
+    throw;
+  }
+  if (others) {
+    const std::string cause = others->finish(false);
+    if (!cause.empty()) throw std::runtime_error(cause);
+  }
+  return trips;
+}
+
+std::vector<TripRecord> Assignment::simulate_part0(const SimulationOptions& options, uint64_t* teleports) {
+  Simulation sim(net_, assigned_, options);
   const double dt = sim.step_length();
   const double period = spec_.aggregation;
   std::vector<LaneCounters> interval_counters;  // cumulative at each interval's end

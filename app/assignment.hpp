@@ -29,6 +29,7 @@
 #include "net/cch_router.hpp"
 #include "net/network.hpp"
 #include "net/router.hpp"
+#include "partition/part_plan.hpp"
 
 namespace lpsim {
 
@@ -68,6 +69,9 @@ class Assignment {
   /// then costed time-dependently like any route. Vehicles departing after `end` are not routed.
   Assignment(const Network& net, Demand demand, SimulationOptions options, const AssignSpec& spec,
              double begin, double end, int threads, bool hierarchy = false);
+  /// Simulates each iteration in the parts of `plans` (K > 1) on threads of this process, as `lpsim run
+  /// --parts K` does: the same results as in one part. A part waits `timeout_s` for another at most.
+  void run_in_parts(std::vector<PartPlan> plans, double timeout_s);
 
   /// Runs the next iteration and returns its results.
   IterationResult iterate();
@@ -84,6 +88,7 @@ class Assignment {
   void choose_routes();
   // Simulates assigned_ and measures times_; returns the finished trips' records.
   std::vector<TripRecord> simulate(uint64_t* teleports);
+  std::vector<TripRecord> simulate_part0(const SimulationOptions& options, uint64_t* teleports);
 
   const Network& net_;
   const Demand base_;
@@ -102,6 +107,8 @@ class Assignment {
   std::vector<double> best_cost_;
   std::vector<RouteAlternatives> alternatives_;
   int done_ = 0;
+  std::vector<PartPlan> plans_;
+  double part_timeout_ = 0;
 };
 
 }  // namespace lpsim

@@ -51,23 +51,23 @@ double longest_vehicle(const Demand& demand) {
   return longest;
 }
 
-InProcessParts::InProcessParts(const Scenario& sc, const SimulationOptions& options,
+InProcessParts::InProcessParts(const Network& net, const Demand& demand, const SimulationOptions& options,
                                std::vector<PartPlan> plans, double timeout_s)
     : plans_(std::move(plans)), fabric_(static_cast<int>(plans_.size()), timeout_s) {
   const int k = static_cast<int>(plans_.size());
   for (int p = 0; p < k; ++p) endpoints_.push_back(fabric_.endpoint(p));
   errors_.resize(static_cast<size_t>(k));
   for (int p = 1; p < k; ++p) {
-    // Each part its own copies: the scenario is moved into part 0's Run while they start.
-    auto network = std::make_shared<Network>(sc.network);
-    auto demand = std::make_shared<Demand>(sc.demand);
+    // Each part its own copies: the caller's may be moved into part 0's Run while they start.
+    auto network = std::make_shared<Network>(net);
+    auto trips = std::make_shared<Demand>(demand);
     SimulationOptions o = options;
     o.part = &plans_[static_cast<size_t>(p)];
     o.transport = endpoints_[static_cast<size_t>(p)].get();
     o.gpu_device = p;  // the machine's GPUs dealt out to the parts in turn
-    threads_.emplace_back([this, p, o, network, demand]() {
+    threads_.emplace_back([this, p, o, network, trips]() {
       try {
-        Simulation sim(*network, std::move(*demand), o);
+        Simulation sim(*network, std::move(*trips), o);
         sim.serve_part();
       } catch (const std::exception& e) {
         errors_[static_cast<size_t>(p)] = e.what();

@@ -28,9 +28,10 @@ double longest_vehicle(const Demand& demand);
 
 class InProcessParts {
  public:
-  /// Starts parts 1..K-1 of `plans` on their threads, each with `options` and its plan, from copies of `sc`.
-  InProcessParts(const Scenario& sc, const SimulationOptions& options, std::vector<PartPlan> plans,
-                 double timeout_s);
+  /// Starts parts 1..K-1 of `plans` on their threads, each with `options` and its plan, from copies of `net`
+  /// and `demand` (made before the constructor returns).
+  InProcessParts(const Network& net, const Demand& demand, const SimulationOptions& options,
+                 std::vector<PartPlan> plans, double timeout_s);
   /// Joins the parts (after part 0's Simulation is gone, which ends them; see finish()).
   ~InProcessParts();
   InProcessParts(const InProcessParts&) = delete;

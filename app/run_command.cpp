@@ -120,7 +120,7 @@ int command_run(const std::vector<std::string>& args) {
     }
   } else if (parts > 1) {
     others = std::make_unique<InProcessParts>(
-        sc, options, part_plans(sc.network, edge_part, parts, longest_vehicle(sc.demand)),
+        sc.network, sc.demand, options, part_plans(sc.network, edge_part, parts, longest_vehicle(sc.demand)),
         config.part_timeout);
     options = others->part0_options(options);
   }

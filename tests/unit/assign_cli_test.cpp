@@ -133,19 +133,29 @@ TEST(AssignCli, RoutesFileReproducesTheLastIterationAndItsGap) {
   EXPECT_NEAR(std::stod(m[1]), lines[5].gap, 1e-3 * lines[5].gap + 1e-5);
 }
 
-TEST(AssignCli, SameRoutesOnOneAndTwoThreads) {
+// The same routes, alternatives, gaps and mean trip times on 1 and 2 threads and with each iteration
+// simulated in 3 parts.
+TEST(AssignCli, SameRoutesOnAnyThreadAndPartCount) {
   test::TempDir dir("lpsim_assign_threads");
   const test::CliResult one = test::run_lpsim(dir.path(), assign_args("one.rou.xml", 1));
-  const test::CliResult two = test::run_lpsim(dir.path(), assign_args("two.rou.xml", 2));
   ASSERT_EQ(one.exit_code, 0) << one.err;
-  ASSERT_EQ(two.exit_code, 0) << two.err;
-  EXPECT_EQ(test::read_file(dir.path() / "one.rou.xml"), test::read_file(dir.path() / "two.rou.xml"));
-  EXPECT_EQ(test::read_file(dir.path() / "one.rou.alt.xml"), test::read_file(dir.path() / "two.rou.alt.xml"));
-  const std::vector<Line> a = iteration_lines(one.out), b = iteration_lines(two.out);
-  ASSERT_EQ(a.size(), b.size());
-  for (size_t i = 0; i < a.size(); ++i) {
-    EXPECT_EQ(a[i].gap, b[i].gap);
-    EXPECT_EQ(a[i].mean_trip, b[i].mean_trip);
+  std::vector<std::string> in_parts = assign_args("parts.rou.xml", 1);
+  in_parts.insert(in_parts.end(), {"--parts", "3"});
+  for (const auto& [name, args] :
+       {std::pair{"two", assign_args("two.rou.xml", 2)}, std::pair{"parts", in_parts}}) {
+    SCOPED_TRACE(name);
+    const test::CliResult other = test::run_lpsim(dir.path(), args);
+    ASSERT_EQ(other.exit_code, 0) << other.err;
+    EXPECT_EQ(test::read_file(dir.path() / "one.rou.xml"),
+              test::read_file(dir.path() / (std::string(name) + ".rou.xml")));
+    EXPECT_EQ(test::read_file(dir.path() / "one.rou.alt.xml"),
+              test::read_file(dir.path() / (std::string(name) + ".rou.alt.xml")));
+    const std::vector<Line> a = iteration_lines(one.out), b = iteration_lines(other.out);
+    ASSERT_EQ(a.size(), b.size());
+    for (size_t i = 0; i < a.size(); ++i) {
+      EXPECT_EQ(a[i].gap, b[i].gap);
+      EXPECT_EQ(a[i].mean_trip, b[i].mean_trip);
+    }
   }
 }
 
@@ -166,16 +176,13 @@ TEST(AssignCli, RoutesASnapshotWithTheHierarchy) {
   EXPECT_EQ(run.exit_code, 2) << "run beside a snapshot: the routing option acts only while loading";
 }
 
-TEST(AssignCli, WithoutOutputOrWithPartsIsBadInput) {
+TEST(AssignCli, WithoutOutputOrOntoAnInputIsBadInput) {
   test::TempDir dir("lpsim_assign_bad");
   const test::CliResult no_output = test::run_lpsim(
       dir.path(),
       {"assign", "-n", scenario("reroute_block.net.xml"), "-r", scenario("reroute_block.rou.xml")});
   EXPECT_EQ(no_output.exit_code, 2);
   EXPECT_NE(no_output.err.find("give -o"), std::string::npos) << no_output.err;
-  std::vector<std::string> parts = assign_args("x.rou.xml", 1);
-  parts.insert(parts.end(), {"--parts", "2"});
-  EXPECT_EQ(test::run_lpsim(dir.path(), parts).exit_code, 2);
   std::vector<std::string> onto_input = assign_args(scenario("reroute_block.rou.xml"), 1);
   const test::CliResult overwrite = test::run_lpsim(dir.path(), onto_input);
   EXPECT_EQ(overwrite.exit_code, 2);
