@@ -13,6 +13,7 @@
 #include "app/simulation_options.hpp"
 #include "converters/edge_weights_reader.hpp"
 #include "converters/gap_plot_writer.hpp"
+#include "converters/route_alternatives_reader.hpp"
 #include "converters/route_file_writer.hpp"
 #include "core/error.hpp"
 
@@ -89,11 +90,24 @@ int command_assign(const std::vector<std::string>& args) {
   Assignment assignment(sc.network, std::move(sc.demand), options, spec, config.begin, config.end,
                         config.threads, options.rerouting.contraction_hierarchy);
   if (parts > 1) assignment.run_in_parts(std::move(plans), config.part_timeout);
+  if (spec.first_iteration > 0) {
+    if (!config.snapshot_file.empty())
+      throw InputError(
+          "--first-iteration reads the alternatives from the route files (-r), not from a snapshot");
+    std::unordered_map<std::string, RouteAlternatives> alternatives;
+    for (const std::string& file : config.route_files)
+      alternatives.merge(read_route_alternatives(file, sc.network.edge_index));
+    if (alternatives.empty())
+      throw InputError("--first-iteration " + std::to_string(spec.first_iteration) +
+                       ": no vehicle in the route files has a <routeDistribution> of alternatives (give the "
+                       ".rou.alt.xml of the iteration before)");
+    assignment.resume(spec.first_iteration, alternatives);
+  }
   std::printf("%9s %13s %14s %9s %9s %10s %10s\n", "iteration", "relative gap", "mean trip [s]", "finished",
               "teleports", "route CPU", "sim CPU");
   std::deque<double> means;
   std::vector<double> gaps;
-  for (int i = 0; i < spec.iterations; ++i) {
+  for (int i = spec.first_iteration; i < spec.iterations; ++i) {
     const IterationResult r = assignment.iterate();
     std::printf("%9d %13.6f %14.2f %9llu %9llu %9.2fs %9.2fs\n", r.iteration, r.gap.relative_gap(),
                 r.mean_trip_time, static_cast<unsigned long long>(r.finished),

@@ -20,6 +20,8 @@
 // travel times from files (duaIterate's iterations).
 #include <cstdint>
 #include <memory>
+#include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "core/config_spec.hpp"
@@ -73,6 +75,12 @@ class Assignment {
   /// --parts K` does: the same results as in one part. A part waits `timeout_s` for another at most.
   void run_in_parts(std::vector<PartPlan> plans, double timeout_s);
 
+  /// Goes on from iteration `first` of an assignment that left each vehicle (by id) with `alternatives` and
+  /// its route chosen among them (an .rou.alt.xml): the next iterate() first simulates the chosen routes
+  /// again to measure their times, then runs iteration `first` as the uninterrupted assignment would have.
+  /// Vehicles without alternatives there start afresh.
+  void resume(int first, const std::unordered_map<std::string, RouteAlternatives>& alternatives);
+
   /// Runs the next iteration and returns its results.
   IterationResult iterate();
   int iterations_done() const { return done_; }
@@ -107,6 +115,7 @@ class Assignment {
   std::vector<double> best_cost_;
   std::vector<RouteAlternatives> alternatives_;
   int done_ = 0;
+  bool resumed_ = false;
   std::vector<PartPlan> plans_;
   double part_timeout_ = 0;
 };

@@ -166,6 +166,7 @@ const OptionDef kOptions[] = {
   {"gap", "", 0, Kind::Number, Check::Positive, true, kAssign, "stop once an iteration's relative gap is at most this (default: off)", [](ConfigSpec& c, Value&& v) { c.assign.gap = v.number; }},
   {"max-convergence-deviation", "", 0, Kind::Number, Check::Positive, true, kAssign, "stop once the relative standard deviation of the mean trip time over the last convergence-iterations iterations is below this (duaIterate.py's measure; default: off)", [](ConfigSpec& c, Value&& v) { c.assign.max_convergence_deviation = v.number; }},
   {"weight-files", "weights", 'w', Kind::Path, Check::None, true, kAssign, "an edgeData output (duaIterate's dump): print the relative gap of the loaded routes on its travel times instead of iterating", [](ConfigSpec& c, Value&& v) { c.assign.weight_files = std::move(v.text); }},
+  {"first-iteration", "first-step", 'f', Kind::Integer, Check::NonNegative, true, kAssign, "go on as iteration N from the alternatives the route files hold (the .rou.alt.xml of iteration N-1)", [](ConfigSpec& c, Value&& v) { c.assign.first_iteration = static_cast<int>(v.integer); }},
   {"plot", "", 0, Kind::Path, Check::None, true, kAssign, "a PNG plot of the relative gap per iteration", [](ConfigSpec& c, Value&& v) { c.assign.plot = std::move(v.text); }},
   {"convergence-iterations", "", 0, Kind::Integer, Check::AtLeastOne, true, kAssign, "iterations max-convergence-deviation looks at (default 10)", [](ConfigSpec& c, Value&& v) { c.assign.convergence_iterations = static_cast<int>(v.integer); }},
 };

@@ -167,8 +167,9 @@ void write_route_file(const std::string& path, const Network& net, const Demand&
       out.text(">\n");
       for (const RouteAlternative& r : alts->routes) {
         out.text("            <route");
-        out.attr_fixed("cost", r.cost);
-        out.attr_real("probability", r.probability, 8);
+        // Every digit: an assignment resumed from this file goes on as it would have (duarouter rounds).
+        out.attr("cost", shortest(r.cost));
+        out.attr("probability", shortest(r.probability));
         write_edges(out, net, r.edges.data(), r.edges.size());
         out.text("/>\n");
       }

@@ -63,7 +63,8 @@ struct AssignSpec {
   int convergence_iterations = 10;
   // Not iterating: the relative gap of the loaded routes on these travel times (an edgeData output).
   std::string weight_files;
-  std::string plot;  // PNG of the gap per iteration
+  std::string plot;         // PNG of the gap per iteration
+  int first_iteration = 0;  // > 0: go on from the alternatives in the route files (an .rou.alt.xml)
 };
 
 struct ConfigSpec {

@@ -3,6 +3,7 @@
 // short way's travel times and send most the long way round.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <regex>
 #include <sstream>
@@ -157,6 +158,39 @@ TEST(AssignCli, SameRoutesOnAnyThreadAndPartCount) {
       EXPECT_EQ(a[i].mean_trip, b[i].mean_trip);
     }
   }
+}
+
+// Three iterations, then three more from the alternatives the first three wrote: the same iterations and the
+// same files as six in one go.
+TEST(AssignCli, ResumedFromTheAlternativesAsIfUninterrupted) {
+  test::TempDir dir("lpsim_assign_resume");
+  const test::CliResult full = test::run_lpsim(dir.path(), assign_args("full.rou.xml", 1));
+  ASSERT_EQ(full.exit_code, 0) << full.err;
+  std::vector<std::string> half = assign_args("half.rou.xml", 1);
+  half[std::find(half.begin(), half.end(), "--iterations") - half.begin() + 1] = "3";
+  ASSERT_EQ(test::run_lpsim(dir.path(), half).exit_code, 0);
+  std::vector<std::string> resumed = assign_args("resumed.rou.xml", 1);
+  resumed[std::find(resumed.begin(), resumed.end(), "-r") - resumed.begin() + 1] = "half.rou.alt.xml";
+  resumed.insert(resumed.end(), {"--first-iteration", "3"});
+  const test::CliResult r = test::run_lpsim(dir.path(), resumed);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::vector<Line> all = iteration_lines(full.out), rest = iteration_lines(r.out);
+  ASSERT_EQ(all.size(), 6u);
+  ASSERT_EQ(rest.size(), 3u) << r.out;
+  for (size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(rest[i].iteration, all[3 + i].iteration);
+    EXPECT_EQ(rest[i].gap, all[3 + i].gap);
+    EXPECT_EQ(rest[i].mean_trip, all[3 + i].mean_trip);
+  }
+  EXPECT_EQ(test::read_file(dir.path() / "full.rou.xml"), test::read_file(dir.path() / "resumed.rou.xml"));
+  EXPECT_EQ(test::read_file(dir.path() / "full.rou.alt.xml"),
+            test::read_file(dir.path() / "resumed.rou.alt.xml"));
+  // Routes without alternatives cannot be resumed from.
+  std::vector<std::string> no_alternatives = assign_args("x.rou.xml", 1);
+  no_alternatives.insert(no_alternatives.end(), {"--first-iteration", "3"});
+  const test::CliResult bad = test::run_lpsim(dir.path(), no_alternatives);
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("routeDistribution"), std::string::npos) << bad.err;
 }
 
 // A snapshot's routing options were applied by `lpsim convert`; assign routes anew and takes its own.
