@@ -95,10 +95,14 @@ Assignment::Assignment(const Network& net, Demand demand, SimulationOptions opti
       interval_router_(net, options.rerouting.minor_penalty) {
   if (hierarchy) hierarchy_ = std::make_unique<CchRouter>(net);
   options_.lane_counters = true;
-  gawron_.beta = spec.gawron_beta;
-  gawron_.a = spec.gawron_a;
-  gawron_.max_alternatives = static_cast<uint32_t>(std::max(1, spec.max_alternatives));
-  gawron_.keep_all_routes = spec.keep_all_routes;
+  choice_.method = spec.logit ? RouteChoiceOptions::Method::Logit : RouteChoiceOptions::Method::Gawron;
+  choice_.gawron_beta = spec.gawron_beta;
+  choice_.gawron_a = spec.gawron_a;
+  choice_.logit_beta = spec.logit_beta;
+  choice_.logit_gamma = spec.logit_gamma;
+  choice_.logit_theta = spec.logit_theta;
+  choice_.max_alternatives = static_cast<uint32_t>(std::max(1, spec.max_alternatives));
+  choice_.keep_all_routes = spec.keep_all_routes;
   requests_.resize(base_.size());
   for (uint32_t v = 0; v < base_.size(); ++v)
     if (end < 0 || base_.depart[v] <= end) requests_[v] = trip_request(base_, net, v);
@@ -144,7 +148,9 @@ void Assignment::choose_routes() {
     const double draw =
         rng_uniform_double(options_.seed ^ kDrawRouteChoice, draw_stream(base_.vehicle_id[v]), iteration);
     RouteAlternatives& alts = alternatives_[v];
-    const uint32_t k = choose_route(alts, best_[v], cost_of, gawron_, draw);
+    // C-logit's commonalities weigh each edge by its travel time at the departure, as duarouter's.
+    auto edge_time = [&](uint32_t e) { return router_.timed_edge_cost(e, depart, times_); };
+    const uint32_t k = choose_route(alts, best_[v], cost_of, edge_time, choice_, draw);
     chosen[v] = alts.routes[k].edges;
   });
   assigned_ = base_;

@@ -103,7 +103,7 @@ class Assignment {
   Demand assigned_;
   SimulationOptions options_;
   AssignSpec spec_;
-  GawronOptions gawron_;
+  RouteChoiceOptions choice_;
   double begin_, end_;
   int threads_;
   Router router_;

@@ -56,6 +56,8 @@ struct AssignSpec {
   int iterations = 50;
   double aggregation = 900;  // s
   double gawron_beta = 0.9, gawron_a = 0.5;
+  bool logit = false;  // --route-choice-method logit instead of Gawron's
+  double logit_beta = 0.15, logit_gamma = 1.0, logit_theta = -1;
   int max_alternatives = 5;
   bool keep_all_routes = false;
   double gap = 0;                        // stop at this relative gap; 0: off

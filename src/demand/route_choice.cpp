@@ -37,11 +37,63 @@ void update_probabilities(std::vector<RouteAlternative>& routes, double a) {
     }
 }
 
+// duarouter's LogitCalculator: theta and beta from the costs (in hours) where not given.
+double logit_theta(const std::vector<RouteAlternative>& routes) {
+  double sum = 0, min = std::numeric_limits<double>::max();
+  for (const RouteAlternative& r : routes) {
+    sum += r.cost / 3600.0;
+    min = std::min(min, r.cost / 3600.0);
+  }
+  const double mean = sum / double(routes.size());
+  double diff = 0;
+  for (const RouteAlternative& r : routes) diff += (r.cost / 3600.0 - mean) * (r.cost / 3600.0 - mean);
+  const double cv = std::sqrt(diff / double(routes.size())) / mean;
+  return M_PI / (std::sqrt(6.0) * cv * (min + 1.1)) / 3600.0;
+}
+
+double logit_beta(const std::vector<RouteAlternative>& routes) {
+  double min = std::numeric_limits<double>::max();
+  for (const RouteAlternative& r : routes) min = std::min(min, r.cost / 3600.0);
+  return min;
+}
+
+void update_logit_probabilities(std::vector<RouteAlternative>& routes, const RouteChoiceOptions& o,
+                                const std::function<double(uint32_t)>& edge_time) {
+  const double theta = o.logit_theta >= 0 ? o.logit_theta : logit_theta(routes);
+  const double beta = o.logit_beta >= 0 ? o.logit_beta : logit_beta(routes);
+  std::vector<double> commonality(routes.size(), 0.0);
+  if (beta > 0) {
+    for (size_t i = 0; i < routes.size(); ++i) {
+      const std::vector<uint32_t>& r = routes[i].edges;
+      double length_r = 0;
+      for (uint32_t e : r) length_r += edge_time(e);
+      double overlap_sum = 0;
+      for (const RouteAlternative& s : routes) {
+        double overlap = 0, length_s = 0;
+        for (uint32_t e : s.edges) {
+          length_s += edge_time(e);
+          if (std::find(r.begin(), r.end(), e) != r.end()) overlap += edge_time(e);
+        }
+        overlap_sum += std::pow(overlap / std::sqrt(length_r * length_s), o.logit_gamma);
+      }
+      commonality[i] = beta * std::log(overlap_sum);
+    }
+  }
+  for (size_t i = 0; i < routes.size(); ++i) {
+    double weighted = 0;
+    for (size_t j = 0; j < routes.size(); ++j)
+      weighted += std::exp(theta * (routes[i].cost - routes[j].cost + commonality[i] - commonality[j]));
+    routes[i].probability = 1.0 / weighted;
+  }
+}
+
 }  // namespace
 
 uint32_t choose_route(RouteAlternatives& alts, std::vector<uint32_t> best,
                       const std::function<double(const std::vector<uint32_t>&)>& cost_of,
-                      const GawronOptions& options, double draw) {
+                      const std::function<double(uint32_t)>& edge_time, const RouteChoiceOptions& options,
+                      double draw) {
+  const bool gawron = options.method == RouteChoiceOptions::Method::Gawron;
   auto& routes = alts.routes;
   if (routes.empty()) {
     const double cost = cost_of(best);
@@ -65,9 +117,13 @@ uint32_t choose_route(RouteAlternatives& alts, std::vector<uint32_t> best,
         r.probability *= (n - 1) / n;
       }
     }
-    r.cost = i == driven ? cost : options.beta * cost + (1.0 - options.beta) * r.cost;
+    r.cost =
+        !gawron || i == driven ? cost : options.gawron_beta * cost + (1.0 - options.gawron_beta) * r.cost;
   }
-  update_probabilities(routes, options.a);
+  if (gawron)
+    update_probabilities(routes, options.gawron_a);
+  else
+    update_logit_probabilities(routes, options, edge_time);
   if (!options.keep_all_routes)
     std::erase_if(routes, [](const RouteAlternative& r) { return r.probability == 0; });
   if (routes.size() > options.max_alternatives) {

@@ -426,6 +426,10 @@ std::vector<std::vector<uint32_t>> Router::route_timed(const std::vector<RouteRe
   return out;
 }
 
+double Router::timed_edge_cost(uint32_t e, double t, const IntervalTravelTimes& times) const {
+  return interval_time(times, edge_cost_, e, t);
+}
+
 double Router::timed_cost(const std::vector<uint32_t>& path, double depart,
                           const IntervalTravelTimes& times) const {
   if (path.empty()) return std::numeric_limits<double>::infinity();

@@ -88,6 +88,8 @@ class Router {
                                                  const std::vector<double>& depart,
                                                  const IntervalTravelTimes& times, int threads,
                                                  std::vector<double>* costs = nullptr) const;
+  /// Edge e's travel time when entered at time t in route_timed's measure.
+  double timed_edge_cost(uint32_t e, double t, const IntervalTravelTimes& times) const;
   /// Travel time of `path` departing at `depart` in route_timed's measure (infinite: not a path).
   double timed_cost(const std::vector<uint32_t>& path, double depart, const IntervalTravelTimes& times) const;
 

@@ -11,10 +11,12 @@ namespace {
 
 using Edges = std::vector<uint32_t>;
 
+double unit_time(uint32_t) { return 1.0; }
+
 TEST(RouteChoice, FirstRouteIsTheOnlyAlternative) {
   RouteAlternatives alts;
   const uint32_t k = choose_route(
-      alts, {1, 2, 3}, [](const Edges& e) { return 10.0 * e.size(); }, {}, 0.7);
+      alts, {1, 2, 3}, [](const Edges& e) { return 10.0 * e.size(); }, unit_time, {}, 0.7);
   EXPECT_EQ(k, 0u);
   ASSERT_EQ(alts.routes.size(), 1u);
   EXPECT_EQ(alts.routes[0].edges, (Edges{1, 2, 3}));
@@ -29,26 +31,26 @@ TEST(RouteChoice, NewFasterRouteGetsGawronsProbability) {
   auto cost_of = [&](const Edges& e) { return cost.at(e); };
   RouteAlternatives alts;
   alts.routes.push_back({a, 100.0, 1.0});
-  GawronOptions g;  // beta 0.9, a 0.5
+  RouteChoiceOptions g;  // beta 0.9, a 0.5
   // By hand: both at 1/2; delta = (80 - 120) / 200 = -0.2; g = exp(0.5 * -0.2 / 0.96);
   // p_A = 0.5 * 1 * g / (0.5 g + 0.5).
   const double gx = std::exp(0.5 * -0.2 / 0.96);
   const double pa = 0.5 * gx / (0.5 * gx + 0.5);
   RouteAlternatives first = alts;
-  EXPECT_EQ(choose_route(first, b, cost_of, g, pa - 1e-9), 0u);
+  EXPECT_EQ(choose_route(first, b, cost_of, unit_time, g, pa - 1e-9), 0u);
   ASSERT_EQ(first.routes.size(), 2u);
   EXPECT_DOUBLE_EQ(first.routes[0].cost, 120.0);  // driven: its new cost whole
   EXPECT_DOUBLE_EQ(first.routes[1].cost, 80.0);
   EXPECT_NEAR(first.routes[0].probability, pa, 1e-15);
   EXPECT_NEAR(first.routes[1].probability, 1 - pa, 1e-15);
   RouteAlternatives second = alts;
-  EXPECT_EQ(choose_route(second, b, cost_of, g, pa + 1e-9), 1u);
+  EXPECT_EQ(choose_route(second, b, cost_of, unit_time, g, pa + 1e-9), 1u);
   EXPECT_EQ(second.last, 1u);
 
   // Next iteration B was driven and the times are the other way round; A (not driven) is smoothed:
   // 0.9 * 70 + 0.1 * 120 = 75.
   cost = {{a, 70.0}, {b, 90.0}};
-  choose_route(second, b, cost_of, g, 0.0);
+  choose_route(second, b, cost_of, unit_time, g, 0.0);
   ASSERT_EQ(second.routes.size(), 2u);
   EXPECT_DOUBLE_EQ(second.routes[0].cost, 75.0);
   EXPECT_DOUBLE_EQ(second.routes[1].cost, 90.0);
@@ -59,13 +61,13 @@ TEST(RouteChoice, NewFasterRouteGetsGawronsProbability) {
 }
 
 TEST(RouteChoice, AtMostMaxAlternativesTheMostProbableKept) {
-  GawronOptions g;
+  RouteChoiceOptions g;
   g.max_alternatives = 3;
   RouteAlternatives alts;
   for (uint32_t k = 0; k < 3; ++k) alts.routes.push_back({{k}, 100.0, 1.0 / 3});
   // The new route is the cheapest by far: it stays, and the two dearest old ones... one of them goes.
   auto cost_of = [](const Edges& e) { return e[0] == 9 ? 10.0 : 100.0 + e[0]; };
-  choose_route(alts, {9}, cost_of, g, 0.5);
+  choose_route(alts, {9}, cost_of, unit_time, g, 0.5);
   ASSERT_EQ(alts.routes.size(), 3u);
   double sum = 0;
   for (const auto& r : alts.routes) sum += r.probability;
@@ -79,11 +81,49 @@ TEST(RouteChoice, KnownBestRouteAddsNothing) {
   alts.routes.push_back({{1}, 50.0, 0.6});
   alts.routes.push_back({{2}, 60.0, 0.4});
   choose_route(
-      alts, {2}, [](const Edges& e) { return e[0] == 1 ? 50.0 : 40.0; }, {}, 0.99);
+      alts, {2}, [](const Edges& e) { return e[0] == 1 ? 50.0 : 40.0; }, unit_time, {}, 0.99);
   ASSERT_EQ(alts.routes.size(), 2u);
   EXPECT_NEAR(alts.routes[0].probability + alts.routes[1].probability, 1.0, 1e-12);
   EXPECT_GT(alts.routes[1].probability, 0.4);
   EXPECT_EQ(alts.last, 1u);
+}
+
+TEST(RouteChoice, LogitOnCostsAlone) {
+  RouteChoiceOptions logit;
+  logit.method = RouteChoiceOptions::Method::Logit;
+  logit.logit_beta = 0;  // no commonality
+  logit.logit_theta = 0.05;
+  RouteAlternatives alts;
+  alts.routes.push_back({{1}, 999.0, 0.5});
+  alts.routes.push_back({{2}, 999.0, 0.5});
+  choose_route(
+      alts, {1}, [](const Edges& e) { return e[0] == 1 ? 100.0 : 120.0; }, unit_time, logit, 0.0);
+  // The new costs whole (no smoothing); p = 1 / sum exp(theta (c_i - c_j)): 1 / (1 + e^-1) for the cheaper.
+  EXPECT_DOUBLE_EQ(alts.routes[0].cost, 100.0);
+  EXPECT_DOUBLE_EQ(alts.routes[1].cost, 120.0);
+  EXPECT_NEAR(alts.routes[0].probability, 1 / (1 + std::exp(-1.0)), 1e-12);
+  EXPECT_NEAR(alts.routes[1].probability, 1 / (1 + std::exp(1.0)), 1e-12);
+}
+
+TEST(RouteChoice, CLogitFavoursTheRouteSharingLeast) {
+  RouteChoiceOptions logit;
+  logit.method = RouteChoiceOptions::Method::Logit;
+  logit.logit_beta = 1;
+  logit.logit_gamma = 1;
+  logit.logit_theta = 0.05;
+  // A and B share edge 1, C shares nothing; all cost 100 s. Each edge takes 1 s: A's commonality is
+  // log(2/2 + 1/2 + 0) = log 1.5, B's too, C's log 1 = 0.
+  RouteAlternatives alts;
+  alts.routes.push_back({{1, 2}, 100.0, 1.0 / 3});
+  alts.routes.push_back({{1, 3}, 100.0, 1.0 / 3});
+  alts.routes.push_back({{4}, 100.0, 1.0 / 3});
+  choose_route(
+      alts, {1, 2}, [](const Edges&) { return 100.0; }, unit_time, logit, 0.0);
+  const double cf = std::log(1.5);
+  EXPECT_NEAR(alts.routes[0].probability, 1 / (2 + std::exp(0.05 * cf)), 1e-12);
+  EXPECT_NEAR(alts.routes[1].probability, 1 / (2 + std::exp(0.05 * cf)), 1e-12);
+  EXPECT_NEAR(alts.routes[2].probability, 1 / (2 * std::exp(-0.05 * cf) + 1), 1e-12);
+  EXPECT_GT(alts.routes[2].probability, alts.routes[0].probability);
 }
 
 }  // namespace
