@@ -5,6 +5,7 @@
 // exactly only up to 2^53 ms (9.007e12 s); beyond that a step no longer advances the clock as the run's end
 // test sees it (`-b 1e17` never ended) and a depart of 1e17 s overflowed the milliseconds outright.
 #include <cmath>
+#include <cstdint>
 
 namespace lpsim {
 
@@ -15,5 +16,8 @@ inline constexpr double kMaxTimeSeconds = 1e12;
 inline bool time_in_range(double seconds) {
   return std::isfinite(seconds) && std::fabs(seconds) <= kMaxTimeSeconds;
 }
+
+/// A time in range as the engine's milliseconds (a departure, a step's end), rounded to the nearest.
+inline int64_t seconds_to_ms(double seconds) { return std::llround(seconds * 1000.0); }
 
 }  // namespace lpsim

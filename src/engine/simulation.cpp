@@ -8,6 +8,7 @@
 
 #include "backends/cpu/cpu_stepper.hpp"
 #include "backends/cuda/cuda_stepper.hpp"
+#include "core/time_range.hpp"
 #include "engine/part_state.hpp"
 #include "kernels/idm.hpp"
 #include "kernels/insert_vehicle.hpp"
@@ -52,8 +53,6 @@ TeleportCause teleport_cause(uint8_t limit_reason) {
   return TeleportCause::Jam;
 }
 
-int64_t depart_ms(double depart) { return std::llround(depart * 1000.0); }
-
 }  // namespace
 
 Simulation::Simulation(const Network& net, Demand demand, const SimulationOptions& options)
@@ -79,7 +78,7 @@ Simulation::Simulation(const Network& net, Demand demand, const SimulationOption
     min_decel_ = std::min(min_decel_, t.decel[k]);
   }
   // Vehicles that depart before the begin time are not simulated (as SUMO, which skips them).
-  while (next_departure_ < num_loaded_ && depart_ms(d.depart[next_departure_]) < time_ms_) {
+  while (next_departure_ < num_loaded_ && seconds_to_ms(d.depart[next_departure_]) < time_ms_) {
     ledger_.set_status(next_departure_, kArrived);
     ++counts_.removed;
     ++next_departure_;
@@ -358,11 +357,12 @@ void Simulation::handle_vehicle_ends(std::vector<VehicleEnd>& ends) {
 void Simulation::enqueue_due(int64_t until_ms) {
   const Demand& d = trips_.demand();
   for (;;) {
-    const bool loaded_due = next_departure_ < num_loaded_ && depart_ms(d.depart[next_departure_]) <= until_ms;
+    const bool loaded_due =
+        next_departure_ < num_loaded_ && seconds_to_ms(d.depart[next_departure_]) <= until_ms;
     const bool added_due = !added_due_.empty() && added_due_.back().first <= until_ms;
     if (!loaded_due && !added_due) break;
     // An added trip has a higher index than every loaded one: it goes first only when it departs earlier.
-    if (added_due && (!loaded_due || added_due_.back().first < depart_ms(d.depart[next_departure_]))) {
+    if (added_due && (!loaded_due || added_due_.back().first < seconds_to_ms(d.depart[next_departure_]))) {
       enqueue(added_due_.back().second);
       added_due_.pop_back();
     } else {
@@ -451,7 +451,7 @@ void Simulation::drop_late_departures() {
   const Demand& d = trips_.demand();
   const int64_t max_delay_ms = std::llround(opt_.max_depart_delay * 1000.0);
   queues_.drop_departures([&](uint32_t v) {
-    if (time_ms_ - depart_ms(d.depart[v]) <= max_delay_ms) return false;
+    if (time_ms_ - seconds_to_ms(d.depart[v]) <= max_delay_ms) return false;
     ledger_.set_status(v, kArrived);
     ++counts_.discarded;
     return true;
@@ -504,7 +504,7 @@ uint32_t Simulation::add_trip(const NewTrip& trip) {
   ledger_.resize(trips_.size());
   ++counts_.loaded;
   // Soonest last; among trips due at once, the lowest index last.
-  const std::pair<int64_t, uint32_t> due{depart_ms(trip.depart), v};
+  const std::pair<int64_t, uint32_t> due{seconds_to_ms(trip.depart), v};
   added_due_.insert(std::upper_bound(added_due_.begin(), added_due_.end(), due, std::greater<>()), due);
   return v;
 }
@@ -743,7 +743,7 @@ std::vector<TripRecord> Simulation::own_unfinished_trips(double end, bool undepa
         r.stop_time = static_cast<double>(c->stop_steps) * step_length();
       }
     } else if (st == kPending && undeparted && ledger_.departure(v).lane < 0 &&
-               depart_ms(d.depart[v]) <= std::llround(end * 1000.0) && d.route_length[v] > 0) {
+               seconds_to_ms(d.depart[v]) <= seconds_to_ms(end) && d.route_length[v] > 0) {
       // In a partitioned run the part that owns its first edge reports it (the others never queue it).
       const uint32_t edge = d.route_edges[d.route_begin[v]];
       if (parts_ && parts_->plan.edge_owner[edge] != parts_->plan.part) continue;

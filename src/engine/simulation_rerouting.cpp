@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/time_range.hpp"
 #include "demand/trip_routes.hpp"
 #include "engine/part_state.hpp"
 #include "engine/rerouting.hpp"
@@ -20,11 +21,7 @@
 #include "transport/byte_buffer.hpp"
 
 namespace lpsim {
-namespace {
-
-int64_t depart_ms(double depart) { return std::llround(depart * 1000.0); }
-
-}  // namespace
+namespace {}  // namespace
 
 void Simulation::init_rerouting() {
   const Demand& d = trips_.demand();
@@ -85,7 +82,7 @@ void Simulation::reroute_vehicles(int64_t end_ms) {
 
   // Due to depart in this step: routed when due (a trip's loaded route is the one free-flow times give,
   // so before the first sample only equipped vehicles re-route).
-  while (r.next_due < num_loaded_ && depart_ms(d.depart[r.next_due]) <= end_ms) {
+  while (r.next_due < num_loaded_ && seconds_to_ms(d.depart[r.next_due]) <= end_ms) {
     const uint32_t v = r.next_due++;
     if (d.rerouting[v] == 0 || d.route_length[v] == 0) continue;
     if (!holds_queue_of(d.route_edges[d.route_begin[v]])) continue;
