@@ -10,8 +10,10 @@
 
 #include "app/partitioned_parts.hpp"
 #include "converters/mean_data_writer.hpp"
+#include "core/error.hpp"
 #include "demand/demand_draws.hpp"
 #include "demand/trip_routes.hpp"
+#include "demand/trip_table.hpp"
 #include "kernels/rng.hpp"
 
 namespace lpsim {
@@ -230,6 +232,14 @@ void Assignment::resume(int first, const std::unordered_map<std::string, RouteAl
   for (uint32_t v = 0; v < base_.size(); ++v) {
     const auto it = alternatives.find(base_.vehicle_id[v]);
     if (it == alternatives.end() || it->second.routes.empty()) continue;
+    // Each must be a route this vehicle can drive from its origin to its destination.
+    const RouteRequest& q = requests_[v];
+    for (const RouteAlternative& r : it->second.routes)
+      if (q.origins.empty() || r.edges.front() != q.origins[0] || r.edges.back() != q.destinations[0] ||
+          !TripTable::connected(net_, r.edges, q.vclass))
+        throw InputError("vehicle '" + base_.vehicle_id[v] +
+                         "': a route among its alternatives does not lead from its origin to its destination "
+                         "on edges it may use");
     alternatives_[v] = it->second;
     chosen[v] = it->second.routes[it->second.last].edges;
   }
