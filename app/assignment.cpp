@@ -3,14 +3,13 @@
 #include <time.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <limits>
-#include <thread>
 
 #include "app/partitioned_parts.hpp"
 #include "converters/mean_data_writer.hpp"
 #include "core/error.hpp"
+#include "core/for_each_index.hpp"
 #include "demand/demand_draws.hpp"
 #include "demand/trip_routes.hpp"
 #include "demand/trip_table.hpp"
@@ -27,21 +26,6 @@ double cpu_seconds() {
   timespec t{};
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
   return double(t.tv_sec) + double(t.tv_nsec) * 1e-9;
-}
-
-// Runs job(k) for k in [0, n) on `threads` threads (0: all cores).
-template <class Job>
-void parallel_for(uint32_t n, int threads, Job&& job) {
-  std::atomic<uint32_t> next{0};
-  auto worker = [&] {
-    for (uint32_t k; (k = next.fetch_add(64)) < n;)
-      for (uint32_t i = k; i < std::min(n, k + 64); ++i) job(i);
-  };
-  unsigned count = threads > 0 ? unsigned(threads) : std::max(1u, std::thread::hardware_concurrency());
-  if (count <= 1 || n < 128) return worker();
-  std::vector<std::thread> pool;
-  for (unsigned t = 0; t < count; ++t) pool.emplace_back(worker);
-  for (auto& t : pool) t.join();
 }
 
 // The trips as routed vehicles: a trip's routing at insertion (SUMO's rerouting device for trips) is the
@@ -133,28 +117,34 @@ void Assignment::route_all() {
     std::vector<std::vector<uint32_t>> paths = hierarchy_->route_all(interval_router_, requests, threads_);
     for (size_t i = 0; i < paths.size(); ++i) best_[by_interval[k][i]] = std::move(paths[i]);
   }
-  parallel_for(static_cast<uint32_t>(best_.size()), threads_, [&](uint32_t v) {
-    if (!best_[v].empty()) best_cost_[v] = router_.timed_cost(best_[v], base_.depart[v], times_);
-  });
+  for_each_index(
+      best_.size(), threads_, [] { return 0; },
+      [&](int, size_t v) {
+        if (!best_[v].empty()) best_cost_[v] = router_.timed_cost(best_[v], base_.depart[v], times_);
+      },
+      64);
 }
 
 void Assignment::choose_routes() {
   std::vector<std::vector<uint32_t>> chosen(base_.size());
   const uint64_t iteration = static_cast<uint64_t>(done_);
-  parallel_for(base_.size(), threads_, [&](uint32_t v) {
-    if (best_[v].empty()) return;  // no route: the loaded one stays
-    const double depart = base_.depart[v];
-    auto cost_of = [&](const std::vector<uint32_t>& edges) {
-      return router_.timed_cost(edges, depart, times_);
-    };
-    const double draw =
-        rng_uniform_double(options_.seed ^ kDrawRouteChoice, draw_stream(base_.vehicle_id[v]), iteration);
-    RouteAlternatives& alts = alternatives_[v];
-    // C-logit's commonalities weigh each edge by its travel time at the departure, as duarouter's.
-    auto edge_time = [&](uint32_t e) { return router_.timed_edge_cost(e, depart, times_); };
-    const uint32_t k = choose_route(alts, best_[v], cost_of, edge_time, choice_, draw);
-    chosen[v] = alts.routes[k].edges;
-  });
+  for_each_index(
+      base_.size(), threads_, [] { return 0; },
+      [&](int, size_t v) {
+        if (best_[v].empty()) return;  // no route: the loaded one stays
+        const double depart = base_.depart[v];
+        auto cost_of = [&](const std::vector<uint32_t>& edges) {
+          return router_.timed_cost(edges, depart, times_);
+        };
+        const double draw =
+            rng_uniform_double(options_.seed ^ kDrawRouteChoice, draw_stream(base_.vehicle_id[v]), iteration);
+        RouteAlternatives& alts = alternatives_[v];
+        // C-logit's commonalities weigh each edge by its travel time at the departure, as duarouter's.
+        auto edge_time = [&](uint32_t e) { return router_.timed_edge_cost(e, depart, times_); };
+        const uint32_t k = choose_route(alts, best_[v], cost_of, edge_time, choice_, draw);
+        chosen[v] = alts.routes[k].edges;
+      },
+      64);
   assigned_ = base_;
   replace_routes(assigned_, net_, chosen);
 }
@@ -173,16 +163,7 @@ std::vector<TripRecord> Assignment::simulate(uint64_t* teleports) {
     options = others->part0_options(options_);
   }
   std::vector<TripRecord> trips;
-  try {
-    trips = simulate_part0(options, teleports);
-  } catch (const std::exception&) {
-    if (others) others->finish(true);
-    throw;
-  }
-  if (others) {
-    const std::string cause = others->finish(false);
-    if (!cause.empty()) throw std::runtime_error(cause);
-  }
+  run_part0(others.get(), [&] { trips = simulate_part0(options, teleports); });
   return trips;
 }
 

@@ -8,7 +8,8 @@
 #include <map>
 #include <stdexcept>
 #include <string>
-#include <thread>
+
+#include "core/for_each_index.hpp"
 
 namespace lpsim {
 
@@ -302,21 +303,9 @@ std::vector<std::vector<uint32_t>> CchRouter::route_all(const Router& dijkstra,
       from = to;
     }
   };
-  const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
-  const size_t workers = std::min<size_t>(
-      mine.size(), threads > 0 ? static_cast<size_t>(threads) : static_cast<size_t>(hardware));
-  if (workers <= 1) {
-    Workspace ws(*this);
-    for (const size_t i : mine) answer(i, ws);
-  } else {
-    std::vector<std::thread> pool;
-    for (size_t w = 0; w < workers; ++w)
-      pool.emplace_back([&, w] {
-        Workspace ws(*this);
-        for (size_t k = w; k < mine.size(); k += workers) answer(mine[k], ws);
-      });
-    for (std::thread& t : pool) t.join();
-  }
+  for_each_index(
+      mine.size(), threads, [&] { return Workspace(*this); },
+      [&](Workspace& ws, size_t k) { answer(mine[k], ws); });
   if (!others.empty()) {
     std::vector<std::vector<uint32_t>> paths = dijkstra.route_all(others, threads);
     for (size_t k = 0; k < others.size(); ++k) out[others_at[k]] = std::move(paths[k]);

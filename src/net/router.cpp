@@ -1,14 +1,12 @@
 #include "net/router.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <functional>
 #include <limits>
 #include <stdexcept>
 #include <string>
-#include <thread>
 
+#include "core/for_each_index.hpp"
 #include "kernels/rng.hpp"
 
 namespace lpsim {
@@ -268,23 +266,6 @@ std::vector<uint32_t> route_one_timed(Search& search, const RouteRequest& r, dou
   return path;
 }
 
-// Runs job(worker's search, k) for k in [0, n) on `threads` threads (0: all), each with its own search.
-template <class Job>
-void for_each_parallel(size_t n, int threads, const std::function<Search()>& make_search, Job&& job) {
-  std::atomic<size_t> next{0};
-  auto worker = [&]() {
-    Search search = make_search();
-    for (size_t k; (k = next.fetch_add(1, std::memory_order_relaxed)) < n;) job(search, k);
-  };
-  size_t count =
-      threads > 0 ? static_cast<size_t>(threads) : std::max(1u, std::thread::hardware_concurrency());
-  count = std::min(count, std::max<size_t>(1, n));
-  if (count == 1) return worker();
-  std::vector<std::thread> pool;
-  for (size_t t = 0; t < count; ++t) pool.emplace_back(worker);
-  for (auto& t : pool) t.join();
-}
-
 // SUMO's MSRoutingEngine::getEffort: length over the averaged speed (at least NUMERICAL_EPS), at least the
 // free-flow time (SUMO's minimum travel time, here at the speed limit).
 double congested_time(double length, double limit, double speed) {
@@ -416,7 +397,7 @@ std::vector<std::vector<uint32_t>> Router::route_timed(const std::vector<RouteRe
     throw std::invalid_argument("Router::route_timed: travel times not sized to the network's edges");
   std::vector<std::vector<uint32_t>> out(requests.size());
   std::vector<double> cost(requests.size());
-  for_each_parallel(
+  for_each_index(
       requests.size(), threads, [&] { return Search(net_, edge_cost_, step_cost_, crossing_cost_, random_); },
       [&](Search& search, size_t k) {
         search.set_timed(&times, depart[k]);
@@ -502,7 +483,7 @@ std::vector<std::vector<uint32_t>> Router::route_all(const std::vector<RouteRequ
   for (uint32_t r : singles) items.push_back({0, 0, r});
 
   std::vector<std::vector<uint32_t>> out(requests.size());
-  for_each_parallel(
+  for_each_index(
       items.size(), threads, [&] { return Search(net_, edge_cost_, step_cost_, crossing_cost_, random_); },
       [&](Search& search, size_t k) {
         const Item& it = items[k];
