@@ -4,6 +4,7 @@
 // demand) serving part 0's requests over an in-process transport. Part 0 is the Run's own Simulation.
 #include <exception>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
@@ -51,5 +52,22 @@ class InProcessParts {
   std::vector<std::string> errors_;
   bool finished_ = false;
 };
+
+/// Runs part0() (part 0's whole run) while `others` (null: none) serve it. An error in part 0 releases the
+/// others at once and goes on (it names another part's failure when that is what stopped part 0); else the
+/// others' first error, once they have ended, is thrown as std::runtime_error.
+template <class Part0>
+void run_part0(InProcessParts* others, Part0&& part0) {
+  try {
+    part0();
+  } catch (const std::exception&) {
+    if (others) others->finish(true);
+    throw;
+  }
+  if (others) {
+    const std::string cause = others->finish(false);
+    if (!cause.empty()) throw std::runtime_error(cause);
+  }
+}
 
 }  // namespace lpsim

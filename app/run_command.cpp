@@ -132,7 +132,7 @@ int command_run(const std::vector<std::string>& args) {
   ProgressLog progress(stderr, isatty(fileno(stderr)) != 0, config.no_step_log, config.progress_interval,
                        config.end);
   int signal = 0;
-  try {
+  run_part0(others.get(), [&] {
     Run run(std::move(sc), config, options);
     auto signalled = [&] {
       const int own = interrupt->received();
@@ -147,15 +147,7 @@ int command_run(const std::vector<std::string>& args) {
     progress.end_line();
     signal = signalled();
     report_run_end(run, wall, load_seconds, signal);
-  } catch (const std::exception&) {
-    // Part 0's error names another part's failure when that is what stopped it (the transport's error).
-    if (others) others->finish(true);
-    throw;
-  }
-  if (others) {
-    const std::string cause = others->finish(false);
-    if (!cause.empty()) throw std::runtime_error(cause);
-  }
+  });
   return signal != 0 ? 128 + signal : 0;
 }
 
