@@ -14,6 +14,7 @@
 #include "lpsim_cli.hpp"
 #include "net/network_builder.hpp"
 #include "net/router.hpp"
+#include "temp_dir.hpp"
 #include "unit/test_nets.hpp"
 
 namespace lpsim {
@@ -154,15 +155,17 @@ TEST(ReroutingEquipmentTest, AProbabilityEquipsThatShareRandomlyOrExactlyWhenDet
 // a stop re-routing while driving; random_net's trips only by being trips.
 TEST(ReroutingInfoTest, InfoCountsTheVehiclesWithTheDevice) {
   const std::string dir = LPSIM_SCENARIOS_DIR;
+  const test::TempDir tmp("lpsim_rerouting_info");  // run_lpsim leaves stdout.txt and stderr.txt there
   const test::CliResult block =
-      test::run_lpsim(".", {"info", "-c", dir + "/reroute_block/reroute_block.sumocfg"});
+      test::run_lpsim(tmp.path(), {"info", "-c", dir + "/reroute_block/reroute_block.sumocfg"});
   ASSERT_EQ(block.exit_code, 0) << block.err;
   EXPECT_NE(
       block.out.find("rerouting device: 121 (routed when due; equipped by options or params 121, of them "
                      "re-routing while driving 120; routes to repair 0)"),
       std::string::npos)
       << block.out;
-  const test::CliResult trips = test::run_lpsim(".", {"info", "-c", dir + "/random_net/random_net.sumocfg"});
+  const test::CliResult trips =
+      test::run_lpsim(tmp.path(), {"info", "-c", dir + "/random_net/random_net.sumocfg"});
   ASSERT_EQ(trips.exit_code, 0) << trips.err;
   EXPECT_NE(trips.out.find("rerouting device: 300 (routed when due; equipped by options or params 0,"),
             std::string::npos)
