@@ -145,4 +145,42 @@ __global__ void trip_route_kernel(uint32_t* route_begin, uint32_t* route_length,
   route_length[changed[3 * i]] = changed[3 * i + 2];
 }
 
+// The exchanges of a partitioned run: one launch for each, not one copy per lane or vehicle.
+// to[i] = from[index[i]].
+template <class T>
+__global__ void gather_kernel(const T* from, const uint32_t* index, uint32_t n, T* to) {
+  const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i < n) to[i] = from[index[i]];
+}
+
+// to[index[i]] = from[i]; the indices are distinct, so no two threads write one entry.
+template <class T>
+__global__ void scatter_kernel(const T* from, const uint32_t* index, uint32_t n, T* to) {
+  const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i < n) to[index[i]] = from[i];
+}
+
+// to[index[i]] = max(to[index[i]], from[i]) for distinct indices: claims merged from another part.
+__global__ void raise_kernel(const uint64_t* from, const uint32_t* index, uint32_t n, uint64_t* to) {
+  const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i < n && from[i] > to[index[i]]) to[index[i]] = from[i];
+}
+
+// to[index[i]] = value for distinct indices.
+template <class T>
+__global__ void fill_at_kernel(T value, const uint32_t* index, uint32_t n, T* to) {
+  const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i < n) to[index[i]] = value;
+}
+
+// Vehicles packed row by row (each row one vehicle's entries of every column, `stride` bytes): the bytes
+// [offset, offset + row) of row i go to slot slot[i] of a column whose slots are `row` bytes each.
+__global__ void unpack_rows_kernel(const uint8_t* packed, uint32_t stride, uint32_t offset, uint32_t row,
+                                   const uint32_t* slot, uint32_t n, uint8_t* column) {
+  const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i >= n) return;
+  for (uint32_t b = 0; b < row; ++b)
+    column[size_t{slot[i]} * row + b] = packed[size_t{i} * stride + offset + b];
+}
+
 }  // namespace lpsim

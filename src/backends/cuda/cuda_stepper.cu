@@ -690,37 +690,51 @@ class CudaStepper final : public Stepper {
     return state_;
   }
 
-  // The exchanges of a partitioned run touch the few lanes and vehicles at the parts' borders: entry by
-  // entry, between steps' passes.
+  // The exchanges of a partitioned run touch the few lanes and vehicles at the parts' borders, between
+  // steps' passes: each is one gather or scatter launch over an uploaded index list, not a copy per entry
+  // (one synchronous copy per lane cost more than the step's passes).
   void write_footprints(int map, const std::vector<FootprintWrite>& writes, const uint8_t* held) override {
     ++version_;
+    // The cells in write order, then the last write of each cell (as the writes made one by one leave it).
+    std::vector<std::pair<uint32_t, uint8_t>> cells;
     for (const FootprintWrite& w : writes)
       for_each_footprint_piece(host_net_, w.fp, w.length, [&](int32_t lane, uint32_t first, uint32_t last) {
-        if (held[lane] && last >= first)
-          LPSIM_CUDA_CHECK(
-              cudaMemset(map_[map] + host_net_.lane_cell_begin[lane] + first, w.value, last - first + 1));
+        if (!held[lane] || last < first) return;
+        const uint32_t base = host_net_.lane_cell_begin[lane];
+        for (uint32_t c = first; c <= last; ++c) cells.emplace_back(base + c, w.value);
       });
+    std::stable_sort(cells.begin(), cells.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::vector<uint32_t> index;
+    std::vector<uint8_t> value;
+    for (size_t i = 0; i < cells.size(); ++i)
+      if (i + 1 == cells.size() || cells[i + 1].first != cells[i].first) {
+        index.push_back(cells[i].first);
+        value.push_back(cells[i].second);
+      }
+    scatter(index, value.data(), map_[map]);
   }
 
   void read_approaches(const std::vector<uint32_t>& lanes, std::vector<LaneApproach>& out) override {
-    out.resize(lanes.size());
-    for (size_t i = 0; i < lanes.size(); ++i) copy_to_host(&out[i], dev_.approach + lanes[i], 1);
+    gather(lanes, dev_.approach, out);
   }
 
   void read_claims(const std::vector<uint32_t>& lanes, std::vector<uint64_t>& out) override {
-    out.resize(lanes.size());
-    for (size_t i = 0; i < lanes.size(); ++i) copy_to_host(&out[i], dev_.claims + lanes[i], 1);
+    gather(lanes, dev_.claims, out);
   }
 
   void write_approaches(const std::vector<uint32_t>& lanes, const std::vector<LaneApproach>& in) override {
-    for (size_t i = 0; i < lanes.size(); ++i) copy_to_device(dev_.approach + lanes[i], &in[i], 1);
+    scatter(lanes, in.data(), dev_.approach);
   }
 
   void merge_claims(const std::vector<uint32_t>& lanes, const std::vector<uint64_t>& in) override {
-    std::vector<uint64_t> now;
-    read_claims(lanes, now);
-    for (size_t i = 0; i < lanes.size(); ++i)
-      if (in[i] > now[i]) copy_to_device(dev_.claims + lanes[i], &in[i], 1);
+    const uint32_t n = static_cast<uint32_t>(lanes.size());
+    if (n == 0) return;
+    uint32_t* index = upload_index(lanes);
+    uint64_t* values = reinterpret_cast<uint64_t*>(border_values_.get(n * sizeof(uint64_t)));
+    copy_to_device(values, in.data(), n);
+    LPSIM_LAUNCH(raise_kernel, blocks_for(n), kBlock)(values, index, n, dev_.claims);
+    LPSIM_CUDA_CHECK_LAUNCH(raise_kernel);
   }
 
   void read_link_states(uint32_t begin, uint32_t count, char* out) override {
@@ -736,23 +750,35 @@ class CudaStepper final : public Stepper {
     if (slots.empty()) return;
     ++version_;
     grow_slots(size_t{*std::max_element(slots.begin(), slots.end())} + 1);
-    size_t at = 0;
-    for (const uint32_t k : slots)
-      visit_vehicle_columns(
-          [&](uint32_t per, auto* column) {
-            using T = std::remove_pointer_t<decltype(column)>;
-            copy_to_device(reinterpret_cast<uint8_t*>(column + size_t{k} * per), packed.data() + at,
-                           per * sizeof(T));
-            at += per * sizeof(T);
-          },
-          dev_.veh);
+    const uint32_t n = static_cast<uint32_t>(slots.size());
+    const uint32_t stride = static_cast<uint32_t>(packed.size() / n);
+    uint32_t* index = upload_index(slots);
+    uint8_t* rows = reinterpret_cast<uint8_t*>(border_values_.get(packed.size()));
+    copy_to_device(rows, packed.data(), packed.size());
+    uint32_t offset = 0;
+    visit_vehicle_columns(
+        [&](uint32_t per, auto* column) {
+          using T = std::remove_pointer_t<decltype(column)>;
+          const uint32_t row = per * static_cast<uint32_t>(sizeof(T));
+          LPSIM_LAUNCH(unpack_rows_kernel, blocks_for(n), kBlock)
+          (rows, stride, offset, row, index, n, reinterpret_cast<uint8_t*>(column));
+          LPSIM_CUDA_CHECK_LAUNCH(unpack_rows_kernel);
+          offset += row;
+        },
+        dev_.veh);
     // The part they left clears their last footprint (their slot there stays one more step for it).
-    for (const uint32_t k : slots) LPSIM_CUDA_CHECK(cudaMemset(dev_.veh.old_lane + k, 0xFF, sizeof(int32_t)));
+    LPSIM_LAUNCH(fill_at_kernel<int32_t>, blocks_for(n), kBlock)(int32_t{-1}, index, n, dev_.veh.old_lane);
+    LPSIM_CUDA_CHECK_LAUNCH(fill_at_kernel);
   }
 
   void mark_migrated(const std::vector<uint32_t>& slots) override {
     ++version_;
-    for (const uint32_t k : slots) LPSIM_CUDA_CHECK(cudaMemset(dev_.veh.status + k, kMigrated, 1));
+    const uint32_t n = static_cast<uint32_t>(slots.size());
+    if (n == 0) return;
+    uint32_t* index = upload_index(slots);
+    LPSIM_LAUNCH(fill_at_kernel<uint8_t>, blocks_for(n), kBlock)
+    (uint8_t{kMigrated}, index, n, dev_.veh.status);
+    LPSIM_CUDA_CHECK_LAUNCH(fill_at_kernel);
   }
 
   void drain_counters(int64_t* const* columns) override {
@@ -761,6 +787,36 @@ class CudaStepper final : public Stepper {
   }
 
  private:
+  // The exchanges' index lists and values, uploaded for one launch.
+  uint32_t* upload_index(const std::vector<uint32_t>& index) {
+    uint32_t* dev = border_index_.get(index.size());
+    copy_to_device(dev, index.data(), index.size());
+    return dev;
+  }
+
+  template <class T>
+  void gather(const std::vector<uint32_t>& index, const T* from, std::vector<T>& out) {
+    const uint32_t n = static_cast<uint32_t>(index.size());
+    out.resize(n);
+    if (n == 0) return;
+    const uint32_t* dev_index = upload_index(index);
+    T* values = reinterpret_cast<T*>(border_values_.get(n * sizeof(T)));
+    LPSIM_LAUNCH(gather_kernel<T>, blocks_for(n), kBlock)(from, dev_index, n, values);
+    LPSIM_CUDA_CHECK_LAUNCH(gather_kernel);
+    copy_to_host(out.data(), values, n);
+  }
+
+  template <class T>
+  void scatter(const std::vector<uint32_t>& index, const T* in, T* to) {
+    const uint32_t n = static_cast<uint32_t>(index.size());
+    if (n == 0) return;
+    const uint32_t* dev_index = upload_index(index);
+    T* values = reinterpret_cast<T*>(border_values_.get(n * sizeof(T)));
+    copy_to_device(values, in, n);
+    LPSIM_LAUNCH(scatter_kernel<T>, blocks_for(n), kBlock)(values, dev_index, n, to);
+    LPSIM_CUDA_CHECK_LAUNCH(scatter_kernel);
+  }
+
   // One of the step's passes over the active list (none when nothing is on the road: no pass would write).
   template <void (*VehiclePass)(StepContext&, uint32_t, uint32_t)>
   void launch_pass(int timer_event) {
@@ -1036,6 +1092,8 @@ class CudaStepper final : public Stepper {
   ScratchArray<uint8_t> sample_status_;
   ScratchArray<int32_t> sample_lane_;
   ScratchArray<float> sample_pos_, sample_speed_;
+  ScratchArray<uint32_t> border_index_;        // the exchanges' lanes, cells or slots
+  ScratchArray<unsigned char> border_values_;  // and their values
   PinnedArray<uint32_t> staging_in_, staging_out_;
   // Staging of the uploads that nothing waits for (upload_async).
   PinnedArray<TeleportMove> moves_host_;
