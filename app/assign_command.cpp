@@ -8,6 +8,8 @@
 #include "app/assignment.hpp"
 #include "app/commands.hpp"
 #include "app/device_select.hpp"
+#include "app/error_report.hpp"
+#include "app/mpi_parts.hpp"
 #include "app/partitioned_parts.hpp"
 #include "app/scenario_args.hpp"
 #include "app/simulation_options.hpp"
@@ -16,6 +18,7 @@
 #include "converters/route_alternatives_reader.hpp"
 #include "converters/route_file_writer.hpp"
 #include "core/error.hpp"
+#include "transport/mpi/mpi_transport.hpp"
 
 namespace lpsim {
 namespace {
@@ -52,83 +55,150 @@ double relative_deviation(const std::deque<double>& means) {
   return mean > 0 ? std::sqrt(sq / double(means.size())) / mean : 0.0;
 }
 
-}  // namespace
-
-int command_assign(const std::vector<std::string>& args) {
+// What `lpsim assign` loads before any iteration runs: everything that can fail on bad input.
+struct LoadedAssignment {
   ConfigSpec config;
-  Scenario sc = scenario_from_args(args, &config, CliCommand::Assign);
-  if (!config.assign.weight_files.empty()) {
-    // Routes assigned elsewhere (an iteration of duaIterate.py) on the travel times they met.
-    const IntervalTravelTimes times =
-        read_edge_weights(config.assign.weight_files, sc.network.edge_index, sc.network.num_edges());
-    const Router router(sc.network, simulation_options(config).rerouting.minor_penalty);
-    const GapSums g = relative_gap(sc.network, router, sc.demand, times, config.threads);
-    std::printf("vehicles %llu, route cost %.2f s, best route cost %.2f s, relative gap %.6f\n",
-                static_cast<unsigned long long>(g.vehicles), g.route_cost_sum, g.best_cost_sum,
-                g.relative_gap());
-    return 0;
-  }
+  Scenario sc;
+  SimulationOptions options;
+  int32_t parts = 1;
+  std::vector<int32_t> edge_part;
+  std::string routes_file, alternatives_file;
+  std::unordered_map<std::string, RouteAlternatives> resumed;  // --first-iteration's alternatives
+};
+
+void load_assignment(const std::vector<std::string>& args, int ranks, LoadedAssignment* l) {
+  l->sc = scenario_from_args(args, &l->config, CliCommand::Assign);
+  const ConfigSpec& config = l->config;
+  if (ranks > 1 && !config.assign.weight_files.empty())
+    throw InputError(
+        "lpsim assign --weight-files costs given routes in one process: start it without mpirun");
+  if (!config.assign.weight_files.empty()) return;
   if (config.output_file.empty())
     throw InputError(
         "lpsim assign: give -o, the route file the assigned routes go to (e.g. assigned.rou.xml)");
-  const std::string routes_file = config.output_file,
-                    alternatives_file = alternatives_path(config.output_file);
-  refuse_input_as_output(config, routes_file);
-  refuse_input_as_output(config, alternatives_file);
+  l->routes_file = config.output_file;
+  l->alternatives_file = alternatives_path(config.output_file);
+  refuse_input_as_output(config, l->routes_file);
+  refuse_input_as_output(config, l->alternatives_file);
   if (!config.assign.plot.empty()) refuse_input_as_output(config, config.assign.plot);
-  SimulationOptions options = simulation_options(config);
+  l->options = simulation_options(config);
   const DeviceChoice device = select_device(config.device);
-  options.gpu = device.gpu;
-  if (config.device != ComputeDevice::Cpu)
+  l->options.gpu = device.gpu;
+  if (config.device != ComputeDevice::Cpu && MpiSession::world_rank() == 0)
     std::fprintf(stderr, "lpsim: device %s\n", device.description.c_str());
-
-  const AssignSpec& spec = config.assign;
-  int32_t parts = 1;
-  const std::vector<int32_t> edge_part = run_edge_parts(config, sc, &parts);
-  std::vector<PartPlan> plans;
-  if (parts > 1) plans = part_plans(sc.network, edge_part, parts, longest_vehicle(sc.demand));
-  Assignment assignment(sc.network, std::move(sc.demand), options, spec, config.begin, config.end,
-                        config.threads, options.rerouting.contraction_hierarchy);
-  if (parts > 1) assignment.run_in_parts(std::move(plans), config.part_timeout);
-  if (spec.first_iteration > 0) {
+  l->edge_part = run_edge_parts(config, l->sc, &l->parts);
+  require_one_part_per_rank(ranks, l->parts);
+  const int first = config.assign.first_iteration;
+  if (first > 0) {
     if (!config.snapshot_file.empty())
       throw InputError(
           "--first-iteration reads the alternatives from the route files (-r), not from a snapshot");
-    std::unordered_map<std::string, RouteAlternatives> alternatives;
     for (const std::string& file : config.route_files)
-      alternatives.merge(read_route_alternatives(file, sc.network.edge_index));
-    if (alternatives.empty())
-      throw InputError("--first-iteration " + std::to_string(spec.first_iteration) +
+      l->resumed.merge(read_route_alternatives(file, l->sc.network.edge_index));
+    if (l->resumed.empty())
+      throw InputError("--first-iteration " + std::to_string(first) +
                        ": no vehicle in the route files has a <routeDistribution> of alternatives (give the "
                        ".rou.alt.xml of the iteration before)");
-    assignment.resume(spec.first_iteration, alternatives);
   }
-  std::printf("%9s %13s %14s %9s %9s %10s %10s\n", "iteration", "relative gap", "mean trip [s]", "finished",
-              "teleports", "route CPU", "sim CPU");
+}
+
+// Routes assigned elsewhere (an iteration of duaIterate.py) on the travel times they met: their gap.
+int print_gap_of_given_routes(const LoadedAssignment& l) {
+  const ConfigSpec& config = l.config;
+  const IntervalTravelTimes times =
+      read_edge_weights(config.assign.weight_files, l.sc.network.edge_index, l.sc.network.num_edges());
+  const Router router(l.sc.network, simulation_options(config).rerouting.minor_penalty);
+  const GapSums g = relative_gap(l.sc.network, router, l.sc.demand, times, config.threads);
+  std::printf("vehicles %llu, route cost %.2f s, best route cost %.2f s, relative gap %.6f\n",
+              static_cast<unsigned long long>(g.vehicles), g.route_cost_sum, g.best_cost_sum,
+              g.relative_gap());
+  return 0;
+}
+
+}  // namespace
+
+int command_assign(const std::vector<std::string>& args) {
+  // Under mpirun every rank loads the scenario and all of them learn whether any failed before an iteration
+  // starts (an error is printed once). Each iteration is simulated with one part per rank; every rank routes
+  // and chooses alike, and rank 0 alone prints and writes.
+  const int ranks = MpiSession::world_size();
+  LoadedAssignment loaded;
+  if (ranks > 1) {
+    std::exception_ptr error;
+    try {
+      load_assignment(args, ranks, &loaded);
+    } catch (...) {
+      error = std::current_exception();
+    }
+    agree_on_load(error);
+  } else {
+    load_assignment(args, ranks, &loaded);
+  }
+  const ConfigSpec& config = loaded.config;
+  if (!config.assign.weight_files.empty()) return print_gap_of_given_routes(loaded);
+  Scenario& sc = loaded.sc;
+  const AssignSpec& spec = config.assign;
+  const int32_t parts = loaded.parts;
+  RankPart rank;
+  std::vector<PartPlan> plans;
+  if (ranks > 1)
+    rank = join_mpi_ranks(sc, loaded.edge_part, parts, config.part_timeout);
+  else if (parts > 1)
+    plans = part_plans(sc.network, loaded.edge_part, parts, longest_vehicle(sc.demand));
+  SimulationOptions& options = loaded.options;
+  if (ranks > 1) options.gpu_device = MpiSession::local_rank();  // ranks on one machine take its GPUs in turn
+  Assignment assignment(sc.network, std::move(sc.demand), options, spec, config.begin, config.end,
+                        config.threads, options.rerouting.contraction_hierarchy);
+  if (ranks > 1)
+    assignment.run_on_ranks(rank.transport.get(), std::move(rank.plan));
+  else if (parts > 1)
+    assignment.run_in_parts(std::move(plans), config.part_timeout);
+  if (spec.first_iteration > 0) assignment.resume(spec.first_iteration, loaded.resumed);
+  // duaIterate's stops: why the iterations end after result r ("" to go on).
   std::deque<double> means;
-  std::vector<double> gaps;
-  for (int i = spec.first_iteration; i < spec.iterations; ++i) {
-    const IterationResult r = assignment.iterate();
-    std::printf("%9d %13.6f %14.2f %9llu %9llu %9.2fs %9.2fs\n", r.iteration, r.gap.relative_gap(),
-                r.mean_trip_time, static_cast<unsigned long long>(r.finished),
-                static_cast<unsigned long long>(r.teleports), r.routing_cpu_seconds,
-                r.simulation_cpu_seconds);
-    std::fflush(stdout);
-    gaps.push_back(r.gap.relative_gap());
+  auto stop_reason = [&](const IterationResult& r) -> std::string {
+    char text[200];
     if (spec.gap > 0 && r.gap.relative_gap() <= spec.gap) {
-      std::printf("relative gap %.6f reached --gap %g\n", r.gap.relative_gap(), spec.gap);
-      break;
+      std::snprintf(text, sizeof text, "relative gap %.6f reached --gap %g", r.gap.relative_gap(), spec.gap);
+      return text;
     }
     means.push_back(r.mean_trip_time);
     if (means.size() > static_cast<size_t>(spec.convergence_iterations)) means.pop_front();
     if (spec.max_convergence_deviation > 0 &&
         means.size() == static_cast<size_t>(spec.convergence_iterations) &&
         relative_deviation(means) < spec.max_convergence_deviation) {
-      std::printf("mean trip time deviation %.6f over %d iterations below --max-convergence-deviation %g\n",
-                  relative_deviation(means), spec.convergence_iterations, spec.max_convergence_deviation);
+      std::snprintf(text, sizeof text,
+                    "mean trip time deviation %.6f over %d iterations below --max-convergence-deviation %g",
+                    relative_deviation(means), spec.convergence_iterations, spec.max_convergence_deviation);
+      return text;
+    }
+    return "";
+  };
+  // Every rank's iterations give the same results (but for CPU seconds): all stop alike, rank 0 reports.
+  const bool reports = MpiSession::world_rank() == 0;
+  if (reports)
+    std::printf("%9s %13s %14s %9s %9s %10s %10s\n", "iteration", "relative gap", "mean trip [s]", "finished",
+                "teleports", "route CPU", "sim CPU");
+  std::vector<double> gaps;
+  for (int i = spec.first_iteration; i < spec.iterations; ++i) {
+    const IterationResult r = assignment.iterate();
+    if (reports) {
+      std::printf("%9d %13.6f %14.2f %9llu %9llu %9.2fs %9.2fs\n", r.iteration, r.gap.relative_gap(),
+                  r.mean_trip_time, static_cast<unsigned long long>(r.finished),
+                  static_cast<unsigned long long>(r.teleports), r.routing_cpu_seconds,
+                  r.simulation_cpu_seconds);
+      std::fflush(stdout);
+    }
+    gaps.push_back(r.gap.relative_gap());
+    const std::string why = stop_reason(r);
+    if (!why.empty()) {
+      if (reports) std::printf("%s\n", why.c_str());
       break;
     }
   }
+  if (!reports) return 0;
+  const std::string& routes_file = loaded.routes_file;
+  const std::string& alternatives_file = loaded.alternatives_file;
   write_route_file(routes_file, sc.network, assignment.assigned());
   write_route_file(alternatives_file, sc.network, assignment.assigned(), &assignment.alternatives());
   std::printf("routes: %s\nalternatives: %s\n", routes_file.c_str(), alternatives_file.c_str());

@@ -14,6 +14,7 @@
 #include "demand/trip_routes.hpp"
 #include "demand/trip_table.hpp"
 #include "kernels/rng.hpp"
+#include "transport/byte_buffer.hpp"
 
 namespace lpsim {
 namespace {
@@ -154,40 +155,80 @@ void Assignment::run_in_parts(std::vector<PartPlan> plans, double timeout_s) {
   part_timeout_ = timeout_s;
 }
 
-std::vector<TripRecord> Assignment::simulate(uint64_t* teleports) {
+void Assignment::run_on_ranks(Transport* transport, PartPlan plan) {
+  transport_ = transport;
+  rank_plan_ = std::move(plan);
+}
+
+Assignment::Simulated Assignment::simulate() {
+  SimulationOptions options = options_;
+  Simulated s;
+  if (transport_ != nullptr) {
+    options.part = &rank_plan_;
+    options.transport = transport_;
+    if (transport_->rank() == 0) {
+      s = simulate_part0(options);
+    } else {
+      Simulation sim(net_, assigned_, options);
+      sim.serve_part();
+    }
+    share_with_ranks(&s);
+    return s;
+  }
   // Parts 1..K-1 (if any) on their threads, started before part 0 as `lpsim run` starts them.
   std::unique_ptr<InProcessParts> others;
-  SimulationOptions options = options_;
   if (plans_.size() > 1) {
     others = std::make_unique<InProcessParts>(net_, assigned_, options_, plans_, part_timeout_);
     options = others->part0_options(options_);
   }
-  std::vector<TripRecord> trips;
-  run_part0(others.get(), [&] { trips = simulate_part0(options, teleports); });
-  return trips;
+  run_part0(others.get(), [&] { s = simulate_part0(options); });
+  return s;
 }
 
-std::vector<TripRecord> Assignment::simulate_part0(const SimulationOptions& options, uint64_t* teleports) {
+void Assignment::share_with_ranks(Simulated* s) {
+  Bytes mine;
+  if (transport_->rank() == 0) {
+    ByteWriter w(mine);
+    w.put(s->finished);
+    w.put(s->teleports);
+    w.put(s->mean_trip_time);
+    w.put_array(times_.time);
+  }
+  const std::vector<Bytes> all = transport_->allgather(mine, "assignment travel times");
+  if (transport_->rank() == 0) return;
+  ByteReader r(all[0]);
+  s->finished = r.get<uint64_t>();
+  s->teleports = r.get<uint64_t>();
+  s->mean_trip_time = r.get<double>();
+  times_.time = r.get_array<float>();
+}
+
+Assignment::Simulated Assignment::simulate_part0(const SimulationOptions& options) {
   Simulation sim(net_, assigned_, options);
   const double dt = sim.step_length();
   const double period = spec_.aggregation;
   std::vector<LaneCounters> interval_counters;  // cumulative at each interval's end
   double interval_end = begin_ + period;
-  std::vector<TripRecord> trips;
+  Simulated s;
   auto done = [&] {
     if (end_ >= 0) return sim.time() + dt > end_ - kTimeSlack;
     return sim.finished();
   };
   while (!done()) {
     sim.step();
-    for (TripRecord& r : sim.take_finished_trips()) trips.push_back(r);
+    for (const TripRecord& r : sim.take_finished_trips()) {
+      if (r.unfinished) continue;
+      ++s.finished;
+      s.mean_trip_time += r.arrival - r.depart;
+    }
     if (sim.time() + dt + kTimeSlack >= interval_end) {
       interval_counters.push_back(sim.lane_counters());
       interval_end += period;
     }
   }
   interval_counters.push_back(sim.lane_counters());
-  *teleports = sim.counts().teleports;
+  s.teleports = sim.counts().teleports;
+  if (s.finished > 0) s.mean_trip_time /= double(s.finished);
 
   // Each interval's travel times, from the counters' differences.
   const uint32_t n = static_cast<uint32_t>(interval_counters.size());
@@ -205,7 +246,7 @@ std::vector<TripRecord> Assignment::simulate_part0(const SimulationOptions& opti
       if (m.has_traveltime) times_.time[size_t(k) * net_.num_edges() + e] = static_cast<float>(m.traveltime);
     }
   }
-  return trips;
+  return s;
 }
 
 void Assignment::resume(int first, const std::unordered_map<std::string, RouteAlternatives>& alternatives) {
@@ -238,8 +279,7 @@ IterationResult Assignment::iterate() {
   double resumed_simulation = 0;
   if (resumed_) {
     // The times the chosen routes met: their simulation again, which gives the same run.
-    uint64_t teleports = 0;
-    simulate(&teleports);
+    simulate();
     resumed_simulation = cpu_seconds() - cpu0;
     route_all();
     resumed_ = false;
@@ -248,17 +288,14 @@ IterationResult Assignment::iterate() {
   }
   choose_routes();
   const double cpu1 = cpu_seconds();
-  const std::vector<TripRecord> trips = simulate(&result.teleports);
+  const Simulated simulated = simulate();
   const double cpu2 = cpu_seconds();
   route_all();
   result.gap = gap_sums(router_, assigned_, times_, best_cost_);
   const double cpu3 = cpu_seconds();
-  for (const TripRecord& r : trips) {
-    if (r.unfinished) continue;
-    ++result.finished;
-    result.mean_trip_time += r.arrival - r.depart;
-  }
-  if (result.finished > 0) result.mean_trip_time /= double(result.finished);
+  result.finished = simulated.finished;
+  result.teleports = simulated.teleports;
+  result.mean_trip_time = simulated.mean_trip_time;
   result.routing_cpu_seconds = (cpu1 - cpu0 - resumed_simulation) + (cpu3 - cpu2);
   result.simulation_cpu_seconds = cpu2 - cpu1 + resumed_simulation;
   ++done_;

@@ -32,6 +32,7 @@
 #include "net/network.hpp"
 #include "net/router.hpp"
 #include "partition/part_plan.hpp"
+#include "transport/transport.hpp"
 
 namespace lpsim {
 
@@ -74,6 +75,11 @@ class Assignment {
   /// Simulates each iteration in the parts of `plans` (K > 1) on threads of this process, as `lpsim run
   /// --parts K` does: the same results as in one part. A part waits `timeout_s` for another at most.
   void run_in_parts(std::vector<PartPlan> plans, double timeout_s);
+  /// Simulates each iteration with one part per rank of `transport` (under mpirun), this rank's part being
+  /// `plan`. Rank 0 measures the travel times and the trips and passes them on, so that every rank routes
+  /// and chooses as rank 0 does (the same choices: each draw is keyed by vehicle and iteration) and
+  /// iterate() returns the same results on every rank but for their CPU seconds.
+  void run_on_ranks(Transport* transport, PartPlan plan);
 
   /// Goes on from iteration `first` of an assignment that left each vehicle (by id) with `alternatives` and
   /// its route chosen among them (an .rou.alt.xml): the next iterate() first simulates the chosen routes
@@ -94,9 +100,16 @@ class Assignment {
   // Routes every vehicle on `times_` at its depart time: best_ and best_cost_.
   void route_all();
   void choose_routes();
-  // Simulates assigned_ and measures times_; returns the finished trips' records.
-  std::vector<TripRecord> simulate(uint64_t* teleports);
-  std::vector<TripRecord> simulate_part0(const SimulationOptions& options, uint64_t* teleports);
+  // What an iteration's simulation gives besides the travel times.
+  struct Simulated {
+    uint64_t finished = 0, teleports = 0;
+    double mean_trip_time = 0;
+  };
+  // Simulates assigned_ and measures times_.
+  Simulated simulate();
+  Simulated simulate_part0(const SimulationOptions& options);
+  // Under mpirun: rank 0's times_ and `s` on every rank.
+  void share_with_ranks(Simulated* s);
 
   const Network& net_;
   const Demand base_;
@@ -118,6 +131,8 @@ class Assignment {
   bool resumed_ = false;
   std::vector<PartPlan> plans_;
   double part_timeout_ = 0;
+  Transport* transport_ = nullptr;
+  PartPlan rank_plan_;
 };
 
 }  // namespace lpsim

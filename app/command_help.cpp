@@ -49,6 +49,7 @@ alternatives by Gawron's model, and simulates; prints per iteration the relative
 teleports and the CPU time of routing and simulation; writes the final routes (-o) and their alternatives
 (<routeDistribution> per vehicle, .rou.alt.xml beside), which sumo and lpsim run load
   lpsim assign -c scenario.sumocfg -o assigned.rou.xml [--iterations 50] [--gap 0.01]
+  mpirun -n K lpsim assign ... --parts K   (each iteration simulated with one part per rank)
 )";
 
 constexpr const char* kTrailer = R"(

@@ -14,6 +14,7 @@
 #include "app/device_select.hpp"
 #include "app/error_report.hpp"
 #include "app/interrupt.hpp"
+#include "app/mpi_parts.hpp"
 #include "app/output_paths.hpp"
 #include "app/partitioned_parts.hpp"
 #include "app/progress_log.hpp"
@@ -26,13 +27,6 @@
 namespace lpsim {
 
 namespace {
-
-// What ranks of one job must share to exchange their state as bytes: the version, the build, and the sizes
-// of what crosses between them.
-std::string build_id() {
-  return std::string(LPSIM_BUILD_ID) + " vehicle " + std::to_string(sizeof(VehicleView)) + "/" +
-         std::to_string(sizeof(TripRecord)) + "/" + std::to_string(sizeof(PartStats));
-}
 
 // What `lpsim run` loads before any part runs: everything that can fail on bad input.
 struct LoadedRun {
@@ -55,10 +49,7 @@ void load_run(const std::vector<std::string>& args, int ranks, LoadedRun* l) {
   if (config.device != ComputeDevice::Cpu)
     std::fprintf(stderr, "lpsim: device %s\n", device.description.c_str());
   l->edge_part = run_edge_parts(config, l->sc, &l->parts);
-  if (ranks > 1 && l->parts != ranks)
-    throw InputError("mpirun -n " + std::to_string(ranks) + " runs one part per rank: give --parts " +
-                     std::to_string(ranks) + " or a partition file of " + std::to_string(ranks) +
-                     " parts (not " + std::to_string(l->parts) + ")");
+  require_one_part_per_rank(ranks, l->parts);
   if (l->parts > 1 && !config.jam_report.empty())
     throw InputError("--jam-report reads one part's vehicles: leave out --parts and --partition-file");
 }
@@ -92,8 +83,7 @@ int command_run(const std::vector<std::string>& args) {
   // serving it; else parts 1..K-1 on threads of this process, started before part 0's Run, as they build
   // alongside it.
   std::unique_ptr<InProcessParts> others;
-  std::unique_ptr<Transport> mpi;
-  PartPlan rank_plan;
+  RankPart rank;
   // From the guard on a signal is recorded, not fatal: the Run's constructor creates the output files, and
   // the loop below stops at the first step boundary after a signal (to any rank), so that finish() closes
   // them well-formed while the other ranks still serve it. Ranks install it before they build their tables,
@@ -101,18 +91,16 @@ int command_run(const std::vector<std::string>& args) {
   std::optional<InterruptGuard> interrupt;
   if (ranks > 1) {
     interrupt.emplace();
-    mpi = std::make_unique<MpiTransport>(config.part_timeout);
-    mpi->check_same_build(build_id());
-    rank_plan = part_plan(sc.network, edge_part, parts, longest_vehicle(sc.demand), mpi->rank());
-    if (mpi->rank() != 0) release_name_indexes(sc.network);
+    rank = join_mpi_ranks(sc, edge_part, parts, config.part_timeout);
+    if (rank.transport->rank() != 0) release_name_indexes(sc.network);
     // What loading and partitioning freed goes back to the system before the part's tables are allocated:
     // a rank's peak is its tables on top of what it loaded.
     malloc_trim(0);
-    options.part = &rank_plan;
-    options.transport = mpi.get();
+    options.part = &rank.plan;
+    options.transport = rank.transport.get();
     options.gpu_device = MpiSession::local_rank();  // ranks on one machine take its GPUs in turn
     options.pending_signal = [&interrupt] { return interrupt->received(); };
-    if (mpi->rank() != 0) {
+    if (rank.transport->rank() != 0) {
       Simulation sim(sc.network, std::move(sc.demand), options);
       sim.serve_part();
       const int signal = interrupt->received();

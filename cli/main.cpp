@@ -94,11 +94,13 @@ int main(int argc, char** argv) {
       return 0;
     }
   }
-  // Only a run is split over ranks: any other command would run once per rank, writing the same files.
-  if (mpi && lpsim::MpiSession::world_size() > 1 && command != "run") {
+  // Only a run and an assignment are split over ranks: any other command would run once per rank, writing
+  // the same files.
+  if (mpi && lpsim::MpiSession::world_size() > 1 && command != "run" && command != "assign") {
     if (lpsim::MpiSession::world_rank() == 0)
       std::fprintf(stderr,
-                   "lpsim: error: under mpirun only 'lpsim run' runs (one part per rank): start 'lpsim %s' "
+                   "lpsim: error: under mpirun only 'lpsim run' and 'lpsim assign' run (one part per rank): "
+                   "start 'lpsim %s' "
                    "without mpirun\n",
                    command.c_str());
     return lpsim::kExitBadInput;  // every rank alike: no rank waits for another

@@ -167,8 +167,8 @@ TEST(MpiPartitionedRunTest, ARankKilledMidRunEndsTheJob) {
   EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(60));
 }
 
-// Only `run` is split over ranks: any other command under mpirun would run once per rank, writing the same
-// files. Refused once (by rank 0), exit 2, nothing written.
+// Only `run` and `assign` are split over ranks: any other command under mpirun would run once per rank,
+// writing the same files. Refused once (by rank 0), exit 2, nothing written.
 TEST(MpiPartitionedRunTest, OtherCommandsUnderMpirunAreRefusedOnce) {
   if (!have_mpirun()) GTEST_SKIP() << "mpirun not installed";
   test::TempDir tmp("lpsim_mpi_other");
@@ -178,7 +178,7 @@ TEST(MpiPartitionedRunTest, OtherCommandsUnderMpirunAreRefusedOnce) {
         std::vector<std::string>{"partition", scenario("grid_tls"), "--parts", "2", "-o", "p.txt"}}) {
     const test::CliResult r = mpirun_lpsim(tmp.path(), 2, args);
     EXPECT_NE(r.exit_code, 0) << args[0];
-    const std::string line = "lpsim: error: under mpirun only 'lpsim run' runs";
+    const std::string line = "lpsim: error: under mpirun only 'lpsim run' and 'lpsim assign' run";
     const size_t at = r.err.find(line);
     EXPECT_NE(at, std::string::npos) << r.err;
     EXPECT_EQ(r.err.find(line, at + 1), std::string::npos) << "printed twice: " << r.err;
