@@ -28,8 +28,8 @@ Run::Run(Scenario scenario, const ConfigSpec& config, SimulationOptions options)
       options_(counting_lanes(options, mean_data_)),
       sim_(scenario_.network, std::move(scenario_.demand), options_) {
   open_outputs();
-  write_step_outputs();
-  close_due_intervals();
+  add_own_actions();
+  actions_.run_begin(sim_.time(), end_time());
 }
 
 Run::~Run() = default;
@@ -83,34 +83,71 @@ void Run::open_outputs() {
     // Zero, not the counters now: vehicles inserted at the begin time belong to the first interval.
     m.at_begin.resize(scenario_.network.num_lanes(), options_.emission_sums);
   }
-  next_fcd_ = sim_.time();
 }
 
 void Run::step() {
   if (closed_) throw std::logic_error("Run::step() after finish()");
   sim_.step();
-  if (!config_.no_warnings) warn_teleports();
-  for (const TeleportEvent& t : sim_.teleport_events())
-    ++(t.cause == TeleportCause::Yield       ? totals_.teleports_yield
-       : t.cause == TeleportCause::WrongLane ? totals_.teleports_wrong_lane
-                                             : totals_.teleports_jam);
-  totals_.peak_running = std::max<uint64_t>(totals_.peak_running, sim_.counts().running);
-  if (jam_) jam_->after_step(sim_);
-  write_step_outputs();
-  close_due_intervals();
+  actions_.run_due(sim_.time(), end_time());
 }
 
-// An interval [b, b + period) holds SUMO's steps b .. b + period - step, whose states the simulation shows at
-// those same times: it closes once the state at its last step is counted, when end_time() reaches its end.
-void Run::close_due_intervals() {
-  bool interval_closed = false;
-  for (MeanDataOutput& m : mean_data_)
-    if (m.spec.period > 0 && end_time() + kTimeSlack >= m.interval_begin + m.spec.period) {
-      close_interval(m, m.interval_begin + m.spec.period);
-      interval_closed = true;
+void Run::add_action(std::string name, StepTrigger trigger, StepActions::Action action) {
+  actions_.add(std::move(name), std::move(trigger), std::move(action));
+}
+
+// The Run's own actions, in the order they run after a step. The first three account for the step and skip
+// the begin time; the outputs also write the state at the begin time.
+void Run::add_own_actions() {
+  using AtBegin = StepActions::AtBegin;
+  if (!config_.no_warnings)
+    actions_.add(
+        "teleport warnings", StepTrigger::every_step(), [this](double) { warn_teleports(); }, AtBegin::Skip);
+  actions_.add(
+      "totals", StepTrigger::every_step(),
+      [this](double) {
+        for (const TeleportEvent& t : sim_.teleport_events())
+          ++(t.cause == TeleportCause::Yield       ? totals_.teleports_yield
+             : t.cause == TeleportCause::WrongLane ? totals_.teleports_wrong_lane
+                                                   : totals_.teleports_jam);
+        totals_.peak_running = std::max<uint64_t>(totals_.peak_running, sim_.counts().running);
+      },
+      AtBegin::Skip);
+  if (jam_)
+    actions_.add(
+        "jam report", StepTrigger::every_step(), [this](double) { jam_->after_step(sim_); }, AtBegin::Skip);
+  if (fcd_) {
+    const double period = config_.outputs.fcd_period;
+    actions_.add("fcd", period > 0 ? StepTrigger::every(period, sim_.time()) : StepTrigger::every_step(),
+                 [this](double) {
+                   sim_.sample_fcd(frame_);
+                   fcd_->write(frame_);
+                 });
+  }
+  // Every trip that ended counts in the totals, written or not.
+  actions_.add("tripinfo", StepTrigger::every_step(), [this](double) {
+    for (const TripRecord& r : sim_.take_finished_trips()) {
+      if (hold_trip_ && hold_trip_(r)) continue;
+      write_trip(r);
     }
+  });
+  if (summary_) actions_.add("summary", StepTrigger::every_step(), [this](double) { write_summary_row(); });
+  // An interval [b, b + period) holds SUMO's steps b .. b + period - step, whose states the simulation shows
+  // at those same times: it closes once the state at its last step is counted, when the step's end reaches
+  // its end.
+  for (MeanDataOutput& m : mean_data_)
+    if (m.spec.period > 0)
+      actions_.add(
+          "interval " + m.spec.id,
+          StepTrigger::every(m.spec.period, m.interval_begin + m.spec.period, StepTrigger::Clock::StepEnd),
+          [this, &m](double until) {
+            close_interval(m, until);
+            interval_closed_ = true;
+          });
   // At simulated times, not wall times: a gzip file's bytes then depend on the run alone.
-  if (interval_closed) flush_outputs();
+  actions_.add("flush", StepTrigger::every_step(), [this](double) {
+    if (interval_closed_) flush_outputs();
+    interval_closed_ = false;
+  });
 }
 
 void Run::step_until(double t) {
@@ -141,34 +178,23 @@ void Run::finish() {
   closed_ = true;
 }
 
-void Run::write_step_outputs() {
-  if (fcd_ && sim_.time() + kTimeSlack >= next_fcd_) {
-    sim_.sample_fcd(frame_);
-    fcd_->write(frame_);
-    next_fcd_ = config_.outputs.fcd_period > 0 ? next_fcd_ + config_.outputs.fcd_period : sim_.time();
+void Run::write_summary_row() {
+  SummaryRow row = sim_.summary_row();
+  if (outside_) {
+    // SUMO's vehicles join LPSim's; the means over inserted and arrived vehicles take in SUMO's sums (the
+    // speeds stay LPSim's: they are sampled from its running vehicles).
+    const OutsideCounts o = outside_();
+    const double delay_sum = row.mean_waiting_time * static_cast<double>(row.inserted) + o.depart_delay_sum;
+    const double travel_sum = row.mean_travel_time * static_cast<double>(row.arrived) + o.travel_time_sum;
+    row.inserted += o.inserted;
+    row.running += o.running;
+    row.waiting += o.waiting;
+    row.arrived += o.arrived;
+    row.ended += o.arrived;
+    row.mean_waiting_time = row.inserted > 0 ? delay_sum / static_cast<double>(row.inserted) : 0;
+    row.mean_travel_time = row.arrived > 0 ? travel_sum / static_cast<double>(row.arrived) : 0;
   }
-  for (const TripRecord& r : sim_.take_finished_trips()) {
-    if (hold_trip_ && hold_trip_(r)) continue;
-    write_trip(r);
-  }
-  if (summary_) {
-    SummaryRow row = sim_.summary_row();
-    if (outside_) {
-      // SUMO's vehicles join LPSim's; the means over inserted and arrived vehicles take in SUMO's sums (the
-      // speeds stay LPSim's: they are sampled from its running vehicles).
-      const OutsideCounts o = outside_();
-      const double delay_sum = row.mean_waiting_time * static_cast<double>(row.inserted) + o.depart_delay_sum;
-      const double travel_sum = row.mean_travel_time * static_cast<double>(row.arrived) + o.travel_time_sum;
-      row.inserted += o.inserted;
-      row.running += o.running;
-      row.waiting += o.waiting;
-      row.arrived += o.arrived;
-      row.ended += o.arrived;
-      row.mean_waiting_time = row.inserted > 0 ? delay_sum / static_cast<double>(row.inserted) : 0;
-      row.mean_travel_time = row.arrived > 0 ? travel_sum / static_cast<double>(row.arrived) : 0;
-    }
-    summary_->write(row);
-  }
+  summary_->write(row);
 }
 
 void Run::write_trip(const TripRecord& r) {

@@ -10,6 +10,7 @@
 
 #include "app/jam_report.hpp"
 #include "app/scenario.hpp"
+#include "app/step_actions.hpp"
 #include "converters/fcd_writer.hpp"
 #include "converters/mean_data_writer.hpp"
 #include "converters/statistic_writer.hpp"
@@ -52,10 +53,15 @@ class Run {
   Run(const Run&) = delete;
   Run& operator=(const Run&) = delete;
 
-  /// One step, whether or not done(), then its outputs, teleport warnings (unless --no-warnings) and
-  /// totals. When an edgeData/laneData interval closes, every output is flushed to its file (so a killed
-  /// run keeps what was written up to there). std::logic_error after finish().
+  /// One step, whether or not done(), then the actions due after it (actions()): teleport warnings (unless
+  /// --no-warnings) and totals, the jam recorder, the outputs, and those a driver added. When an
+  /// edgeData/laneData interval closes, every output is flushed to its file (so a killed run keeps what was
+  /// written up to there). std::logic_error after finish().
   void step();
+  /// Adds an action to run after each step its trigger makes due, after the Run's own (a checkpoint at
+  /// given times, a remote-control command every step): from the next step on.
+  void add_action(std::string name, StepTrigger trigger, StepActions::Action action);
+  const StepActions& actions() const { return actions_; }
   /// Steps while the next step would end at or before `t` and the run is not done(): never past t, and a
   /// no-op when t is less than a step ahead.
   void step_until(double t);
@@ -117,11 +123,11 @@ class Run {
   /// The trips the simulation runs, which may grow while it runs (the writers name their vehicles).
   const Demand& demand() const { return sim_.demand(); }
   void open_outputs();
-  void write_step_outputs();
+  void add_own_actions();
+  void write_summary_row();
   void write_unfinished_trips();
   void warn_teleports() const;
   void close_interval(MeanDataOutput& m, double until);
-  void close_due_intervals();
   void flush_outputs();
   RunStatistics statistics() const;
 
@@ -136,7 +142,8 @@ class Run {
   std::unique_ptr<StatisticWriter> statistic_;
   std::unique_ptr<JamRecorder> jam_;  // only with --jam-report: without it a step does no work for it
   FcdFrame frame_;
-  double next_fcd_ = 0;
+  StepActions actions_;
+  bool interval_closed_ = false;  // since the last flush
   Totals totals_;
   double depart_delay_waiting_ = -1;  // the statistic's departDelayWaiting (write-undeparted)
   std::function<bool(const TripRecord&)> hold_trip_;

@@ -210,6 +210,25 @@ TEST(RunTest, FinishTwiceChangesNothing) {
   EXPECT_THROW(g.run.step(), std::logic_error);
 }
 
+// The Run's own actions run after each step in their order, and an action a driver adds runs after them, from
+// the next step on, at its trigger's times.
+TEST(RunTest, ActionsRunAfterEachStepInOrder) {
+  const test::TempDir tmp("lpsim_run_actions");
+  GridRun g(tmp.path(), {"--end", "150", "--no-warnings"});
+  EXPECT_EQ(g.run.actions().names(),
+            (std::vector<std::string>{"totals", "fcd", "tripinfo", "summary", "interval per_minute",
+                                      "interval lanes", "flush"}));
+  std::vector<double> when, state;
+  g.run.add_action("probe", StepTrigger::every(30, 30), [&](double t) {
+    when.push_back(t);
+    state.push_back(g.run.simulation().time());
+  });
+  g.run.step_until(kForever);
+  g.run.finish();
+  EXPECT_EQ(when, (std::vector<double>{30, 60, 90, 120}));
+  EXPECT_EQ(state, when);  // on the state of the step that reached the time (1 s steps)
+}
+
 // As `lpsim run`: with an end time the run is done once one more step would end after it (as SUMO, at
 // end - step when the end is a whole number of steps after the begin), and step_until() goes no further.
 TEST(RunTest, DoneFollowsTheEndTime) {
