@@ -83,7 +83,7 @@ void load_assignment(const std::vector<std::string>& args, int ranks, LoadedAssi
   if (!config.assign.plot.empty()) refuse_input_as_output(config, config.assign.plot);
   l->options = simulation_options(config);
   const DeviceChoice device = select_device(config.device);
-  l->options.gpu = device.gpu;
+  l->options.backend = device.backend;
   if (config.device != ComputeDevice::Cpu && MpiSession::world_rank() == 0)
     std::fprintf(stderr, "lpsim: device %s\n", device.description.c_str());
   l->edge_part = run_edge_parts(config, l->sc, &l->parts);

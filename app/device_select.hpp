@@ -4,12 +4,14 @@
 // backends/cuda/no_cuda_backend.cpp instead, which answers "built without CUDA").
 #include <string>
 
+#include "backends/cpu/cpu_stepper.hpp"
 #include "core/config_spec.hpp"
 
 namespace lpsim {
 
 struct DeviceChoice {
   bool gpu = false;
+  StepperFactory backend = make_cpu_stepper;  // make_cuda_stepper with the GPU
   std::string description;  // one line for the user: "gpu (<device>)" or "cpu (<why no GPU>)"
 };
 

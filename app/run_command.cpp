@@ -12,6 +12,7 @@
 
 #include "app/commands.hpp"
 #include "app/device_select.hpp"
+#include "app/drive_loop.hpp"
 #include "app/error_report.hpp"
 #include "app/interrupt.hpp"
 #include "app/mpi_parts.hpp"
@@ -43,7 +44,7 @@ void load_run(const std::vector<std::string>& args, int ranks, LoadedRun* l) {
   const ConfigSpec& config = l->config;
   l->options = simulation_options(config);
   const DeviceChoice device = select_device(config.device);
-  l->options.gpu = device.gpu;
+  l->options.backend = device.backend;
   l->options.lane_counters = Run::needs_lane_counters(l->sc, config.outputs);
   l->options.emission_sums = Run::needs_emission_sums(l->sc, config.outputs);
   if (config.device != ComputeDevice::Cpu)
@@ -126,10 +127,7 @@ int command_run(const std::vector<std::string>& args) {
       const int own = interrupt->received();
       return own != 0 ? own : run.simulation().part_signal();
     };
-    while (!run.done() && signalled() == 0) {
-      run.step();
-      progress.after_step(run.simulation());
-    }
+    drive_to_end(run, run.simulation(), progress, signalled);
     run.finish();
     const double wall = std::chrono::duration<double>(Clock::now() - wall0).count();
     progress.end_line();

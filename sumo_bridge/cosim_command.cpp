@@ -11,6 +11,7 @@
 
 #include "app/corridor_resolution.hpp"
 #include "app/device_select.hpp"
+#include "app/drive_loop.hpp"
 #include "app/interrupt.hpp"
 #include "app/output_paths.hpp"
 #include "app/progress_log.hpp"
@@ -90,7 +91,7 @@ int run_cosim(const std::vector<std::string>& args) {
 
   SimulationOptions options = simulation_options(config);
   const DeviceChoice device = select_device(config.device);
-  options.gpu = device.gpu;
+  options.backend = device.backend;
   options.outside_lanes = &corridor;
   if (config.device != ComputeDevice::Cpu)
     std::fprintf(stderr, "lpsim: device %s\n", device.description.c_str());
@@ -116,10 +117,7 @@ int run_cosim(const std::vector<std::string>& args) {
     }
     Cosimulation& co = *started;
     try {
-      while (!co.done() && interrupt.received() == 0) {
-        co.step();
-        progress.after_step(run.simulation());
-      }
+      drive_to_end(co, run.simulation(), progress, [&] { return interrupt.received(); });
       co.finish();
     } catch (const std::exception&) {
       progress.end_line();

@@ -117,6 +117,11 @@ enum class StateParts {
   Full,     // everything (tests): every slot column, the lane map, the signals
 };
 
+class Stepper;
+
+/// Makes a backend's stepper for a run: make_cpu_stepper (backends/cpu) or make_cuda_stepper (backends/cuda).
+using StepperFactory = std::unique_ptr<Stepper> (*)(const StepperSetup& setup);
+
 class Stepper {
  public:
   virtual ~Stepper() = default;

@@ -6,8 +6,6 @@
 #include <limits>
 #include <stdexcept>
 
-#include "backends/cpu/cpu_stepper.hpp"
-#include "backends/cuda/cuda_stepper.hpp"
 #include "core/time_range.hpp"
 #include "engine/part_state.hpp"
 #include "kernels/idm.hpp"
@@ -138,7 +136,7 @@ Simulation::Simulation(const Network& net, Demand demand, const SimulationOption
                                       net.num_lanes()};
   setup.threads = opt_.threads;
   setup.device = opt_.gpu_device;
-  stepper_ = opt_.gpu ? make_cuda_stepper(setup) : make_cpu_stepper(setup);
+  stepper_ = opt_.backend(setup);
 
   init_rerouting();
   // The state at the begin time: its signals and its first insertions.

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "backends/cpu/cpu_stepper.hpp"
 #include "backends/stepper.hpp"
 #include "demand/trip_table.hpp"
 #include "engine/engine_net.hpp"
@@ -42,9 +43,10 @@ struct SimulationOptions {
   // SUMO's --ignore-junction-blocker: a vehicle standing this long on a junction lane (not at a scheduled
   // stop) no longer blocks the foes crossing its path; < 0: never (the step then tracks nothing for it).
   double ignore_junction_blocker = -1;  // s
-  // Run the step on the CUDA device (backends/cuda). The device then owns the run state; the host keeps the
-  // insertion queues and the trip ledger and fetches only what outputs and teleports need.
-  bool gpu = false;
+  // The backend the step runs on, chosen by the caller: the CPU's, or the CUDA device's
+  // (make_cuda_stepper), which then owns the run state while the host keeps the insertion queues and the
+  // trip ledger and fetches only what outputs and teleports need.
+  StepperFactory backend = make_cpu_stepper;
   int gpu_device = 0;  // which of the machine's GPUs (modulo their count): a part's local rank
   // Accumulate the per-lane edgeData/laneData counters (lane_counters()). Off when no such output is
   // requested: the passes then skip their atomics.

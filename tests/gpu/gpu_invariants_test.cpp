@@ -13,7 +13,7 @@ namespace {
 
 RunResult run_checked_on_gpu(const Scenario& sc, const std::string& name) {
   SimulationOptions options = simulation_options(sc.config);
-  options.gpu = true;
+  options.backend = make_cuda_stepper;
   return run_checked(sc, name + " on the GPU", options, 1);
 }
 

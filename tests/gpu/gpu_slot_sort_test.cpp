@@ -28,7 +28,7 @@ class GpuSlotSortTest : public ::testing::Test {
     ASSERT_GT(reference.trips.size(), 0u);
     for (const uint32_t interval : {1u, 5u}) {
       SimulationOptions gpu = cpu;
-      gpu.gpu = true;
+      gpu.backend = make_cuda_stepper;
       gpu.slot_sort_interval = interval;
       expect_same_trace(reference, run_trace(sc, gpu),
                         name + ": GPU renumbering every " + std::to_string(interval) + " steps vs CPU never");

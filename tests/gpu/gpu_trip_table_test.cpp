@@ -16,7 +16,7 @@ TEST(GpuTripTableTest, AddedTripsAndNewRoutesAsOnTheCpu) {
   const Scenario sc = load_sumo_scenario("grid_tls");
   SimulationOptions cpu = simulation_options(sc.config);
   SimulationOptions on_gpu = cpu;
-  on_gpu.gpu = true;
+  on_gpu.backend = make_cuda_stepper;
   const TripChangesRun reference = run_with_trip_changes(sc, cpu);
   const TripChangesRun run = run_with_trip_changes(sc, on_gpu);
   EXPECT_EQ(run.result.failures, 0u);

@@ -308,7 +308,7 @@ TEST(SimulationOptionsTest, MapsEveryEngineFieldOfTheConfig) {
   EXPECT_EQ(o.time_to_teleport, 42);
   // Left to the driver (device probing) and to Run (outputs): the engine's defaults.
   const SimulationOptions defaults;
-  EXPECT_FALSE(o.gpu);
+  EXPECT_EQ(o.backend, &make_cpu_stepper);
   EXPECT_EQ(o.lane_counters, defaults.lane_counters);
   EXPECT_EQ(o.slot_sort_interval, defaults.slot_sort_interval);
 }
