@@ -123,17 +123,7 @@ int command_assign(const std::vector<std::string>& args) {
   // and chooses alike, and rank 0 alone prints and writes.
   const int ranks = MpiSession::world_size();
   LoadedAssignment loaded;
-  if (ranks > 1) {
-    std::exception_ptr error;
-    try {
-      load_assignment(args, ranks, &loaded);
-    } catch (...) {
-      error = std::current_exception();
-    }
-    agree_on_load(error);
-  } else {
-    load_assignment(args, ranks, &loaded);
-  }
+  load_on_every_rank(ranks, [&] { load_assignment(args, ranks, &loaded); });
   const ConfigSpec& config = loaded.config;
   if (!config.assign.weight_files.empty()) return print_gap_of_given_routes(loaded);
   Scenario& sc = loaded.sc;

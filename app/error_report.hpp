@@ -26,4 +26,21 @@ struct JobEnded : std::exception {
 /// no rank failed, else throws JobEnded on every rank.
 void agree_on_load(std::exception_ptr error);
 
+/// Runs `load()`; in a job of more than one rank, every rank then learns whether any failed (agree_on_load),
+/// so that an error is printed once and every rank ends together.
+template <class Load>
+void load_on_every_rank(int ranks, Load&& load) {
+  if (ranks <= 1) {
+    load();
+    return;
+  }
+  std::exception_ptr error;
+  try {
+    load();
+  } catch (...) {
+    error = std::current_exception();
+  }
+  agree_on_load(error);
+}
+
 }  // namespace lpsim

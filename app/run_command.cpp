@@ -63,17 +63,7 @@ int command_run(const std::vector<std::string>& args) {
   // is printed once, by the lowest rank that met it, and every rank ends with its status.
   const int ranks = MpiSession::world_size();
   LoadedRun loaded;
-  if (ranks > 1) {
-    std::exception_ptr error;
-    try {
-      load_run(args, ranks, &loaded);
-    } catch (...) {
-      error = std::current_exception();
-    }
-    agree_on_load(error);
-  } else {
-    load_run(args, ranks, &loaded);
-  }
+  load_on_every_rank(ranks, [&] { load_run(args, ranks, &loaded); });
   const ConfigSpec& config = loaded.config;
   Scenario& sc = loaded.sc;
   SimulationOptions& options = loaded.options;
