@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <span>
 
 #include "app/partitioned_parts.hpp"
 #include "converters/mean_data_writer.hpp"
@@ -48,12 +49,13 @@ GapSums gap_sums(const Router& router, const Demand& d, const IntervalTravelTime
   GapSums g;
   for (uint32_t v = 0; v < d.size(); ++v) {
     if (!std::isfinite(best_cost[v])) continue;
-    const std::vector<uint32_t> route(d.route_edges.begin() + d.route_begin[v],
-                                      d.route_edges.begin() + d.route_begin[v] + d.route_length[v]);
+    const std::span<const uint32_t> route(d.route_edges.data() + d.route_begin[v], d.route_length[v]);
     const double used = router.timed_cost(route, d.depart[v], times);
     if (!std::isfinite(used)) continue;
     g.route_cost_sum += used;
-    g.best_cost_sum += best_cost[v];
+    // The hierarchy's best route is found on the depart interval's times alone: costed time-dependently it
+    // may cost more than the route driven, which is then the best response known.
+    g.best_cost_sum += std::min(best_cost[v], used);
     ++g.vehicles;
   }
   return g;

@@ -411,7 +411,7 @@ double Router::timed_edge_cost(uint32_t e, double t, const IntervalTravelTimes& 
   return interval_time(times, edge_cost_, e, t);
 }
 
-double Router::timed_cost(const std::vector<uint32_t>& path, double depart,
+double Router::timed_cost(std::span<const uint32_t> path, double depart,
                           const IntervalTravelTimes& times) const {
   if (path.empty()) return std::numeric_limits<double>::infinity();
   // As a timed search costs it (Search::timed_step), move by move.

@@ -1,5 +1,6 @@
 #pragma once
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "net/network.hpp"
@@ -91,7 +92,7 @@ class Router {
   /// Edge e's travel time when entered at time t in route_timed's measure.
   double timed_edge_cost(uint32_t e, double t, const IntervalTravelTimes& times) const;
   /// Travel time of `path` departing at `depart` in route_timed's measure (infinite: not a path).
-  double timed_cost(const std::vector<uint32_t>& path, double depart, const IntervalTravelTimes& times) const;
+  double timed_cost(std::span<const uint32_t> path, double depart, const IntervalTravelTimes& times) const;
 
  private:
   void set_costs(const std::vector<double>* speeds);  // null: free flow

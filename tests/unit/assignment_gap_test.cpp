@@ -44,6 +44,14 @@ TEST(AssignmentGap, RouteThroughAJamAgainstTheWayAround) {
   EXPECT_NEAR(g.best_cost_sum, 2 * free_cost, 1e-9);
   EXPECT_NEAR(g.route_cost_sum, 2 * free_cost + 490, 1e-9);
   EXPECT_NEAR(g.relative_gap(), 490 / (2 * free_cost), 1e-12);
+
+  // Best routes from an approximate search (the hierarchy on one interval's times) may cost more than the
+  // route driven: the driven one is then the best known, and the vehicle adds nothing to the gap.
+  const std::vector<double> approximate{free_cost + 20, free_cost + 30};
+  const GapSums a = gap_sums(router, d, times, approximate);
+  EXPECT_NEAR(a.best_cost_sum, 2 * free_cost + 20, 1e-9);  // v0: its best's cost; v1: its own route's
+  EXPECT_NEAR(a.route_cost_sum, 2 * free_cost + 490, 1e-9);
+  EXPECT_GE(a.relative_gap(), 0.0);
 }
 
 }  // namespace
