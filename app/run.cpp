@@ -95,8 +95,8 @@ void Run::add_action(std::string name, StepTrigger trigger, StepActions::Action 
   actions_.add(std::move(name), std::move(trigger), std::move(action));
 }
 
-// The Run's own actions, in the order they run after a step. The first three account for the step and skip
-// the begin time; the outputs also write the state at the begin time.
+// The Run's own actions, in the order they run after a step. The step's accounts (teleport warnings, totals,
+// the jam recorder) skip the begin time; the outputs also write the state at the begin time.
 void Run::add_own_actions() {
   using AtBegin = StepActions::AtBegin;
   if (!config_.no_warnings)
