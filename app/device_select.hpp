@@ -10,7 +10,6 @@
 namespace lpsim {
 
 struct DeviceChoice {
-  bool gpu = false;
   StepperFactory backend = make_cpu_stepper;  // make_cuda_stepper with the GPU
   std::string description;  // one line for the user: "gpu (<device>)" or "cpu (<why no GPU>)"
 };

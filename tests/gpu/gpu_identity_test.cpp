@@ -131,7 +131,7 @@ INSTANTIATE_TEST_SUITE_P(
 
 TEST(DeviceSelectTest, CpuIsAlwaysTheCpu) {
   const DeviceChoice c = select_device(ComputeDevice::Cpu);
-  EXPECT_FALSE(c.gpu);
+  EXPECT_EQ(c.backend, &make_cpu_stepper);
   EXPECT_EQ(c.description.rfind("cpu", 0), 0u) << c.description;
 }
 
@@ -139,7 +139,7 @@ TEST(DeviceSelectTest, AutoTakesTheGpuExactlyWhenOneIsUsable) {
   const CudaDeviceStatus gpu = cuda_device_status();
   EXPECT_FALSE(gpu.description.empty());
   const DeviceChoice c = select_device(ComputeDevice::Auto);
-  EXPECT_EQ(c.gpu, gpu.usable);
+  EXPECT_EQ(c.backend, gpu.usable ? &make_cuda_stepper : &make_cpu_stepper);
   EXPECT_EQ(c.description.rfind(gpu.usable ? "gpu (" : "cpu (", 0), 0u) << c.description;
   EXPECT_NE(c.description.find(gpu.description), std::string::npos) << c.description;
 }
@@ -147,7 +147,7 @@ TEST(DeviceSelectTest, AutoTakesTheGpuExactlyWhenOneIsUsable) {
 TEST(DeviceSelectTest, GpuWithoutAUsableDeviceIsBadInputNamingTheReason) {
   const CudaDeviceStatus gpu = cuda_device_status();
   if (gpu.usable) {
-    EXPECT_TRUE(select_device(ComputeDevice::Gpu).gpu);
+    EXPECT_EQ(select_device(ComputeDevice::Gpu).backend, &make_cuda_stepper);
     return;
   }
   try {
