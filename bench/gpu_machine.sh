@@ -10,6 +10,7 @@
 #        bench/gpu_machine.sh all [seconds, default 360]
 #        bench/gpu_machine.sh parts [end, default 3600]
 #        bench/gpu_machine.sh scenario CONFIG [run options]
+#        bench/gpu_machine.sh assign [iterations, default 3] [end, default 3600]
 # `parts` runs the partitioned engine on the GPU (the parts in one process share it): grid_tls and the regional
 # 1M trips' first hour (bench/work/regional/1000000/regional.lpsim, made by `bench` when missing) in 1, 2 and
 # 4 parts with --device gpu, and prints each run's wall time, updates/s and per-part line, and whether the
@@ -92,6 +93,36 @@ case "$what" in
         echo "$k parts: tripinfo DIFFERS"; done
     done
     ;;
+  assign)
+    # The regional assignment's cost per iteration on the GPU: the 1M trips' first hour (0.5 s steps)
+    # simulated alone, then `lpsim assign` of that hour (CH) for N iterations; each iteration's line (routing
+    # and simulation CPU) with the whole run's wall and CPU time beside the hour alone's. The snapshot is
+    # converted here from bench/work/regional_1m_csv.tar.xz when that was carried (its CSVs), else made by
+    # `bench`.
+    iterations=${1:-3}
+    end=${2:-3600}
+    out=${OUT:-bench/work/gpu_assign}
+    mkdir -p "$out"
+    dir=bench/work/regional/1000000
+    snapshot=$dir/regional.lpsim
+    if [[ ! -f $snapshot && -f bench/work/regional_1m_csv.tar.xz ]]; then
+      mkdir -p "$dir" && tar -C "$dir" -xJf bench/work/regional_1m_csv.tar.xz
+      "$build/lpsim" convert --lpsim-nodes "$dir/nodes.csv" --lpsim-edges "$dir/edges.csv" \
+        --lpsim-od "$dir/od.csv" --threads "$(nproc)" -o "$snapshot" >"$out/convert.log" 2>&1
+      echo "convert: exit $? after $SECONDS s"
+    fi
+    [[ -f $snapshot ]] || "$0" bench --trips 1000000 --devices gpu --runs 1 --warmup 0 >"$out/make_regional.log" 2>&1
+    timing="wall %e s, CPU %U user + %S sys s, peak RSS %M KiB"
+    "$GNU_TIME" -f "hour alone: $timing" "$build/lpsim" run "$snapshot" --end "$end" --step-length 0.5 \
+      --device gpu --threads "$(nproc)" --no-step-log --no-warnings >"$out/run.log" 2>&1
+    echo "run: exit $?"
+    grep -E "Duration|hour alone" "$out/run.log"
+    "$GNU_TIME" -f "assign: $timing" "$build/lpsim" assign "$snapshot" --end "$end" --step-length 0.5 \
+      --routing-algorithm CH --iterations "$iterations" --device gpu --threads "$(nproc)" \
+      -o "$out/assigned.rou.xml" >"$out/assign.log" 2>&1
+    echo "assign: exit $?"
+    grep -vE "^(routes|alternatives):" "$out/assign.log" | tail -n $((iterations + 3))
+    ;;
   scenario)
     # One scenario on the GPU and on the CPU backend (2 threads): each run's report lines and whether their
     # tripinfo outputs are identical. Further options go to both runs.
@@ -107,5 +138,5 @@ case "$what" in
     done
     cmp -s "$out/trip_gpu.xml" "$out/trip_cpu.xml" && echo "tripinfo identical" || echo "tripinfo DIFFERS"
     ;;
-  *) echo "usage: $0 tests|bench|all|parts|scenario [options]" >&2; exit 2 ;;
+  *) echo "usage: $0 tests|bench|all|parts|scenario|assign [options]" >&2; exit 2 ;;
 esac

@@ -69,7 +69,7 @@ struct InsertParams {
   float max_emergency_decel;  // hardest any leader may brake
   float min_decel;            // softest braking of any type (how a follower is assumed to react)
   int64_t* cnt_departed;      // per lane; null: not counted
-  int64_t* cnt_entered;
+  int64_t* lane_counts;       // the lane records (kernels/lane_counters.hpp); null: not counted
 };
 
 /// The cells a body `length` metres long with its front at `pos` covers on lane l: [rear, front].
@@ -340,7 +340,7 @@ LPSIM_HD bool try_reenter(const StepContext& s, const InsertParams& p, uint8_t* 
         const float speed = insertion_check(s, p, map, v, li, pos, speed_wanted, true);
         if (speed < 0.0f) continue;
         apply_footprint(map, net, Footprint{li, -1, -1, pos}, length, encode_cell_speed(speed));
-        if (p.cnt_entered != nullptr) atomic_add_i64(&p.cnt_entered[l], 1);
+        if (p.lane_counts != nullptr) count_on_lane(p.lane_counts, li, kCountEntered, 1);
         *out_lane = li;
         *out_pos = pos;
         *out_speed = speed;

@@ -92,6 +92,9 @@ LPSIM_HD void fill_cells(uint8_t* map, const NetView& net, int32_t lane, uint32_
 
 /// Calls cells(lane, first, last) for each lane a vehicle `length` metres long covers with footprint `fp`:
 /// the cells [first, last] of that lane it covers.
+#if defined(__CUDACC__)
+#pragma nv_exec_check_disable  // host code (a part's border exchanges) calls it with host lambdas
+#endif
 template <class Cells>
 LPSIM_HD_INLINED void for_each_footprint_piece(const NetView& net, const Footprint& fp, float length,
                                                Cells cells) {

@@ -15,6 +15,7 @@
 #include "kernels/car_following.hpp"
 #include "kernels/junction_space.hpp"
 #include "kernels/lane_change.hpp"
+#include "kernels/lane_counters.hpp"
 #include "kernels/lane_map.hpp"
 #include "kernels/right_of_way.hpp"
 #include "kernels/scheduled_stop.hpp"
@@ -46,15 +47,9 @@ struct StepContext {
   const uint32_t* junction_stand_now;
   uint32_t* junction_stand_next;
   EmissionView em;  // its sums are null unless an emissions output asks for them
-  // Per-lane output counters (integers: order independent).
-  int64_t* cnt_sampled_steps;
-  int64_t* cnt_travelled_mm;
-  int64_t* cnt_waiting_steps;
-  int64_t* cnt_time_loss_ms;
-  int64_t* cnt_occupied_mm_steps;
-  int64_t* cnt_entered;
-  int64_t* cnt_left;
-  int64_t* cnt_arrived;
+  // Per-lane output counters, one record per lane (kernels/lane_counters.hpp; integers: order
+  // independent). Null when no edgeData/laneData output asks for them.
+  int64_t* lane_counts;
 };
 
 /// A vehicle on the road as the passes see it: `slot` indexes its running state (VehicleView), `id` its trip
@@ -1690,8 +1685,8 @@ LPSIM_HD_INLINED void commit_vehicle(StepContext& s, uint32_t i, uint32_t slot) 
   // Per-lane counters (edgeData/laneData), attributed to the lane of the front bumper. The front passed
   // lane -> c0 -> c1 (the claims kept); each change of edge leaves a normal lane / enters a normal lane.
   // Absent (null) when no edgeData/laneData output is requested: five atomics per vehicle saved.
-  const bool lane_counters = s.cnt_sampled_steps != nullptr;
-  if (lane_counters) {
+  int64_t* const counts = s.lane_counts;
+  if (counts != nullptr) {
     int32_t chain[3] = {lane, -1, -1};
     int32_t links = 0;
     if (c0 >= 0 && !lost0) chain[++links] = c0;
@@ -1699,20 +1694,21 @@ LPSIM_HD_INLINED void commit_vehicle(StepContext& s, uint32_t i, uint32_t slot) 
     for (int32_t k = 0; k < links; ++k) {
       const int32_t a = chain[k], b = chain[k + 1];
       if (net.lane_edge[a] == net.lane_edge[b]) continue;  // a lane change (claimed near a lane start)
-      if (!net.lane_internal[a]) atomic_add_i64(&s.cnt_left[a], 1);
-      if (!net.lane_internal[b]) atomic_add_i64(&s.cnt_entered[b], 1);
+      if (!net.lane_internal[a]) count_on_lane(counts, a, kCountLeft, 1);
+      if (!net.lane_internal[b]) count_on_lane(counts, b, kCountEntered, 1);
     }
-    atomic_add_i64(&s.cnt_sampled_steps[nlane], 1);
-    atomic_add_i64(&s.cnt_travelled_mm[nlane], static_cast<int64_t>(driven * 1000.0f + 0.5f));
-    if (nspeed < kHaltingSpeed) atomic_add_i64(&s.cnt_waiting_steps[nlane], 1);
-    if (v0 > 0.0f) atomic_add_i64(&s.cnt_time_loss_ms[nlane], static_cast<int64_t>(lost * 1000.0f + 0.5f));
-    atomic_add_i64(
-        &s.cnt_occupied_mm_steps[nlane],
+    count_on_lane(counts, nlane, kCountSampledSteps, 1);
+    count_on_lane(counts, nlane, kCountTravelledMm, static_cast<int64_t>(driven * 1000.0f + 0.5f));
+    if (nspeed < kHaltingSpeed) count_on_lane(counts, nlane, kCountWaitingSteps, 1);
+    if (v0 > 0.0f)
+      count_on_lane(counts, nlane, kCountTimeLossMs, static_cast<int64_t>(lost * 1000.0f + 0.5f));
+    count_on_lane(
+        counts, nlane, kCountOccupiedMmSteps,
         static_cast<int64_t>(lp_fminf(length, lp_fminf(npos, net.lane_length[nlane])) * 1000.0f + 0.5f));
   }
 
   if (arrives) {
-    if (lane_counters) atomic_add_i64(&s.cnt_arrived[nlane], 1);
+    if (counts != nullptr) count_on_lane(counts, nlane, kCountArrived, 1);
     veh.status[slot] = kArrived;
     veh.arrival_step[slot] = s.params.step + 1;
     veh.lane[slot] = nlane;

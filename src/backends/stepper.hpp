@@ -19,28 +19,16 @@
 #include <vector>
 
 #include "kernels/insert_vehicle.hpp"
+#include "kernels/lane_counters.hpp"
 #include "kernels/signal_step.hpp"
 #include "kernels/step_view.hpp"
 
 namespace lpsim {
 
-/// The per-lane edgeData/laneData counter columns, in LaneCounters' order (src/engine/samples.hpp): the
-/// traffic measures, kept when a traffic output asks for them, then the emissions pass's sums (EmissionSum
-/// order), kept when an emissions output does.
-enum LaneCounter : int {
-  kCountSampledSteps,
-  kCountTravelledMm,
-  kCountWaitingSteps,
-  kCountTimeLossMs,
-  kCountOccupiedMmSteps,
-  kCountEntered,
-  kCountLeft,
-  kCountArrived,
-  kCountDeparted,
-  kNumTrafficCounters,
-  kCountEmissionFirst = kNumTrafficCounters,
-  kNumLaneCounters = kCountEmissionFirst + kNumEmissionSums
-};
+/// All the per-lane counters a backend drains (LaneCounter order, kernels/lane_counters.hpp): the traffic
+/// measures, kept when a traffic output asks for them, then the emissions pass's sums, kept when an
+/// emissions output does.
+inline constexpr int kNumLaneCounters = int{kCountEmissionFirst} + int{kNumEmissionSums};
 
 /// The trip table as a backend reads it (pointers into the engine's host table, valid until it changes:
 /// Stepper::update_trips hands over the new ones).

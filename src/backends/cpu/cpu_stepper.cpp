@@ -1,6 +1,8 @@
 #include "backends/cpu/cpu_stepper.hpp"
 
 #include <algorithm>
+#include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "backends/cpu/parallel_for.hpp"
@@ -49,7 +51,13 @@ class CpuStepper final : public Stepper {
     approach_.assign(nl, LaneApproach{0xFFFFFFFFu, -1, 0, 0, 0, 0, 0, 0});
     claims_.assign(nl, 0);
     merge_requests_.assign(static_cast<size_t>(kMergeSlots) * nl, 0);
-    if (setup.lane_counters) counters_.assign(static_cast<size_t>(kNumTrafficCounters) * nl, 0);
+    if (setup.lane_counters) {
+      // The records aligned to a cache line, so that each lane's record is one line; departed after them.
+      counters_.assign(static_cast<size_t>(kNumTrafficCounters) * nl + kLaneRecordCounters, 0);
+      const size_t misalign = reinterpret_cast<uintptr_t>(counters_.data()) % 64 / sizeof(int64_t);
+      lane_records_ = counters_.data() + (misalign == 0 ? 0 : kLaneRecordCounters - misalign);
+      departed_ = lane_records_ + static_cast<size_t>(kLaneRecordCounters) * nl;
+    }
     if (setup.emission_sums) emission_sums_.assign(static_cast<size_t>(kNumEmissionSums) * nl, 0);
     if (setup.junction_stands)
       for (auto& j : junction_stand_) j.assign(nl, kNoJunctionStand);
@@ -157,8 +165,8 @@ class CpuStepper final : public Stepper {
     uint8_t* into = map_[map].data();
     const StepContext ctx = context(map_[1 - map].data(), into);
     InsertParams params = p;
-    params.cnt_departed = counter(kCountDeparted);
-    params.cnt_entered = counter(kCountEntered);
+    params.cnt_departed = departed_;
+    params.lane_counts = lane_records_;
     for (uint32_t slot = 0; slot < batch.num_slots; ++slot)
       insert_queue_head(ctx, trips_.depart, params, into, batch, slot);
   }
@@ -264,7 +272,14 @@ class CpuStepper final : public Stepper {
   }
 
   void drain_counters(int64_t* const* columns) override {
-    drain(counters_, columns, kNumTrafficCounters);
+    if (lane_records_ != nullptr) {
+      const size_t nl = setup_.net.num_lanes;
+      for (size_t l = 0; l < nl; ++l) {
+        int64_t* record = lane_records_ + l * kLaneRecordCounters;
+        for (int k = 0; k < kLaneRecordCounters; ++k) columns[k][l] += std::exchange(record[k], 0);
+      }
+      for (size_t l = 0; l < nl; ++l) columns[kCountDeparted][l] += std::exchange(departed_[l], 0);
+    }
     drain(emission_sums_, columns + kCountEmissionFirst, kNumEmissionSums);
   }
 
@@ -279,10 +294,6 @@ class CpuStepper final : public Stepper {
         columns[k][l] += c;
         c = 0;
       }
-  }
-
-  int64_t* counter(LaneCounter k) {
-    return counters_.empty() ? nullptr : counters_.data() + static_cast<size_t>(k) * setup_.net.num_lanes;
   }
 
   StepContext context(const uint8_t* map_now, uint8_t* map_next) {
@@ -300,15 +311,7 @@ class CpuStepper final : public Stepper {
     ctx.merge_requests = merge_requests_.data();
     ctx.yielder_begin = setup_.yielder_begin;
     ctx.yielder = setup_.yielder;
-    // Left null when no output wants them: the passes then skip their atomics.
-    ctx.cnt_sampled_steps = counter(kCountSampledSteps);
-    ctx.cnt_travelled_mm = counter(kCountTravelledMm);
-    ctx.cnt_waiting_steps = counter(kCountWaitingSteps);
-    ctx.cnt_time_loss_ms = counter(kCountTimeLossMs);
-    ctx.cnt_occupied_mm_steps = counter(kCountOccupiedMmSteps);
-    ctx.cnt_entered = counter(kCountEntered);
-    ctx.cnt_left = counter(kCountLeft);
-    ctx.cnt_arrived = counter(kCountArrived);
+    ctx.lane_counts = lane_records_;  // null when no output wants them: the passes then skip their atomics
     ctx.em = setup_.emission_types;
     ctx.em.sums = emission_sums_.empty() ? nullptr : emission_sums_.data();
     ctx.em.num_lanes = setup_.net.num_lanes;
@@ -341,7 +344,9 @@ class CpuStepper final : public Stepper {
   std::vector<int64_t> actuated_start_ms_, det_last_ms_;
   std::vector<LaneApproach> approach_;
   std::vector<uint64_t> claims_, merge_requests_;
-  std::vector<int64_t> counters_;  // kNumTrafficCounters columns of num_lanes; empty without lane counters
+  std::vector<int64_t> counters_;    // the lane records, then departed; empty without lane counters
+  int64_t* lane_records_ = nullptr;  // into counters_, at a cache-line boundary
+  int64_t* departed_ = nullptr;
   std::vector<int64_t> emission_sums_;  // kNumEmissionSums columns of num_lanes; empty without emission sums
   std::vector<uint32_t> junction_stand_[2];  // per lane, with map_'s buffer index; empty unless tracked
   HostVehicleColumns veh_;

@@ -110,7 +110,7 @@ static_assert(sizeof(TypeView) == 12 * sizeof(void*) && sizeof(TripView) == 13 *
               "TypeView or TripView changed: update upload_types and DeviceTrips");
 static_assert(sizeof(StepContext) == sizeof(NetView) + sizeof(TypeView) + sizeof(TripView) +
                                          sizeof(VehicleView) + sizeof(PlanView) + sizeof(StepParams) +
-                                         sizeof(EmissionView) + 18 * sizeof(void*),
+                                         sizeof(EmissionView) + 11 * sizeof(void*),
               "StepContext changed: update CudaStepper");
 static_assert(sizeof(EmissionView) == 8 * sizeof(void*), "EmissionView changed: update upload_emissions");
 
@@ -365,16 +365,9 @@ class CudaStepper final : public Stepper {
       counters_ = allocate<int64_t>(static_cast<size_t>(kNumTrafficCounters) * nl);
       LPSIM_CUDA_CHECK(
           cudaMemset(counters_, 0, kNumTrafficCounters * static_cast<size_t>(nl) * sizeof(int64_t)));
-      int64_t** columns[kCountDeparted] = {&dev_.cnt_sampled_steps,
-                                           &dev_.cnt_travelled_mm,
-                                           &dev_.cnt_waiting_steps,
-                                           &dev_.cnt_time_loss_ms,
-                                           &dev_.cnt_occupied_mm_steps,
-                                           &dev_.cnt_entered,
-                                           &dev_.cnt_left,
-                                           &dev_.cnt_arrived};
-      for (int k = 0; k < kCountDeparted; ++k) *columns[k] = counters_ + static_cast<size_t>(k) * nl;
-      cnt_departed_ = counters_ + static_cast<size_t>(kCountDeparted) * nl;
+      // The lane records (cudaMalloc aligns them to a cache line), then the departed column.
+      dev_.lane_counts = counters_;
+      cnt_departed_ = counters_ + static_cast<size_t>(kLaneRecordCounters) * nl;
     }
     if (setup.emission_sums) upload_emissions(setup.emission_types, setup.num_types, nl);
 
@@ -523,7 +516,7 @@ class CudaStepper final : public Stepper {
         reinterpret_cast<float*>(out + slots + 2 * static_cast<size_t>(num_entries))};
     InsertParams params = p;
     params.cnt_departed = cnt_departed_;
-    params.cnt_entered = dev_.cnt_entered;
+    params.lane_counts = dev_.lane_counts;
     LPSIM_LAUNCH(insert_kernel, blocks_for(slots), kBlock)(dev_, trips_.depart, params, map_[map], dev);
     LPSIM_CUDA_CHECK_LAUNCH(insert_kernel);
     uint32_t* back = staging_out_.get(out_words);
@@ -782,7 +775,7 @@ class CudaStepper final : public Stepper {
   }
 
   void drain_counters(int64_t* const* columns) override {
-    drain(counters_, columns, kNumTrafficCounters);
+    drain_lane_records(columns);
     drain(dev_.em.sums, columns + kCountEmissionFirst, kNumEmissionSums);
   }
 
@@ -1004,6 +997,18 @@ class CudaStepper final : public Stepper {
     actuated_state_.det_last_ms = upload(never.data(), loops);
   }
 
+  // Adds the lane records and the departed column to `columns` (LaneCounter order) and zeroes them.
+  void drain_lane_records(int64_t* const* columns) {
+    if (counters_ == nullptr) return;
+    const size_t nl = num_lanes_;
+    std::vector<int64_t> all(static_cast<size_t>(kNumTrafficCounters) * nl);
+    copy_to_host(all.data(), counters_, all.size());
+    LPSIM_CUDA_CHECK(cudaMemset(counters_, 0, all.size() * sizeof(int64_t)));
+    for (size_t l = 0; l < nl; ++l)
+      for (int k = 0; k < kLaneRecordCounters; ++k) columns[k][l] += all[l * kLaneRecordCounters + k];
+    for (size_t l = 0; l < nl; ++l) columns[kCountDeparted][l] += all[kLaneRecordCounters * nl + l];
+  }
+
   // Adds `n` device columns of num_lanes at `from` (none: null) to `columns` and zeroes them.
   void drain(int64_t* from, int64_t* const* columns, int n) {
     if (from == nullptr) return;
@@ -1059,7 +1064,7 @@ class CudaStepper final : public Stepper {
   // The slot columns (dev_.veh), the active lists and the keep flags, each its own buffer, regrown together.
   std::vector<DeviceBuffer> slot_buffers_;
   size_t slot_capacity_ = 0, slot_bytes_ = 0;
-  int64_t* counters_ = nullptr;  // kNumTrafficCounters columns; null without lane counters
+  int64_t* counters_ = nullptr;  // the lane records, then departed; null without lane counters
   int64_t* cnt_departed_ = nullptr;
   uint64_t cells_ = 0;
   uint8_t* map_[2] = {nullptr, nullptr};
