@@ -9,7 +9,7 @@
 #include "app/commands.hpp"
 #include "app/device_select.hpp"
 #include "app/error_report.hpp"
-#include "app/mpi_parts.hpp"
+#include "app/part_launcher.hpp"
 #include "app/partitioned_parts.hpp"
 #include "app/scenario_args.hpp"
 #include "app/simulation_options.hpp"
@@ -128,21 +128,11 @@ int command_assign(const std::vector<std::string>& args) {
   if (!config.assign.weight_files.empty()) return print_gap_of_given_routes(loaded);
   Scenario& sc = loaded.sc;
   const AssignSpec& spec = config.assign;
-  const int32_t parts = loaded.parts;
-  RankPart rank;
-  std::vector<PartPlan> plans;
-  if (ranks > 1)
-    rank = join_mpi_ranks(sc, loaded.edge_part, parts, config.part_timeout);
-  else if (parts > 1)
-    plans = part_plans(sc.network, loaded.edge_part, parts, longest_vehicle(sc.demand));
-  SimulationOptions& options = loaded.options;
-  if (ranks > 1) options.gpu_device = MpiSession::local_rank();  // ranks on one machine take its GPUs in turn
-  Assignment assignment(sc.network, std::move(sc.demand), options, spec, config.begin, config.end,
-                        config.threads, options.rerouting.contraction_hierarchy);
-  if (ranks > 1)
-    assignment.run_on_ranks(rank.transport.get(), std::move(rank.plan));
-  else if (parts > 1)
-    assignment.run_in_parts(std::move(plans), config.part_timeout);
+  const std::unique_ptr<PartLauncher> launcher =
+      launch_parts(ranks, sc, loaded.edge_part, loaded.parts, config.part_timeout);
+  Assignment assignment(sc.network, std::move(sc.demand), loaded.options, spec, config.begin, config.end,
+                        config.threads, loaded.options.rerouting.contraction_hierarchy);
+  assignment.simulate_in(launcher.get());
   if (spec.first_iteration > 0) assignment.resume(spec.first_iteration, loaded.resumed);
   // duaIterate's stops: why the iterations end after result r ("" to go on).
   std::deque<double> means;
@@ -165,7 +155,7 @@ int command_assign(const std::vector<std::string>& args) {
     return "";
   };
   // Every rank's iterations give the same results (but for CPU seconds): all stop alike, rank 0 reports.
-  const bool reports = MpiSession::world_rank() == 0;
+  const bool reports = launcher->leads();
   if (reports)
     std::printf("%9s %13s %14s %9s %9s %10s %10s\n", "iteration", "relative gap", "mean trip [s]", "finished",
                 "teleports", "route CPU", "sim CPU");

@@ -7,7 +7,7 @@
 #include <limits>
 #include <span>
 
-#include "app/partitioned_parts.hpp"
+#include "app/part_launcher.hpp"
 #include "converters/mean_data_writer.hpp"
 #include "core/error.hpp"
 #include "core/for_each_index.hpp"
@@ -152,52 +152,30 @@ void Assignment::choose_routes() {
   replace_routes(assigned_, net_, chosen);
 }
 
-void Assignment::run_in_parts(std::vector<PartPlan> plans, double timeout_s) {
-  plans_ = std::move(plans);
-  part_timeout_ = timeout_s;
-}
-
-void Assignment::run_on_ranks(Transport* transport, PartPlan plan) {
-  transport_ = transport;
-  rank_plan_ = std::move(plan);
-}
-
 Assignment::Simulated Assignment::simulate() {
-  SimulationOptions options = options_;
   Simulated s;
-  if (transport_ != nullptr) {
-    options.part = &rank_plan_;
-    options.transport = transport_;
-    if (transport_->rank() == 0) {
-      s = simulate_part0(options);
-    } else {
-      Simulation sim(net_, assigned_, options);
-      sim.serve_part();
-    }
-    share_with_ranks(&s);
-    return s;
-  }
-  // Parts 1..K-1 (if any) on their threads, started before part 0 as `lpsim run` starts them.
-  std::unique_ptr<InProcessParts> others;
-  if (plans_.size() > 1) {
-    others = std::make_unique<InProcessParts>(net_, assigned_, options_, plans_, part_timeout_);
-    options = others->part0_options(options_);
-  }
-  run_part0(others.get(), [&] { s = simulate_part0(options); });
+  if (launcher_ == nullptr) return simulate_part0(options_);
+  if (launcher_->leads())
+    launcher_->run_part0(net_, assigned_, options_,
+                         [&](const SimulationOptions& o) { s = simulate_part0(o); });
+  else
+    launcher_->serve(net_, assigned_, options_);
+  if (launcher_->ranks() != nullptr) share_with_ranks(&s);
   return s;
 }
 
 void Assignment::share_with_ranks(Simulated* s) {
+  Transport& ranks = *launcher_->ranks();
   Bytes mine;
-  if (transport_->rank() == 0) {
+  if (launcher_->leads()) {
     ByteWriter w(mine);
     w.put(s->finished);
     w.put(s->teleports);
     w.put(s->mean_trip_time);
     w.put_array(times_.time);
   }
-  const std::vector<Bytes> all = transport_->allgather(mine, "assignment travel times");
-  if (transport_->rank() == 0) return;
+  const std::vector<Bytes> all = ranks.allgather(mine, "assignment travel times");
+  if (launcher_->leads()) return;
   ByteReader r(all[0]);
   s->finished = r.get<uint64_t>();
   s->teleports = r.get<uint64_t>();

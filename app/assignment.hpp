@@ -31,10 +31,10 @@
 #include "net/cch_router.hpp"
 #include "net/network.hpp"
 #include "net/router.hpp"
-#include "partition/part_plan.hpp"
-#include "transport/transport.hpp"
 
 namespace lpsim {
+
+class PartLauncher;
 
 /// Sums of the relative gap over the vehicles both costs are finite for.
 struct GapSums {
@@ -72,14 +72,12 @@ class Assignment {
   /// then costed time-dependently like any route. Vehicles departing after `end` are not routed.
   Assignment(const Network& net, Demand demand, SimulationOptions options, const AssignSpec& spec,
              double begin, double end, int threads, bool hierarchy = false);
-  /// Simulates each iteration in the parts of `plans` (K > 1) on threads of this process, as `lpsim run
-  /// --parts K` does: the same results as in one part. A part waits `timeout_s` for another at most.
-  void run_in_parts(std::vector<PartPlan> plans, double timeout_s);
-  /// Simulates each iteration with one part per rank of `transport` (under mpirun), this rank's part being
-  /// `plan`. Rank 0 measures the travel times and the trips and passes them on, so that every rank routes
-  /// and chooses as rank 0 does (the same choices: each draw is keyed by vehicle and iteration) and
-  /// iterate() returns the same results on every rank but for their CPU seconds.
-  void run_on_ranks(Transport* transport, PartPlan plan);
+  /// Simulates each iteration in the parts `launcher` starts (null, the default: one part in this process).
+  /// Its parts give the same results as one part. Under mpirun rank 0 measures the travel times and the
+  /// trips and passes them on, so that every rank routes and chooses as rank 0 does (the same choices: each
+  /// draw is keyed by vehicle and iteration) and iterate() returns the same results on every rank but for
+  /// their CPU seconds. The launcher outlives the iterations.
+  void simulate_in(PartLauncher* launcher) { launcher_ = launcher; }
 
   /// Goes on from iteration `first` of an assignment that left each vehicle (by id) with `alternatives` and
   /// its route chosen among them (an .rou.alt.xml): the next iterate() first simulates the chosen routes
@@ -129,10 +127,7 @@ class Assignment {
   std::vector<RouteAlternatives> alternatives_;
   int done_ = 0;
   bool resumed_ = false;
-  std::vector<PartPlan> plans_;
-  double part_timeout_ = 0;
-  Transport* transport_ = nullptr;
-  PartPlan rank_plan_;
+  PartLauncher* launcher_ = nullptr;  // null: one part
 };
 
 }  // namespace lpsim

@@ -8,15 +8,14 @@
 
 #include <chrono>
 #include <cstdio>
-#include <optional>
 
 #include "app/commands.hpp"
 #include "app/device_select.hpp"
 #include "app/drive_loop.hpp"
 #include "app/error_report.hpp"
 #include "app/interrupt.hpp"
-#include "app/mpi_parts.hpp"
 #include "app/output_paths.hpp"
+#include "app/part_launcher.hpp"
 #include "app/partitioned_parts.hpp"
 #include "app/progress_log.hpp"
 #include "app/run.hpp"
@@ -70,51 +69,39 @@ int command_run(const std::vector<std::string>& args) {
   const int32_t parts = loaded.parts;
   const std::vector<int32_t>& edge_part = loaded.edge_part;
 
-  // A partitioned run: under mpirun one part per rank, part 0 (rank 0) running the outputs and the others
-  // serving it; else parts 1..K-1 on threads of this process, started before part 0's Run, as they build
-  // alongside it.
-  std::unique_ptr<InProcessParts> others;
-  RankPart rank;
   // From the guard on a signal is recorded, not fatal: the Run's constructor creates the output files, and
   // the loop below stops at the first step boundary after a signal (to any rank), so that finish() closes
   // them well-formed while the other ranks still serve it. Ranks install it before they build their tables,
-  // so that none dies while the others wait for it; a single process only once it has built them.
-  std::optional<InterruptGuard> interrupt;
-  if (ranks > 1) {
-    interrupt.emplace();
-    rank = join_mpi_ranks(sc, edge_part, parts, config.part_timeout);
-    if (rank.transport->rank() != 0) release_name_indexes(sc.network);
+  // so that none dies while the others wait for it; a single process before it starts its parts.
+  const InterruptGuard interrupt;
+  // A partitioned run: under mpirun one part per rank, part 0 (rank 0) running the outputs and the others
+  // serving it; else parts 1..K-1 on threads of this process, started before part 0's Run, as they build
+  // alongside it.
+  const std::unique_ptr<PartLauncher> launcher =
+      launch_parts(ranks, sc, edge_part, parts, config.part_timeout);
+  if (launcher->ranks() != nullptr) {
+    if (!launcher->leads()) release_name_indexes(sc.network);
     // What loading and partitioning freed goes back to the system before the part's tables are allocated:
     // a rank's peak is its tables on top of what it loaded.
     malloc_trim(0);
-    options.part = &rank.plan;
-    options.transport = rank.transport.get();
-    options.gpu_device = MpiSession::local_rank();  // ranks on one machine take its GPUs in turn
-    options.pending_signal = [&interrupt] { return interrupt->received(); };
-    if (rank.transport->rank() != 0) {
-      Simulation sim(sc.network, std::move(sc.demand), options);
-      sim.serve_part();
-      const int signal = interrupt->received();
-      return signal != 0 ? 128 + signal : 0;
-    }
-  } else if (parts > 1) {
-    others = std::make_unique<InProcessParts>(
-        sc.network, sc.demand, options, part_plans(sc.network, edge_part, parts, longest_vehicle(sc.demand)),
-        config.part_timeout);
-    options = others->part0_options(options);
+    options.pending_signal = [&interrupt] { return interrupt.received(); };
+  }
+  if (!launcher->leads()) {
+    launcher->serve(sc.network, std::move(sc.demand), options);
+    const int signal = interrupt.received();
+    return signal != 0 ? 128 + signal : 0;
   }
 
   using Clock = std::chrono::steady_clock;
   const auto wall0 = Clock::now();
   const double load_seconds = sc.load_seconds;
-  if (!interrupt) interrupt.emplace();
   ProgressLog progress(stderr, isatty(fileno(stderr)) != 0, config.no_step_log, config.progress_interval,
                        config.end);
   int signal = 0;
-  run_part0(others.get(), [&] {
-    Run run(std::move(sc), config, options);
+  launcher->run_part0(sc.network, sc.demand, options, [&](const SimulationOptions& part0_options) {
+    Run run(std::move(sc), config, part0_options);
     auto signalled = [&] {
-      const int own = interrupt->received();
+      const int own = interrupt.received();
       return own != 0 ? own : run.simulation().part_signal();
     };
     drive_to_end(run, run.simulation(), progress, signalled);
