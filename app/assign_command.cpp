@@ -157,16 +157,16 @@ int command_assign(const std::vector<std::string>& args) {
   // Every rank's iterations give the same results (but for CPU seconds): all stop alike, rank 0 reports.
   const bool reports = launcher->leads();
   if (reports)
-    std::printf("%9s %13s %14s %9s %9s %10s %10s\n", "iteration", "relative gap", "mean trip [s]", "finished",
-                "teleports", "route CPU", "sim CPU");
+    std::printf("%9s %13s %14s %9s %9s %10s %10s %10s %10s\n", "iteration", "relative gap", "mean trip [s]",
+                "finished", "teleports", "route CPU", "sim CPU", "sim wall", "wall");
   std::vector<double> gaps;
   for (int i = spec.first_iteration; i < spec.iterations; ++i) {
     const IterationResult r = assignment.iterate();
     if (reports) {
-      std::printf("%9d %13.6f %14.2f %9llu %9llu %9.2fs %9.2fs\n", r.iteration, r.gap.relative_gap(),
-                  r.mean_trip_time, static_cast<unsigned long long>(r.finished),
+      std::printf("%9d %13.6f %14.2f %9llu %9llu %9.2fs %9.2fs %9.2fs %9.2fs\n", r.iteration,
+                  r.gap.relative_gap(), r.mean_trip_time, static_cast<unsigned long long>(r.finished),
                   static_cast<unsigned long long>(r.teleports), r.routing_cpu_seconds,
-                  r.simulation_cpu_seconds);
+                  r.simulation_cpu_seconds, r.simulation_wall_seconds, r.wall_seconds);
       std::fflush(stdout);
     }
     gaps.push_back(r.gap.relative_gap());

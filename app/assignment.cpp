@@ -3,6 +3,7 @@
 #include <time.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <span>
@@ -255,6 +256,8 @@ IterationResult Assignment::iterate() {
   IterationResult result;
   result.iteration = done_;
   result.vehicles = base_.size();
+  using Clock = std::chrono::steady_clock;
+  const auto wall0 = Clock::now();
   const double cpu0 = cpu_seconds();
   double resumed_simulation = 0;
   if (resumed_) {
@@ -268,8 +271,10 @@ IterationResult Assignment::iterate() {
   }
   choose_routes();
   const double cpu1 = cpu_seconds();
+  const auto wall1 = Clock::now();
   const Simulated simulated = simulate();
   const double cpu2 = cpu_seconds();
+  const auto wall2 = Clock::now();
   route_all();
   result.gap = gap_sums(router_, assigned_, times_, best_cost_);
   const double cpu3 = cpu_seconds();
@@ -278,6 +283,8 @@ IterationResult Assignment::iterate() {
   result.mean_trip_time = simulated.mean_trip_time;
   result.routing_cpu_seconds = (cpu1 - cpu0 - resumed_simulation) + (cpu3 - cpu2);
   result.simulation_cpu_seconds = cpu2 - cpu1 + resumed_simulation;
+  result.simulation_wall_seconds = std::chrono::duration<double>(wall2 - wall1).count();
+  result.wall_seconds = std::chrono::duration<double>(Clock::now() - wall0).count();
   ++done_;
   return result;
 }

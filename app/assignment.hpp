@@ -59,6 +59,9 @@ struct IterationResult {
   uint64_t vehicles = 0, finished = 0, teleports = 0;
   double mean_trip_time = 0;  // s: mean duration of the finished trips
   double routing_cpu_seconds = 0, simulation_cpu_seconds = 0;
+  // The iteration's wall time, and of that its simulation's: with the simulation on a GPU the CPU seconds
+  // do not say how long an iteration takes.
+  double wall_seconds = 0, simulation_wall_seconds = 0;
 };
 
 class Assignment {

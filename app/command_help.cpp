@@ -46,8 +46,9 @@ constexpr const char* kAssignUsage =
 dynamic user assignment as SUMO's duaIterate.py runs it: each iteration routes every vehicle on the
 travel times the last one measured (per --aggregation interval, time-dependent), chooses among its route
 alternatives by Gawron's model, and simulates; prints per iteration the relative gap, the mean trip time,
-teleports and the CPU time of routing and simulation; writes the final routes (-o) and their alternatives
-(<routeDistribution> per vehicle, .rou.alt.xml beside), which sumo and lpsim run load
+teleports, the CPU time of routing and simulation and the wall time of simulation and iteration; writes
+the final routes (-o) and their alternatives (<routeDistribution> per vehicle, .rou.alt.xml beside), which
+sumo and lpsim run load
   lpsim assign -c scenario.sumocfg -o assigned.rou.xml [--iterations 50] [--gap 0.01]
   mpirun -n K lpsim assign ... --parts K   (each iteration simulated with one part per rank)
 )";
