@@ -203,11 +203,11 @@ Assignment::Simulated Assignment::simulate_part0(const SimulationOptions& option
       s.mean_trip_time += r.arrival - r.depart;
     }
     if (sim.time() + dt + kTimeSlack >= interval_end) {
-      interval_counters.push_back(sim.lane_counters());
+      interval_counters.push_back(sim.collect_lane_counters());
       interval_end += period;
     }
   }
-  interval_counters.push_back(sim.lane_counters());
+  interval_counters.push_back(sim.collect_lane_counters());
   s.teleports = sim.counts().teleports;
   if (s.finished > 0) s.mean_trip_time /= double(s.finished);
 

@@ -238,11 +238,11 @@ void Run::warn_teleports() const {
 
 void Run::close_interval(MeanDataOutput& m, double until) {
   if (until <= m.interval_begin) return;
-  LaneCounters d = counters_since(sim_.lane_counters(), m.at_begin);
+  LaneCounters d = counters_since(sim_.collect_lane_counters(), m.at_begin);
   MeanDataInterval iv{m.interval_begin, until, sim_.step_length(), &d};
   m.writer->write(iv);
   m.interval_begin = until;
-  m.at_begin = sim_.lane_counters();
+  m.at_begin = sim_.collect_lane_counters();
 }
 
 void Run::flush_outputs() {

@@ -65,8 +65,8 @@ Simulation::Simulation(const Network& net, Demand demand, const SimulationOption
   num_loaded_ = d.size();
   counts_.loaded = num_loaded_;
   ledger_.resize(num_loaded_);
-  // kNumLaneCounters columns over every lane: kept only for edgeData/laneData (lane_counters() sizes them
-  // when asked without), the emission sums only for emissions outputs.
+  // kNumLaneCounters columns over every lane: kept only for edgeData/laneData (collect_lane_counters() sizes
+  // them when asked without), the emission sums only for emissions outputs.
   if (opt_.lane_counters || opt_.emission_sums) lane_counters_.resize(net.num_lanes(), opt_.emission_sums);
 
   const VehicleTypes& t = d.types;
@@ -556,20 +556,18 @@ void Simulation::set_route(uint32_t v, const std::vector<uint32_t>& edges) {
   trips_.set_route(v, edges);
 }
 
-const LaneCounters& Simulation::lane_counters() const {
+const LaneCounters& Simulation::collect_lane_counters() {
   if (lane_counters_.sampled_steps.size() != net_.num_lanes())  // all zero: nothing counted
-    const_cast<LaneCounters&>(lane_counters_).resize(net_.num_lanes(), opt_.emission_sums);
+    lane_counters_.resize(net_.num_lanes(), opt_.emission_sums);
   if (parts_ && parts_->plan.part == 0) request(kRequestCounters);
   if (parts_ && parts_->plan.part != 0) {
     gather_counters();
     return lane_counters_;
   }
   if (opt_.lane_counters || opt_.emission_sums) {
-    // Drained from the backend's counters: const, as the totals it reports do not change.
-    auto* self = const_cast<Simulation*>(this);
     int64_t* columns[kNumLaneCounters];
     for (int k = 0; k < kNumLaneCounters; ++k) {
-      std::vector<int64_t>& column = counter_column(self->lane_counters_, k);
+      std::vector<int64_t>& column = counter_column(lane_counters_, k);
       columns[k] = column.empty() ? nullptr : column.data();
     }
     stepper_->drain_counters(columns);

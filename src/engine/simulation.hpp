@@ -48,11 +48,11 @@ struct SimulationOptions {
   // trip ledger and fetches only what outputs and teleports need.
   StepperFactory backend = make_cpu_stepper;
   int gpu_device = 0;  // which of the machine's GPUs (modulo their count): a part's local rank
-  // Accumulate the per-lane edgeData/laneData counters (lane_counters()). Off when no such output is
+  // Accumulate the per-lane edgeData/laneData counters (collect_lane_counters()). Off when no such output is
   // requested: the passes then skip their atomics.
   bool lane_counters = true;
-  // Run the emissions pass and keep its per-lane sums in lane_counters() (emissions edgeData/laneData). Off
-  // by default: the step then has no emissions pass. With volumetric_fuel, fuel is summed in nl, not ng
+  // Run the emissions pass and keep its per-lane sums with the lane counters (emissions edgeData/laneData).
+  // Off by default: the step then has no emissions pass. With volumetric_fuel, fuel is summed in nl, not ng
   // (SUMO's --emissions.volumetric-fuel).
   bool emission_sums = false;
   bool volumetric_fuel = false;
@@ -148,8 +148,10 @@ class Simulation {
 
   /// Positions of running vehicles now.
   void sample_fcd(FcdFrame& frame) const;
-  /// edgeData/laneData counters accumulated since the start (the emission sums only with emission_sums).
-  const LaneCounters& lane_counters() const;
+  /// edgeData/laneData counters accumulated since the start (the emission sums only with emission_sums),
+  /// collected from the backend; in a partitioned run part 0 gathers every part's (its call is a collective
+  /// step that the other parts serve).
+  const LaneCounters& collect_lane_counters();
   /// Wall time spent in step() so far (in a partitioned run part 0's, which waits for the others).
   double step_seconds() const { return step_seconds_; }
   /// Part 0 of a partitioned run: every part's stats as of the last step (empty in a run of one part).
@@ -265,7 +267,7 @@ class Simulation {
   void exchange_vehicles();
   void share_insertions(int map);
   void init_parts();
-  void gather_counters() const;
+  void gather_counters();
   std::vector<int> kept_counters() const;
   void report_to_root();
   void request(uint8_t what) const;

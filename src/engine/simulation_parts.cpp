@@ -459,7 +459,7 @@ void Simulation::serve_part() {
     } else if (what == kRequestSample) {
       gather_sample();
     } else if (what == kRequestCounters) {
-      lane_counters();
+      collect_lane_counters();
     } else if (what == kRequestSpeedSums) {
       gather_speed_sums();
     } else if (what == kRequestUnfinished) {
@@ -550,7 +550,7 @@ void Simulation::gather_sample() const {
 
 // The lane counters counted since the last request, from every part to part 0, which adds them to its own.
 // Only the columns every part keeps travel (kept_counters: the parts run with the same options).
-void Simulation::gather_counters() const {
+void Simulation::gather_counters() {
   PartState& ps = *parts_;
   std::vector<uint32_t> lanes;
   std::vector<int64_t> values;
@@ -580,7 +580,7 @@ void Simulation::gather_counters() const {
     const std::vector<int64_t> v = r.get_array<int64_t>();
     for (size_t j = 0; j < l.size(); ++j)
       for (size_t c = 0; c < kept.size(); ++c)
-        counter_column(const_cast<LaneCounters&>(lane_counters_), kept[c])[l[j]] += v[j * kept.size() + c];
+        counter_column(lane_counters_, kept[c])[l[j]] += v[j * kept.size() + c];
   }
 }
 

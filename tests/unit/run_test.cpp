@@ -287,7 +287,7 @@ TEST(RunTest, LaneCountersFollowTheMeanDataOutputs) {
   EXPECT_TRUE(run.options().lane_counters) << "edgeData needs them";
   run.step_until(kForever);
   int64_t sampled = 0;
-  for (const int64_t s : run.simulation().lane_counters().sampled_steps) sampled += s;
+  for (const int64_t s : run.simulation().collect_lane_counters().sampled_steps) sampled += s;
   EXPECT_GT(sampled, 0);
   run.finish();
 }

@@ -47,7 +47,7 @@ inline Trace run_trace(const Scenario& sc, const SimulationOptions& o) {
     t.max_active = std::max<uint32_t>(t.max_active, static_cast<uint32_t>(sim.active().size()));
   }
   EXPECT_TRUE(sim.finished());
-  const LaneCounters& c = sim.lane_counters();
+  const LaneCounters& c = sim.collect_lane_counters();
   for (const auto* col : {&c.sampled_steps, &c.travelled_mm, &c.waiting_steps, &c.time_loss_ms,
                           &c.occupied_mm_steps, &c.departed, &c.arrived, &c.entered, &c.left})
     t.counters.insert(t.counters.end(), col->begin(), col->end());
