@@ -2,12 +2,12 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <utility>
 #include <vector>
 
 #include "backends/cpu/parallel_for.hpp"
 #include "backends/cpu/pass_prefetch.hpp"
 #include "backends/host_columns.hpp"
+#include "backends/lane_records.hpp"
 #include "backends/vehicle_packing.hpp"
 #include "kernels/emission_step.hpp"
 #include "kernels/insert_vehicle.hpp"
@@ -273,12 +273,8 @@ class CpuStepper final : public Stepper {
 
   void drain_counters(int64_t* const* columns) override {
     if (lane_records_ != nullptr) {
-      const size_t nl = setup_.net.num_lanes;
-      for (size_t l = 0; l < nl; ++l) {
-        int64_t* record = lane_records_ + l * kLaneRecordCounters;
-        for (int k = 0; k < kLaneRecordCounters; ++k) columns[k][l] += std::exchange(record[k], 0);
-      }
-      for (size_t l = 0; l < nl; ++l) columns[kCountDeparted][l] += std::exchange(departed_[l], 0);
+      add_lane_records(lane_records_, departed_, setup_.net.num_lanes, columns);
+      std::fill(counters_.begin(), counters_.end(), 0);
     }
     drain(emission_sums_, columns + kCountEmissionFirst, kNumEmissionSums);
   }

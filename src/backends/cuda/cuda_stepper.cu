@@ -34,6 +34,7 @@
 
 #include "backends/cuda/cuda_stepper.hpp"
 #include "backends/host_columns.hpp"
+#include "backends/lane_records.hpp"
 #include "kernels/cuda_kernels.cuh"
 
 namespace lpsim {
@@ -1001,23 +1002,25 @@ class CudaStepper final : public Stepper {
   void drain_lane_records(int64_t* const* columns) {
     if (counters_ == nullptr) return;
     const size_t nl = num_lanes_;
-    std::vector<int64_t> all(static_cast<size_t>(kNumTrafficCounters) * nl);
-    copy_to_host(all.data(), counters_, all.size());
-    LPSIM_CUDA_CHECK(cudaMemset(counters_, 0, all.size() * sizeof(int64_t)));
-    for (size_t l = 0; l < nl; ++l)
-      for (int k = 0; k < kLaneRecordCounters; ++k) columns[k][l] += all[l * kLaneRecordCounters + k];
-    for (size_t l = 0; l < nl; ++l) columns[kCountDeparted][l] += all[kLaneRecordCounters * nl + l];
+    const std::vector<int64_t> all = take_counts(counters_, static_cast<size_t>(kNumTrafficCounters) * nl);
+    add_lane_records(all.data(), all.data() + kLaneRecordCounters * nl, nl, columns);
   }
 
   // Adds `n` device columns of num_lanes at `from` (none: null) to `columns` and zeroes them.
   void drain(int64_t* from, int64_t* const* columns, int n) {
     if (from == nullptr) return;
     const size_t nl = num_lanes_;
-    std::vector<int64_t> all(static_cast<size_t>(n) * nl);
-    copy_to_host(all.data(), from, all.size());
-    LPSIM_CUDA_CHECK(cudaMemset(from, 0, all.size() * sizeof(int64_t)));
+    const std::vector<int64_t> all = take_counts(from, static_cast<size_t>(n) * nl);
     for (int k = 0; k < n; ++k)
       for (size_t l = 0; l < nl; ++l) columns[k][l] += all[static_cast<size_t>(k) * nl + l];
+  }
+
+  // The `n` counts at `from` on the device, which start again from zero.
+  std::vector<int64_t> take_counts(int64_t* from, size_t n) {
+    std::vector<int64_t> all(n);
+    copy_to_host(all.data(), from, n);
+    LPSIM_CUDA_CHECK(cudaMemset(from, 0, n * sizeof(int64_t)));
+    return all;
   }
 
   // The types' emission columns and the per-lane sums of the emissions pass, zeroed.
