@@ -107,7 +107,7 @@ int run_cosim(const std::vector<std::string>& args) {
   {
     std::optional<Cosimulation> started;
     try {
-      started.emplace(run, corridor, cosim);
+      started.emplace(run, cosim);
     } catch (const SumoStartInterrupted&) {
       // Nothing has run: the outputs close empty and well-formed, as after a signal at the first step.
       run.finish();

@@ -18,6 +18,13 @@ namespace lpsim {
 
 namespace {
 
+// The boundary a co-simulation's run has with SUMO: its run must drive outside the corridor's lanes.
+OutsideLink& outside_link_of(Run& run) {
+  if (!run.options().outside_lanes)
+    throw std::invalid_argument("the co-simulation's run must drive outside the corridor's lanes");
+  return run.simulation().outside_link();
+}
+
 // The longest coupling period: vehicles cross the boundary once per period, so a longer one would let them
 // stand at the boundary for longer than a signal's cycle.
 constexpr int64_t kLongestPeriodMs = 60000;
@@ -59,10 +66,8 @@ void refuse_what_cosim_cannot_run(const Scenario& sc, const ConfigSpec& c) {
                                   "': emissions outputs are not supported in a co-simulation");
 }
 
-Cosimulation::Cosimulation(Run& run, const std::vector<uint8_t>& corridor_lanes, const CosimOptions& options)
-    : run_(run), net_(run.scenario().network), corridor_(corridor_lanes), options_(options) {
-  if (run_.options().outside_lanes != &corridor_)
-    throw std::invalid_argument("the co-simulation's run must drive outside the corridor's lanes");
+Cosimulation::Cosimulation(Run& run, const CosimOptions& options)
+    : run_(run), net_(run.scenario().network), boundary_(outside_link_of(run)), options_(options) {
   const ConfigSpec& c = run_.config();
   refuse_what_cosim_cannot_run(run_.scenario(), c);
   // SUMO's tripinfo is needed to complete the trips it drove part of: beside the run's, or a scratch file.
@@ -179,7 +184,7 @@ void Cosimulation::step() {
   while (sim.time_ms() < target_ms && !(has_end && run_.done())) {
     run_.step();
     const auto t0 = std::chrono::steady_clock::now();
-    for (const Simulation::HandOut& h : sim.hand_outs()) hand_into_sumo(h);
+    for (const OutsideLink::HandOut& h : boundary_.hand_outs()) hand_into_sumo(h);
     report_.handover_seconds += seconds_since(t0);
   }
   // SUMO's steps over the same period, one by one, up to the state LPSim is at: its step "at" time t (the one
@@ -235,7 +240,7 @@ void Cosimulation::arrived_in_sumo(std::unordered_map<std::string, InSumo>::iter
   in_sumo_.erase(it);
 }
 
-void Cosimulation::hand_into_sumo(const Simulation::HandOut& h) {
+void Cosimulation::hand_into_sumo(const OutsideLink::HandOut& h) {
   const Simulation& sim = run_.simulation();
   const Demand& d = sim.demand();
   const uint32_t v = h.vehicle;
@@ -335,8 +340,8 @@ void Cosimulation::after_sumo_step() {
                         " s since LPSim handed it over: no room where it enters, for ever");
       report_.longest_boundary_wait = std::max(report_.longest_boundary_wait, now - s.since);
       if (s.entry_lane >= 0)
-        mirror_.push_back(Simulation::OutsideVehicle{s.entry_lane, s.entry_pos,
-                                                     d.types.length[d.vehicle_type[s.vehicle]], 0.0f});
+        mirror_.push_back(OutsideLink::OutsideVehicle{s.entry_lane, s.entry_pos,
+                                                      d.types.length[d.vehicle_type[s.vehicle]], 0.0f});
     }
   }
   std::vector<std::pair<std::string, SumoVehicle>> running = sumo_->watched();
@@ -374,15 +379,13 @@ void Cosimulation::after_sumo_step() {
     // would pass the lane's end stands at it: the next lane is SUMO's too.
     const float ahead = static_cast<float>(q.pos + q.speed * report_.period);
     mirror_.push_back(
-        Simulation::OutsideVehicle{lane, std::min(ahead, net_.lane_length[static_cast<uint32_t>(lane)]),
-                                   d.types.length[d.vehicle_type[v]], static_cast<float>(q.speed)});
+        OutsideLink::OutsideVehicle{lane, std::min(ahead, net_.lane_length[static_cast<uint32_t>(lane)]),
+                                    d.types.length[d.vehicle_type[v]], static_cast<float>(q.speed)});
   }
-  sim.mirror_outside_vehicles(mirror_);
+  boundary_.mirror_outside_vehicles(mirror_);
 }
 
-bool Cosimulation::corridor_edge(uint32_t e) const {
-  return net_.edge_num_lanes[e] > 0 && corridor_[net_.edge_first_lane[e]];
-}
+bool Cosimulation::corridor_edge(uint32_t e) const { return boundary_.outside_edge(e); }
 
 // LPSim keeps the lanes road vehicles use, so SUMO's lane index on an edge (which counts sidewalks and bike
 // lanes too) is found among them; -1 for a lane LPSim does not have.
@@ -406,7 +409,7 @@ void Cosimulation::take_back_or_hold(const std::string& id, InSumo& s, uint32_t 
     if (rp == d.route_length[s.vehicle])
       throw SumoError("SUMO drove vehicle " + id + " onto edge " + q.edge + ", which is not on its route");
   }
-  if (!sim.has_entry_room(edge)) {
+  if (!boundary_.has_entry_room(edge)) {
     if (!s.held) {
       sumo_->hold(id);
       s.held = true;
@@ -420,8 +423,8 @@ void Cosimulation::take_back_or_hold(const std::string& id, InSumo& s, uint32_t 
   // Its piece of the trip in SUMO is in SUMO's tripinfo (merged at the end).
   // On the lane SUMO chose for its route (SUMO's own lane-change model got it there), or any best lane
   // where LPSim does not have that lane.
-  sim.take_back(s.vehicle, rp, lpsim_lane(edge, q.lane), static_cast<float>(q.pos),
-                static_cast<float>(q.speed));
+  boundary_.take_back(s.vehicle, rp, lpsim_lane(edge, q.lane), static_cast<float>(q.pos),
+                      static_cast<float>(q.speed));
   sumo_->remove(id);
   removed_since_step_.insert(id);
   in_sumo_.erase(id);

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "app/run.hpp"
+#include "engine/outside_link.hpp"
 #include "sumo_bridge/sumo_link.hpp"
 
 namespace lpsim {
@@ -39,10 +40,10 @@ class Cosimulation {
  public:
   /// Starts SUMO on `run`'s scenario (its network, its route files for their vTypes at --scale 0 so that SUMO
   /// loads no vehicle of its own, its additional files), at the run's begin time and step length, with
-  /// options.sumo_args last. The run must have been built with SimulationOptions::outside_lanes ==
-  /// &corridor_lanes, which outlives it. A SumoError when SUMO does not start; an InputError when SUMO's step
-  /// length (from sumo_args) is not a whole number of milliseconds.
-  Cosimulation(Run& run, const std::vector<uint8_t>& corridor_lanes, const CosimOptions& options);
+  /// options.sumo_args last. SUMO drives the run's outside lanes (SimulationOptions::outside_lanes, the
+  /// corridor's lanes: corridor_lanes()); std::invalid_argument for a run without. A SumoError when SUMO does
+  /// not start; an InputError when SUMO's step length (from sumo_args) is not a whole number of milliseconds.
+  Cosimulation(Run& run, const CosimOptions& options);
   ~Cosimulation();
   Cosimulation(const Cosimulation&) = delete;
   Cosimulation& operator=(const Cosimulation&) = delete;
@@ -93,7 +94,7 @@ class Cosimulation {
     double since = 0;  // when it was added, or held
   };
 
-  void hand_into_sumo(const Simulation::HandOut& h);
+  void hand_into_sumo(const OutsideLink::HandOut& h);
   static bool departs_in_sumo(const InSumo& s);  // its trip starts in SUMO (LPSim never inserted it)
   bool due_in_sumo(const InSumo& s) const;
   void count_sumo_departure(uint32_t v, double now);
@@ -112,7 +113,7 @@ class Cosimulation {
 
   Run& run_;
   const Network& net_;
-  const std::vector<uint8_t>& corridor_;
+  OutsideLink& boundary_;  // the run's boundary with SUMO: the corridor's lanes
   CosimOptions options_;
   // A file of this run's that goes with it (also when the constructor fails).
   struct ScratchFile {
@@ -139,7 +140,7 @@ class Cosimulation {
   Run::OutsideCounts outside_;                        // SUMO's departures and arrivals so far
   std::unordered_map<uint32_t, double> sumo_depart_;  // when SUMO inserted the trips that depart there
   uint64_t pending_ = 0;                              // of in_sumo_
-  std::vector<Simulation::OutsideVehicle> mirror_;
+  std::vector<OutsideLink::OutsideVehicle> mirror_;
   Report report_;
   bool finished_ = false;
 };

@@ -153,7 +153,7 @@ class Stepper {
 
   /// The state for the host to read. `num_slots`: the slots handed out (Full copies that many).
   virtual const HostState& fetch(StateParts parts, uint32_t num_slots) = 0;
-  // Partitioned runs (src/engine/simulation_parts.cpp): what the exchanges between the parts read and write.
+  // Partitioned runs (src/engine/part_link.cpp): what the exchanges between the parts read and write.
   /// Writes `writes` into lane map `map`, on the lanes `held` marks only (the others have no cells here).
   virtual void write_footprints(int map, const std::vector<FootprintWrite>& writes, const uint8_t* held) = 0;
   /// This step's entries of `lanes` in the approach table (written by the approach pass) and in the claim

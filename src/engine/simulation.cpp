@@ -7,10 +7,12 @@
 #include <stdexcept>
 
 #include "core/time_range.hpp"
-#include "engine/part_state.hpp"
+#include "engine/outside_link.hpp"
+#include "engine/part_link.hpp"
 #include "kernels/idm.hpp"
 #include "kernels/insert_vehicle.hpp"
 #include "kernels/vehicle_step.hpp"
+#include "transport/byte_buffer.hpp"
 
 namespace lpsim {
 
@@ -54,7 +56,7 @@ TeleportCause teleport_cause(uint8_t limit_reason) {
 }  // namespace
 
 Simulation::Simulation(const Network& net, Demand demand, const SimulationOptions& options)
-    : net_(net), trips_(std::move(demand)), opt_(options), engine_net_(net, options.part), queues_(net) {
+    : net_(net), trips_(std::move(demand)), opt_(options), engine_net_(net, options.part), books_(net) {
   if (opt_.step_ms <= 0) throw std::invalid_argument("step length must be a positive number of milliseconds");
   const Demand& d = trips_.demand();
   if (d.size() >= kMaxVehicles)
@@ -63,8 +65,8 @@ Simulation::Simulation(const Network& net, Demand demand, const SimulationOption
   dt_ms_ = opt_.step_ms;
   time_ms_ = std::llround(opt_.begin * 1000.0);
   num_loaded_ = d.size();
-  counts_.loaded = num_loaded_;
-  ledger_.resize(num_loaded_);
+  books_.counts.loaded = num_loaded_;
+  books_.ledger.resize(num_loaded_);
   // kNumLaneCounters columns over every lane: kept only for edgeData/laneData (collect_lane_counters() sizes
   // them when asked without), the emission sums only for emissions outputs.
   if (opt_.lane_counters || opt_.emission_sums) lane_counters_.resize(net.num_lanes(), opt_.emission_sums);
@@ -77,8 +79,8 @@ Simulation::Simulation(const Network& net, Demand demand, const SimulationOption
   }
   // Vehicles that depart before the begin time are not simulated (as SUMO, which skips them).
   while (next_departure_ < num_loaded_ && seconds_to_ms(d.depart[next_departure_]) < time_ms_) {
-    ledger_.set_status(next_departure_, kArrived);
-    ++counts_.removed;
+    books_.ledger.set_status(next_departure_, kArrived);
+    ++books_.counts.removed;
     ++next_departure_;
   }
   teleport_steps_ = stopped_steps_for(opt_.time_to_teleport, step_length());
@@ -90,14 +92,8 @@ Simulation::Simulation(const Network& net, Demand demand, const SimulationOption
 
   if ((opt_.part == nullptr) != (opt_.transport == nullptr))
     throw std::invalid_argument("a part of a partitioned run needs both its plan and its transport");
-  if (opt_.part != nullptr) init_parts();
-  if (opt_.outside_lanes) {
-    if (opt_.part) throw std::invalid_argument("lanes driven by another simulator need a run of one part");
-    if (opt_.outside_lanes->size() != net.num_lanes())
-      throw std::invalid_argument("outside lanes: " + std::to_string(opt_.outside_lanes->size()) +
-                                  " flags for " + std::to_string(net.num_lanes()) + " lanes");
-    all_lanes_.assign(net.num_lanes(), 1);
-  }
+  if (opt_.outside_lanes && opt_.part)
+    throw std::invalid_argument("lanes driven by another simulator need a run of one part");
 
   StepperSetup setup;
   setup.net = engine_net_.view(net_);
@@ -137,36 +133,76 @@ Simulation::Simulation(const Network& net, Demand demand, const SimulationOption
   setup.threads = opt_.threads;
   setup.device = opt_.gpu_device;
   stepper_ = opt_.backend(setup);
+  make_link();
 
   init_rerouting();
   // The state at the begin time: its signals and its first insertions.
   stepper_->update_signals(time_ms_, time_ms_, cur_);
-  if (parts_) share_signals();
+  link_->after_signals();
   if (reroute_) reroute_vehicles(time_ms_);
   sync_trips();
   enqueue_due(time_ms_);
   insert_waiting(cur_);
-  if (parts_) share_insertions(cur_);
+  link_->after_insertion(cur_);
   check_kept(0);
   start_inserted(0, 0);
   ++version_;  // the insertions changed the state (the rerouting device may have read it before them)
   if (reroute_) sample_routing_speeds();
-  if (parts_) report_to_root();
+  link_->report();
 }
 
 // Part 0 of a partitioned run ends the other parts' serve_part().
 Simulation::~Simulation() {
-  if (!parts_ || parts_->plan.part != 0) return;
   try {
-    request(kRequestStop);
+    link_->request(kRequestStop);
   } catch (const std::exception&) {
     // A part that failed has ended its serve_part() already; its error was reported where it failed.
   }
 }
 
+void Simulation::make_link() {
+  const LinkScope scope{net_, engine_net_, trips_, *stepper_, books_};
+  if (opt_.part)
+    link_ = std::make_unique<PartLink>(scope, *opt_.part, *opt_.transport, opt_.pending_signal);
+  else if (opt_.outside_lanes)
+    link_ = std::make_unique<OutsideLink>(scope, *opt_.outside_lanes, step_length());
+  else
+    link_ = std::make_unique<BoundaryLink>(scope);
+}
+
+OutsideLink& Simulation::outside_link() {
+  auto* outside = dynamic_cast<OutsideLink*>(link_.get());
+  if (!outside) throw std::logic_error("a run without lanes driven by another simulator has no outside link");
+  return *outside;
+}
+
+// One part of a partitioned run other than part 0: it does what part 0 asks until part 0 ends the run.
+void Simulation::serve_part() {
+  for (;;) {
+    switch (link_->next_request()) {
+      case kRequestStep:
+        step();
+        break;
+      case kRequestSample:
+        link_->running_vehicles(version_);
+        break;
+      case kRequestCounters:
+        collect_lane_counters();
+        break;
+      case kRequestSpeedSums:
+        gather_speed_sums();
+        break;
+      case kRequestUnfinished:
+        unfinished_trips(0, false);  // the arguments come from part 0
+        break;
+      case kRequestStop:
+        return;
+    }
+  }
+}
+
 bool Simulation::finished() const {
-  const bool idle = parts_ ? parts_->all_idle : num_active_ == 0 && queues_.waiting() == 0;
-  return idle && next_departure_ >= num_loaded_ && added_due_.empty();
+  return link_->idle() && next_departure_ >= num_loaded_ && added_due_.empty();
 }
 
 // The stops' times as the step counts them: steps stood at least, and the step from which `until` lets a
@@ -241,22 +277,21 @@ StepParams Simulation::step_params() const {
 
 void Simulation::step() {
   const auto t0 = std::chrono::steady_clock::now();
-  if (parts_ && parts_->plan.part == 0) request(kRequestStep);
+  link_->begin_step();
   if (reroute_) reroute_vehicles(time_ms_ + dt_ms_);
   sync_trips();
   ++version_;
   Stepper& s = *stepper_;
   const StepParams params = step_params();
   s.update_signals(params.signal_time_ms, time_ms_, cur_);
-  if (parts_) share_signals();
+  link_->after_signals();
   s.start_step(params, cur_);
   s.clear_footprints();
-  if (parts_) forget_remote_footprints(1 - cur_);
-  if (opt_.outside_lanes) write_outside_footprints(1 - cur_);
+  link_->before_writing(1 - cur_);
   s.approach();
-  if (parts_) share_approaches();
+  link_->after_approach(step_, cur_);
   s.plan();
-  if (parts_) share_claims();
+  link_->after_plan(step_);
   s.commit();
   if (opt_.emission_sums) s.count_emissions();
   s.start_end_of_step(step_ + 1);
@@ -268,26 +303,20 @@ void Simulation::step() {
   check_kept(out.kept);
   // The vehicles the step moved: not the slots of those that left the road in the step before (they only
   // cleared their footprint), so a vehicle that drives into another part counts once.
-  counts_.vehicle_updates += out.kept;
+  books_.counts.vehicle_updates += out.kept;
 
   time_ms_ += dt_ms_;
   ++step_;
   handle_vehicle_ends(out.ends);
   if (!moves_.empty()) s.apply_teleports(moves_, step_);
-  if (parts_) exchange_vehicles();
-  if (opt_.outside_lanes) hand_out_vehicles();
+  link_->after_end_of_step(1 - cur_);
   insert_waiting(1 - cur_);
-  if (parts_) share_insertions(1 - cur_);
+  link_->after_insertion(1 - cur_);
   cur_ = 1 - cur_;
   start_inserted(out.kept, out.running);
   if (reroute_) sample_routing_speeds();
-  if (parts_) {
-    PartStats& st = parts_->stats;
-    ++st.steps;
-    st.vehicle_updates = counts_.vehicle_updates;
-    st.step_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    report_to_root();
-  }
+  link_->count_step(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  link_->report();
   if (opt_.slot_sort_interval > 0 && step_ % opt_.slot_sort_interval == 0) sort_slots();
   step_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -295,9 +324,9 @@ void Simulation::step() {
 // Exactly the slots whose vehicles left the road in the previous step drop out of the active list
 // (stays_active): anything else would free a slot still in use, or never free one.
 void Simulation::check_kept(uint32_t kept) const {
-  if (kept + retiring_.size() != num_active_)
-    throw std::logic_error("step kept " + std::to_string(kept) + " of " + std::to_string(num_active_) +
-                           " active slots, " + std::to_string(retiring_.size()) + " were to leave");
+  if (kept + books_.retiring.size() != books_.num_active)
+    throw std::logic_error("step kept " + std::to_string(kept) + " of " + std::to_string(books_.num_active) +
+                           " active slots, " + std::to_string(books_.retiring.size()) + " were to leave");
 }
 
 // Arrivals become trip records; teleporting vehicles re-enter at the next edge of their route (moves_ says
@@ -307,46 +336,37 @@ void Simulation::handle_vehicle_ends(std::vector<VehicleEnd>& ends) {
   std::sort(ends.begin(), ends.end(),
             [](const VehicleEnd& a, const VehicleEnd& b) { return a.vehicle < b.vehicle; });
   const Demand& d = trips_.demand();
+  TripLedger& ledger = books_.ledger;
   moves_.clear();
-  teleport_events_.clear();
+  books_.teleport_events.clear();
   for (const VehicleEnd& e : ends) {
     const uint32_t v = e.vehicle;
-    retiring_next_.push_back(e.slot);
+    books_.retiring_next.push_back(e.slot);
     if (e.kind == kEndArrived) {
-      ++counts_.arrived;
-      ledger_.ended(e, false, time(), d.depart[v], step_length(), d.speed_factor[v]);
+      ++books_.counts.arrived;
+      ledger.ended(e, false, time(), d.depart[v], step_length(), d.speed_factor[v]);
       continue;
     }
-    ++counts_.teleports;
+    ++books_.counts.teleports;
     const TeleportCause cause = teleport_cause(e.limit_reason);
     // The wrong-lane rule of a fast road's lane clocks out first where its time is the shorter.
     const bool highway =
         cause == TeleportCause::WrongLane && highway_teleport_steps_ > 0 &&
         (teleport_steps_ == 0 || highway_teleport_steps_ < teleport_steps_) &&
         net_.lane_speed[static_cast<uint32_t>(e.lane)] > static_cast<float>(opt_.highway_min_speed);
-    teleport_events_.push_back(TeleportEvent{v, static_cast<uint32_t>(e.lane), cause, highway});
+    books_.teleport_events.push_back(TeleportEvent{v, static_cast<uint32_t>(e.lane), cause, highway});
     if (e.route_pos + 1 >= d.route_length[v]) {
       // Teleported past the end of its route: the trip ends here.
       moves_.push_back(TeleportMove{v, e.slot, 1});
-      ++counts_.arrived;
-      ledger_.ended(e, true, time(), d.depart[v], step_length(), d.speed_factor[v]);
+      ++books_.counts.arrived;
+      ledger.ended(e, true, time(), d.depart[v], step_length(), d.speed_factor[v]);
       continue;
     }
     moves_.push_back(TeleportMove{v, e.slot, 0});
     const uint32_t edge = d.route_edges[d.route_begin[v] + e.route_pos + 1];
-    if (outside_edge(edge)) {
-      // Its next edge is driven elsewhere: it re-enters there, in the other simulator.
-      ledger_.handed_out(v, trip_counters(e));
-      departing_outside_.push_back(HandOut{v, -1, 0, 0, e.route_pos + 1});
-      ++handed_out_;
-      continue;
-    }
-    if (parts_) {  // the edge's owner queues it (exchange_vehicles)
-      parts_->teleports.push_back(TeleportHandOver{e, e.route_pos + 1, edge, ledger_.departure(v)});
-      continue;
-    }
-    ledger_.teleporting(e, e.route_pos + 1);
-    queues_.push_front(edge, queue_entry(v, true));
+    if (link_->takes_reentry(e, e.route_pos + 1, edge)) continue;
+    ledger.teleporting(e, e.route_pos + 1);
+    books_.queues.push_front(edge, queue_entry(v, true));
   }
 }
 
@@ -371,26 +391,20 @@ void Simulation::enqueue_due(int64_t until_ms) {
 
 void Simulation::enqueue(uint32_t v) {
   const Demand& d = trips_.demand();
-  if (d.route_length[v] == 0 || !queues_.has_lanes(d.route_edges[d.route_begin[v]])) {
-    ledger_.set_status(v, kArrived);
-    ++counts_.removed;
+  if (d.route_length[v] == 0 || !books_.queues.has_lanes(d.route_edges[d.route_begin[v]])) {
+    books_.ledger.set_status(v, kArrived);
+    ++books_.counts.removed;
     return;
   }
   const uint32_t edge = d.route_edges[d.route_begin[v]];
-  if (parts_ && parts_->plan.edge_owner[edge] != parts_->plan.part) return;  // another part inserts it
-  if (outside_edge(edge)) {
-    TripCounters none;
-    none.next_stop = d.stops.first(v);
-    ledger_.handed_out(v, none);  // its trip starts in the other simulator
-    departing_outside_.push_back(HandOut{v, -1, 0, 0, 0});
-    ++handed_out_;
-    return;
-  }
-  queues_.push_back(edge, queue_entry(v, false));
+  if (link_->takes_departure(v, edge)) return;
+  books_.queues.push_back(edge, queue_entry(v, false));
 }
 
 void Simulation::insert_waiting(int map_index) {
-  const InsertBatch& batch = queues_.offer(ledger_.reentry_wants());
+  InsertionQueues& queues = books_.queues;
+  TripLedger& ledger = books_.ledger;
+  const InsertBatch& batch = queues.offer(ledger.reentry_wants());
   // The step length as a float in the one way the insertion checks have always used it.
   const InsertParams params{static_cast<float>(step_length()),
                             opt_.seed,
@@ -399,20 +413,21 @@ void Simulation::insert_waiting(int map_index) {
                             min_decel_,
                             nullptr,
                             nullptr};
-  if (queues_.offered_entries() > 0) stepper_->insert(batch, queues_.offered_entries(), params, map_index);
+  if (queues.offered_entries() > 0) stepper_->insert(batch, queues.offered_entries(), params, map_index);
 
   // Advance the queues past the inserted heads, give each inserted vehicle a slot and record the
   // departures, in the order of the batch.
   const Demand& d = trips_.demand();
-  inits_.clear();
+  books_.inits.clear();
   // Each entry's edge, for a partitioned run's report of the departures in the order one part inserts.
-  if (parts_) {
-    entry_edge_.resize(queues_.offered_entries());
+  const bool record = link_->records_departures();
+  if (record) {
+    entry_edge_.resize(queues.offered_entries());
     for (uint32_t slot = 0; slot < batch.num_slots; ++slot)
       std::fill(entry_edge_.begin() + batch.begin[slot], entry_edge_.begin() + batch.begin[slot + 1],
                 batch.edge[slot]);
   }
-  queues_.take_inserted([&](uint32_t i) {
+  queues.take_inserted([&](uint32_t i) {
     const uint32_t v = batch.entry[i] & ~kInsertTeleported;
     SlotInit init{0,
                   v,
@@ -428,16 +443,15 @@ void Simulation::insert_waiting(int map_index) {
                   0,
                   0};
     if (batch.entry[i] & kInsertTeleported) {
-      set_stops(init, ledger_.reentering(init));
+      set_stops(init, ledger.reentering(init));
     } else {
-      ++counts_.inserted;
-      ledger_.departed(v, time(), d.depart[v], init);
-      if (parts_)
-        parts_->departures.push_back(DepartDelay{uint64_t{entry_edge_[i]} << 32 | i, time() - d.depart[v]});
+      ++books_.counts.inserted;
+      ledger.departed(v, time(), d.depart[v], init);
+      if (record) link_->departed(uint64_t{entry_edge_[i]} << 32 | i, time() - d.depart[v]);
       set_stops(init, d.stops.first(v));
     }
-    init.slot = slots_.take();
-    inits_.push_back(init);
+    init.slot = books_.slots.take();
+    books_.inits.push_back(init);
   });
   if (opt_.max_depart_delay >= 0) drop_late_departures();
 }
@@ -448,10 +462,10 @@ void Simulation::insert_waiting(int map_index) {
 void Simulation::drop_late_departures() {
   const Demand& d = trips_.demand();
   const int64_t max_delay_ms = std::llround(opt_.max_depart_delay * 1000.0);
-  queues_.drop_departures([&](uint32_t v) {
+  books_.queues.drop_departures([&](uint32_t v) {
     if (time_ms_ - seconds_to_ms(d.depart[v]) <= max_delay_ms) return false;
-    ledger_.set_status(v, kArrived);
-    ++counts_.discarded;
+    books_.ledger.set_status(v, kArrived);
+    ++books_.counts.discarded;
     return true;
   });
 }
@@ -459,28 +473,21 @@ void Simulation::drop_late_departures() {
 // The vehicles inserted in this step start in their slots and join the active list; the slots that left it
 // in this step (their vehicles left the road in the previous one) are free.
 void Simulation::start_inserted(uint32_t kept, uint32_t running) {
+  HostBooks& b = books_;
   added_.clear();
-  for (const SlotInit& in : inits_) added_.push_back(in.slot);
-  // In a partitioned run, also the vehicles that drove in from other parts; those that drove out ran.
-  uint32_t adopted = 0, migrated = 0;
-  if (parts_) {
-    adopted = static_cast<uint32_t>(parts_->adopted.size());
-    migrated = parts_->migrated;
-    added_.insert(added_.end(), parts_->adopted.begin(), parts_->adopted.end());
-    parts_->adopted.clear();
-    parts_->migrated = 0;
-  }
+  for (const SlotInit& in : b.inits) added_.push_back(in.slot);
+  // Also the vehicles that came in across the boundary; those that left ran in the step.
+  const int64_t crossed = link_->settle_crossings(added_);
   std::sort(added_.begin(), added_.end());
-  stepper_->start_vehicles(inits_, added_);
-  num_active_ = kept + static_cast<uint32_t>(added_.size());
+  stepper_->start_vehicles(b.inits, added_);
+  b.num_active = kept + static_cast<uint32_t>(added_.size());
   // Running vehicles: those of the step's active list, and every one inserted.
-  counts_.running = running + inits_.size() + adopted - migrated - handed_out_last_step_;
-  handed_out_last_step_ = 0;
-  counts_.waiting = queues_.waiting();
-  inits_.clear();
-  for (const uint32_t k : retiring_) slots_.release(k);
-  retiring_.swap(retiring_next_);
-  retiring_next_.clear();
+  b.counts.running = static_cast<uint64_t>(static_cast<int64_t>(running + b.inits.size()) + crossed);
+  b.counts.waiting = b.queues.waiting();
+  b.inits.clear();
+  for (const uint32_t k : b.retiring) b.slots.release(k);
+  b.retiring.swap(b.retiring_next);
+  b.retiring_next.clear();
 }
 
 // Renumbers the slots of the vehicles on the road densely from 0 in the order of their lanes (ties: the old
@@ -489,18 +496,18 @@ void Simulation::start_inserted(uint32_t kept, uint32_t running) {
 // steps, when the slots in use are exactly the active list. Nothing depends on a vehicle's slot number
 // (claims break ties by vehicle, random draws are keyed by vehicle, ends are handled in vehicle order, a
 // vehicle's slot is looked up in the active list), so results are unchanged. The host keeps only the slots
-// due to leave (retiring_), which are renumbered with the rest.
+// due to leave (HostBooks::retiring), which are renumbered with the rest.
 void Simulation::sort_slots() {
-  stepper_->sort_slots(retiring_);
-  for (const uint32_t k : retiring_)
+  stepper_->sort_slots(books_.retiring);
+  for (const uint32_t k : books_.retiring)
     if (k == kNotActive) throw std::logic_error("a slot due to leave was not in the active list");
-  slots_.reset(num_active_);
+  books_.slots.reset(books_.num_active);
 }
 
 uint32_t Simulation::add_trip(const NewTrip& trip) {
   const uint32_t v = trips_.add(trip, net_);
-  ledger_.resize(trips_.size());
-  ++counts_.loaded;
+  books_.ledger.resize(trips_.size());
+  ++books_.counts.loaded;
   // Soonest last; among trips due at once, the lowest index last.
   const std::pair<int64_t, uint32_t> due{seconds_to_ms(trip.depart), v};
   added_due_.insert(std::upper_bound(added_due_.begin(), added_due_.end(), due, std::greater<>()), due);
@@ -545,10 +552,11 @@ void Simulation::set_route(uint32_t v, const std::vector<uint32_t>& edges) {
   }
   // Off the road: waiting to re-enter after a teleport (its old slot may wait one more step to be cleared),
   // or to depart (queued or not yet due). Its queue stays the one of the route's first edge.
-  if (ledger_.status(v) == kTeleporting) {
-    must_start_at(ledger_.resume_route_pos(v), "re-enters after its teleport at");
-    ledger_.set_resume_route_pos(v, 0);
-  } else if (ledger_.status(v) == kPending && k < 0) {
+  TripLedger& ledger = books_.ledger;
+  if (ledger.status(v) == kTeleporting) {
+    must_start_at(ledger.resume_route_pos(v), "re-enters after its teleport at");
+    ledger.set_resume_route_pos(v, 0);
+  } else if (ledger.status(v) == kPending && k < 0) {
     must_start_at(0, "departs from");
   } else {
     refuse("its trip has ended");
@@ -559,12 +567,8 @@ void Simulation::set_route(uint32_t v, const std::vector<uint32_t>& edges) {
 const LaneCounters& Simulation::collect_lane_counters() {
   if (lane_counters_.sampled_steps.size() != net_.num_lanes())  // all zero: nothing counted
     lane_counters_.resize(net_.num_lanes(), opt_.emission_sums);
-  if (parts_ && parts_->plan.part == 0) request(kRequestCounters);
-  if (parts_ && parts_->plan.part != 0) {
-    gather_counters();
-    return lane_counters_;
-  }
-  if (opt_.lane_counters || opt_.emission_sums) {
+  link_->request(kRequestCounters);
+  if (link_->leads() && (opt_.lane_counters || opt_.emission_sums)) {
     int64_t* columns[kNumLaneCounters];
     for (int k = 0; k < kNumLaneCounters; ++k) {
       std::vector<int64_t>& column = counter_column(lane_counters_, k);
@@ -572,7 +576,7 @@ const LaneCounters& Simulation::collect_lane_counters() {
     }
     stepper_->drain_counters(columns);
   }
-  if (parts_) gather_counters();
+  if (link_->parts() > 1) gather_counters();
   return lane_counters_;
 }
 
@@ -606,9 +610,8 @@ void Simulation::sample_fcd(FcdFrame& frame) const {
   frame.lane.clear();
   frame.pos.clear();
   frame.speed.clear();
-  if (parts_) {
-    gather_sample();
-    for (const SampleEntry& e : parts_->sample) {
+  if (link_->parts() > 1) {
+    for (const SampleEntry& e : link_->running_vehicles(version_)) {
       frame.vehicle.push_back(e.vehicle);
       frame.lane.push_back(static_cast<uint32_t>(e.lane));
       frame.pos.push_back(e.pos);
@@ -643,7 +646,9 @@ int32_t Simulation::slot_of(uint32_t v) const {
   return slot;
 }
 
-uint8_t Simulation::status(uint32_t v) const { return on_road(&VehicleView::status, v, ledger_.status(v)); }
+uint8_t Simulation::status(uint32_t v) const {
+  return on_road(&VehicleView::status, v, books_.ledger.status(v));
+}
 int32_t Simulation::lane(uint32_t v) const { return on_road(&VehicleView::lane, v, int32_t{-1}); }
 float Simulation::pos(uint32_t v) const { return on_road(&VehicleView::pos, v, 0.0f); }
 float Simulation::speed(uint32_t v) const { return on_road(&VehicleView::speed, v, 0.0f); }
@@ -704,7 +709,7 @@ std::vector<TripRecord> Simulation::own_unfinished_trips(double end, bool undepa
     r.vehicle = v;
     r.unfinished = kind;
     r.speed_factor = d.speed_factor[v];
-    const DepartRecord dep = ledger_.departure(v);
+    const DepartRecord dep = books_.ledger.departure(v);
     r.depart = kind == kTripRunning ? dep.time : -1.0;
     r.depart_delay = (kind == kTripRunning ? dep.time : end) - d.depart[v];
     r.depart_lane = static_cast<uint32_t>(dep.lane);
@@ -727,9 +732,9 @@ std::vector<TripRecord> Simulation::own_unfinished_trips(double end, bool undepa
   }
   // Off the road between a teleport and its re-entry, or never departed.
   for (uint32_t v = 0; v < trips_.size(); ++v) {
-    const uint8_t st = ledger_.status(v);
+    const uint8_t st = books_.ledger.status(v);
     if (st == kTeleporting) {
-      const TripCounters* c = ledger_.carried(v);
+      const TripCounters* c = books_.ledger.carried(v);
       TripRecord& r = record(v, kTripRunning);
       if (c) {
         r.route_length = c->route_length;
@@ -738,11 +743,11 @@ std::vector<TripRecord> Simulation::own_unfinished_trips(double end, bool undepa
         r.waiting_count = c->waiting_count;
         r.stop_time = static_cast<double>(c->stop_steps) * step_length();
       }
-    } else if (st == kPending && undeparted && ledger_.departure(v).lane < 0 &&
+    } else if (st == kPending && undeparted && books_.ledger.departure(v).lane < 0 &&
                seconds_to_ms(d.depart[v]) <= seconds_to_ms(end) && d.route_length[v] > 0) {
       // In a partitioned run the part that owns its first edge reports it (the others never queue it).
       const uint32_t edge = d.route_edges[d.route_begin[v]];
-      if (parts_ && parts_->plan.edge_owner[edge] != parts_->plan.part) continue;
+      if (!link_->owns_edge(edge)) continue;
       record(v, kTripUndeparted);
     }
   }
@@ -762,7 +767,7 @@ SummaryRow Simulation::summary_row() const {
   r.arrived = c.arrived;
   r.ended = c.arrived + c.discarded;
   r.teleports = c.teleports;
-  const SpeedSums sums = parts_ ? gather_speed_sums() : speed_sums();
+  const SpeedSums sums = gather_speed_sums();
   const uint64_t running = sums.running;
   const int64_t speed_sum = sums.speed, rel_sum = sums.relative;
   const uint64_t halting = sums.halting, stopped = sums.stopped;
@@ -774,8 +779,8 @@ SummaryRow Simulation::summary_row() const {
   }
   // As SUMO: meanWaitingTime is the mean insertion delay of the vehicles inserted so far, meanTravelTime
   // the mean trip duration of the vehicles that arrived so far.
-  const double delay_sum = parts_ ? parts_->depart_delay_sum : ledger_.depart_delay_sum();
-  const double travel_sum = parts_ ? parts_->travel_time_sum : ledger_.travel_time_sum();
+  const double delay_sum = link_->depart_delay_sum();
+  const double travel_sum = link_->travel_time_sum();
   if (c.inserted > 0) r.mean_waiting_time = delay_sum / static_cast<double>(c.inserted);
   if (c.arrived > 0) r.mean_travel_time = travel_sum / static_cast<double>(c.arrived);
   return r;
@@ -803,7 +808,7 @@ std::string Simulation::check_lane_map() const {
     }
   }
   // Cells written from outside (a co-simulation's mirrored vehicles, handed-out vehicles' last footprints).
-  for (const FootprintWrite& w : outside_footprints_[cur_])
+  for (const FootprintWrite& w : link_->foreign_footprints(cur_))
     apply_footprint(expect.data(), nv, w.fp, w.length, 1);
   for (uint64_t c = 0; c < net_.num_cells(); ++c)
     if ((s.map[c] != 0) != (expect[c] != 0))
@@ -812,5 +817,90 @@ std::string Simulation::check_lane_map() const {
              " at t=" + std::to_string(time());
   return "";
 }
+
+// Part 0 sends `end` and `undeparted` with the gather's request; every part answers with its own records.
+std::vector<TripRecord> Simulation::unfinished_trips(double end, bool undeparted) const {
+  if (link_->parts() == 1) return own_unfinished_trips(end, undeparted);
+  link_->request(kRequestUnfinished);
+  Bytes args;
+  ByteWriter w(args);
+  w.put(end);
+  w.put(static_cast<uint8_t>(undeparted ? 1 : 0));
+  const Bytes root = link_->broadcast(args, "unfinished arguments");
+  ByteReader r(root);
+  end = r.get<double>();
+  undeparted = r.get<uint8_t>() != 0;
+  Bytes b;
+  ByteWriter(b).put_array(own_unfinished_trips(end, undeparted));
+  std::vector<TripRecord> all;
+  for (const Bytes& x : link_->gather(b, "unfinished"))
+    for (const TripRecord& t : ByteReader(x).get_array<TripRecord>()) all.push_back(t);
+  std::sort(all.begin(), all.end(),
+            [](const TripRecord& a, const TripRecord& b) { return a.vehicle < b.vehicle; });
+  return all;
+}
+
+// The summary's sums of every part, added at part 0 (integers: exact in any order).
+SpeedSums Simulation::gather_speed_sums() const {
+  if (link_->parts() == 1) return speed_sums();
+  link_->request(kRequestSpeedSums);
+  Bytes b;
+  ByteWriter(b).put(speed_sums());
+  SpeedSums total;
+  for (const Bytes& x : link_->gather(b, "speed sums")) {
+    const SpeedSums s = ByteReader(x).get<SpeedSums>();
+    total.running += s.running;
+    total.halting += s.halting;
+    total.stopped += s.stopped;
+    total.speed += s.speed;
+    total.relative += s.relative;
+  }
+  return total;
+}
+
+// The lane counters counted since the last request, from every part to part 0, which adds them to its own.
+// Only the columns every part keeps travel (kept_counters: the parts run with the same options).
+void Simulation::gather_counters() {
+  std::vector<uint32_t> lanes;
+  std::vector<int64_t> values;
+  const std::vector<int> kept = kept_counters();
+  if (!link_->leads() && !kept.empty()) {
+    const uint32_t nl = net_.num_lanes();
+    std::vector<int64_t> all(static_cast<size_t>(kNumLaneCounters) * nl, 0);
+    int64_t* columns[kNumLaneCounters];
+    for (int k = 0; k < kNumLaneCounters; ++k) columns[k] = all.data() + static_cast<size_t>(k) * nl;
+    stepper_->drain_counters(columns);
+    for (uint32_t l = 0; l < nl; ++l) {
+      bool any = false;
+      for (const int k : kept) any = any || columns[k][l] != 0;
+      if (!any) continue;
+      lanes.push_back(l);
+      for (const int k : kept) values.push_back(columns[k][l]);
+    }
+  }
+  Bytes b;
+  ByteWriter w(b);
+  w.put_array(lanes);
+  w.put_array(values);
+  const std::vector<Bytes> all = link_->gather(b, "counters");
+  for (size_t i = 1; i < all.size(); ++i) {
+    ByteReader r(all[i]);
+    const std::vector<uint32_t> l = r.get_array<uint32_t>();
+    const std::vector<int64_t> v = r.get_array<int64_t>();
+    for (size_t j = 0; j < l.size(); ++j)
+      for (size_t c = 0; c < kept.size(); ++c)
+        counter_column(lane_counters_, kept[c])[l[j]] += v[j * kept.size() + c];
+  }
+}
+
+int Simulation::part_signal() const { return link_->signal(); }
+
+std::vector<PartStats> Simulation::part_stats() const { return link_->part_stats(); }
+
+const Simulation::Counts& Simulation::counts() const { return link_->counts(); }
+
+std::vector<TripRecord> Simulation::take_finished_trips() { return link_->take_finished(); }
+
+const std::vector<TeleportEvent>& Simulation::teleport_events() const { return link_->teleport_events(); }
 
 }  // namespace lpsim

@@ -14,12 +14,11 @@
 #include "backends/cpu/cpu_stepper.hpp"
 #include "backends/stepper.hpp"
 #include "demand/trip_table.hpp"
+#include "engine/boundary_link.hpp"
 #include "engine/engine_net.hpp"
-#include "engine/insertion_queues.hpp"
+#include "engine/host_books.hpp"
 #include "engine/rerouting.hpp"
 #include "engine/samples.hpp"
-#include "engine/slot_pool.hpp"
-#include "engine/trip_ledger.hpp"
 #include "net/network.hpp"
 #include "partition/part_plan.hpp"
 #include "transport/transport.hpp"
@@ -75,35 +74,12 @@ struct SimulationOptions {
   ReroutingOptions rerouting;
 };
 
-struct PartState;  // src/engine/part_state.hpp
-
-/// Where a vehicle's front at `pos` on a lane `lane_length` long gets to in `seconds` at `speed`, as it
-/// drives on while it waits to be handed over: short of the lane's end only (beyond it lies a junction it has
-/// not been let through), else where it is (at most the lane's end). Both directions of a co-simulation's
-/// hand-over place a vehicle so.
-template <class T>
-T position_driven_on(T pos, T speed, T seconds, T lane_length) {
-  const T at = std::max(T{0}, pos);
-  const T on = at + std::max(T{0}, speed) * seconds;
-  return on < lane_length ? on : std::min(at, lane_length);
-}
+class OutsideLink;  // engine/outside_link.hpp
 
 /// The summary's sums over the running vehicles (speeds in units of 2^-24 m/s, and of the desired speed).
 struct SpeedSums {
   uint64_t running = 0, halting = 0, stopped = 0;
   int64_t speed = 0, relative = 0;
-};
-
-/// What one part of a partitioned run spent and sent, cumulative.
-struct PartStats {
-  uint64_t steps = 0;
-  uint64_t vehicle_updates = 0;
-  uint64_t migrations = 0;      // vehicles that drove out of it into another part
-  uint64_t bytes_sent = 0;      // by the step's exchanges
-  uint64_t rounds = 0;          // the step's exchanges
-  double step_seconds = 0;      // wall time of its steps, exchanges included
-  double exchange_seconds = 0;  // of that, in the step's exchanges (waiting for the others included)
-  double gather_seconds = 0;    // wall time answering part 0's requests and reporting to it
 };
 
 class Simulation {
@@ -137,12 +113,7 @@ class Simulation {
   /// trip has ended.
   void set_route(uint32_t v, const std::vector<uint32_t>& edges);
 
-  struct Counts {
-    uint64_t loaded = 0, inserted = 0, running = 0, waiting = 0, arrived = 0, teleports = 0;
-    uint64_t removed = 0;    // never inserted for a reason (departure before begin, route without car lanes)
-    uint64_t discarded = 0;  // dropped while waiting to depart, after the max depart delay
-    uint64_t vehicle_updates = 0;
-  };
+  using Counts = RunCounts;
   /// The run's counts (in a partitioned run, part 0 sums the parts').
   const Counts& counts() const;
 
@@ -184,7 +155,7 @@ class Simulation {
   char link_state(uint32_t conn) const;
   /// Slots handed out so far: the length of the per-slot state columns (the most vehicles on the road at
   /// once, counting those that left it in the last two steps).
-  uint32_t slots_used() const { return slots_.peak(); }
+  uint32_t slots_used() const { return books_.slots.peak(); }
   /// The vehicles the passes visit (on the road, or left it this step), ascending.
   const std::vector<uint32_t>& active() const;
   /// Test support: the vehicles that teleported in the last step (and whether that ended their trip).
@@ -192,47 +163,15 @@ class Simulation {
   /// The teleports that started in the last step, in vehicle order (the runner warns of each, as SUMO).
   const std::vector<TeleportEvent>& teleport_events() const;
 
-  // --- co-simulation: lanes another simulator (SUMO) drives (simulation_outside.cpp) ---
-  /// A vehicle that left for an outside lane (SimulationOptions::outside_lanes): where and how fast it was
-  /// at the end of the step; or (lane -1, pos and speed 0) one that enters the other simulator off the road:
-  /// due to depart on an outside edge (route_pos 0), or teleported to one (route_pos: that edge's).
-  struct HandOut {
-    uint32_t vehicle = 0;
-    int32_t lane = -1;  // the outside lane its front is on
-    float pos = 0, speed = 0;
-    uint32_t route_pos = 0;  // of the lane's edge in its route
-  };
-  /// The vehicles that left for outside lanes in the last step: those off the road (departures in the order
-  /// they were due, teleports in vehicle order), then those that drove there, in vehicle order. Their ledger
-  /// status is kMigrated from then on (not running, not arrived: the other simulator has them).
-  const std::vector<HandOut>& hand_outs() const { return hand_outs_; }
-  /// The other simulator's vehicles on outside lanes as they are at the end of the next step (the caller
-  /// has stepped it already): the lane map the next step writes holds them before its insertions, and the
-  /// step after reads them (the room after a junction, leaders). Kept for the following steps until the
-  /// next call replaces them.
-  struct OutsideVehicle {
-    int32_t lane = 0;
-    float pos = 0, length = 0, speed = 0;  // front position, m
-  };
-  void mirror_outside_vehicles(const std::vector<OutsideVehicle>& vehicles);
-  /// Vehicles handed out so far.
-  uint64_t handed_out() const { return handed_out_; }
-  /// A handed-out vehicle v comes back at route position `route_pos` (an edge this simulation drives), its
-  /// front at `pos` on `lane` (one of the edge's; -1: its best free lane) at `speed` at time(): it queues
-  /// there to re-enter in the next step where it would have driven to in it (at the lane start when there
-  /// is no room there, as a teleported vehicle does), at up to `speed`, carrying the counters it left with
-  /// (the other simulator reports its piece of the trip itself, up to `pos`). std::invalid_argument, naming
-  /// it, when it was not handed out, the edge is driven outside or the lane is not the edge's.
-  void take_back(uint32_t v, uint32_t route_pos, int32_t lane, float pos, float speed);
-  /// Whether edge `edge` takes one more vehicle back now: fewer are queued to enter there than it has lanes
-  /// (the insertion then finds room at a lane start, or the queue holds the next one in the other simulator).
-  bool has_entry_room(uint32_t edge) const;
+  /// The co-simulation's boundary (SimulationOptions::outside_lanes): the vehicles handed out to the other
+  /// simulator and taken back from it. std::logic_error in a run without outside lanes.
+  OutsideLink& outside_link();
   /// A vehicle's departure record (lane -1: it has not departed here) and, while it is handed out, the
   /// counters it carries.
-  DepartRecord departure(uint32_t v) const { return ledger_.departure(v); }
-  const TripCounters* carried(uint32_t v) const { return ledger_.carried(v); }
+  DepartRecord departure(uint32_t v) const { return books_.ledger.departure(v); }
+  const TripCounters* carried(uint32_t v) const { return books_.ledger.carried(v); }
   /// The ledger's status of vehicle v (kMigrated: handed out to the other simulator).
-  uint8_t ledger_status(uint32_t v) const { return ledger_.status(v); }
+  uint8_t ledger_status(uint32_t v) const { return books_.ledger.status(v); }
 
  private:
   StepParams step_params() const;
@@ -255,28 +194,13 @@ class Simulation {
   void share_new_routes(std::vector<NewRoute>& routes);
   void apply_new_routes(const std::vector<NewRoute>& routes);
   void sample_routing_speeds();
-  // A partitioned run's rounds (simulation_parts.cpp), in the order the step makes them.
-  void share_signals();
-  void share_approaches();
-  void apply_remote_footprints(int map, const std::vector<FootprintWrite>& writes);
-  void forget_remote_footprints(int map);
-  void hand_out_vehicles();
-  bool outside_edge(uint32_t edge) const;  // driven by the other simulator
-  void write_outside_footprints(int map);
-  void share_claims();
-  void exchange_vehicles();
-  void share_insertions(int map);
-  void init_parts();
+  void make_link();
   void gather_counters();
   std::vector<int> kept_counters() const;
-  void report_to_root();
-  void request(uint8_t what) const;
-  std::vector<Bytes> gather_at_root(const Bytes& mine, const char* what) const;
-  void gather_sample() const;
   SpeedSums speed_sums() const;
   SpeedSums gather_speed_sums() const;
   /// The backend's state (a device backend copies it at most once per change of its state).
-  const HostState& state(StateParts parts) const { return stepper_->fetch(parts, slots_.size()); }
+  const HostState& state(StateParts parts) const { return stepper_->fetch(parts, books_.slots.size()); }
   int32_t slot_of(uint32_t v) const;
   /// Test support: vehicle v's entry of a slot column, or `off_road` while it holds no slot.
   template <class T>
@@ -301,41 +225,24 @@ class Simulation {
   uint32_t ignore_blocker_steps_ = 0;    // stood steps after which a junction blocker is ignored (if tracked)
   int cur_ = 0;                          // the lane map the state is in (the next step reads it)
 
-  // Host bookkeeping: slots handed out, the queues, every trip's account.
-  SlotPool slots_;
-  InsertionQueues queues_;
-  TripLedger ledger_;
+  // Host bookkeeping: slots handed out, the queues, every trip's account, the counts.
+  HostBooks books_;
   uint32_t next_departure_ = 0;  // loaded trips (sorted by depart) before this one have been queued
   // Trips added during the run whose departure has not come yet: (depart ms, trip), soonest last.
   std::vector<std::pair<int64_t, uint32_t>> added_due_;
   uint32_t num_loaded_ = 0;
-  // Slots whose vehicle left the road in the previous step (free after this step's passes), and in this one.
-  std::vector<uint32_t> retiring_, retiring_next_;
-  // This step's insertions, each with the slot it took, and those slots ascending.
-  std::vector<SlotInit> inits_;
   // The stop table's durations and until times in steps (TripView::stop_duration_steps, stop_until_step).
   std::vector<uint32_t> stop_duration_steps_, stop_until_step_;
   std::vector<uint32_t> added_;
   std::vector<uint32_t> entry_edge_;  // insert_waiting's scratch: the edge of each entry of the batch
-  uint32_t num_active_ = 0;
   std::vector<TeleportMove> moves_;
-  std::vector<TeleportEvent> teleport_events_;
   LaneCounters lane_counters_;
   std::vector<double> fuel_divisor_;  // per type: EmissionView::fuel_divisor
 
-  // Co-simulation: every lane (what a one-part run holds, when lanes are driven elsewhere), the
-  // footprints written into each lane map from outside (mirrored vehicles, and those of vehicles handed out,
-  // which their own clear pass no longer erases), erased when that map is next written.
-  std::vector<uint8_t> all_lanes_;
-  std::vector<HandOut> departing_outside_;  // due to depart on an outside edge, for the next hand_outs()
-  std::vector<FootprintWrite> outside_footprints_[2];
-  std::vector<FootprintWrite> mirror_;  // mirror_outside_vehicles(): written into each map the steps write
-  std::vector<HandOut> hand_outs_;
-  uint64_t handed_out_ = 0;
-  uint32_t handed_out_last_step_ = 0;
-
-  std::unique_ptr<Stepper> stepper_;       // last: made from the members above, gone before them
-  std::unique_ptr<PartState> parts_;       // a partitioned run's state (null: one part)
+  std::unique_ptr<Stepper> stepper_;  // made from the members above, gone before them
+  // Where this run's lanes meet lanes driven elsewhere (other parts, another simulator); made from the
+  // stepper and the books, gone before them.
+  std::unique_ptr<BoundaryLink> link_;
   std::unique_ptr<RerouteState> reroute_;  // the rerouting device (null: no vehicle has it)
 
   // What outputs and tests derive from the backend's state, kept per version of it: the state changes in

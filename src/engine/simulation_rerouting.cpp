@@ -15,7 +15,6 @@
 
 #include "core/time_range.hpp"
 #include "demand/trip_routes.hpp"
-#include "engine/part_state.hpp"
 #include "engine/rerouting.hpp"
 #include "engine/simulation.hpp"
 #include "transport/byte_buffer.hpp"
@@ -37,7 +36,6 @@ void Simulation::reroute_vehicles(int64_t end_ms) {
   RerouteState& r = *reroute_;
   const Demand& d = trips_.demand();
   const uint64_t sample = r.speeds.samples();
-  const int part = parts_ ? parts_->plan.part : 0;
 
   std::vector<RouteRequest> requests;
   std::vector<uint32_t> who, kept;  // per request: the vehicle, and the edge kept before the path (or ~0)
@@ -76,8 +74,7 @@ void Simulation::reroute_vehicles(int64_t end_ms) {
     r.routed_at[v] = sample;
   };
   auto holds_queue_of = [&](uint32_t edge) {
-    return (!parts_ || parts_->plan.edge_owner[edge] == part) && !outside_edge(edge) &&
-           queues_.has_lanes(edge);
+    return link_->queues_at(edge) && books_.queues.has_lanes(edge);
   };
 
   // Due to depart in this step: routed when due (a trip's loaded route is the one free-flow times give,
@@ -92,7 +89,8 @@ void Simulation::reroute_vehicles(int64_t end_ms) {
   // Waiting to be inserted since a pre-period or more.
   size_t kept_waiting = 0;
   for (auto& [when, v] : r.waiting) {
-    if (ledger_.status(v) != kPending || ledger_.departure(v).lane >= 0) continue;  // departed, or dropped
+    if (books_.ledger.status(v) != kPending || books_.ledger.departure(v).lane >= 0)
+      continue;  // departed, or dropped
     if (when <= end_ms) {
       if (r.routed_at[v] < sample) ask(v, 0, ~0u, true);
       when += r.options.pre_period_ms;
@@ -109,7 +107,7 @@ void Simulation::reroute_vehicles(int64_t end_ms) {
       const uint32_t v = s.veh.vehicle[k];
       if (v >= d.rerouting.size() || !(d.rerouting[v] & kRerouteWhileDriving) || r.routed_at[v] >= sample)
         continue;
-      const int64_t departed = std::llround(ledger_.departure(v).time / step_length()) * dt_ms_;
+      const int64_t departed = std::llround(books_.ledger.departure(v).time / step_length()) * dt_ms_;
       const int64_t since = end_ms - (r.options.synchronize ? 0 : departed);
       if (end_ms <= departed || since % r.options.period_ms != 0) continue;
       const uint32_t rp = s.veh.route_pos[k];
@@ -151,7 +149,7 @@ void Simulation::reroute_vehicles(int64_t end_ms) {
       mine.push_back(std::move(n));
     }
   }
-  if (parts_) share_new_routes(mine);
+  if (link_->parts() > 1) share_new_routes(mine);
   apply_new_routes(mine);
 }
 
@@ -170,7 +168,7 @@ void Simulation::share_new_routes(std::vector<NewRoute>& routes) {
     w.put_array(lengths);
     w.put_array(edges);
   }
-  const std::vector<Bytes> all = parts_->transport.allgather(out, "new routes");
+  const std::vector<Bytes> all = link_->allgather(out, "new routes");
   routes.clear();
   const uint64_t sample = reroute_->speeds.samples();
   for (const Bytes& b : all) {
@@ -226,8 +224,8 @@ void Simulation::sample_routing_speeds() {
     const uint32_t k = s.active[i];
     if (s.veh.status[k] == kRunning) r.lanes.add(static_cast<uint32_t>(s.veh.lane[k]), s.veh.speed[k]);
   }
-  bool departed = counts_.inserted > 0;
-  if (parts_) {
+  bool departed = books_.counts.inserted > 0;
+  if (link_->parts() > 1) {
     Bytes out;
     {
       ByteWriter w(out);
@@ -245,7 +243,7 @@ void Simulation::sample_routing_speeds() {
       w.put_array(speeds);
     }
     departed = false;
-    for (const Bytes& b : parts_->transport.allgather(out, "routing speeds")) {
+    for (const Bytes& b : link_->allgather(out, "routing speeds")) {
       ByteReader rd(b);
       departed = rd.get<uint8_t>() != 0 || departed;
       const auto lanes = rd.get_array<uint32_t>();

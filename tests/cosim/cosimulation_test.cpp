@@ -100,7 +100,7 @@ Outcome run_case(const Case& c, const test::TempDir& dir) {
   co_opt.mode = c.mode;
   co_opt.sumo_args = c.sumo_args;
   co_opt.answer_timeout_s = 30;
-  Cosimulation co(run, lanes, co_opt);
+  Cosimulation co(run, co_opt);
   const Simulation& sim = run.simulation();
   const float watch_length =
       watch >= 0 ? run.scenario().network.lane_length[static_cast<uint32_t>(watch)] : 0;
@@ -114,7 +114,8 @@ Outcome run_case(const Case& c, const test::TempDir& dir) {
       throw;
     }
     ++o.steps;
-    for (const Simulation::HandOut& h : sim.hand_outs()) ++o.hand_ins[sim.demand().vehicle_id[h.vehicle]];
+    for (const OutsideLink::HandOut& h : run.simulation().outside_link().hand_outs())
+      ++o.hand_ins[sim.demand().vehicle_id[h.vehicle]];
     o.last = co.census();  // throws when a vehicle is lost or in two places
     o.most_in_sumo = std::max(o.most_in_sumo, o.last.in_sumo);
     o.most_in_handover = std::max(o.most_in_handover, o.last.in_handover);

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "app/simulation_options.hpp"
+#include "engine/outside_link.hpp"
 #include "unit/engine_invariant_checker.hpp"
 
 namespace lpsim::engine_test {
@@ -62,11 +63,11 @@ TEST(EngineOutsideLanesTest, VehiclesLeaveWhereTheirRouteEntersTheCorridorOnceAt
   SimulationOptions options = simulation_options(sc.config);
   options.outside_lanes = &outside;
   Simulation sim(net, d, options);
-  std::map<uint32_t, Simulation::HandOut> out;
+  std::map<uint32_t, OutsideLink::HandOut> out;
   uint64_t departed_outside = 0;
   for (int step = 0; step < 4000 && !sim.finished(); ++step) {
     sim.step();
-    for (const Simulation::HandOut& h : sim.hand_outs()) {
+    for (const OutsideLink::HandOut& h : sim.outside_link().hand_outs()) {
       EXPECT_TRUE(out.emplace(h.vehicle, h).second) << "vehicle " << h.vehicle << " handed out twice";
       EXPECT_EQ(sim.status(h.vehicle), kMigrated);
       departed_outside += h.lane < 0 ? 1 : 0;
@@ -78,13 +79,14 @@ TEST(EngineOutsideLanesTest, VehiclesLeaveWhereTheirRouteEntersTheCorridorOnceAt
         EXPECT_FALSE(corridor_set.count(net.lane_edge[static_cast<uint32_t>(sim.lane(v))])) << v;
       }
     const Simulation::Counts& c = sim.counts();
-    EXPECT_EQ(c.inserted + departed_outside, c.arrived + c.running + sim.handed_out()) << "t=" << sim.time();
+    EXPECT_EQ(c.inserted + departed_outside, c.arrived + c.running + sim.outside_link().handed_out())
+        << "t=" << sim.time();
     if (step % 50 == 0) {
       ASSERT_EQ(sim.check_lane_map(), "") << "t=" << sim.time();
     }
   }
   EXPECT_TRUE(sim.finished());
-  EXPECT_EQ(sim.handed_out(), out.size());
+  EXPECT_EQ(sim.outside_link().handed_out(), out.size());
   // Exactly the vehicles whose route enters the corridor left, each on the first corridor edge of its route,
   // near the start of its lane and at a speed it could drive.
   uint32_t entering = 0;
@@ -101,7 +103,7 @@ TEST(EngineOutsideLanesTest, VehiclesLeaveWhereTheirRouteEntersTheCorridorOnceAt
     }
     ++entering;
     ASSERT_TRUE(out.count(v)) << "vehicle " << v << " was not handed out";
-    const Simulation::HandOut& h = out.at(v);
+    const OutsideLink::HandOut& h = out.at(v);
     EXPECT_EQ(h.route_pos, static_cast<uint32_t>(rp)) << v;
     EXPECT_EQ(net.lane_edge[static_cast<uint32_t>(h.lane)], d.route_edges[d.route_begin[v] + h.route_pos]);
     EXPECT_GE(h.pos, 0.0f);
@@ -122,17 +124,18 @@ TEST(EngineOutsideLanesTest, VehiclesMirroredOnTheCorridorHoldTheTrafficBehindTh
   options.outside_lanes = &outside;
   Simulation sim(net, sc.demand, options);
   // A standing vehicle at the start of every corridor lane: nothing can enter.
-  std::vector<Simulation::OutsideVehicle> blockers;
+  std::vector<OutsideLink::OutsideVehicle> blockers;
   for (uint32_t l = 0; l < net.num_lanes(); ++l)
-    if (outside[l]) blockers.push_back(Simulation::OutsideVehicle{static_cast<int32_t>(l), 5.0f, 5.0f, 0.0f});
+    if (outside[l])
+      blockers.push_back(OutsideLink::OutsideVehicle{static_cast<int32_t>(l), 5.0f, 5.0f, 0.0f});
   uint64_t teleported_in = 0;
   for (int step = 0; step < 600; ++step) {
-    sim.mirror_outside_vehicles(blockers);
+    sim.outside_link().mirror_outside_vehicles(blockers);
     if (step % 100 == 0) {
       ASSERT_EQ(sim.check_lane_map(), "") << "t=" << sim.time();
     }
     sim.step();
-    for (const Simulation::HandOut& h : sim.hand_outs()) {
+    for (const OutsideLink::HandOut& h : sim.outside_link().hand_outs()) {
       teleported_in += h.lane < 0 && h.route_pos > 0 ? 1 : 0;
       EXPECT_EQ(h.lane, -1) << "t=" << sim.time() << ": vehicle " << h.vehicle
                             << " drove into the corridor at " << h.pos << " speed " << h.speed;
@@ -141,8 +144,8 @@ TEST(EngineOutsideLanesTest, VehiclesMirroredOnTheCorridorHoldTheTrafficBehindTh
   // Every vehicle is in one state: on the road, waiting, arrived, or handed out (at its departure, or
   // teleported into the corridor after standing time-to-teleport).
   const Simulation::Counts& c = sim.counts();
-  EXPECT_EQ(c.loaded,
-            c.removed + c.arrived + c.running + c.waiting + sim.handed_out() + not_yet_due(sim, sc));
+  EXPECT_EQ(c.loaded, c.removed + c.arrived + c.running + c.waiting + sim.outside_link().handed_out() +
+                          not_yet_due(sim, sc));
   EXPECT_GT(teleported_in, 0u) << "vehicles stood time-to-teleport and re-entered in the corridor";
   // The queues before the corridor stand.
   uint32_t standing = 0;
@@ -150,14 +153,14 @@ TEST(EngineOutsideLanesTest, VehiclesMirroredOnTheCorridorHoldTheTrafficBehindTh
     if (sim.status(v) == kRunning && sim.speed(v) < 0.1f) ++standing;
   EXPECT_GT(standing, 5u);
   // The blockers leave: traffic flows in.
-  const uint64_t before = sim.handed_out();
+  const uint64_t before = sim.outside_link().handed_out();
   uint64_t drove_in = 0;
   for (int step = 0; step < 300; ++step) {
-    sim.mirror_outside_vehicles({});
+    sim.outside_link().mirror_outside_vehicles({});
     sim.step();
-    for (const Simulation::HandOut& h : sim.hand_outs()) drove_in += h.lane >= 0 ? 1 : 0;
+    for (const OutsideLink::HandOut& h : sim.outside_link().hand_outs()) drove_in += h.lane >= 0 ? 1 : 0;
   }
-  EXPECT_GT(sim.handed_out(), before);
+  EXPECT_GT(sim.outside_link().handed_out(), before);
   EXPECT_GT(drove_in, standing / 2);
   EXPECT_EQ(sim.check_lane_map(), "");
 }
