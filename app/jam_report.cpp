@@ -31,7 +31,7 @@ JamRecorder::Episode JamRecorder::started(double t) {
   return e;
 }
 
-JamRecorder::JamRecorder(const std::string& path, double stop_time, const Network& net, const Simulation& sim)
+JamRecorder::JamRecorder(const std::string& path, double stop_time, const Network& net, Simulation& sim)
     : net_(net), writer_(path, net, sim.demand(), stop_time), stop_time_(stop_time) {}
 
 const JamRecorder::Snapshot* JamRecorder::in(const std::vector<Snapshot>& snap, uint32_t step,
@@ -39,7 +39,7 @@ const JamRecorder::Snapshot* JamRecorder::in(const std::vector<Snapshot>& snap, 
   return v < snap.size() && snap[v].step == step ? &snap[v] : nullptr;
 }
 
-void JamRecorder::take_snapshot(const Simulation& sim) {
+void JamRecorder::take_snapshot(Simulation& sim) {
   ++step_;
   std::swap(cur_, prev_);
   sim.sample_fcd(frame_);
@@ -155,7 +155,7 @@ JamRecord JamRecorder::with_held(const Episode& e, JamRecord r) {
   return r;
 }
 
-void JamRecorder::after_step(const Simulation& sim) {
+void JamRecorder::after_step(Simulation& sim) {
   take_snapshot(sim);
   find_blockers(sim);
   const double t = sim.time(), dt = sim.step_length();
@@ -198,7 +198,7 @@ void JamRecorder::after_step(const Simulation& sim) {
   for (const auto& [v, r] : ended) writer_.write(r);
 }
 
-void JamRecorder::finish(const Simulation& sim) {
+void JamRecorder::finish(Simulation& sim) {
   const double t = sim.time();
   for (const auto& [v, e] : standing_)
     if (t - e.begin + kTimeSlack >= stop_time_)

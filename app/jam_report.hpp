@@ -17,13 +17,13 @@ namespace lpsim {
 class JamRecorder {
  public:
   /// Opens the report at `path`; net and the simulation's demand must outlive the recorder.
-  JamRecorder(const std::string& path, double stop_time, const Network& net, const Simulation& sim);
+  JamRecorder(const std::string& path, double stop_time, const Network& net, Simulation& sim);
 
   /// Reads the state after a step: ends the episodes of vehicles that moved, left or teleported (a record
   /// for each teleport and each episode of at least the stop time), starts those of vehicles now standing.
-  void after_step(const Simulation& sim);
+  void after_step(Simulation& sim);
   /// Records the episodes still going on (as running at the end) and closes the file.
-  void finish(const Simulation& sim);
+  void finish(Simulation& sim);
   void flush() { writer_.flush(); }
 
  private:
@@ -43,7 +43,7 @@ class JamRecorder {
   };
 
   static Episode started(double t);
-  void take_snapshot(const Simulation& sim);
+  void take_snapshot(Simulation& sim);
   /// `r` with where the vehicle stood and what held it taken from the step it had stood the stop time.
   static JamRecord with_held(const Episode& e, JamRecord r);
   void count_last_step(Episode& e, uint32_t v) const;

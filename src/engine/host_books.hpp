@@ -3,6 +3,7 @@
 // every trip's ledger, the counts and what one step hands on to the next. The Simulation keeps it, and its
 // boundary link (boundary_link.hpp) reads and changes it where vehicles cross the boundary.
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "engine/insertion_queues.hpp"
@@ -22,6 +23,17 @@ struct RunCounts {
   uint64_t vehicle_updates = 0;
 };
 
+/// The trips still to be queued for departure: the loaded ones from `next` on (sorted by depart), and those
+/// added during the run.
+struct DepartureSchedule {
+  uint32_t next = 0;    // loaded trips before this one have been queued (or removed)
+  uint32_t loaded = 0;  // trips loaded at the start
+  // Trips added during the run whose departure has not come yet: (depart ms, trip), soonest last.
+  std::vector<std::pair<int64_t, uint32_t>> added;
+
+  bool empty() const { return next >= loaded && added.empty(); }
+};
+
 struct HostBooks {
   explicit HostBooks(const Network& net) : queues(net) {}
 
@@ -29,6 +41,7 @@ struct HostBooks {
   InsertionQueues queues;
   TripLedger ledger;
   RunCounts counts;
+  DepartureSchedule schedule;
   uint32_t num_active = 0;  // slots the passes visit: on the road, or left it in the last step
   // Slots whose vehicle left the road in the previous step (free after this step's passes), and in this one.
   std::vector<uint32_t> retiring, retiring_next;

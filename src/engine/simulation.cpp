@@ -62,32 +62,39 @@ Simulation::Simulation(const Network& net, Demand demand, const SimulationOption
   if (d.size() >= kMaxVehicles)
     throw std::invalid_argument("too many vehicles: " + std::to_string(d.size()) + " (at most " +
                                 std::to_string(kMaxVehicles - 1) + ")");
-  dt_ms_ = opt_.step_ms;
   time_ms_ = std::llround(opt_.begin * 1000.0);
-  num_loaded_ = d.size();
-  books_.counts.loaded = num_loaded_;
-  books_.ledger.resize(num_loaded_);
+  DepartureSchedule& due = books_.schedule;
+  due.loaded = d.size();
+  books_.counts.loaded = due.loaded;
+  books_.ledger.resize(due.loaded);
   // kNumLaneCounters columns over every lane: kept only for edgeData/laneData (collect_lane_counters() sizes
   // them when asked without), the emission sums only for emissions outputs.
   if (opt_.lane_counters || opt_.emission_sums) lane_counters_.resize(net.num_lanes(), opt_.emission_sums);
 
   const VehicleTypes& t = d.types;
+  const float dt = static_cast<float>(opt_.step_ms) / 1000.0f;
+  params_.dt = dt;
+  params_.seed = opt_.seed;
+  params_.substeps = idm_default_substeps(dt);
+  params_.max_accel = 2.6f;
+  params_.max_emergency_decel = 9.0f;
   for (uint32_t k = 0; k < t.size(); ++k) {
-    max_accel_ = std::max(max_accel_, t.accel[k]);
-    max_emergency_decel_ = std::max(max_emergency_decel_, t.emergency_decel[k]);
+    params_.max_accel = std::max(params_.max_accel, t.accel[k]);
+    params_.max_emergency_decel = std::max(params_.max_emergency_decel, t.emergency_decel[k]);
     min_decel_ = std::min(min_decel_, t.decel[k]);
   }
   // Vehicles that depart before the begin time are not simulated (as SUMO, which skips them).
-  while (next_departure_ < num_loaded_ && seconds_to_ms(d.depart[next_departure_]) < time_ms_) {
-    books_.ledger.set_status(next_departure_, kArrived);
+  while (due.next < due.loaded && seconds_to_ms(d.depart[due.next]) < time_ms_) {
+    books_.ledger.set_status(due.next, kArrived);
     ++books_.counts.removed;
-    ++next_departure_;
+    ++due.next;
   }
-  teleport_steps_ = stopped_steps_for(opt_.time_to_teleport, step_length());
-  highway_teleport_steps_ = stopped_steps_for(opt_.time_to_teleport_highways, step_length());
-  impatience_steps_ = stopped_steps_for(opt_.time_to_impatience, step_length());
+  params_.teleport_steps = stopped_steps_for(opt_.time_to_teleport, step_length());
+  params_.highway_teleport_steps = stopped_steps_for(opt_.time_to_teleport_highways, step_length());
+  params_.impatience_steps = stopped_steps_for(opt_.time_to_impatience, step_length());
   // 0 s ignores every vehicle on a junction lane, standing or not, as in SUMO.
-  ignore_blocker_steps_ = stopped_steps_for(opt_.ignore_junction_blocker, step_length());
+  params_.ignore_blocker_steps = stopped_steps_for(opt_.ignore_junction_blocker, step_length());
+  params_.highway_min_speed = static_cast<float>(opt_.highway_min_speed);
   stop_steps_from_times();
 
   if ((opt_.part == nullptr) != (opt_.transport == nullptr))
@@ -201,26 +208,25 @@ void Simulation::serve_part() {
   }
 }
 
-bool Simulation::finished() const {
-  return link_->idle() && next_departure_ >= num_loaded_ && added_due_.empty();
-}
+bool Simulation::finished() const { return link_->idle() && books_.schedule.empty(); }
 
 // The stops' times as the step counts them: steps stood at least, and the step from which `until` lets a
 // vehicle leave: the one that ends at `until` (counted from the begin time; 0: none, or already past).
 void Simulation::stop_steps_from_times() {
   const StopTable& st = trips_.demand().stops;
-  stop_duration_steps_.resize(st.size());
-  stop_until_step_.resize(st.size());
+  stop_steps_.duration.resize(st.size());
+  stop_steps_.until.resize(st.size());
   const double cap = static_cast<double>(std::numeric_limits<uint32_t>::max() / 2);
   for (uint32_t k = 0; k < st.size(); ++k) {
-    const double duration = std::ceil(std::llround(st.duration[k] * 1000.0) / static_cast<double>(dt_ms_));
-    stop_duration_steps_[k] = static_cast<uint32_t>(std::min(duration, cap));
+    const double duration =
+        std::ceil(std::llround(st.duration[k] * 1000.0) / static_cast<double>(opt_.step_ms));
+    stop_steps_.duration[k] = static_cast<uint32_t>(std::min(duration, cap));
     const double until = st.until[k] < 0
                              ? 0.0
                              : std::ceil(static_cast<double>(std::llround(st.until[k] * 1000.0) - time_ms_) /
-                                         static_cast<double>(dt_ms_)) -
+                                         static_cast<double>(opt_.step_ms)) -
                                    1.0;
-    stop_until_step_[k] = static_cast<uint32_t>(std::clamp(until, 0.0, cap));
+    stop_steps_.until[k] = static_cast<uint32_t>(std::clamp(until, 0.0, cap));
   }
 }
 
@@ -237,11 +243,11 @@ TripTableView Simulation::trip_table_view() const {
   const Demand& d = trips_.demand();
   TripTableView v;
   const StopTable& st = d.stops;
-  v.trips = TripView{d.vehicle_type.data(),  d.route_begin.data(),  d.route_length.data(),
-                     d.route_edges.data(),   d.speed_factor.data(), d.arrival_pos_kind.data(),
-                     d.arrival_pos.data(),   st.route_pos.data(),   st.lane.data(),
-                     st.start_pos.data(),    st.end_pos.data(),     stop_duration_steps_.data(),
-                     stop_until_step_.data()};
+  v.trips = TripView{d.vehicle_type.data(),   d.route_begin.data(),  d.route_length.data(),
+                     d.route_edges.data(),    d.speed_factor.data(), d.arrival_pos_kind.data(),
+                     d.arrival_pos.data(),    st.route_pos.data(),   st.lane.data(),
+                     st.start_pos.data(),     st.end_pos.data(),     stop_steps_.duration.data(),
+                     stop_steps_.until.data()};
   v.num_stops = st.size();
   v.depart = DepartView{d.depart_lane_kind.data(), d.depart_lane.data(),       d.depart_pos_kind.data(),
                         d.depart_pos.data(),       d.depart_speed_kind.data(), d.depart_speed.data()};
@@ -260,25 +266,16 @@ void Simulation::sync_trips() {
 }
 
 StepParams Simulation::step_params() const {
-  const float dt = static_cast<float>(dt_ms_) / 1000.0f;
-  return StepParams{step_,
-                    time_ms_ + dt_ms_,
-                    dt,
-                    opt_.seed,
-                    idm_default_substeps(dt),
-                    max_accel_,
-                    max_emergency_decel_,
-                    teleport_steps_,
-                    impatience_steps_,
-                    ignore_blocker_steps_,
-                    highway_teleport_steps_,
-                    static_cast<float>(opt_.highway_min_speed)};
+  StepParams p = params_;
+  p.step = step_;
+  p.signal_time_ms = time_ms_ + opt_.step_ms;
+  return p;
 }
 
 void Simulation::step() {
   const auto t0 = std::chrono::steady_clock::now();
   link_->begin_step();
-  if (reroute_) reroute_vehicles(time_ms_ + dt_ms_);
+  if (reroute_) reroute_vehicles(time_ms_ + opt_.step_ms);
   sync_trips();
   ++version_;
   Stepper& s = *stepper_;
@@ -298,14 +295,14 @@ void Simulation::step() {
   // While a device runs the passes: the departures due by the end of the step join their queues. Nothing
   // there depends on the step's outcome, and the order does not matter: a vehicle teleported in the step
   // joins its queue at the head (handle_vehicle_ends), a departure at the tail.
-  enqueue_due(time_ms_ + dt_ms_);
+  enqueue_due(time_ms_ + opt_.step_ms);
   StepOutcome& out = s.finish_end_of_step();
   check_kept(out.kept);
   // The vehicles the step moved: not the slots of those that left the road in the step before (they only
   // cleared their footprint), so a vehicle that drives into another part counts once.
   books_.counts.vehicle_updates += out.kept;
 
-  time_ms_ += dt_ms_;
+  time_ms_ += opt_.step_ms;
   ++step_;
   handle_vehicle_ends(out.ends);
   if (!moves_.empty()) s.apply_teleports(moves_, step_);
@@ -351,8 +348,8 @@ void Simulation::handle_vehicle_ends(std::vector<VehicleEnd>& ends) {
     const TeleportCause cause = teleport_cause(e.limit_reason);
     // The wrong-lane rule of a fast road's lane clocks out first where its time is the shorter.
     const bool highway =
-        cause == TeleportCause::WrongLane && highway_teleport_steps_ > 0 &&
-        (teleport_steps_ == 0 || highway_teleport_steps_ < teleport_steps_) &&
+        cause == TeleportCause::WrongLane && params_.highway_teleport_steps > 0 &&
+        (params_.teleport_steps == 0 || params_.highway_teleport_steps < params_.teleport_steps) &&
         net_.lane_speed[static_cast<uint32_t>(e.lane)] > static_cast<float>(opt_.highway_min_speed);
     books_.teleport_events.push_back(TeleportEvent{v, static_cast<uint32_t>(e.lane), cause, highway});
     if (e.route_pos + 1 >= d.route_length[v]) {
@@ -374,17 +371,17 @@ void Simulation::handle_vehicle_ends(std::vector<VehicleEnd>& ends) {
 // times, ties by index: the loaded ones (sorted by depart) and those added during the run.
 void Simulation::enqueue_due(int64_t until_ms) {
   const Demand& d = trips_.demand();
+  DepartureSchedule& due = books_.schedule;
   for (;;) {
-    const bool loaded_due =
-        next_departure_ < num_loaded_ && seconds_to_ms(d.depart[next_departure_]) <= until_ms;
-    const bool added_due = !added_due_.empty() && added_due_.back().first <= until_ms;
+    const bool loaded_due = due.next < due.loaded && seconds_to_ms(d.depart[due.next]) <= until_ms;
+    const bool added_due = !due.added.empty() && due.added.back().first <= until_ms;
     if (!loaded_due && !added_due) break;
     // An added trip has a higher index than every loaded one: it goes first only when it departs earlier.
-    if (added_due && (!loaded_due || added_due_.back().first < seconds_to_ms(d.depart[next_departure_]))) {
-      enqueue(added_due_.back().second);
-      added_due_.pop_back();
+    if (added_due && (!loaded_due || due.added.back().first < seconds_to_ms(d.depart[due.next]))) {
+      enqueue(due.added.back().second);
+      due.added.pop_back();
     } else {
-      enqueue(next_departure_++);
+      enqueue(due.next++);
     }
   }
 }
@@ -409,7 +406,7 @@ void Simulation::insert_waiting(int map_index) {
   const InsertParams params{static_cast<float>(step_length()),
                             opt_.seed,
                             static_cast<uint32_t>(step_),
-                            max_emergency_decel_,
+                            params_.max_emergency_decel,
                             min_decel_,
                             nullptr,
                             nullptr};
@@ -421,10 +418,11 @@ void Simulation::insert_waiting(int map_index) {
   books_.inits.clear();
   // Each entry's edge, for a partitioned run's report of the departures in the order one part inserts.
   const bool record = link_->records_departures();
+  std::vector<uint32_t> entry_edge;
   if (record) {
-    entry_edge_.resize(queues.offered_entries());
+    entry_edge.resize(queues.offered_entries());
     for (uint32_t slot = 0; slot < batch.num_slots; ++slot)
-      std::fill(entry_edge_.begin() + batch.begin[slot], entry_edge_.begin() + batch.begin[slot + 1],
+      std::fill(entry_edge.begin() + batch.begin[slot], entry_edge.begin() + batch.begin[slot + 1],
                 batch.edge[slot]);
   }
   queues.take_inserted([&](uint32_t i) {
@@ -447,7 +445,7 @@ void Simulation::insert_waiting(int map_index) {
     } else {
       ++books_.counts.inserted;
       ledger.departed(v, time(), d.depart[v], init);
-      if (record) link_->departed(uint64_t{entry_edge_[i]} << 32 | i, time() - d.depart[v]);
+      if (record) link_->departed(uint64_t{entry_edge[i]} << 32 | i, time() - d.depart[v]);
       set_stops(init, d.stops.first(v));
     }
     init.slot = books_.slots.take();
@@ -474,13 +472,14 @@ void Simulation::drop_late_departures() {
 // in this step (their vehicles left the road in the previous one) are free.
 void Simulation::start_inserted(uint32_t kept, uint32_t running) {
   HostBooks& b = books_;
-  added_.clear();
-  for (const SlotInit& in : b.inits) added_.push_back(in.slot);
+  std::vector<uint32_t> added;
+  added.reserve(b.inits.size());
+  for (const SlotInit& in : b.inits) added.push_back(in.slot);
   // Also the vehicles that came in across the boundary; those that left ran in the step.
-  const int64_t crossed = link_->settle_crossings(added_);
-  std::sort(added_.begin(), added_.end());
-  stepper_->start_vehicles(b.inits, added_);
-  b.num_active = kept + static_cast<uint32_t>(added_.size());
+  const int64_t crossed = link_->settle_crossings(added);
+  std::sort(added.begin(), added.end());
+  stepper_->start_vehicles(b.inits, added);
+  b.num_active = kept + static_cast<uint32_t>(added.size());
   // Running vehicles: those of the step's active list, and every one inserted.
   b.counts.running = static_cast<uint64_t>(static_cast<int64_t>(running + b.inits.size()) + crossed);
   b.counts.waiting = b.queues.waiting();
@@ -510,7 +509,8 @@ uint32_t Simulation::add_trip(const NewTrip& trip) {
   ++books_.counts.loaded;
   // Soonest last; among trips due at once, the lowest index last.
   const std::pair<int64_t, uint32_t> due{seconds_to_ms(trip.depart), v};
-  added_due_.insert(std::upper_bound(added_due_.begin(), added_due_.end(), due, std::greater<>()), due);
+  std::vector<std::pair<int64_t, uint32_t>>& added = books_.schedule.added;
+  added.insert(std::upper_bound(added.begin(), added.end(), due, std::greater<>()), due);
   return v;
 }
 
@@ -592,19 +592,20 @@ std::vector<int> Simulation::kept_counters() const {
 const std::vector<uint64_t>& Simulation::active_by_vehicle() const {
   const HostState& s = state(StateParts::Sample);
   // Sorted when an output lists vehicles, once per step that asks: the passes and the summary need no order.
-  if (by_vehicle_version_ != version_) {
-    by_vehicle_.clear();
+  ActiveOrder& o = active_order_;
+  if (o.version != version_) {
+    o.keys.clear();
     for (uint32_t i = 0; i < s.num_active; ++i) {
       const uint32_t k = s.active[i];
-      by_vehicle_.push_back(uint64_t{s.veh.vehicle[k]} << 32 | k);
+      o.keys.push_back(uint64_t{s.veh.vehicle[k]} << 32 | k);
     }
-    std::sort(by_vehicle_.begin(), by_vehicle_.end());
-    by_vehicle_version_ = version_;
+    std::sort(o.keys.begin(), o.keys.end());
+    o.version = version_;
   }
-  return by_vehicle_;
+  return o.keys;
 }
 
-void Simulation::sample_fcd(FcdFrame& frame) const {
+void Simulation::sample_fcd(FcdFrame& frame) {
   frame.time = time();
   frame.vehicle.clear();
   frame.lane.clear();
@@ -666,12 +667,12 @@ char Simulation::link_state(uint32_t conn) const {
 }
 
 const std::vector<uint32_t>& Simulation::active() const {
-  active_vehicles_.clear();
-  for (const uint64_t key : active_by_vehicle()) active_vehicles_.push_back(static_cast<uint32_t>(key >> 32));
+  std::vector<uint32_t>& vehicles = active_order_.vehicles;
+  vehicles.clear();
+  for (const uint64_t key : active_by_vehicle()) vehicles.push_back(static_cast<uint32_t>(key >> 32));
   // A vehicle that teleported and re-entered at once holds its old slot for one more step.
-  active_vehicles_.erase(std::unique(active_vehicles_.begin(), active_vehicles_.end()),
-                         active_vehicles_.end());
-  return active_vehicles_;
+  vehicles.erase(std::unique(vehicles.begin(), vehicles.end()), vehicles.end());
+  return vehicles;
 }
 
 // Summed in units of 2^-24 (integers: the sums do not depend on the order of the slots, which sort_slots
@@ -756,7 +757,7 @@ std::vector<TripRecord> Simulation::own_unfinished_trips(double end, bool undepa
   return out;
 }
 
-SummaryRow Simulation::summary_row() const {
+SummaryRow Simulation::summary_row() {
   SummaryRow r;
   const Counts& c = counts();
   r.time = time();
@@ -819,7 +820,7 @@ std::string Simulation::check_lane_map() const {
 }
 
 // Part 0 sends `end` and `undeparted` with the gather's request; every part answers with its own records.
-std::vector<TripRecord> Simulation::unfinished_trips(double end, bool undeparted) const {
+std::vector<TripRecord> Simulation::unfinished_trips(double end, bool undeparted) {
   if (link_->parts() == 1) return own_unfinished_trips(end, undeparted);
   link_->request(kRequestUnfinished);
   Bytes args;
@@ -841,7 +842,7 @@ std::vector<TripRecord> Simulation::unfinished_trips(double end, bool undeparted
 }
 
 // The summary's sums of every part, added at part 0 (integers: exact in any order).
-SpeedSums Simulation::gather_speed_sums() const {
+SpeedSums Simulation::gather_speed_sums() {
   if (link_->parts() == 1) return speed_sums();
   link_->request(kRequestSpeedSums);
   Bytes b;

@@ -95,7 +95,7 @@ class Simulation {
   double time() const { return static_cast<double>(time_ms_) / 1000.0; }
   int64_t time_ms() const { return time_ms_; }
   /// The step length in seconds (options.step_ms / 1000).
-  double step_length() const { return static_cast<double>(dt_ms_) / 1000.0; }
+  double step_length() const { return static_cast<double>(opt_.step_ms) / 1000.0; }
   uint32_t step_index() const { return step_; }
   /// Nothing running, nothing waiting to be inserted and no future departure.
   bool finished() const;
@@ -117,8 +117,9 @@ class Simulation {
   /// The run's counts (in a partitioned run, part 0 sums the parts').
   const Counts& counts() const;
 
-  /// Positions of running vehicles now.
-  void sample_fcd(FcdFrame& frame) const;
+  /// Positions of running vehicles now (in a partitioned run part 0 gathers every part's: a collective call
+  /// that the other parts serve).
+  void sample_fcd(FcdFrame& frame);
   /// edgeData/laneData counters accumulated since the start (the emission sums only with emission_sums),
   /// collected from the backend; in a partitioned run part 0 gathers every part's (its call is a collective
   /// step that the other parts serve).
@@ -136,8 +137,9 @@ class Simulation {
   /// SUMO's run ends): every vehicle on the road or teleporting (kTripRunning, its counters so far), and with
   /// `undeparted` every trip due by `end` that never departed (kTripUndeparted). In vehicle order; in a
   /// partitioned run part 0 gathers every part's (the others return nothing).
-  std::vector<TripRecord> unfinished_trips(double end, bool undeparted) const;
-  SummaryRow summary_row() const;
+  std::vector<TripRecord> unfinished_trips(double end, bool undeparted);
+  /// The summary's row now (in a partitioned run a collective call, as sample_fcd()).
+  SummaryRow summary_row();
 
   /// Test support: recomputes the lane map from every running vehicle's footprint and reports the first
   /// cell two vehicles share or a mismatch with the engine's map ("" when consistent).
@@ -198,7 +200,7 @@ class Simulation {
   void gather_counters();
   std::vector<int> kept_counters() const;
   SpeedSums speed_sums() const;
-  SpeedSums gather_speed_sums() const;
+  SpeedSums gather_speed_sums();
   /// The backend's state (a device backend copies it at most once per change of its state).
   const HostState& state(StateParts parts) const { return stepper_->fetch(parts, books_.slots.size()); }
   int32_t slot_of(uint32_t v) const;
@@ -212,29 +214,22 @@ class Simulation {
 
   const Network& net_;
   TripTable trips_;
-  SimulationOptions opt_;
+  SimulationOptions opt_;  // the step length in opt_.step_ms
   EngineNet engine_net_;
-  int64_t time_ms_ = 0, dt_ms_ = 1000;
+  int64_t time_ms_ = 0;
   uint32_t step_ = 0;
   double step_seconds_ = 0;
-  Counts counts_;
-  float max_accel_ = 2.6f, max_emergency_decel_ = 9.0f, min_decel_ = 4.5f;
-  uint32_t teleport_steps_ = 0;          // stopped steps before a teleport (0: never)
-  uint32_t highway_teleport_steps_ = 0;  // the same on a highway's wrong lane (0: never)
-  uint32_t impatience_steps_ = 0;        // stopped steps for impatience to reach 1 (0: never impatient)
-  uint32_t ignore_blocker_steps_ = 0;    // stood steps after which a junction blocker is ignored (if tracked)
-  int cur_ = 0;                          // the lane map the state is in (the next step reads it)
+  // The step's parameters that hold for the whole run (the step and its time are set per step).
+  StepParams params_{};
+  float min_decel_ = 4.5f;  // the softest braking of any type (InsertParams::min_decel)
+  int cur_ = 0;             // the lane map the state is in (the next step reads it)
 
   // Host bookkeeping: slots handed out, the queues, every trip's account, the counts.
   HostBooks books_;
-  uint32_t next_departure_ = 0;  // loaded trips (sorted by depart) before this one have been queued
-  // Trips added during the run whose departure has not come yet: (depart ms, trip), soonest last.
-  std::vector<std::pair<int64_t, uint32_t>> added_due_;
-  uint32_t num_loaded_ = 0;
   // The stop table's durations and until times in steps (TripView::stop_duration_steps, stop_until_step).
-  std::vector<uint32_t> stop_duration_steps_, stop_until_step_;
-  std::vector<uint32_t> added_;
-  std::vector<uint32_t> entry_edge_;  // insert_waiting's scratch: the edge of each entry of the batch
+  struct StopSteps {
+    std::vector<uint32_t> duration, until;
+  } stop_steps_;
   std::vector<TeleportMove> moves_;
   LaneCounters lane_counters_;
   std::vector<double> fuel_divisor_;  // per type: EmissionView::fuel_divisor
@@ -248,11 +243,14 @@ class Simulation {
   // What outputs and tests derive from the backend's state, kept per version of it: the state changes in
   // step(), set_route() and the constructor's insertions, each counting a new version.
   uint64_t version_ = 0;
-  mutable std::vector<uint32_t> active_vehicles_;  // active(): their vehicles
-  // The active list as vehicle << 32 | slot, ascending (active_by_vehicle()): outputs list vehicles in
-  // vehicle order, whatever slots they hold.
-  mutable std::vector<uint64_t> by_vehicle_;
-  mutable uint64_t by_vehicle_version_ = ~uint64_t{0};  // the version by_vehicle_ was sorted for
+  struct ActiveOrder {
+    // The active list as vehicle << 32 | slot, ascending (active_by_vehicle()): outputs list vehicles in
+    // vehicle order, whatever slots they hold.
+    std::vector<uint64_t> keys;
+    uint64_t version = ~uint64_t{0};  // the state version keys were sorted for
+    std::vector<uint32_t> vehicles;   // active(): their vehicles
+  };
+  mutable ActiveOrder active_order_;
 };
 
 }  // namespace lpsim

@@ -29,7 +29,7 @@ void Simulation::init_rerouting() {
   reroute_->routed_at.assign(d.size(), 0);
   if (opt_.rerouting.contraction_hierarchy) reroute_->hierarchy = std::make_unique<CchRouter>(net_);
   // Vehicles that depart before the begin time are not simulated: not routed either.
-  reroute_->next_due = next_departure_;
+  reroute_->next_due = books_.schedule.next;
 }
 
 void Simulation::reroute_vehicles(int64_t end_ms) {
@@ -79,7 +79,7 @@ void Simulation::reroute_vehicles(int64_t end_ms) {
 
   // Due to depart in this step: routed when due (a trip's loaded route is the one free-flow times give,
   // so before the first sample only equipped vehicles re-route).
-  while (r.next_due < num_loaded_ && seconds_to_ms(d.depart[r.next_due]) <= end_ms) {
+  while (r.next_due < books_.schedule.loaded && seconds_to_ms(d.depart[r.next_due]) <= end_ms) {
     const uint32_t v = r.next_due++;
     if (d.rerouting[v] == 0 || d.route_length[v] == 0) continue;
     if (!holds_queue_of(d.route_edges[d.route_begin[v]])) continue;
@@ -107,7 +107,7 @@ void Simulation::reroute_vehicles(int64_t end_ms) {
       const uint32_t v = s.veh.vehicle[k];
       if (v >= d.rerouting.size() || !(d.rerouting[v] & kRerouteWhileDriving) || r.routed_at[v] >= sample)
         continue;
-      const int64_t departed = std::llround(books_.ledger.departure(v).time / step_length()) * dt_ms_;
+      const int64_t departed = std::llround(books_.ledger.departure(v).time / step_length()) * opt_.step_ms;
       const int64_t since = end_ms - (r.options.synchronize ? 0 : departed);
       if (end_ms <= departed || since % r.options.period_ms != 0) continue;
       const uint32_t rp = s.veh.route_pos[k];
