@@ -43,6 +43,7 @@ void JamRecorder::take_snapshot(Simulation& sim) {
   ++step_;
   std::swap(cur_, prev_);
   sim.sample_fcd(frame_);
+  const VehicleQuery q = sim.query();
   const size_t vehicles = sim.demand().size();  // trips may be added while it runs
   if (cur_.size() < vehicles) cur_.resize(vehicles);
   if (order_index_.size() < vehicles) order_index_.resize(vehicles);
@@ -50,7 +51,7 @@ void JamRecorder::take_snapshot(Simulation& sim) {
     const uint32_t v = frame_.vehicle[i];
     // Every vehicle's reason, as a moving vehicle may end a chain (the head of a slow queue).
     cur_[v] = Snapshot{
-        step_, JamVehicleState{v, frame_.lane[i], frame_.pos[i], frame_.speed[i], sim.limit_reason(v)}, -1};
+        step_, JamVehicleState{v, frame_.lane[i], frame_.pos[i], frame_.speed[i], q.limit_reason(v)}, -1};
   }
 }
 
@@ -67,13 +68,13 @@ void JamRecorder::find_blockers(const Simulation& sim) {
     return a.lane != b.lane ? a.lane < b.lane : a.pos != b.pos ? a.pos < b.pos : a.vehicle < b.vehicle;
   });
   for (size_t i = 0; i < order_.size(); ++i) order_index_[order_[i].vehicle] = static_cast<uint32_t>(i);
+  const VehicleQuery q = sim.query();
   for (const uint32_t v : frame_.vehicle)
-    if (has_blocker(cur_[v].state)) cur_[v].blocker = vehicle_ahead(sim, order_index_[v]);
+    if (has_blocker(cur_[v].state)) cur_[v].blocker = vehicle_ahead(sim.demand(), q, order_index_[v]);
 }
 
-int32_t JamRecorder::next_lane(const Simulation& sim, uint32_t v, uint32_t lane) const {
-  const Demand& d = sim.demand();
-  const uint32_t rp = sim.route_pos(v);  // on an internal lane: the edge it came from
+int32_t JamRecorder::next_lane(const Demand& d, const VehicleQuery& q, uint32_t v, uint32_t lane) const {
+  const uint32_t rp = q.route_pos(v);  // on an internal lane: the edge it came from
   if (rp + 1 >= d.route_length[v]) return -1;
   const uint32_t next_edge = d.route_edges[d.route_begin[v] + rp + 1];
   for (uint32_t c = net_.lane_conn_begin[lane]; c < net_.lane_conn_begin[lane + 1]; ++c)
@@ -82,13 +83,13 @@ int32_t JamRecorder::next_lane(const Simulation& sim, uint32_t v, uint32_t lane)
   return -1;
 }
 
-int64_t JamRecorder::vehicle_ahead(const Simulation& sim, size_t at) const {
+int64_t JamRecorder::vehicle_ahead(const Demand& d, const VehicleQuery& q, size_t at) const {
   const OnLane& me = order_[at];
   if (at + 1 < order_.size() && order_[at + 1].lane == me.lane) return order_[at + 1].vehicle;
   // Along its route: through the junction's internal lanes (at most a few) to the next edge's lane.
   int32_t lane = static_cast<int32_t>(me.lane);
   for (int hop = 0; hop < 4; ++hop) {
-    lane = next_lane(sim, me.vehicle, static_cast<uint32_t>(lane));
+    lane = next_lane(d, q, me.vehicle, static_cast<uint32_t>(lane));
     if (lane < 0) return -1;
     const auto first = std::lower_bound(order_.begin(), order_.end(), static_cast<uint32_t>(lane),
                                         [](const OnLane& a, uint32_t l) { return a.lane < l; });

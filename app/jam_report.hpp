@@ -50,10 +50,10 @@ class JamRecorder {
   void find_blockers(const Simulation& sim);
   /// The first vehicle ahead of the running vehicle `at` (index into order_): on its lane, else the first
   /// on the lane it enters next along its route; -1 if none.
-  int64_t vehicle_ahead(const Simulation& sim, size_t at) const;
+  int64_t vehicle_ahead(const Demand& d, const VehicleQuery& q, size_t at) const;
   /// The lane after `lane` along vehicle v's route (its connection's internal lane, else its target), or
   /// -1 when the lane leads nowhere along it.
-  int32_t next_lane(const Simulation& sim, uint32_t v, uint32_t lane) const;
+  int32_t next_lane(const Demand& d, const VehicleQuery& q, uint32_t v, uint32_t lane) const;
   const Snapshot* in(const std::vector<Snapshot>& snap, uint32_t step, uint32_t v) const;
   /// The record of vehicle v's episode `e`, ended at `end`, from snapshot `snap` of step `step` (the last
   /// one it stood in); `lane` where that snapshot lacks it (a teleport's lane).

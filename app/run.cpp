@@ -312,7 +312,7 @@ void print_run_report(std::FILE* out, const Run& run, double wall, double load_s
                static_cast<unsigned long long>(c.vehicle_updates),
                static_cast<unsigned long long>(totals.peak_running));
   std::fprintf(out, " Threads: %d\n", run.options().threads);
-  const std::vector<PartStats> parts = sim.part_stats();
+  const std::vector<PartStats> parts = sim.link().part_stats();
   if (!parts.empty()) {
     // Per part: its share of the work, what crossed its cuts, and the time its exchanges took (waiting for
     // slower parts included) against its steps' wall time.

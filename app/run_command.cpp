@@ -102,7 +102,7 @@ int command_run(const std::vector<std::string>& args) {
     Run run(std::move(sc), config, part0_options);
     auto signalled = [&] {
       const int own = interrupt.received();
-      return own != 0 ? own : run.simulation().part_signal();
+      return own != 0 ? own : run.simulation().link().signal();
     };
     drive_to_end(run, run.simulation(), progress, signalled);
     run.finish();

@@ -46,7 +46,7 @@ void Cosimulation::merge_tripinfo(bool after_failure) {
     const auto pit = pieces.find(v);
     const std::vector<SumoTripPiece>* ps = pit == pieces.end() ? nullptr : &pit->second;
     if (after_failure && (visited_[v] == 255 || (ps == nullptr ? 0u : ps->size()) != visited_[v])) continue;
-    const DepartRecord dep = sim.departure(v);
+    const DepartRecord dep = sim.ledger().departure(v);
     TripRecord r;
     const auto held = held_trips_.find(v);
     if (held != held_trips_.end()) {  // it arrived in LPSim, whose record sums LPSim's pieces
@@ -64,7 +64,7 @@ void Cosimulation::merge_tripinfo(bool after_failure) {
       r.depart_lane = static_cast<uint32_t>(std::max(0, dep.lane));
       r.depart_pos = dep.pos;
       r.depart_speed = dep.speed;
-      if (const TripCounters* c = sim.carried(v)) {  // what LPSim measured of it
+      if (const TripCounters* c = sim.ledger().carried(v)) {  // what LPSim measured of it
         r.route_length = c->route_length;
         r.time_loss = c->time_loss;
         r.waiting_time = static_cast<double>(c->waiting_steps) * dt;

@@ -158,7 +158,7 @@ void Cosimulation::count_sumo_departure(uint32_t v, double now) {
 
 double Cosimulation::depart_time(uint32_t v) const {
   const auto it = sumo_depart_.find(v);
-  return it != sumo_depart_.end() ? it->second : run_.simulation().departure(v).time;
+  return it != sumo_depart_.end() ? it->second : run_.simulation().ledger().departure(v).time;
 }
 
 // SUMO's side of the summary and statistics: vehicles on its roads or added there after driving in LPSim are
@@ -442,7 +442,7 @@ Cosimulation::Census Cosimulation::census() const {
   c.loaded = sim.demand().size();
   uint64_t migrated = 0, ended = 0;
   for (uint32_t v = 0; v < sim.demand().size(); ++v) {
-    const uint8_t st = sim.ledger_status(v);
+    const uint8_t st = sim.ledger().status(v);
     if (st == kMigrated)
       ++migrated;
     else if (st == kArrived)

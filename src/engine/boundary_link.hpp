@@ -115,8 +115,10 @@ class BoundaryLink {
   virtual const std::vector<TeleportEvent>& teleport_events() const { return run_.books.teleport_events; }
   virtual double depart_delay_sum() const { return run_.books.ledger.depart_delay_sum(); }
   virtual double travel_time_sum() const { return run_.books.ledger.travel_time_sum(); }
+  /// Part 0 of a partitioned run: every part's stats as of the last step (empty in a run of one part).
   virtual std::vector<PartStats> part_stats() const { return {}; }
-  /// The first signal a part's process reported (0: none).
+  /// Part 0 of a partitioned run: the first signal another part's process reported (in part order), once
+  /// one did; 0 before, and in a run of one part.
   virtual int signal() const { return 0; }
   /// The running vehicles of the whole run as of state `version`, ascending by vehicle.
   virtual const std::vector<SampleEntry>& running_vehicles(uint64_t version);

@@ -81,7 +81,6 @@ Simulation::Simulation(const Network& net, Demand demand, const SimulationOption
   for (uint32_t k = 0; k < t.size(); ++k) {
     params_.max_accel = std::max(params_.max_accel, t.accel[k]);
     params_.max_emergency_decel = std::max(params_.max_emergency_decel, t.emergency_decel[k]);
-    min_decel_ = std::min(min_decel_, t.decel[k]);
   }
   // Vehicles that depart before the begin time are not simulated (as SUMO, which skips them).
   while (due.next < due.loaded && seconds_to_ms(d.depart[due.next]) < time_ms_) {
@@ -141,6 +140,14 @@ Simulation::Simulation(const Network& net, Demand demand, const SimulationOption
   setup.device = opt_.gpu_device;
   stepper_ = opt_.backend(setup);
   make_link();
+  InsertionRules rules;
+  rules.seed = opt_.seed;
+  rules.step_ms = opt_.step_ms;
+  rules.max_depart_delay = opt_.max_depart_delay;
+  rules.max_emergency_decel = params_.max_emergency_decel;
+  for (uint32_t k = 0; k < t.size(); ++k) rules.min_decel = std::min(rules.min_decel, t.decel[k]);
+  insertion_ = std::make_unique<InsertionControl>(LinkScope{net_, engine_net_, trips_, *stepper_, books_},
+                                                  *link_, rules);
 
   init_rerouting();
   // The state at the begin time: its signals and its first insertions.
@@ -148,11 +155,11 @@ Simulation::Simulation(const Network& net, Demand demand, const SimulationOption
   link_->after_signals();
   if (reroute_) reroute_vehicles(time_ms_);
   sync_trips();
-  enqueue_due(time_ms_);
-  insert_waiting(cur_);
+  insertion_->enqueue_due(time_ms_);
+  insertion_->insert(cur_, time_ms_, step_);
   link_->after_insertion(cur_);
   check_kept(0);
-  start_inserted(0, 0);
+  insertion_->start(0, 0);
   ++version_;  // the insertions changed the state (the rerouting device may have read it before them)
   if (reroute_) sample_routing_speeds();
   link_->report();
@@ -230,15 +237,6 @@ void Simulation::stop_steps_from_times() {
   }
 }
 
-// Vehicle v's scheduled stops still to make when it enters the road at route position `rp`: from
-// `next` (where a teleport left it, else its first) on, skipping those on edges it has already left.
-void Simulation::set_stops(SlotInit& init, uint32_t next) const {
-  const StopTable& st = trips_.demand().stops;
-  init.stops_end = st.last(init.vehicle);
-  while (next < init.stops_end && st.route_pos[next] < init.route_pos) ++next;
-  init.next_stop = next;
-}
-
 TripTableView Simulation::trip_table_view() const {
   const Demand& d = trips_.demand();
   TripTableView v;
@@ -295,7 +293,7 @@ void Simulation::step() {
   // While a device runs the passes: the departures due by the end of the step join their queues. Nothing
   // there depends on the step's outcome, and the order does not matter: a vehicle teleported in the step
   // joins its queue at the head (handle_vehicle_ends), a departure at the tail.
-  enqueue_due(time_ms_ + opt_.step_ms);
+  insertion_->enqueue_due(time_ms_ + opt_.step_ms);
   StepOutcome& out = s.finish_end_of_step();
   check_kept(out.kept);
   // The vehicles the step moved: not the slots of those that left the road in the step before (they only
@@ -307,10 +305,10 @@ void Simulation::step() {
   handle_vehicle_ends(out.ends);
   if (!moves_.empty()) s.apply_teleports(moves_, step_);
   link_->after_end_of_step(1 - cur_);
-  insert_waiting(1 - cur_);
+  insertion_->insert(1 - cur_, time_ms_, step_);
   link_->after_insertion(1 - cur_);
   cur_ = 1 - cur_;
-  start_inserted(out.kept, out.running);
+  insertion_->start(out.kept, out.running);
   if (reroute_) sample_routing_speeds();
   link_->count_step(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   link_->report();
@@ -367,128 +365,6 @@ void Simulation::handle_vehicle_ends(std::vector<VehicleEnd>& ends) {
   }
 }
 
-// Trips whose departure is due by `until_ms` join their first edge's queue, in the order of their depart
-// times, ties by index: the loaded ones (sorted by depart) and those added during the run.
-void Simulation::enqueue_due(int64_t until_ms) {
-  const Demand& d = trips_.demand();
-  DepartureSchedule& due = books_.schedule;
-  for (;;) {
-    const bool loaded_due = due.next < due.loaded && seconds_to_ms(d.depart[due.next]) <= until_ms;
-    const bool added_due = !due.added.empty() && due.added.back().first <= until_ms;
-    if (!loaded_due && !added_due) break;
-    // An added trip has a higher index than every loaded one: it goes first only when it departs earlier.
-    if (added_due && (!loaded_due || due.added.back().first < seconds_to_ms(d.depart[due.next]))) {
-      enqueue(due.added.back().second);
-      due.added.pop_back();
-    } else {
-      enqueue(due.next++);
-    }
-  }
-}
-
-void Simulation::enqueue(uint32_t v) {
-  const Demand& d = trips_.demand();
-  if (d.route_length[v] == 0 || !books_.queues.has_lanes(d.route_edges[d.route_begin[v]])) {
-    books_.ledger.set_status(v, kArrived);
-    ++books_.counts.removed;
-    return;
-  }
-  const uint32_t edge = d.route_edges[d.route_begin[v]];
-  if (link_->takes_departure(v, edge)) return;
-  books_.queues.push_back(edge, queue_entry(v, false));
-}
-
-void Simulation::insert_waiting(int map_index) {
-  InsertionQueues& queues = books_.queues;
-  TripLedger& ledger = books_.ledger;
-  const InsertBatch& batch = queues.offer(ledger.reentry_wants());
-  // The step length as a float in the one way the insertion checks have always used it.
-  const InsertParams params{static_cast<float>(step_length()),
-                            opt_.seed,
-                            static_cast<uint32_t>(step_),
-                            params_.max_emergency_decel,
-                            min_decel_,
-                            nullptr,
-                            nullptr};
-  if (queues.offered_entries() > 0) stepper_->insert(batch, queues.offered_entries(), params, map_index);
-
-  // Advance the queues past the inserted heads, give each inserted vehicle a slot and record the
-  // departures, in the order of the batch.
-  const Demand& d = trips_.demand();
-  books_.inits.clear();
-  // Each entry's edge, for a partitioned run's report of the departures in the order one part inserts.
-  const bool record = link_->records_departures();
-  std::vector<uint32_t> entry_edge;
-  if (record) {
-    entry_edge.resize(queues.offered_entries());
-    for (uint32_t slot = 0; slot < batch.num_slots; ++slot)
-      std::fill(entry_edge.begin() + batch.begin[slot], entry_edge.begin() + batch.begin[slot + 1],
-                batch.edge[slot]);
-  }
-  queues.take_inserted([&](uint32_t i) {
-    const uint32_t v = batch.entry[i] & ~kInsertTeleported;
-    SlotInit init{0,
-                  v,
-                  batch.route_pos[i],
-                  batch.out_lane[i],
-                  batch.out_pos[i],
-                  batch.out_speed[i],
-                  0.0f,
-                  0.0f,
-                  0,
-                  0,
-                  0,
-                  0,
-                  0};
-    if (batch.entry[i] & kInsertTeleported) {
-      set_stops(init, ledger.reentering(init));
-    } else {
-      ++books_.counts.inserted;
-      ledger.departed(v, time(), d.depart[v], init);
-      if (record) link_->departed(uint64_t{entry_edge[i]} << 32 | i, time() - d.depart[v]);
-      set_stops(init, d.stops.first(v));
-    }
-    init.slot = books_.slots.take();
-    books_.inits.push_back(init);
-  });
-  if (opt_.max_depart_delay >= 0) drop_late_departures();
-}
-
-// SUMO's --max-depart-delay: a departure that could not be inserted in this step, which ends more than the
-// delay after its depart time, is dropped (MSInsertionControl::tryInsert); queued vehicles behind a failed
-// head were not tried and are dropped alike, as in SUMO.
-void Simulation::drop_late_departures() {
-  const Demand& d = trips_.demand();
-  const int64_t max_delay_ms = std::llround(opt_.max_depart_delay * 1000.0);
-  books_.queues.drop_departures([&](uint32_t v) {
-    if (time_ms_ - seconds_to_ms(d.depart[v]) <= max_delay_ms) return false;
-    books_.ledger.set_status(v, kArrived);
-    ++books_.counts.discarded;
-    return true;
-  });
-}
-
-// The vehicles inserted in this step start in their slots and join the active list; the slots that left it
-// in this step (their vehicles left the road in the previous one) are free.
-void Simulation::start_inserted(uint32_t kept, uint32_t running) {
-  HostBooks& b = books_;
-  std::vector<uint32_t> added;
-  added.reserve(b.inits.size());
-  for (const SlotInit& in : b.inits) added.push_back(in.slot);
-  // Also the vehicles that came in across the boundary; those that left ran in the step.
-  const int64_t crossed = link_->settle_crossings(added);
-  std::sort(added.begin(), added.end());
-  stepper_->start_vehicles(b.inits, added);
-  b.num_active = kept + static_cast<uint32_t>(added.size());
-  // Running vehicles: those of the step's active list, and every one inserted.
-  b.counts.running = static_cast<uint64_t>(static_cast<int64_t>(running + b.inits.size()) + crossed);
-  b.counts.waiting = b.queues.waiting();
-  b.inits.clear();
-  for (const uint32_t k : b.retiring) b.slots.release(k);
-  b.retiring.swap(b.retiring_next);
-  b.retiring_next.clear();
-}
-
 // Renumbers the slots of the vehicles on the road densely from 0 in the order of their lanes (ties: the old
 // slot), so that a pass meets the vehicles of one lane, and of neighbouring lanes, one after the other: their
 // lane-map cells and lane columns are then read together instead of scattered over the network. Runs between
@@ -532,8 +408,8 @@ void Simulation::set_route(uint32_t v, const std::vector<uint32_t>& edges) {
              " '" + net_.edge_id[old[rp]] + "'");
   };
 
-  const int32_t k = slot_of(v);
-  const HostState& s = state(StateParts::Full);
+  const int32_t k = query().slot(v);
+  const HostState& s = state(StateParts::Columns);
   if (k >= 0 && s.veh.status[k] == kRunning) {
     const uint32_t rp = s.veh.route_pos[k];
     must_start_at(rp, "is on edge");
@@ -631,39 +507,9 @@ void Simulation::sample_fcd(FcdFrame& frame) {
   }
 }
 
-// The slot of vehicle v while it holds one, else -1. A vehicle that re-entered the road right after a
-// teleport holds its old slot for one more step (to clear its footprint) besides the new one; the new one is
-// further along the route.
-int32_t Simulation::slot_of(uint32_t v) const {
-  const HostState& s = state(StateParts::Full);
-  const std::vector<uint64_t>& keys = active_by_vehicle();
-  int32_t slot = -1;
-  for (auto it = std::lower_bound(keys.begin(), keys.end(), uint64_t{v} << 32);
-       it != keys.end() && (*it >> 32) == v; ++it) {
-    const uint32_t k = static_cast<uint32_t>(*it);
-    if (slot < 0 || s.veh.route_pos[k] > s.veh.route_pos[static_cast<uint32_t>(slot)])
-      slot = static_cast<int32_t>(k);
-  }
-  return slot;
-}
-
-uint8_t Simulation::status(uint32_t v) const {
-  return on_road(&VehicleView::status, v, books_.ledger.status(v));
-}
-int32_t Simulation::lane(uint32_t v) const { return on_road(&VehicleView::lane, v, int32_t{-1}); }
-float Simulation::pos(uint32_t v) const { return on_road(&VehicleView::pos, v, 0.0f); }
-float Simulation::speed(uint32_t v) const { return on_road(&VehicleView::speed, v, 0.0f); }
-uint32_t Simulation::route_pos(uint32_t v) const { return on_road(&VehicleView::route_pos, v, 0u); }
-uint8_t Simulation::limit_reason(uint32_t v) const {
-  return on_road(&VehicleView::limit_reason, v, uint8_t{0});
-}
-
-char Simulation::link_state(uint32_t conn) const {
-  const int32_t sig = net_.conn_signal[conn];
-  if (sig < 0 || net_.conn_link_index[conn] < 0) return net_.conn_state[conn];
-  return state(StateParts::Full)
-      .link_state[engine_net_.link_begin[static_cast<size_t>(sig)] +
-                  static_cast<uint32_t>(net_.conn_link_index[conn])];
+VehicleQuery Simulation::query(StateParts parts) const {
+  const std::vector<uint64_t>& by_vehicle = active_by_vehicle();
+  return VehicleQuery(state(parts), parts, by_vehicle, books_.ledger, net_, engine_net_);
 }
 
 const std::vector<uint32_t>& Simulation::active() const {
@@ -893,10 +739,6 @@ void Simulation::gather_counters() {
         counter_column(lane_counters_, kept[c])[l[j]] += v[j * kept.size() + c];
   }
 }
-
-int Simulation::part_signal() const { return link_->signal(); }
-
-std::vector<PartStats> Simulation::part_stats() const { return link_->part_stats(); }
 
 const Simulation::Counts& Simulation::counts() const { return link_->counts(); }
 

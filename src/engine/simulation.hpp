@@ -17,8 +17,10 @@
 #include "engine/boundary_link.hpp"
 #include "engine/engine_net.hpp"
 #include "engine/host_books.hpp"
+#include "engine/insertion_control.hpp"
 #include "engine/rerouting.hpp"
 #include "engine/samples.hpp"
+#include "engine/vehicle_query.hpp"
 #include "net/network.hpp"
 #include "partition/part_plan.hpp"
 #include "transport/transport.hpp"
@@ -64,7 +66,8 @@ struct SimulationOptions {
   const PartPlan* part = nullptr;
   Transport* transport = nullptr;
   // A part's process: the signal it received and has not acted on (0: none). Each part reports it to part 0
-  // with the step, so that a job whose ranks are signalled one by one stops together (part_signal()).
+  // with the step, so that a job whose ranks are signalled one by one stops together
+  // (BoundaryLink::signal()).
   std::function<int()> pending_signal;
   // Co-simulation: the lanes another simulator drives, 1 per lane of the network (null: none; outlives the
   // Simulation; one part only). A vehicle whose front reaches one, or whose trip departs on one, leaves this
@@ -126,11 +129,6 @@ class Simulation {
   const LaneCounters& collect_lane_counters();
   /// Wall time spent in step() so far (in a partitioned run part 0's, which waits for the others).
   double step_seconds() const { return step_seconds_; }
-  /// Part 0 of a partitioned run: every part's stats as of the last step (empty in a run of one part).
-  std::vector<PartStats> part_stats() const;
-  /// Part 0 of a partitioned run: the first signal another part's process reported (in part order), once
-  /// one did; 0 before, and in a run of one part.
-  int part_signal() const;
   /// Trips that ended since the last call, in order of arrival then vehicle index.
   std::vector<TripRecord> take_finished_trips();
   /// Records of the trips that have not ended, for SUMO's tripinfo write-unfinished, as of `end` (the time
@@ -144,17 +142,10 @@ class Simulation {
   /// Test support: recomputes the lane map from every running vehicle's footprint and reports the first
   /// cell two vehicles share or a mismatch with the engine's map ("" when consistent).
   std::string check_lane_map() const;
-  /// Test support: read access to vehicle state (fetched from the backend at most once per step). A vehicle
-  /// off the road reports lane -1, position and speed 0.
-  uint8_t status(uint32_t v) const;
-  int32_t lane(uint32_t v) const;
-  float pos(uint32_t v) const;
-  float speed(uint32_t v) const;
-  uint32_t route_pos(uint32_t v) const;
-  /// What bounded the vehicle's speed in its last plan (StopReason in kernels/step_view.hpp).
-  uint8_t limit_reason(uint32_t v) const;
-  /// Current character of a connection's signal link (or its state when unsignalised).
-  char link_state(uint32_t conn) const;
+  /// The vehicles' state now, read by vehicle (this part's vehicles in a partitioned run): every slot column
+  /// (StateParts::Columns), or with the signals and the lane map too (Full). Valid until the state changes
+  /// (the next step, set_route()).
+  VehicleQuery query(StateParts parts = StateParts::Columns) const;
   /// Slots handed out so far: the length of the per-slot state columns (the most vehicles on the road at
   /// once, counting those that left it in the last two steps).
   uint32_t slots_used() const { return books_.slots.peak(); }
@@ -168,26 +159,21 @@ class Simulation {
   /// The co-simulation's boundary (SimulationOptions::outside_lanes): the vehicles handed out to the other
   /// simulator and taken back from it. std::logic_error in a run without outside lanes.
   OutsideLink& outside_link();
-  /// A vehicle's departure record (lane -1: it has not departed here) and, while it is handed out, the
-  /// counters it carries.
-  DepartRecord departure(uint32_t v) const { return books_.ledger.departure(v); }
-  const TripCounters* carried(uint32_t v) const { return books_.ledger.carried(v); }
-  /// The ledger's status of vehicle v (kMigrated: handed out to the other simulator).
-  uint8_t ledger_status(uint32_t v) const { return books_.ledger.status(v); }
+  /// Every trip's account off the road (a vehicle's status while it holds no slot: kMigrated while handed
+  /// out to the other simulator), its departure record (lane -1: it has not departed here) and the counters
+  /// a teleporting or handed-out vehicle carries.
+  const TripLedger& ledger() const { return books_.ledger; }
+  /// Where this run's lanes meet lanes driven elsewhere; in a partitioned run part 0's has every part's
+  /// stats as of the last step (PartStats) and the first signal another part's process reported.
+  const BoundaryLink& link() const { return *link_; }
 
  private:
   StepParams step_params() const;
   TripTableView trip_table_view() const;
   void sync_trips();
-  void enqueue_due(int64_t until_ms);
-  void enqueue(uint32_t v);
-  void insert_waiting(int map_index);
-  void drop_late_departures();
   std::vector<TripRecord> own_unfinished_trips(double end, bool undeparted) const;
   void handle_vehicle_ends(std::vector<VehicleEnd>& ends);
   void stop_steps_from_times();
-  void set_stops(SlotInit& init, uint32_t next) const;
-  void start_inserted(uint32_t kept, uint32_t running);
   void sort_slots();
   void check_kept(uint32_t kept) const;
   // The rerouting device (simulation_rerouting.cpp).
@@ -203,13 +189,6 @@ class Simulation {
   SpeedSums gather_speed_sums();
   /// The backend's state (a device backend copies it at most once per change of its state).
   const HostState& state(StateParts parts) const { return stepper_->fetch(parts, books_.slots.size()); }
-  int32_t slot_of(uint32_t v) const;
-  /// Test support: vehicle v's entry of a slot column, or `off_road` while it holds no slot.
-  template <class T>
-  T on_road(T* VehicleView::*column, uint32_t v, T off_road) const {
-    const int32_t k = slot_of(v);
-    return k >= 0 ? (state(StateParts::Full).veh.*column)[k] : off_road;
-  }
   const std::vector<uint64_t>& active_by_vehicle() const;
 
   const Network& net_;
@@ -221,8 +200,7 @@ class Simulation {
   double step_seconds_ = 0;
   // The step's parameters that hold for the whole run (the step and its time are set per step).
   StepParams params_{};
-  float min_decel_ = 4.5f;  // the softest braking of any type (InsertParams::min_decel)
-  int cur_ = 0;             // the lane map the state is in (the next step reads it)
+  int cur_ = 0;  // the lane map the state is in (the next step reads it)
 
   // Host bookkeeping: slots handed out, the queues, every trip's account, the counts.
   HostBooks books_;
@@ -238,7 +216,8 @@ class Simulation {
   // Where this run's lanes meet lanes driven elsewhere (other parts, another simulator); made from the
   // stepper and the books, gone before them.
   std::unique_ptr<BoundaryLink> link_;
-  std::unique_ptr<RerouteState> reroute_;  // the rerouting device (null: no vehicle has it)
+  std::unique_ptr<InsertionControl> insertion_;  // made from the link and the books, gone before them
+  std::unique_ptr<RerouteState> reroute_;        // the rerouting device (null: no vehicle has it)
 
   // What outputs and tests derive from the backend's state, kept per version of it: the state changes in
   // step(), set_route() and the constructor's insertions, each counting a new version.

@@ -12,6 +12,7 @@
 // the new routes, which every part's trip table takes in vehicle order, and the speed samples' lane sums.
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "core/time_range.hpp"
 #include "demand/trip_routes.hpp"
@@ -128,7 +129,7 @@ void Simulation::reroute_vehicles(int64_t end_ms) {
         r.hierarchy ? r.hierarchy->route_all(r.router, requests, opt_.threads)
                     : r.router.route_all(requests, opt_.threads);
     r.reroutes += requests.size();
-    const HostState* s = nullptr;
+    std::optional<VehicleQuery> on_road;  // read once a vehicle with a new path is looked up
     for (size_t i = 0; i < requests.size(); ++i) {
       const uint32_t v = who[i];
       NewRoute n{v, {}};
@@ -137,11 +138,8 @@ void Simulation::reroute_vehicles(int64_t end_ms) {
         n.edges.insert(n.edges.end(), paths[i].begin(), paths[i].end());
         // Unchanged when it equals what is left of the route.
         const uint32_t* route = d.route_edges.data() + d.route_begin[v];
-        uint32_t rp = 0;
-        if (const int32_t k = slot_of(v); k >= 0) {
-          if (!s) s = &state(StateParts::Columns);
-          rp = s->veh.route_pos[k];
-        }
+        if (!on_road) on_road.emplace(query());
+        const uint32_t rp = on_road->route_pos(v);
         if (n.edges.size() == d.route_length[v] - rp &&
             std::equal(n.edges.begin(), n.edges.end(), route + rp))
           n.edges.clear();
@@ -192,6 +190,7 @@ void Simulation::share_new_routes(std::vector<NewRoute>& routes) {
 void Simulation::apply_new_routes(const std::vector<NewRoute>& routes) {
   const Demand& d = trips_.demand();
   std::vector<std::pair<uint32_t, uint32_t>> running;  // (slot, vehicle)
+  std::optional<VehicleQuery> on_road;                 // read once a route changes
   for (const NewRoute& n : routes) {
     if (n.edges.empty()) continue;
     if (d.stops.first(n.vehicle) != d.stops.last(n.vehicle)) {
@@ -201,7 +200,8 @@ void Simulation::apply_new_routes(const std::vector<NewRoute>& routes) {
       trips_.set_stop_positions(n.vehicle, at);
     }
     trips_.set_route(n.vehicle, n.edges);
-    if (const int32_t k = slot_of(n.vehicle); k >= 0)
+    if (!on_road) on_road.emplace(query());
+    if (const int32_t k = on_road->slot(n.vehicle); k >= 0)
       running.emplace_back(static_cast<uint32_t>(k), n.vehicle);
   }
   if (running.empty()) return;

@@ -121,7 +121,8 @@ Outcome run_case(const Case& c, const test::TempDir& dir) {
     o.most_in_handover = std::max(o.most_in_handover, o.last.in_handover);
     if (watch >= 0)
       for (const uint32_t v : sim.active())
-        if (sim.lane(v) == watch && sim.speed(v) < 0.1f && sim.pos(v) > watch_length - 10.0f) {
+        if (sim.query().lane(v) == watch && sim.query().speed(v) < 0.1f &&
+            sim.query().pos(v) > watch_length - 10.0f) {
           ++o.steps_lpsim_queued_at_boundary;
           break;
         }

@@ -55,19 +55,19 @@ TEST(EngineInsertionTest, EveryQueuedVehicleIsTriedOnTheLeastOccupiedLaneAsSumo)
   opt.threads = 1;
   Simulation sim(s.net, s.demand, opt);  // inserts what is due at the begin time
   for (const char* id : {"b0", "b1", "g50", "g80", "b2", "g30"})
-    EXPECT_EQ(sim.status(s.index(id)), kRunning) << id;
-  const int32_t lane0 = sim.lane(s.index("b0"));
-  const int32_t lane1 = sim.lane(s.index("b1"));
+    EXPECT_EQ(sim.query().status(s.index(id)), kRunning) << id;
+  const int32_t lane0 = sim.query().lane(s.index("b0"));
+  const int32_t lane1 = sim.query().lane(s.index("b1"));
   EXPECT_NE(lane0, lane1);
-  EXPECT_EQ(sim.lane(s.index("g50")), lane0);
-  EXPECT_EQ(sim.lane(s.index("g80")), lane1);
-  EXPECT_EQ(sim.lane(s.index("b2")), lane0);
-  EXPECT_EQ(sim.lane(s.index("g30")), lane1);
-  EXPECT_NEAR(sim.pos(s.index("b0")), 5.1f, 1e-4f);
-  EXPECT_NEAR(sim.pos(s.index("g50")), 50.0f, 1e-4f);
-  EXPECT_NEAR(sim.pos(s.index("g80")), 80.0f, 1e-4f);
-  EXPECT_NEAR(sim.pos(s.index("b2")), 12.7f, 0.5f);  // the follower's front known to the metre
-  EXPECT_NEAR(sim.pos(s.index("g30")), 30.0f, 1e-4f);
+  EXPECT_EQ(sim.query().lane(s.index("g50")), lane0);
+  EXPECT_EQ(sim.query().lane(s.index("g80")), lane1);
+  EXPECT_EQ(sim.query().lane(s.index("b2")), lane0);
+  EXPECT_EQ(sim.query().lane(s.index("g30")), lane1);
+  EXPECT_NEAR(sim.query().pos(s.index("b0")), 5.1f, 1e-4f);
+  EXPECT_NEAR(sim.query().pos(s.index("g50")), 50.0f, 1e-4f);
+  EXPECT_NEAR(sim.query().pos(s.index("g80")), 80.0f, 1e-4f);
+  EXPECT_NEAR(sim.query().pos(s.index("b2")), 12.7f, 0.5f);  // the follower's front known to the metre
+  EXPECT_NEAR(sim.query().pos(s.index("g30")), 30.0f, 1e-4f);
   EXPECT_EQ(sim.counts().running, 6u);
   EXPECT_EQ(sim.counts().waiting, 0u);
   EXPECT_EQ(sim.check_lane_map(), "");

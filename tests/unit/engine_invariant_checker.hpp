@@ -78,10 +78,10 @@ class InvariantChecker {
   void before_step() {
     grow();
     for (uint32_t v : sim_.active()) {
-      status_[v] = sim_.status(v);
-      lane_[v] = sim_.lane(v);
-      pos_[v] = sim_.pos(v);
-      speed_[v] = sim_.speed(v);
+      status_[v] = sim_.query().status(v);
+      lane_[v] = sim_.query().lane(v);
+      pos_[v] = sim_.query().pos(v);
+      speed_[v] = sim_.query().speed(v);
     }
     active_before_ = sim_.active();
     counts_before_ = sim_.counts();
@@ -97,7 +97,7 @@ class InvariantChecker {
     for (uint32_t v : active_before_) {
       if (status_[v] != kRunning || std::binary_search(sim_.active().begin(), sim_.active().end(), v))
         continue;
-      if (sim_.status(v) == kRunning) fail(v, "running but no longer in active()");
+      if (sim_.query().status(v) == kRunning) fail(v, "running but no longer in active()");
     }
   }
 
@@ -154,7 +154,7 @@ class InvariantChecker {
     uint64_t not_due = 0, running = 0, arrived = 0, pending = 0, teleporting = 0;
     for (uint32_t v = 0; v < demand_.size(); ++v) {
       if (to_ms(demand_.depart[v]) > now) ++not_due;
-      switch (sim_.status(v)) {
+      switch (sim_.query().status(v)) {
         case kRunning:
           ++running;
           break;
@@ -213,7 +213,7 @@ class InvariantChecker {
     for (const TripRecord& r : trips) {
       ++stats_.trip_records;
       if (seen_trip_[r.vehicle]++) fail(r.vehicle, "second trip record");
-      if (sim_.status(r.vehicle) != kArrived) fail(r.vehicle, "trip record but not arrived");
+      if (sim_.query().status(r.vehicle) != kArrived) fail(r.vehicle, "trip record but not arrived");
       if (std::fabs(r.arrival - sim_.time()) > 1e-9)
         fail(r.vehicle, "trip record with arrival " + std::to_string(r.arrival));
     }
@@ -258,12 +258,12 @@ class InvariantChecker {
   }
 
   void check_vehicle(uint32_t v) {
-    const uint8_t st = sim_.status(v);
+    const uint8_t st = sim_.query().status(v);
     const bool was_running =
         status_[v] == kRunning && std::binary_search(active_before_.begin(), active_before_.end(), v);
     if (st != kRunning && !(st == kArrived && was_running)) return;
-    const int32_t lane = sim_.lane(v);
-    const float pos = sim_.pos(v), speed = sim_.speed(v);
+    const int32_t lane = sim_.query().lane(v);
+    const float pos = sim_.query().pos(v), speed = sim_.query().speed(v);
     if (lane < 0 || static_cast<uint32_t>(lane) >= net_.num_lanes()) {
       fail(v, "on no lane (" + std::to_string(lane) + ")");
       return;
@@ -331,7 +331,7 @@ class InvariantChecker {
     const std::vector<int32_t> path = search_path(old_lane, lane);
     if (path.empty()) {
       // A teleported vehicle re-enters on the next edge of its route without driving there.
-      if (sim_.counts().teleports > counts_before_.teleports && sim_.status(v) == kRunning) {
+      if (sim_.counts().teleports > counts_before_.teleports && sim_.query().status(v) == kRunning) {
         ++stats_.teleport_jumps;
         return;
       }
@@ -349,7 +349,7 @@ class InvariantChecker {
       // step() sets the signals for the step's end time (as SUMO) before the passes read them;
       // link_state() after the step returns exactly that state (before the step it still shows the
       // previous step's).
-      const char state = sim_.link_state(static_cast<uint32_t>(c));
+      const char state = sim_.query(StateParts::Full).link_state(static_cast<uint32_t>(c));
       if (signal_is_yellow(state)) ++stats_.entries_on_yellow;
       if (signal_is_red(state))
         fail(v, "entered " + lane_text(path[k + 1]) + " from " + lane_text(from) + " at signal state '" +

@@ -69,12 +69,12 @@ TEST(EngineJunctionTest, MinorLinkIsCrossedOnlyFromWithinTheFoeVisibilityDistanc
   std::vector<float> dist(tracked.size(), 0.0f);
   while (!sim.finished() && sim.time() < 3600) {
     for (size_t k = 0; k < tracked.size(); ++k) {
-      lane[k] = sim.lane(tracked[k]);
-      dist[k] = lane[k] >= 0 ? net.lane_length[lane[k]] - sim.pos(tracked[k]) : 0.0f;
+      lane[k] = sim.query().lane(tracked[k]);
+      dist[k] = lane[k] >= 0 ? net.lane_length[lane[k]] - sim.query().pos(tracked[k]) : 0.0f;
     }
     sim.step();
     for (size_t k = 0; k < tracked.size(); ++k) {
-      if (!on_approach(lane[k]) || on_approach(sim.lane(tracked[k]))) continue;
+      if (!on_approach(lane[k]) || on_approach(sim.query().lane(tracked[k]))) continue;
       ++crossings;
       if (dist[k] > 4.5f) ++from_afar;
     }
@@ -102,13 +102,15 @@ TEST(EngineJunctionTest, InternalJunctionIsCrossedOnlyFromWithinTheFoeVisibility
   int crossings = 0, from_afar = 0;
   while (!sim.finished() && sim.time() < 3600) {
     for (uint32_t v = 0; v < n; ++v) {
-      lane[v] = sim.lane(v);
-      dist[v] = lane[v] >= 0 ? net.lane_length[lane[v]] - sim.pos(v) : 0.0f;
+      lane[v] = sim.query().lane(v);
+      dist[v] = lane[v] >= 0 ? net.lane_length[lane[v]] - sim.query().pos(v) : 0.0f;
     }
     sim.step();
     for (uint32_t v = 0; v < n; ++v) {
-      if (lane[v] < 0 || entry[lane[v]] < 0 || sim.lane(v) == lane[v]) continue;
-      if (link_rule(sim.link_state(static_cast<uint32_t>(entry[lane[v]]))) == LinkRule::Priority) continue;
+      if (lane[v] < 0 || entry[lane[v]] < 0 || sim.query().lane(v) == lane[v]) continue;
+      if (link_rule(sim.query(StateParts::Full).link_state(static_cast<uint32_t>(entry[lane[v]]))) ==
+          LinkRule::Priority)
+        continue;
       ++crossings;
       if (dist[v] > 4.5f) ++from_afar;
     }

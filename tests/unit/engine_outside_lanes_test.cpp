@@ -69,14 +69,14 @@ TEST(EngineOutsideLanesTest, VehiclesLeaveWhereTheirRouteEntersTheCorridorOnceAt
     sim.step();
     for (const OutsideLink::HandOut& h : sim.outside_link().hand_outs()) {
       EXPECT_TRUE(out.emplace(h.vehicle, h).second) << "vehicle " << h.vehicle << " handed out twice";
-      EXPECT_EQ(sim.status(h.vehicle), kMigrated);
+      EXPECT_EQ(sim.query().status(h.vehicle), kMigrated);
       departed_outside += h.lane < 0 ? 1 : 0;
     }
     // No vehicle stays on a corridor lane, and every one is in exactly one state.
     for (const uint32_t v : sim.active())
-      if (sim.status(v) == kRunning) {
-        ASSERT_GE(sim.lane(v), 0);
-        EXPECT_FALSE(corridor_set.count(net.lane_edge[static_cast<uint32_t>(sim.lane(v))])) << v;
+      if (sim.query().status(v) == kRunning) {
+        ASSERT_GE(sim.query().lane(v), 0);
+        EXPECT_FALSE(corridor_set.count(net.lane_edge[static_cast<uint32_t>(sim.query().lane(v))])) << v;
       }
     const Simulation::Counts& c = sim.counts();
     EXPECT_EQ(c.inserted + departed_outside, c.arrived + c.running + sim.outside_link().handed_out())
@@ -150,7 +150,7 @@ TEST(EngineOutsideLanesTest, VehiclesMirroredOnTheCorridorHoldTheTrafficBehindTh
   // The queues before the corridor stand.
   uint32_t standing = 0;
   for (const uint32_t v : sim.active())
-    if (sim.status(v) == kRunning && sim.speed(v) < 0.1f) ++standing;
+    if (sim.query().status(v) == kRunning && sim.query().speed(v) < 0.1f) ++standing;
   EXPECT_GT(standing, 5u);
   // The blockers leave: traffic flows in.
   const uint64_t before = sim.outside_link().handed_out();

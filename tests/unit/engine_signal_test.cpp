@@ -41,15 +41,15 @@ TEST(EngineSignalTest, StandingVehicleMovesInTheStepEndingAtItsGreen) {
     Simulation sim(net, demand, o);
     // 100 m at up to 13.9 m/s: at the line, standing, well before the green.
     step_to(sim, kWestGreenStarts - dt);
-    const int32_t waiting_lane = sim.lane(0);
-    ASSERT_EQ(sim.status(0), kRunning);
-    EXPECT_EQ(sim.speed(0), 0.0f) << "dt " << dt;
-    EXPECT_GT(sim.pos(0), 95.0f) << "dt " << dt;
-    const float waiting_pos = sim.pos(0);
+    const int32_t waiting_lane = sim.query().lane(0);
+    ASSERT_EQ(sim.query().status(0), kRunning);
+    EXPECT_EQ(sim.query().speed(0), 0.0f) << "dt " << dt;
+    EXPECT_GT(sim.query().pos(0), 95.0f) << "dt " << dt;
+    const float waiting_pos = sim.query().pos(0);
     sim.step();  // ends at the green's start
     EXPECT_DOUBLE_EQ(sim.time(), kWestGreenStarts);
-    EXPECT_GT(sim.speed(0), 0.0f) << "dt " << dt;
-    EXPECT_TRUE(sim.lane(0) != waiting_lane || sim.pos(0) > waiting_pos) << "dt " << dt;
+    EXPECT_GT(sim.query().speed(0), 0.0f) << "dt " << dt;
+    EXPECT_TRUE(sim.query().lane(0) != waiting_lane || sim.query().pos(0) > waiting_pos) << "dt " << dt;
   }
 }
 

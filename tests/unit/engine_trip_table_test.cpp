@@ -94,7 +94,7 @@ TEST(EngineTripTableTest, RoutesThatDoNotLeadOnAreRefused) {
   // An arrived vehicle's trip has ended.
   while (!sim.finished() && sim.counts().arrived == 0) sim.step();
   for (uint32_t a = 0; a < sim.demand().size(); ++a)
-    if (sim.status(a) == kArrived) {
+    if (sim.query().status(a) == kArrived) {
       const Demand& d = sim.demand();
       EXPECT_THROW(sim.set_route(a, std::vector<uint32_t>(d.route_edges.begin() + d.route_begin[a],
                                                           d.route_edges.begin() + d.route_begin[a] + 1)),

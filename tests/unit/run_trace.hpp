@@ -42,8 +42,8 @@ inline Trace run_trace(const Scenario& sc, const SimulationOptions& o) {
                                      x.waiting_time, x.time_loss, double(x.teleported)});
     if (sim.step_index() % 7 == 0)
       for (uint32_t v = 0; v < sc.demand.size(); ++v)
-        t.queries.insert(t.queries.end(), {double(sim.status(v)), double(sim.lane(v)), double(sim.pos(v)),
-                                           double(sim.speed(v))});
+        t.queries.insert(t.queries.end(), {double(sim.query().status(v)), double(sim.query().lane(v)),
+                                           double(sim.query().pos(v)), double(sim.query().speed(v))});
     t.max_active = std::max<uint32_t>(t.max_active, static_cast<uint32_t>(sim.active().size()));
   }
   EXPECT_TRUE(sim.finished());

@@ -44,12 +44,12 @@ inline std::vector<uint32_t> path_through(const Network& net, uint32_t from, uin
 inline int64_t pick_reroute(const Simulation& sim, const Network& net, std::vector<uint32_t>& route) {
   const Demand& d = sim.demand();
   for (const uint32_t v : sim.active()) {
-    if (sim.status(v) != kRunning) continue;
-    const int32_t lane = sim.lane(v);
+    if (sim.query().status(v) != kRunning) continue;
+    const int32_t lane = sim.query().lane(v);
     const uint32_t edge = net.lane_edge[static_cast<uint32_t>(lane)];
     if (net.edge_is_internal[edge]) continue;
     const uint32_t* old = d.route_edges.data() + d.route_begin[v];
-    const uint32_t rp = sim.route_pos(v), len = d.route_length[v];
+    const uint32_t rp = sim.query().route_pos(v), len = d.route_length[v];
     if (old[rp] != edge || rp + 3 >= len) continue;
     for (uint32_t i = net.edge_succ_begin[edge]; i < net.edge_succ_begin[edge + 1]; ++i) {
       const uint32_t next = net.edge_succ[i];
@@ -72,9 +72,9 @@ inline TripChangesRun run_with_trip_changes(const Scenario& sc, SimulationOption
   const Network& net = sc.network;
   out.loaded = sim.demand().size();
   FcdFrame frame;
-  auto edge_of = [&](uint32_t v) { return net.lane_edge[static_cast<uint32_t>(sim.lane(v))]; };
+  auto edge_of = [&](uint32_t v) { return net.lane_edge[static_cast<uint32_t>(sim.query().lane(v))]; };
   auto follow = [&](uint32_t v, std::vector<uint32_t>& visited) {
-    if (sim.status(v) != kRunning) return;
+    if (sim.query().status(v) != kRunning) return;
     const uint32_t e = edge_of(v);
     if (!net.edge_is_internal[e] && (visited.empty() || visited.back() != e)) visited.push_back(e);
   };
@@ -98,7 +98,7 @@ inline TripChangesRun run_with_trip_changes(const Scenario& sc, SimulationOption
       const uint32_t last = out.loaded - 1;
       const uint32_t first = d.route_edges[d.route_begin[last]];
       const uint32_t dest = d.route_edges[d.route_begin[last] + d.route_length[last] - 1];
-      EXPECT_EQ(sim.status(last), kPending);
+      EXPECT_EQ(sim.query().status(last), kPending);
       for (uint32_t i = net.edge_succ_begin[first]; i < net.edge_succ_begin[first + 1] && waiting < 0; ++i) {
         if (net.edge_succ[i] == d.route_edges[d.route_begin[last] + 1]) continue;
         out.waiting_route = path_through(net, first, net.edge_succ[i], dest);
@@ -117,7 +117,7 @@ inline TripChangesRun run_with_trip_changes(const Scenario& sc, SimulationOption
       if (v >= 0) {
         out.rerouted = static_cast<uint32_t>(v);
         sim.set_route(out.rerouted, out.new_route);
-        EXPECT_EQ(sim.route_pos(out.rerouted), 0u);
+        EXPECT_EQ(sim.query().route_pos(out.rerouted), 0u);
         out.visited.push_back(out.new_route.front());
       }
     }
