@@ -177,6 +177,12 @@ class Stepper {
   /// LaneCounters' order) and starts counting from zero. Only the columns it keeps (setup's lane_counters,
   /// emission_sums) are touched: the others may be null.
   virtual void drain_counters(int64_t* const* columns) = 0;
+
+  // Checkpoints, between steps: the run state this backend keeps (slot columns of the first `num_slots`
+  // slots, active list, lane maps, signals, lane tables, counters) as bytes, and back into a backend made
+  // with the same setup. A backend that cannot throws std::runtime_error saying so.
+  virtual std::vector<uint8_t> save_state(uint32_t num_slots) = 0;
+  virtual void load_state(const std::vector<uint8_t>& state, uint32_t num_slots) = 0;
 };
 
 }  // namespace lpsim

@@ -7,7 +7,8 @@
 
 namespace lpsim {
 
-TripTable::TripTable(Demand demand) : d_(std::move(demand)) {
+TripTable::TripTable(Demand demand)
+    : d_(std::move(demand)), loaded_trips_(d_.size()), loaded_route_edges_(d_.route_edges.size()) {
   changes_.first_new_vehicle = d_.size();
   changes_.first_new_route_edge = d_.route_edges.size();
 }

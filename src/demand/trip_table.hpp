@@ -3,7 +3,9 @@
 // another simulator) and routes replaced (rerouting). Append-only: a trip keeps its index for the whole run,
 // and a replaced route's edges are appended and the trip pointed at them, so that every index a backend
 // holds stays valid and a backend's copy is brought up to date by copying what was appended (changes()).
+#include <algorithm>
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -54,10 +56,54 @@ class TripTable {
   bool changed() const;
   Changes take_changes();
 
+  /// The routes and the stops' positions as they are now (rerouting replaces them), for a checkpoint (an
+  /// archive of engine/state_archive.hpp). Read back into a table made from the same demand, every route
+  /// that differs counts as changed. A table that grew while it ran (trips added) is not saved.
+  template <class A>
+  void visit_routes(A& a);
+
  private:
   Demand d_;
+  uint32_t loaded_trips_ = 0;                        // the demand's trips
+  uint64_t loaded_route_edges_ = 0;                  // and route edges
   std::unordered_map<std::string, uint32_t> index_;  // vehicle ids, built at the first add
   Changes changes_;
 };
+
+template <class A>
+void TripTable::visit_routes(A& a) {
+  if (d_.size() != loaded_trips_)
+    throw std::runtime_error("a run whose trips grew while it ran (a co-simulation) has no saved state yet");
+  uint64_t trips = d_.size();
+  a(trips);
+  if (trips != d_.size())
+    a.fail("the state has " + std::to_string(trips) + " trips, this run " + std::to_string(d_.size()));
+  std::vector<uint32_t> tail, begin = d_.route_begin, length = d_.route_length, stops = d_.stops.route_pos;
+  if constexpr (!A::kReads)
+    tail.assign(d_.route_edges.begin() + static_cast<std::ptrdiff_t>(loaded_route_edges_),
+                d_.route_edges.end());
+  a(tail);
+  a(begin);
+  a(length);
+  a(stops);
+  if constexpr (A::kReads) {
+    if (begin.size() != d_.size() || length.size() != d_.size() || stops.size() != d_.stops.route_pos.size())
+      a.fail("the trip table's routes do not match this run's trips");
+    d_.route_edges.resize(loaded_route_edges_);
+    d_.route_edges.insert(d_.route_edges.end(), tail.begin(), tail.end());
+    changes_.first_new_route_edge = std::min(changes_.first_new_route_edge, loaded_route_edges_);
+    for (uint32_t v = 0; v < d_.size(); ++v) {
+      if (uint64_t{begin[v]} + length[v] > d_.route_edges.size()) a.fail("a route past the route edges");
+      if (begin[v] == d_.route_begin[v] && length[v] == d_.route_length[v]) continue;
+      d_.route_begin[v] = begin[v];
+      d_.route_length[v] = length[v];
+      if (v < changes_.first_new_vehicle) changes_.new_routes.push_back(v);
+    }
+    if (stops != d_.stops.route_pos) {
+      d_.stops.route_pos = stops;
+      changes_.stops_moved = true;
+    }
+  }
+}
 
 }  // namespace lpsim

@@ -32,6 +32,12 @@ struct DepartureSchedule {
   std::vector<std::pair<int64_t, uint32_t>> added;
 
   bool empty() const { return next >= loaded && added.empty(); }
+  template <class A>
+  void visit_state(A& a) {
+    a(next);
+    a(loaded);
+    a(added);
+  }
 };
 
 struct HostBooks {
@@ -52,6 +58,22 @@ struct HostBooks {
 
   /// Nothing on the road and nothing waiting to be inserted.
   bool idle() const { return num_active == 0 && queues.waiting() == 0; }
+  /// Between steps (the step's hand-ons are empty then).
+  template <class A>
+  void visit_state(A& a) {
+    a(slots);
+    if constexpr (A::kReads)
+      queues.load_state(a);
+    else
+      queues.save_state(a);
+    a(ledger);
+    a(counts);
+    a(schedule);
+    a(num_active);
+    a(retiring);
+    a(retiring_next);
+    a(teleport_events);
+  }
 };
 
 }  // namespace lpsim

@@ -56,6 +56,42 @@ class InsertionQueues {
   template <class Drop>
   void drop_departures(Drop&& drop);
 
+  /// The queues' entries, of the queued edges only (StateOut, StateIn: engine/state_archive.hpp).
+  template <class Out>
+  void save_state(Out& a) const {
+    std::vector<uint32_t> edges = queued_edges_, counts, entries;
+    for (const uint32_t e : queued_edges_) {
+      const EdgeQueue& q = queue_[e];
+      counts.push_back(static_cast<uint32_t>(q.entries.size()) - q.head);
+      entries.insert(entries.end(), q.entries.begin() + q.head, q.entries.end());
+    }
+    a(edges);
+    a(counts);
+    a(entries);
+  }
+  template <class In>
+  void load_state(In& a) {
+    std::vector<uint32_t> edges, counts, entries;
+    a(edges);
+    a(counts);
+    a(entries);
+    if (counts.size() != edges.size()) a.fail("insertion queues: a count per queued edge");
+    for (const uint32_t e : queued_edges_) queue_[e].entries.clear(), queue_[e].head = 0;
+    queued_edges_.clear();
+    waiting_ = 0;
+    size_t at = 0;
+    for (size_t i = 0; i < edges.size(); ++i) {
+      if (edges[i] >= queue_.size() || at + counts[i] > entries.size() || (i > 0 && edges[i] <= edges[i - 1]))
+        a.fail("insertion queues: an edge or a count out of range");
+      EdgeQueue& q = queue_[edges[i]];
+      q.entries.assign(entries.begin() + static_cast<std::ptrdiff_t>(at),
+                       entries.begin() + static_cast<std::ptrdiff_t>(at + counts[i]));
+      at += counts[i];
+      waiting_ += counts[i];
+      queued_edges_.push_back(edges[i]);
+    }
+  }
+
  private:
   struct EdgeQueue {
     std::vector<uint32_t> entries;  // those before head have been inserted

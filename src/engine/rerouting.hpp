@@ -56,6 +56,21 @@ struct RerouteState {
   uint64_t router_sample = 0;  // the sample the router's costs were set from (0: free-flow times)
   bool departed = false;       // some vehicle has departed (SUMO samples only from then on)
   uint64_t reroutes = 0;       // routes computed
+  // The router's costs are not part of a saved state: one loaded with router_sample > 0 takes the speeds of
+  // that sample anew before it next routes.
+  bool router_stale = false;
+
+  template <class A>
+  void visit_state(A& a) {
+    a(speeds);
+    a(next_due);
+    a(waiting);
+    a(routed_at);
+    a(router_sample);
+    a(departed);
+    a(reroutes);
+    if constexpr (A::kReads) router_stale = router_sample != 0;
+  }
 };
 
 }  // namespace lpsim

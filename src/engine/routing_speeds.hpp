@@ -38,6 +38,15 @@ class RoutingSpeeds {
   const std::vector<double>& speeds() const { return speed_; }
   /// Samples taken so far.
   uint64_t samples() const { return samples_; }
+  template <class A>
+  void visit_state(A& a) {
+    a(speed_);
+    a(past_);
+    a(next_);
+    a(samples_);
+    a(driven_);
+    a(driven_edges_);
+  }
   /// SUMO's MSEdge::getMeanSpeed of edge e from `lanes`.
   double mean_speed(uint32_t e, const LaneSpeedSums* lanes) const;
 

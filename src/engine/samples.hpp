@@ -34,6 +34,19 @@ struct LaneCounters {
   /// Every traffic column to `lanes` zeros, and the emission columns too with `emission_sums` (else empty).
   void resize(size_t lanes, bool emission_sums = false);
   void clear();
+  template <class A>
+  void visit_state(A& a) {
+    a(sampled_steps);
+    a(travelled_mm);
+    a(waiting_steps);
+    a(time_loss_ms);
+    a(occupied_mm_steps);
+    a(departed);
+    a(arrived);
+    a(entered);
+    a(left);
+    for (std::vector<int64_t>& e : emission) a(e);
+  }
 };
 
 struct MeanDataInterval {

@@ -9,6 +9,7 @@
 #include "core/time_range.hpp"
 #include "engine/outside_link.hpp"
 #include "engine/part_link.hpp"
+#include "engine/state_archive.hpp"
 #include "kernels/idm.hpp"
 #include "kernels/insert_vehicle.hpp"
 #include "kernels/vehicle_step.hpp"
@@ -745,5 +746,46 @@ const Simulation::Counts& Simulation::counts() const { return link_->counts(); }
 std::vector<TripRecord> Simulation::take_finished_trips() { return link_->take_finished(); }
 
 const std::vector<TeleportEvent>& Simulation::teleport_events() const { return link_->teleport_events(); }
+
+// What a step reads that an earlier one wrote: the clock, the books, the routes as rerouting left them, the
+// lane counters drained so far, the rerouting device's speeds, and the backend's own state.
+template <class A>
+void Simulation::visit_state(A& a, std::vector<uint8_t>& backend) {
+  if (link_->parts() > 1) throw std::runtime_error("a partitioned run has no saved state yet");
+  if (opt_.outside_lanes) throw std::runtime_error("a co-simulation has no saved state yet");
+  a(time_ms_);
+  a(step_);
+  a(cur_);
+  a(books_);
+  trips_.visit_routes(a);
+  a(lane_counters_);
+  uint8_t rerouting = reroute_ ? 1 : 0;
+  a(rerouting);
+  if (rerouting != (reroute_ ? 1 : 0)) a.fail("the state's rerouting device does not match this run's");
+  if (reroute_) a(*reroute_);
+  a.raw(backend);
+}
+
+std::vector<uint8_t> Simulation::save_state() {
+  std::vector<uint8_t> backend = stepper_->save_state(books_.slots.size());
+  StateOut a;
+  visit_state(a, backend);
+  return std::move(a.bytes());
+}
+
+void Simulation::load_state(const std::vector<uint8_t>& state, const std::string& what) {
+  StateIn a(state.data(), state.size(), what);
+  std::vector<uint8_t> backend;
+  visit_state(a, backend);
+  if (!a.done()) a.fail("bytes left after the state's last field");
+  sync_trips();  // the routes as the state has them
+  try {
+    stepper_->load_state(backend, books_.slots.size());
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error(what + ": " + e.what());
+  }
+  moves_.clear();
+  ++version_;
+}
 
 }  // namespace lpsim

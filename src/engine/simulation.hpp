@@ -139,6 +139,13 @@ class Simulation {
   /// The summary's row now (in a partitioned run a collective call, as sample_fcd()).
   SummaryRow summary_row();
 
+  /// Checkpoints, between steps: the run's whole state as bytes (versioned and checked by the caller), and
+  /// back into a Simulation made from the same scenario and options, which then steps on exactly as the
+  /// saved one would have. std::runtime_error for what has no saved state yet (a partitioned run, a
+  /// co-simulation, the CUDA backend) and, naming `what`, for a state that does not fit this run.
+  std::vector<uint8_t> save_state();
+  void load_state(const std::vector<uint8_t>& state, const std::string& what);
+
   /// Test support: recomputes the lane map from every running vehicle's footprint and reports the first
   /// cell two vehicles share or a mismatch with the engine's map ("" when consistent).
   std::string check_lane_map() const;
@@ -183,6 +190,8 @@ class Simulation {
   void apply_new_routes(const std::vector<NewRoute>& routes);
   void sample_routing_speeds();
   void make_link();
+  template <class A>
+  void visit_state(A& a, std::vector<uint8_t>& backend);
   void gather_counters();
   std::vector<int> kept_counters() const;
   SpeedSums speed_sums() const;

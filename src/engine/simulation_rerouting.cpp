@@ -121,9 +121,10 @@ void Simulation::reroute_vehicles(int64_t end_ms) {
 
   std::vector<NewRoute> mine;
   if (!requests.empty()) {
-    if (r.router_sample != sample) {
+    if (r.router_sample != sample || r.router_stale) {
       r.router.set_speeds(r.speeds.speeds());
       r.router_sample = sample;
+      r.router_stale = false;
     }
     const std::vector<std::vector<uint32_t>> paths =
         r.hierarchy ? r.hierarchy->route_all(r.router, requests, opt_.threads)

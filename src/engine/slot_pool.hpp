@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cstdint>
 #include <functional>
-#include <queue>
 #include <vector>
 
 namespace lpsim {
@@ -17,15 +16,25 @@ class SlotPool {
       peak_ = std::max(peak_, used_ + 1);
       return used_++;
     }
-    const uint32_t slot = free_.top();
-    free_.pop();
+    std::pop_heap(free_.begin(), free_.end(), std::greater<uint32_t>());
+    const uint32_t slot = free_.back();
+    free_.pop_back();
     return slot;
   }
-  void release(uint32_t slot) { free_.push(slot); }
+  void release(uint32_t slot) {
+    free_.push_back(slot);
+    std::push_heap(free_.begin(), free_.end(), std::greater<uint32_t>());
+  }
   /// Slots 0..n-1 in use, every other one free (after the slots in use were renumbered densely).
   void reset(uint32_t n) {
-    free_ = {};
+    free_.clear();
     used_ = n;
+  }
+  template <class A>
+  void visit_state(A& a) {
+    a(free_);
+    a(used_);
+    a(peak_);
   }
   /// Slots handed out at least once since the last reset: the length the slot columns need now.
   uint32_t size() const { return used_; }
@@ -33,7 +42,7 @@ class SlotPool {
   uint32_t peak() const { return peak_; }
 
  private:
-  std::priority_queue<uint32_t, std::vector<uint32_t>, std::greater<uint32_t>> free_;
+  std::vector<uint32_t> free_;  // a heap: the lowest on top
   uint32_t used_ = 0, peak_ = 0;
 };
 

@@ -80,6 +80,23 @@ class TripLedger {
   double depart_delay_sum() const { return depart_delay_sum_; }
   double travel_time_sum() const { return travel_time_sum_; }
 
+  template <class A>
+  void visit_state(A& a) {
+    a(status_);
+    a(resume_rp_);
+    a(resume_speed_);
+    a(resume_pos_);
+    a(resume_lane_);
+    a(carried_);
+    a(depart_time_);
+    a(depart_pos_);
+    a(depart_speed_);
+    a(depart_lane_);
+    a(finished_);
+    a(depart_delay_sum_);
+    a(travel_time_sum_);
+  }
+
  private:
   std::vector<uint8_t> status_;
   std::vector<uint32_t> resume_rp_;

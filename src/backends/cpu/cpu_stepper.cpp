@@ -8,6 +8,7 @@
 #include "backends/cpu/pass_prefetch.hpp"
 #include "backends/host_columns.hpp"
 #include "backends/lane_records.hpp"
+#include "backends/state_bytes.hpp"
 #include "backends/vehicle_packing.hpp"
 #include "kernels/emission_step.hpp"
 #include "kernels/insert_vehicle.hpp"
@@ -279,7 +280,47 @@ class CpuStepper final : public Stepper {
     drain(emission_sums_, columns + kCountEmissionFirst, kNumEmissionSums);
   }
 
+  std::vector<uint8_t> save_state(uint32_t num_slots) override {
+    StateBytesOut out;
+    visit_state([&](auto& v, bool) { out.array(v); }, [&](auto* span, uint64_t n) { out.array(span, n); },
+                num_slots);
+    out.value(state_map_);
+    return std::move(out.bytes());
+  }
+
+  void load_state(const std::vector<uint8_t>& state, uint32_t num_slots) override {
+    StateBytesIn in(state);
+    if (num_slots > 0) veh_.reserve(num_slots, false);
+    visit_state([&](auto& v, bool fixed) { in.array(v, fixed); },
+                [&](auto* span, uint64_t n) { in.array(span, n); }, num_slots);
+    in.value(state_map_);
+    if (!in.done()) throw std::runtime_error("backend state: bytes left after its last array");
+  }
+
  private:
+  // The run state (save_state): each table with whether its length is fixed by the setup, the lane records
+  // (where counters_ aligns them) and each vehicle column's entries of the first `num_slots` slots.
+  // Everything else a step writes before it reads it.
+  template <class Table, class Span>
+  void visit_state(Table&& table, Span&& span, uint32_t num_slots) {
+    table(map_[0], true);
+    table(map_[1], true);
+    table(link_state_, true);
+    table(signal_next_switch_ms_, true);
+    table(actuated_phase_, true);
+    table(actuated_start_ms_, true);
+    table(det_last_ms_, true);
+    table(approach_, true);
+    table(claims_, true);
+    table(merge_requests_, true);
+    if (lane_records_ != nullptr) span(lane_records_, uint64_t{kNumTrafficCounters} * setup_.net.num_lanes);
+    table(emission_sums_, true);
+    table(junction_stand_[0], true);
+    table(junction_stand_[1], true);
+    table(active_, false);
+    visit_vehicle_columns([&](uint32_t per, auto*& c) { span(c, uint64_t{num_slots} * per); }, veh_.view());
+  }
+
   // Adds `n` columns of num_lanes kept in `from` (none when it is empty) to `columns` and zeroes them.
   void drain(std::vector<int64_t>& from, int64_t* const* columns, int n) const {
     if (from.empty()) return;
