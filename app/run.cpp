@@ -1,12 +1,17 @@
 #include "app/run.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 #include <utility>
 
 #include "app/emission_models.hpp"
 #include "app/interrupt.hpp"
+#include "app/state_file.hpp"
+#include "core/error.hpp"
+#include "engine/state_archive.hpp"
 
 namespace lpsim {
 
@@ -14,6 +19,22 @@ namespace {
 
 // Times are sums of step lengths in double: compare them with this slack.
 constexpr double kTimeSlack = 1e-9;
+
+bool keeps_states(const ConfigSpec& c) {
+  return !c.save_state_times.empty() || c.save_state_period > 0 || !c.load_state.empty();
+}
+
+// What a saved state cannot carry yet, refused before anything is written.
+void refuse_what_states_cannot_resume(const ConfigSpec& c) {
+  if (!keeps_states(c)) return;
+  if (!c.jam_report.empty())
+    throw InputError(
+        "--save-state/--load-state: the jam report's episodes are not saved yet: leave out --jam-report");
+  const OutputSpec& o = c.outputs;
+  for (const std::string* path : {&o.fcd, &o.tripinfo, &o.summary, &o.edgedata, &o.lanedata})
+    if (path->size() > 3 && path->compare(path->size() - 3, 3, ".gz") == 0)
+      throw InputError("--save-state/--load-state: a resumed run continues plain outputs only, not " + *path);
+}
 
 const char* teleport_cause(TeleportCause cause) {
   return cause == TeleportCause::Yield ? "yield" : cause == TeleportCause::WrongLane ? "wrong lane" : "jam";
@@ -26,9 +47,16 @@ Run::Run(Scenario scenario, const ConfigSpec& config, SimulationOptions options)
       config_(config),
       mean_data_(mean_data_outputs(scenario_, config.outputs)),
       options_(counting_lanes(options, mean_data_)),
+      digest_(keeps_states(config) ? scenario_digest(scenario_, options_) : 0),
       sim_(scenario_.network, std::move(scenario_.demand), options_) {
-  open_outputs();
+  refuse_what_states_cannot_resume(config_);
+  if (!config_.load_state.empty()) {
+    resume(config_.load_state);
+    return;
+  }
+  open_outputs(nullptr);
   add_own_actions();
+  add_state_saves();
   actions_.run_begin(sim_.time(), end_time());
 }
 
@@ -63,22 +91,24 @@ SimulationOptions Run::counting_lanes(SimulationOptions options, const std::vect
   return options;
 }
 
-void Run::open_outputs() {
+void Run::open_outputs(const std::vector<int64_t>* continue_at) {
   const OutputSpec& out = config_.outputs;
-  if (!out.fcd.empty()) fcd_ = std::make_unique<FcdWriter>(out.fcd, scenario_.network, demand());
+  size_t next = 0;
+  auto at = [&] { return continue_at ? (*continue_at)[next++] : int64_t{-1}; };
+  if (!out.fcd.empty()) fcd_ = std::make_unique<FcdWriter>(out.fcd, scenario_.network, demand(), at());
   if (!out.tripinfo.empty()) {
     std::vector<std::string> devices{"tripinfo"};
     if (fcd_) devices.push_back("fcd");
-    tripinfo_ = std::make_unique<TripinfoWriter>(out.tripinfo, scenario_.network, demand(), devices);
+    tripinfo_ = std::make_unique<TripinfoWriter>(out.tripinfo, scenario_.network, demand(), devices, at());
   }
-  if (!out.summary.empty()) summary_ = std::make_unique<SummaryWriter>(out.summary);
+  if (!out.summary.empty()) summary_ = std::make_unique<SummaryWriter>(out.summary, at());
   if (!out.statistic.empty()) statistic_ = std::make_unique<StatisticWriter>(out.statistic);
   if (!config_.jam_report.empty())
     jam_ = std::make_unique<JamRecorder>(config_.jam_report, config_.jam_report_stop_time, scenario_.network,
                                          sim_);
   for (MeanDataOutput& m : mean_data_) {
     m.writer =
-        std::make_unique<MeanDataWriter>(m.spec, scenario_.network, demand(), options_.volumetric_fuel);
+        std::make_unique<MeanDataWriter>(m.spec, scenario_.network, demand(), options_.volumetric_fuel, at());
     m.interval_begin = m.spec.begin >= 0 ? m.spec.begin : sim_.time();
     // Zero, not the counters now: vehicles inserted at the begin time belong to the first interval.
     m.at_begin.resize(scenario_.network.num_lanes(), options_.emission_sums);
@@ -251,6 +281,112 @@ void Run::flush_outputs() {
   if (tripinfo_) tripinfo_->flush();
   if (summary_) summary_->flush();
   if (jam_) jam_->flush();
+}
+
+// The outputs a resumed run continues, in open_outputs()'s order: their lengths so far.
+std::vector<int64_t> Run::output_sizes() const {
+  std::vector<int64_t> sizes;
+  if (fcd_) sizes.push_back(static_cast<int64_t>(fcd_->size()));
+  if (tripinfo_) sizes.push_back(static_cast<int64_t>(tripinfo_->size()));
+  if (summary_) sizes.push_back(static_cast<int64_t>(summary_->size()));
+  for (const MeanDataOutput& m : mean_data_) sizes.push_back(static_cast<int64_t>(m.writer->size()));
+  return sizes;
+}
+
+// The Run's own part of a state: its totals and its open edgeData/laneData intervals.
+template <class A>
+void Run::visit_state(A& a) {
+  a(totals_);
+  a(depart_delay_waiting_);
+  for (MeanDataOutput& m : mean_data_) {
+    a(m.interval_begin);
+    a(m.at_begin);
+  }
+}
+
+// SUMO's --save-state.times (each with the next of --save-state.files, else named by its time) and
+// --save-state.period, due on the state's clock after every other action of the step: the state saved at
+// t is the one the outputs wrote for t, and a run resumed from it goes on with the step after t.
+void Run::add_state_saves() {
+  own_actions_ = actions_.size();
+  const ConfigSpec& c = config_;
+  const double now = sim_.time();
+  auto named = [&c](double t) {
+    char time[64];
+    std::snprintf(time, sizeof time, "%.2f", t);
+    return c.save_state_prefix + "_" + time + c.save_state_suffix;
+  };
+  if (!c.save_state_files.empty() && c.save_state_files.size() != c.save_state_times.size())
+    throw InputError("--save-state.files names " + std::to_string(c.save_state_files.size()) + " files for " +
+                     std::to_string(c.save_state_times.size()) + " times of --save-state.times");
+  std::vector<std::pair<double, std::string>> due;
+  for (size_t k = 0; k < c.save_state_times.size(); ++k) {
+    const double t = c.save_state_times[k];
+    if (t > now + kTimeSlack)
+      due.emplace_back(t, c.save_state_files.empty() ? named(t) : c.save_state_files[k]);
+  }
+  std::sort(due.begin(), due.end());
+  if (!due.empty()) {
+    std::vector<double> times;
+    for (const auto& d : due) times.push_back(d.first);
+    actions_.add(
+        "save state", StepTrigger::at(times),
+        [this, due](double when) {
+          for (const auto& [t, path] : due)
+            if (std::abs(t - when) < kTimeSlack) save_state(path);
+        },
+        StepActions::AtBegin::Skip);
+  }
+  if (c.save_state_period > 0) {
+    const double begin = options_.begin, p = c.save_state_period;
+    const double first = begin + (std::floor((now - begin) / p + kTimeSlack) + 1) * p;
+    actions_.add(
+        "save state every period", StepTrigger::every(p, first),
+        [this, named](double when) { save_state(named(when)); }, StepActions::AtBegin::Skip);
+  }
+}
+
+void Run::save_state(const std::string& path) {
+  flush_outputs();
+  StateOut a;
+  std::vector<int64_t> sizes = output_sizes();
+  a(sizes);
+  visit_state(a);
+  actions_.visit_state(a, own_actions_);
+  std::vector<uint8_t> sim = sim_.save_state();
+  a.raw(sim);
+  write_state_file(path, digest_, a.bytes());
+}
+
+// The saved run's outputs are continued where it had written them to; its triggers fire on as they would
+// have; no output is written for the state resumed from (the saved run wrote it).
+void Run::resume(const std::string& path) {
+  try {
+    const std::vector<uint8_t> payload = read_state_file(path, digest_);
+    StateIn a(payload.data(), payload.size(), path);
+    std::vector<int64_t> sizes;
+    a(sizes);
+    size_t outputs = mean_data_.size();
+    for (const std::string* o : {&config_.outputs.fcd, &config_.outputs.tripinfo, &config_.outputs.summary})
+      outputs += o->empty() ? 0 : 1;
+    if (sizes.size() != outputs)
+      a.fail("saved with " + std::to_string(sizes.size()) + " outputs, resumed with " +
+             std::to_string(outputs));
+    open_outputs(&sizes);
+    visit_state(a);
+    add_own_actions();
+    actions_.visit_state(a, actions_.size());
+    std::vector<uint8_t> sim;
+    a.raw(sim);
+    if (!a.done()) a.fail("bytes left after the state's end");
+    sim_.load_state(sim, path);
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::runtime_error& e) {
+    throw InputError(SourceLoc{path, 0}, std::string("not a state of this run: ") + e.what());
+  }
+  std::fprintf(stderr, "lpsim: resumed from %s at time %.2f\n", path.c_str(), sim_.time());
+  add_state_saves();
 }
 
 Simulation::Counts Run::counts() const {

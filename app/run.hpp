@@ -36,10 +36,13 @@ class Run {
   /// Builds the simulation of `scenario` at its begin time, opens the outputs `config` asks for (FCD,
   /// tripinfo, summary, statistic, edgeData/laneData, and the scenario's own edgeData/laneData definitions;
   /// LPSim's jam report with --jam-report)
-  /// and writes the state at the begin time. The Run owns the scenario; its demand becomes the simulation's
-  /// trip table (move a scenario in, so that a large demand is not copied). Run sets options.lane_counters
-  /// and options.emission_sums itself: on exactly when an edgeData/laneData output needs them (the engine
-  /// skips their atomics, and its emissions pass, otherwise).
+  /// and writes the state at the begin time. With config.load_state it resumes instead: the simulation,
+  /// the totals, the open intervals and the actions' triggers as that state file has them, each output
+  /// continued where the saved run had written it to (InputError when the file is not a state of this
+  /// scenario and options). With config.save_state_* it writes state files after the steps due. The Run owns
+  /// the scenario; its demand becomes the simulation's trip table (move a scenario in, so that a large demand
+  /// is not copied). Run sets options.lane_counters and options.emission_sums itself: on exactly when an
+  /// edgeData/laneData output needs them (the engine skips their atomics, and its emissions pass, otherwise).
   Run(Scenario scenario, const ConfigSpec& config, SimulationOptions options);
   /// Whether a run of `scenario` with `outputs` counts per lane (what Run sets options.lane_counters to), and
   /// whether it sums emissions per lane (options.emission_sums): the other parts of a partitioned run, which
@@ -122,19 +125,28 @@ class Run {
                                           const std::vector<MeanDataOutput>& outputs);
   /// The trips the simulation runs, which may grow while it runs (the writers name their vehicles).
   const Demand& demand() const { return sim_.demand(); }
-  void open_outputs();
+  /// `continue_at`: where each output a resumed run continues (output_sizes()'s order), else null.
+  void open_outputs(const std::vector<int64_t>* continue_at);
   void add_own_actions();
   void write_summary_row();
   void write_unfinished_trips();
   void warn_teleports() const;
   void close_interval(MeanDataOutput& m, double until);
   void flush_outputs();
+  // Checkpoints (--save-state.*, --load-state).
+  void add_state_saves();
+  void save_state(const std::string& path);
+  void resume(const std::string& path);
+  std::vector<int64_t> output_sizes() const;
+  template <class A>
+  void visit_state(A& a);
   RunStatistics statistics() const;
 
   Scenario scenario_;  // its demand moved into sim_
   ConfigSpec config_;
   std::vector<MeanDataOutput> mean_data_;  // before options_: they decide the lane counters
   SimulationOptions options_;
+  uint64_t digest_;  // of the scenario and options: what a state file must have been saved from
   Simulation sim_;
   std::unique_ptr<FcdWriter> fcd_;
   std::unique_ptr<TripinfoWriter> tripinfo_;
@@ -149,6 +161,8 @@ class Run {
   std::function<bool(const TripRecord&)> hold_trip_;
   std::function<OutsideCounts()> outside_;
   bool closed_ = false;
+  size_t own_actions_ = 0;      // the actions whose triggers a state keeps: all but the state saves
+  size_t next_state_file_ = 0;  // of config_.save_state_files
 };
 
 /// The SUMO-like report `lpsim run` prints at the end: end time and reason, performance (wall_seconds since

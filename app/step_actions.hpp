@@ -28,6 +28,12 @@ class StepTrigger {
   /// Whether the action is due with the clocks at these times; when it is, `*when` is the time it was due
   /// at (the scheduled time, or `state_time` for every_step) and the trigger moves to its next time.
   bool fire(double state_time, double step_end, double* when);
+  /// Where the trigger is in its times (a checkpoint's; what it fires at is the caller's).
+  template <class A>
+  void visit_state(A& a) {
+    a(next_);
+    a(next_index_);
+  }
 
  private:
   enum class Kind { EveryStep, Every, At };
@@ -53,6 +59,17 @@ class StepActions {
   void run_due(double state_time, double step_end);
   /// The actions' names, in order (what a run does between steps, for reports and tests).
   std::vector<std::string> names() const;
+  /// The triggers' positions of the first `count` actions (a checkpoint's): a run resumed with the same
+  /// actions fires them when the saved one would have.
+  template <class A>
+  void visit_state(A& a, size_t count) {
+    uint64_t n = count;
+    a(n);
+    if (n != count || count > entries_.size())
+      a.fail("the run's actions between steps differ from the saved run's");
+    for (size_t k = 0; k < count; ++k) entries_[k].trigger.visit_state(a);
+  }
+  size_t size() const { return entries_.size(); }
 
  private:
   struct Entry {

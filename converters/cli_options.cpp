@@ -14,13 +14,27 @@ namespace lpsim {
 
 namespace {
 
-enum class Kind { Path, PathList, Time, Bool, Integer, Number, Device, Name, Method, Algorithm, Text };
+enum class Kind {
+  Path,
+  PathList,
+  Time,
+  TimeList,
+  Bool,
+  Integer,
+  Number,
+  Device,
+  Name,
+  Method,
+  Algorithm,
+  Text
+};
 
 // A checked value, handed to the option's store function.
 struct Value {
   std::string text;
   std::vector<std::string> list;
   double seconds = 0;
+  std::vector<double> times;
   double number = 0;
   long long integer = 0;
   bool flag = false;
@@ -132,6 +146,12 @@ const OptionDef kOptions[] = {
   {"max-lane-map-gb", "", 0, Kind::Number, Check::Positive, true, kLoad, "the most lane map (one byte per metre of lane) a network may need, GiB (default 16)", [](ConfigSpec& c, Value&& v) { c.max_lane_map_gb = v.number; }},
   {"progress-interval", "", 0, Kind::Number, Check::Positive, true, kSimulates, "wall seconds between progress lines when stderr is not a terminal (default 60)", [](ConfigSpec& c, Value&& v) { c.progress_interval = v.number; }},
   {"jam-report", "", 0, Kind::Path, Check::None, true, kRuns, "LPSim's jam report: each teleport and long stop, its cause and blockers", [](ConfigSpec& c, Value&& v) { c.jam_report = std::move(v.text); }},
+  {"save-state.times", "", 0, Kind::TimeList, Check::None, false, kRun, "times at which to save the run's state (comma-separated), as an LPSim state file that --load-state resumes from", [](ConfigSpec& c, Value&& v) { c.save_state_times = std::move(v.times); }},
+  {"save-state.period", "", 0, Kind::Time, Check::None, false, kRun, "save the run's state every this many s; <= 0 (default -1): never", [](ConfigSpec& c, Value&& v) { c.save_state_period = v.seconds; }},
+  {"save-state.prefix", "", 0, Kind::Path, Check::None, false, kRun, "state files are named PREFIX_TIME SUFFIX (default prefix: state)", [](ConfigSpec& c, Value&& v) { c.save_state_prefix = std::move(v.text); }},
+  {"save-state.suffix", "", 0, Kind::Text, Check::None, false, kRun, "the state files' suffix (default .lpstate)", [](ConfigSpec& c, Value&& v) { c.save_state_suffix = std::move(v.text); }},
+  {"save-state.files", "", 0, Kind::PathList, Check::None, false, kRun, "the state files' names, one per time of save-state.times (comma-separated)", [](ConfigSpec& c, Value&& v) { c.save_state_files = std::move(v.list); }},
+  {"load-state", "", 0, Kind::Path, Check::None, false, kRun, "resume the run from this LPSim state file (of the same scenario and options), continuing its outputs", [](ConfigSpec& c, Value&& v) { c.load_state = std::move(v.text); }},
   {"jam-report.stop-time", "", 0, Kind::Number, Check::Positive, true, kRuns, "the jam report's shortest stop, in s (default 60)", [](ConfigSpec& c, Value&& v) { c.jam_report_stop_time = v.number; }},
   {"fcd-output", "", 0, Kind::Path, Check::None, false, kRuns, "SUMO FCD output (.gz: compressed)", [](ConfigSpec& c, Value&& v) { c.outputs.fcd = std::move(v.text); }},
   {"device.fcd.period", "", 0, Kind::Time, Check::NonNegative, false, kRuns, "FCD sampling period in s; 0 (default): every step", [](ConfigSpec& c, Value&& v) { c.outputs.fcd_period = v.seconds; }},
@@ -223,6 +243,15 @@ Value convert(const OptionDef& def, std::string_view name, const std::string& va
         size_t start = i;
         while (i < value.size() && !sep(value[i])) ++i;
         if (i > start) v.list.push_back(resolve(value.substr(start, i - start), where.base_dir));
+      }
+      break;
+    }
+    case Kind::TimeList: {
+      for (const std::string& item : split_id_list(std::string(value))) {
+        auto t = parse_sumo_time(item);
+        if (!t || !time_in_range(*t))
+          bad_value(where, name, value, "expected times (seconds, h:m:s or d:h:m:s)");
+        v.times.push_back(*t);
       }
       break;
     }
@@ -365,6 +394,9 @@ std::string describe_options(CliCommand command) {
         break;
       case Kind::PathList:
         left += " FILE[,FILE]";
+        break;
+      case Kind::TimeList:
+        left += " TIME[,TIME...]";
         break;
       case Kind::Time:
         left += " TIME";

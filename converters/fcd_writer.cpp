@@ -4,9 +4,12 @@
 
 namespace lpsim {
 
-FcdWriter::FcdWriter(const std::string& path, const Network& net, const Demand& demand)
-    : net_(net), demand_(demand), geometry_(net), out_(path) {
-  write_sumo_xml_header(out_, "fcd-export", "fcd_file.xsd");
+FcdWriter::FcdWriter(const std::string& path, const Network& net, const Demand& demand, int64_t continue_at)
+    : net_(net),
+      demand_(demand),
+      geometry_(net),
+      out_(continue_at < 0 ? OutputFile(path) : OutputFile(path, static_cast<uint64_t>(continue_at))) {
+  if (continue_at < 0) write_sumo_xml_header(out_, "fcd-export", "fcd_file.xsd");
 }
 
 FcdWriter::~FcdWriter() {

@@ -17,7 +17,8 @@ namespace lpsim {
 class FcdWriter {
  public:
   /// Opens `path` (".gz" gives gzip) and writes the root tag. net and demand must outlive the writer.
-  FcdWriter(const std::string& path, const Network& net, const Demand& demand);
+  /// `continue_at` >= 0: the file a saved run left, continued from that byte (OutputFile), without a header.
+  FcdWriter(const std::string& path, const Network& net, const Demand& demand, int64_t continue_at = -1);
   ~FcdWriter();
   FcdWriter(const FcdWriter&) = delete;
   FcdWriter& operator=(const FcdWriter&) = delete;
@@ -26,6 +27,9 @@ class FcdWriter {
   /// Hands what was written so far to the file (OutputFile::flush). Called between records, so that a file
   /// cut short by a later kill holds them all and lacks only its closing tag.
   void flush() { out_.flush(); }
+  /// Bytes written so far (a plain file's length once flushed): where a resumed run continues it.
+  uint64_t size() const { return out_.size(); }
+
   /// Writes the closing tag and closes the file (InputError on failure); later calls do nothing.
   void close();
 

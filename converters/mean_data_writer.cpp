@@ -65,16 +65,17 @@ MeanDataMeasures derive_mean_data(const MeanDataTotals& t, double length, uint32
 }
 
 MeanDataWriter::MeanDataWriter(const MeanDataSpec& spec, const Network& net, const Demand& demand,
-                               bool volumetric_fuel)
+                               bool volumetric_fuel, int64_t continue_at)
     : spec_(spec),
       net_(net),
       default_vehicle_(default_emission_vehicle(demand, volumetric_fuel)),
-      out_(spec.file) {
+      out_(continue_at < 0 ? OutputFile(spec.file)
+                           : OutputFile(spec.file, static_cast<uint64_t>(continue_at))) {
   min_vehicle_length_ = std::numeric_limits<double>::max();
   for (float length : demand.types.length)
     if (length > 0) min_vehicle_length_ = std::min<double>(min_vehicle_length_, length);
   if (min_vehicle_length_ == std::numeric_limits<double>::max()) min_vehicle_length_ = 0;
-  write_sumo_xml_header(out_, "meandata", "meandata_file.xsd");
+  if (continue_at < 0) write_sumo_xml_header(out_, "meandata", "meandata_file.xsd");
 }
 
 MeanDataWriter::~MeanDataWriter() {

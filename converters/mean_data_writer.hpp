@@ -67,8 +67,9 @@ class MeanDataWriter {
  public:
   /// Opens spec.file (".gz" gives gzip) and writes the root tag. net and demand must outlive the writer.
   /// volumetric_fuel: the run sums fuel by volume (the defaults of excludeEmpty="defaults" follow it).
+  /// `continue_at` >= 0: the file a saved run left, continued from that byte (OutputFile), without a header.
   MeanDataWriter(const MeanDataSpec& spec, const Network& net, const Demand& demand,
-                 bool volumetric_fuel = false);
+                 bool volumetric_fuel = false, int64_t continue_at = -1);
   ~MeanDataWriter();
   MeanDataWriter(const MeanDataWriter&) = delete;
   MeanDataWriter& operator=(const MeanDataWriter&) = delete;
@@ -78,6 +79,9 @@ class MeanDataWriter {
   /// Hands what was written so far to the file (OutputFile::flush). Called between records, so that a file
   /// cut short by a later kill holds them all and lacks only its closing tag.
   void flush() { out_.flush(); }
+  /// Bytes written so far (a plain file's length once flushed): where a resumed run continues it.
+  uint64_t size() const { return out_.size(); }
+
   /// Writes the closing tag and closes the file (InputError on failure); later calls do nothing.
   void close();
 

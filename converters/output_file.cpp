@@ -1,5 +1,6 @@
 #include "converters/output_file.hpp"
 
+#include <unistd.h>
 #include <zlib.h>
 
 #include <algorithm>
@@ -42,6 +43,24 @@ OutputFile::OutputFile(std::string path) : path_(std::move(path)), buffer_(kBuff
   }
 }
 
+OutputFile::OutputFile(std::string path, uint64_t continue_at)
+    : path_(std::move(path)), buffer_(kBufferBytes, '\0'), written_(continue_at) {
+  if (ends_with_gz(path_))
+    throw InputError(SourceLoc{path_, 0}, "a resumed run continues plain outputs only, not gzip files");
+  errno = 0;
+  std::FILE* f = std::fopen(path_.c_str(), "r+b");
+  if (f == nullptr) throw InputError(SourceLoc{path_, 0}, "cannot continue output file: " + system_reason());
+  plain_ = f;
+  errno = 0;
+  if (std::fseek(f, 0, SEEK_END) != 0 || std::ftell(f) < static_cast<long>(continue_at))
+    throw InputError(SourceLoc{path_, 0}, "shorter than the saved run left it (" +
+                                              std::to_string(continue_at) +
+                                              " bytes): not the output of the run that saved the state");
+  if (ftruncate(fileno(f), static_cast<off_t>(continue_at)) != 0 ||
+      std::fseek(f, static_cast<long>(continue_at), SEEK_SET) != 0)
+    throw InputError(SourceLoc{path_, 0}, "cannot continue output file: " + system_reason());
+}
+
 OutputFile::~OutputFile() {
   try {
     close();
@@ -60,6 +79,7 @@ void OutputFile::flush_buffer() {
   } else if (plain_ != nullptr) {
     ok = std::fwrite(buffer_.data(), 1, used_, static_cast<std::FILE*>(plain_)) == used_;
   }
+  written_ += used_;
   used_ = 0;
   if (!ok) throw InputError(SourceLoc{path_, 0}, "cannot write output file: " + system_reason());
 }

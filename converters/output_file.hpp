@@ -13,6 +13,10 @@ class OutputFile {
  public:
   /// Creates (truncates) `path`. A file that cannot be created is an InputError naming it.
   explicit OutputFile(std::string path);
+  /// A resumed run's output: `path` as a saved run left it, cut back to its first `continue_at` bytes and
+  /// written on from there. Plain files only; an InputError naming the file when it is gzipped, missing or
+  /// shorter than that.
+  OutputFile(std::string path, uint64_t continue_at);
   /// Closes the file; errors during this implicit close are swallowed (call close() to see them).
   ~OutputFile();
   OutputFile(const OutputFile&) = delete;
@@ -21,6 +25,8 @@ class OutputFile {
   const std::string& path() const { return path_; }
   bool is_open() const { return plain_ != nullptr || gz_ != nullptr; }
   bool gzipped() const { return gz_ != nullptr; }
+  /// Bytes written so far, buffered ones included (before compression: a plain file's length once flushed).
+  uint64_t size() const { return written_ + used_; }
 
   void text(std::string_view s);
   void put(char c);
@@ -61,6 +67,7 @@ class OutputFile {
   void* gz_ = nullptr;     // gzFile
   std::string buffer_;
   size_t used_ = 0;
+  uint64_t written_ = 0;  // handed to the file
 };
 
 /// Writes the XML declaration, a provenance comment and the opening root tag carrying SUMO's schema

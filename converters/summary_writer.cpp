@@ -5,8 +5,9 @@
 
 namespace lpsim {
 
-SummaryWriter::SummaryWriter(const std::string& path) : out_(path) {
-  write_sumo_xml_header(out_, "summary", "summary_file.xsd");
+SummaryWriter::SummaryWriter(const std::string& path, int64_t continue_at)
+    : out_(continue_at < 0 ? OutputFile(path) : OutputFile(path, static_cast<uint64_t>(continue_at))) {
+  if (continue_at < 0) write_sumo_xml_header(out_, "summary", "summary_file.xsd");
 }
 
 SummaryWriter::~SummaryWriter() {

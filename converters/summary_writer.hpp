@@ -13,7 +13,8 @@ namespace lpsim {
 class SummaryWriter {
  public:
   /// Opens `path` (".gz" gives gzip) and writes the root tag.
-  explicit SummaryWriter(const std::string& path);
+  /// `continue_at` >= 0: the file a saved run left, continued from that byte (OutputFile), without a header.
+  explicit SummaryWriter(const std::string& path, int64_t continue_at = -1);
   ~SummaryWriter();
   SummaryWriter(const SummaryWriter&) = delete;
   SummaryWriter& operator=(const SummaryWriter&) = delete;
@@ -22,6 +23,9 @@ class SummaryWriter {
   /// Hands what was written so far to the file (OutputFile::flush). Called between records, so that a file
   /// cut short by a later kill holds them all and lacks only its closing tag.
   void flush() { out_.flush(); }
+  /// Bytes written so far (a plain file's length once flushed): where a resumed run continues it.
+  uint64_t size() const { return out_.size(); }
+
   /// Writes the closing tag and closes the file (InputError on failure); later calls do nothing.
   void close();
 

@@ -5,9 +5,12 @@
 namespace lpsim {
 
 TripinfoWriter::TripinfoWriter(const std::string& path, const Network& net, const Demand& demand,
-                               std::vector<std::string> devices)
-    : net_(net), demand_(demand), devices_(std::move(devices)), out_(path) {
-  write_sumo_xml_header(out_, "tripinfos", "tripinfo_file.xsd");
+                               std::vector<std::string> devices, int64_t continue_at)
+    : net_(net),
+      demand_(demand),
+      devices_(std::move(devices)),
+      out_(continue_at < 0 ? OutputFile(path) : OutputFile(path, static_cast<uint64_t>(continue_at))) {
+  if (continue_at < 0) write_sumo_xml_header(out_, "tripinfos", "tripinfo_file.xsd");
 }
 
 TripinfoWriter::~TripinfoWriter() {

@@ -19,8 +19,9 @@ class TripinfoWriter {
   /// Opens `path` (".gz" gives gzip) and writes the root tag. `devices` names the vehicle devices listed
   /// in each trip's devices attribute as "<device>_<vehicle id>", in SUMO's order (tripinfo first, then
   /// e.g. fcd when FCD output is on). net and demand must outlive the writer.
+  /// `continue_at` >= 0: the file a saved run left, continued from that byte (OutputFile), without a header.
   TripinfoWriter(const std::string& path, const Network& net, const Demand& demand,
-                 std::vector<std::string> devices = {"tripinfo"});
+                 std::vector<std::string> devices = {"tripinfo"}, int64_t continue_at = -1);
   ~TripinfoWriter();
   TripinfoWriter(const TripinfoWriter&) = delete;
   TripinfoWriter& operator=(const TripinfoWriter&) = delete;
@@ -29,6 +30,9 @@ class TripinfoWriter {
   /// Hands what was written so far to the file (OutputFile::flush). Called between records, so that a file
   /// cut short by a later kill holds them all and lacks only its closing tag.
   void flush() { out_.flush(); }
+  /// Bytes written so far (a plain file's length once flushed): where a resumed run continues it.
+  uint64_t size() const { return out_.size(); }
+
   /// Writes the closing tag and closes the file (InputError on failure); later calls do nothing.
   void close();
 

@@ -117,6 +117,14 @@ struct ConfigSpec {
   // least jam_report_stop_time s, with what blocked it (app/jam_report.hpp); empty: no report, no work.
   std::string jam_report;
   double jam_report_stop_time = 60;
+  // SUMO's --save-state.* and --load-state: the run's state written between steps, as an LPSim binary
+  // state file (app/state_file.hpp), at the given times and every period (state times: <= 0, none); each
+  // named by the next of save_state_files, else prefix_TIME suffix. load_state: the file a run resumes from.
+  std::vector<double> save_state_times;
+  double save_state_period = -1;
+  std::string save_state_prefix = "state", save_state_suffix = ".lpstate";
+  std::vector<std::string> save_state_files;
+  std::string load_state;
   bool ignore_route_errors = false;
   // SUMO's --emissions.volumetric-fuel: emissions outputs give fuel in ml (by the fuel's density), not mg.
   bool volumetric_fuel = false;

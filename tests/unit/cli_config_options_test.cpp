@@ -61,7 +61,7 @@ TEST_F(CliConfigOptionsTest, ResultChangingSumoOptionInACfgIsRefusedAtItsLine) {
   expect_error(run({"info", "-c", "s.sumocfg"}), "s.sumocfg:6", {"<scale>", "'3'", "not supported by LPSim"});
   for (const std::string option :
        {"<mesosim value=\"true\"/>", "<remote-port value=\"8813\"/>",
-        "<device.rerouting.output value=\"w.xml\"/>", "<save-state.times value=\"100\"/>",
+        "<device.rerouting.output value=\"w.xml\"/>", "<load-state.offset value=\"100\"/>",
         "<time-to-teleport.disconnected value=\"10\"/>", "<emission-output value=\"em.xml\"/>",
         "<vehroute-output value=\"vr.xml\"/>", "<lanechange.duration value=\"3\"/>",
         "<lateral-resolution value=\"0.8\"/>"}) {

@@ -1,0 +1,155 @@
+#include "app/state_file.hpp"
+
+#include <zlib.h>
+
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+
+#include "core/error.hpp"
+#include "engine/part_link.hpp"
+
+namespace lpsim {
+
+namespace {
+
+constexpr char kMagic[8] = {'L', 'P', 'S', 'I', 'M', 'S', 'T', '\0'};
+constexpr uint32_t kFormatVersion = 1;
+
+struct Header {
+  char magic[8];
+  uint32_t version;
+  uint32_t layout;  // the sizes of the plain values the payload holds, hashed
+  uint64_t digest;
+  uint64_t payload_bytes;
+  uint32_t crc;
+  uint32_t reserved;
+};
+
+class Fnv {
+ public:
+  void bytes(const void* p, size_t n) {
+    const auto* b = static_cast<const uint8_t*>(p);
+    for (size_t i = 0; i < n; ++i) h_ = (h_ ^ b[i]) * 1099511628211ull;
+  }
+  template <class T>
+  void value(const T& v) {
+    bytes(&v, sizeof v);
+  }
+  template <class T>
+  void array(const std::vector<T>& v) {
+    value(uint64_t{v.size()});
+    bytes(v.data(), v.size() * sizeof(T));
+  }
+  void text(const std::string& s) {
+    value(uint64_t{s.size()});
+    bytes(s.data(), s.size());
+  }
+  uint64_t get() const { return h_; }
+
+ private:
+  uint64_t h_ = 14695981039346656037ull;
+};
+
+uint32_t layout() {
+  Fnv f;
+  for (const size_t s : {sizeof(VehicleView), sizeof(TripRecord), sizeof(TripCounters), sizeof(RunCounts),
+                         sizeof(TeleportEvent), sizeof(LaneApproach), sizeof(SlotInit), sizeof(StepParams)})
+    f.value(uint64_t{s});
+  return static_cast<uint32_t>(f.get() ^ (f.get() >> 32));
+}
+
+uint32_t crc_of(const std::vector<uint8_t>& payload) {
+  return static_cast<uint32_t>(crc32_z(0, reinterpret_cast<const Bytef*>(payload.data()), payload.size()));
+}
+
+[[noreturn]] void refuse(const std::string& path, const std::string& why) {
+  throw InputError(SourceLoc{path, 0}, "not a state of this run: " + why);
+}
+
+}  // namespace
+
+uint64_t scenario_digest(const Scenario& sc, const SimulationOptions& o) {
+  Fnv f;
+  const Network& n = sc.network;
+  f.value(n.num_lanes());
+  f.value(n.num_edges());
+  f.value(n.num_cells());
+  f.array(n.lane_length);
+  f.array(n.lane_speed);
+  f.array(n.conn_to_lane);
+  for (const std::string& id : n.edge_id) f.text(id);
+  const Demand& d = sc.demand;
+  f.value(d.size());
+  f.array(d.depart);
+  f.array(d.vehicle_type);
+  f.array(d.route_begin);
+  f.array(d.route_edges);
+  f.array(d.types.max_speed);
+  for (const std::string& id : d.vehicle_id) f.text(id);
+  f.value(o.begin);
+  f.value(o.step_ms);
+  f.value(o.seed);
+  f.value(o.time_to_teleport);
+  f.value(o.time_to_teleport_highways);
+  f.value(o.highway_min_speed);
+  f.value(o.time_to_impatience);
+  f.value(o.max_depart_delay);
+  f.value(o.ignore_junction_blocker);
+  f.value(o.lane_counters);
+  f.value(o.emission_sums);
+  f.value(o.volumetric_fuel);
+  f.value(o.rerouting.adaptation_interval_ms);
+  f.value(o.rerouting.adaptation_steps);
+  f.value(o.rerouting.period_ms);
+  f.value(o.rerouting.pre_period_ms);
+  return f.get();
+}
+
+void write_state_file(const std::string& path, uint64_t digest, const std::vector<uint8_t>& payload) {
+  Header h{};
+  std::memcpy(h.magic, kMagic, sizeof kMagic);
+  h.version = kFormatVersion;
+  h.layout = layout();
+  h.digest = digest;
+  h.payload_bytes = payload.size();
+  h.crc = crc_of(payload);
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    out.write(reinterpret_cast<const char*>(&h), sizeof h);
+    out.write(reinterpret_cast<const char*>(payload.data()), static_cast<std::streamsize>(payload.size()));
+    out.close();
+    if (!out) throw InputError(SourceLoc{path, 0}, "cannot write the state file");
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0)
+    throw InputError(SourceLoc{path, 0}, "cannot write the state file (renaming " + tmp + ")");
+}
+
+std::vector<uint8_t> read_state_file(const std::string& path, uint64_t digest) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(SourceLoc{path, 0}, "cannot read the state file");
+  Header h{};
+  in.read(reinterpret_cast<char*>(&h), sizeof h);
+  if (in.gcount() != static_cast<std::streamsize>(sizeof h) ||
+      std::memcmp(h.magic, kMagic, sizeof kMagic) != 0)
+    refuse(path, "not an LPSim state file");
+  if (h.version != kFormatVersion)
+    refuse(path, "format version " + std::to_string(h.version) + ", this lpsim reads version " +
+                     std::to_string(kFormatVersion));
+  if (h.layout != layout())
+    refuse(path, "written by an lpsim of another build (its values are laid out otherwise)");
+  if (h.digest != digest)
+    refuse(path,
+           "saved from another scenario or with other options (network, demand, step length, seed, "
+           "begin, teleport or rerouting options or edgeData outputs differ)");
+  std::vector<uint8_t> payload(h.payload_bytes);
+  in.read(reinterpret_cast<char*>(payload.data()), static_cast<std::streamsize>(payload.size()));
+  if (static_cast<uint64_t>(in.gcount()) != h.payload_bytes) refuse(path, "the file is truncated");
+  if (in.peek() != std::ifstream::traits_type::eof()) refuse(path, "bytes after the state's end");
+  if (crc_of(payload) != h.crc) refuse(path, "the file is corrupted (its checksum does not match)");
+  return payload;
+}
+
+}  // namespace lpsim

@@ -1,0 +1,153 @@
+// `lpsim run --save-state.times T` and `--load-state`: a run resumed from the state saved at T writes every
+// output byte for byte as the uninterrupted run does (its outputs continued from where the saved run had
+// written them), saving changes no output, and a state file that is not one of this run is refused with one
+// line and exit status 2. Every bundled scenario, each in a copy (their add-file outputs land beside them).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include "lpsim_cli.hpp"
+#include "meandata_entries.hpp"
+#include "temp_dir.hpp"
+
+namespace lpsim {
+namespace {
+
+namespace fs = std::filesystem;
+using test::CliResult;
+using test::read_file;
+
+// Every file a run wrote into `dir` (its outputs, the scenario's add-file outputs), by name; not the
+// scenario's own files, the run's logs or state files.
+std::vector<std::pair<std::string, std::string>> outputs_in(const fs::path& dir,
+                                                            const std::string& scenario) {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const auto& f : fs::directory_iterator(dir)) {
+    const std::string name = f.path().filename().string();
+    if (fs::exists(fs::path(LPSIM_SCENARIOS_DIR) / scenario / name) || name == "stdout.txt" ||
+        name == "stderr.txt" || name.find(".lpstate") != std::string::npos)
+      continue;
+    out.emplace_back(name, read_file(f.path()));
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+class CliStateTest : public ::testing::TestWithParam<std::string> {
+ protected:
+  // The scenario copied to `sub`, run there with every output and `extra`.
+  CliResult run_in(const std::string& sub, const std::vector<std::string>& extra) {
+    const fs::path dir = tmp_.path() / sub;
+    if (!fs::exists(dir)) test::copy_scenario(GetParam(), dir);
+    std::vector<std::string> args{"run",
+                                  "-c",
+                                  GetParam() + ".sumocfg",
+                                  "--no-step-log",
+                                  "-W",
+                                  "--fcd-output",
+                                  "fcd.xml",
+                                  "--tripinfo-output",
+                                  "tripinfo.xml",
+                                  "--summary-output",
+                                  "summary.xml",
+                                  "--edgedata-output",
+                                  "edgedata.xml",
+                                  "--lanedata-output",
+                                  "lanedata.xml",
+                                  "--statistic-output",
+                                  "statistic.xml",
+                                  "--tripinfo-output.write-unfinished"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return test::run_lpsim(dir, args);
+  }
+  // A time well inside the run: 40 % of the way from its begin to its end (a whole second).
+  std::string save_time() const {
+    const std::string cfg = read_file(fs::path(LPSIM_SCENARIOS_DIR) / GetParam() / (GetParam() + ".sumocfg"));
+    std::smatch m;
+    const double end =
+        std::regex_search(cfg, m, std::regex("<end value=\"([0-9.]+)\"")) ? std::stod(m[1]) : 1000;
+    return std::to_string(static_cast<int>(end * 0.4));
+  }
+  test::TempDir tmp_{"lpsim_state"};
+};
+
+TEST_P(CliStateTest, AResumedRunWritesEveryOutputAsTheUninterruptedOne) {
+  const CliResult whole = run_in("whole", {});
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  const auto expected = outputs_in(tmp_.path() / "whole", GetParam());
+  ASSERT_GE(expected.size(), 6u);
+
+  const std::string t = save_time();
+  const CliResult saving = run_in("saved", {"--save-state.times", t});
+  ASSERT_EQ(saving.exit_code, 0) << saving.err;
+  const std::string state = "state_" + t + ".00.lpstate";
+  ASSERT_TRUE(fs::exists(tmp_.path() / "saved" / state)) << state;
+  EXPECT_EQ(outputs_in(tmp_.path() / "saved", GetParam()), expected) << "saving changed an output";
+
+  // Resumed (on 2 threads: the results do not depend on them) over the outputs the saving run left, which
+  // ran on past the save as those of a run pre-empted after it would have.
+  const CliResult resumed = run_in("saved", {"--load-state", state, "--threads", "2"});
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  EXPECT_NE(resumed.err.find("resumed from " + state + " at time " + t + ".00"), std::string::npos)
+      << resumed.err;
+  EXPECT_EQ(outputs_in(tmp_.path() / "saved", GetParam()), expected) << "resumed at " << t;
+}
+
+INSTANTIATE_TEST_SUITE_P(BundledScenarios, CliStateTest,
+                         ::testing::Values("grid_tls", "actuated_cross", "city_mixed", "flows", "keep_clear",
+                                           "motorway_ramps", "random_net", "reroute_block",
+                                           "emissions_classes", "emissions_free", "emissions_redlight",
+                                           "cosim_line"));
+
+class CliStateRefusalTest : public ::testing::Test {
+ protected:
+  CliResult run(const std::vector<std::string>& args) { return test::run_lpsim(tmp_.path(), args); }
+  const std::string grid_ = std::string(LPSIM_SCENARIOS_DIR) + "/grid_tls/grid_tls.sumocfg";
+  const std::string flows_ = std::string(LPSIM_SCENARIOS_DIR) + "/flows/flows.sumocfg";
+  test::TempDir tmp_{"lpsim_state_refusal"};
+};
+
+TEST_F(CliStateRefusalTest, AStateThatIsNotOneOfThisRunIsRefusedWithOneLine) {
+  ASSERT_EQ(
+      run({"run", "-c", grid_, "--no-step-log", "-W", "--save-state.times", "200", "--end", "300"}).exit_code,
+      0);
+  const std::string good = read_file(tmp_.path() / "state_200.00.lpstate");
+  ASSERT_GT(good.size(), 100u);
+  auto write = [&](const std::string& name, const std::string& bytes) {
+    std::ofstream(tmp_.path() / name, std::ios::binary) << bytes;
+  };
+  write("cut.lpstate", good.substr(0, good.size() - 10));
+  std::string flipped = good;
+  flipped[flipped.size() / 2] = static_cast<char>(flipped[flipped.size() / 2] ^ 0x40);
+  write("flipped.lpstate", flipped);
+  std::string version = good;
+  version[8] = static_cast<char>(version[8] + 1);  // the format version follows the 8-byte magic
+  write("version.lpstate", version);
+  write("text.lpstate", "<snapshot/>\n");
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases{
+      {{"run", "-c", grid_, "--load-state", "cut.lpstate"}, "truncated"},
+      {{"run", "-c", grid_, "--load-state", "flipped.lpstate"}, "corrupted"},
+      {{"run", "-c", grid_, "--load-state", "version.lpstate"}, "format version"},
+      {{"run", "-c", grid_, "--load-state", "text.lpstate"}, "not an LPSim state file"},
+      {{"run", "-c", grid_, "--load-state", "missing.lpstate"}, "cannot read"},
+      {{"run", "-c", flows_, "--load-state", "state_200.00.lpstate"}, "another scenario"},
+      {{"run", "-c", grid_, "--seed", "7", "--load-state", "state_200.00.lpstate"}, "other options"},
+      {{"run", "-c", grid_, "--parts", "2", "--save-state.times", "100"}, "partitioned run"},
+      {{"run", "-c", grid_, "--fcd-output", "f.xml.gz", "--save-state.times", "100"}, "plain outputs only"},
+  };
+  for (const auto& [args, why] : cases) {
+    std::vector<std::string> a = args;
+    a.insert(a.end(), {"--no-step-log", "-W"});
+    const CliResult r = run(a);
+    EXPECT_EQ(r.exit_code, 2) << args.back() << ": " << r.err;
+    EXPECT_EQ(test::lines_of(r.err).size(), 1u) << r.err;
+    EXPECT_NE(r.err.find(why), std::string::npos) << r.err;
+  }
+}
+
+}  // namespace
+}  // namespace lpsim
