@@ -10,6 +10,58 @@
 
 namespace lpsim {
 
+/// Bytes that are mostly zeros (a lane map, per-lane counters) as only the stretches between runs of 16 or
+/// more zero bytes: their count, then each stretch's offset, length and bytes. Appended to `out`.
+inline void put_zero_runs(std::vector<uint8_t>& out, const void* data, uint64_t size) {
+  constexpr uint64_t kZeroRun = 16;
+  const auto* b = static_cast<const uint8_t*>(data);
+  auto put = [&out](const void* p, size_t n) {
+    const auto* c = static_cast<const uint8_t*>(p);
+    out.insert(out.end(), c, c + n);
+  };
+  const size_t count_at = out.size();
+  uint64_t stretches = 0;
+  put(&stretches, sizeof stretches);
+  uint64_t at = 0;
+  while (at < size) {
+    while (at < size && b[at] == 0) ++at;
+    if (at == size) break;
+    uint64_t end = at, zeros = 0;
+    while (end < size && zeros < kZeroRun) zeros = b[end++] == 0 ? zeros + 1 : 0;
+    end -= zeros;
+    const uint64_t length = end - at;
+    put(&at, sizeof at);
+    put(&length, sizeof length);
+    put(b + at, length);
+    ++stretches;
+    at = end;
+  }
+  std::memcpy(out.data() + count_at, &stretches, sizeof stretches);
+}
+
+/// Reads what put_zero_runs wrote from `in` (`available` bytes) into `size` bytes at data; returns the bytes
+/// it read. std::runtime_error when they do not fit.
+inline size_t get_zero_runs(const uint8_t* in, size_t available, void* data, uint64_t size) {
+  auto* b = static_cast<uint8_t*>(data);
+  if (size > 0) std::memset(b, 0, size);
+  size_t at = 0;
+  auto get = [&](void* p, uint64_t n) {
+    if (available - at < n) throw std::runtime_error("state: it ends inside a stretch of nonzero bytes");
+    if (n > 0) std::memcpy(p, in + at, n);
+    at += n;
+  };
+  uint64_t stretches = 0;
+  get(&stretches, sizeof stretches);
+  for (uint64_t s = 0; s < stretches; ++s) {
+    uint64_t offset = 0, length = 0;
+    get(&offset, sizeof offset);
+    get(&length, sizeof length);
+    if (offset > size || length > size - offset) throw std::runtime_error("state: a stretch past its array");
+    get(b + offset, length);
+  }
+  return at;
+}
+
 class StateBytesOut {
  public:
   template <class T>
@@ -26,6 +78,17 @@ class StateBytesOut {
   template <class T>
   void array(const std::vector<T>& v) {
     array(v.data(), v.size());
+  }
+  /// An array that is mostly zeros (a lane map, per-lane counters): put_zero_runs.
+  template <class T>
+  void sparse(const T* data, uint64_t n) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    value(n);
+    put_zero_runs(bytes_, data, n * sizeof(T));
+  }
+  template <class T>
+  void sparse(const std::vector<T>& v) {
+    sparse(v.data(), v.size());
   }
   std::vector<uint8_t>& bytes() { return bytes_; }
 
@@ -70,6 +133,21 @@ class StateBytesIn {
       v.resize(n);
     }
     array(v.data(), v.size());
+  }
+  /// What StateBytesOut::sparse wrote, into exactly n elements at data.
+  template <class T>
+  void sparse(T* data, uint64_t n) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    uint64_t got = 0;
+    value(got);
+    if (got != n)
+      throw std::runtime_error("backend state: an array of " + std::to_string(got) + " where this run has " +
+                               std::to_string(n) + " (another scenario or other options)");
+    at_ += get_zero_runs(in_.data() + at_, in_.size() - at_, data, n * sizeof(T));
+  }
+  template <class T>
+  void sparse(std::vector<T>& v) {
+    sparse(v.data(), v.size());
   }
   bool done() const { return at_ == in_.size(); }
 

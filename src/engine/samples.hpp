@@ -36,16 +36,16 @@ struct LaneCounters {
   void clear();
   template <class A>
   void visit_state(A& a) {
-    a(sampled_steps);
-    a(travelled_mm);
-    a(waiting_steps);
-    a(time_loss_ms);
-    a(occupied_mm_steps);
-    a(departed);
-    a(arrived);
-    a(entered);
-    a(left);
-    for (std::vector<int64_t>& e : emission) a(e);
+    a.sparse(sampled_steps);
+    a.sparse(travelled_mm);
+    a.sparse(waiting_steps);
+    a.sparse(time_loss_ms);
+    a.sparse(occupied_mm_steps);
+    a.sparse(departed);
+    a.sparse(arrived);
+    a.sparse(entered);
+    a.sparse(left);
+    for (std::vector<int64_t>& e : emission) a.sparse(e);
   }
 };
 

@@ -15,6 +15,8 @@
 #include <utility>
 #include <vector>
 
+#include "backends/state_bytes.hpp"
+
 namespace lpsim {
 
 template <class T, class A>
@@ -58,6 +60,14 @@ class StateOut {
     std::vector<std::pair<K, V>> sorted(m.begin(), m.end());
     std::sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
     (*this)(sorted);
+  }
+  /// A vector that is mostly zeros, as only its stretches of nonzero bytes (put_zero_runs).
+  template <class T>
+  void sparse(std::vector<T>& v) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    uint64_t n = v.size();
+    (*this)(n);
+    put_zero_runs(bytes_, v.data(), n * sizeof(T));
   }
   /// Bytes written as they are (a backend's own state).
   void raw(const std::vector<uint8_t>& b) {
@@ -125,6 +135,19 @@ class StateIn {
     (*this)(sorted);
     m.clear();
     m.insert(sorted.begin(), sorted.end());
+  }
+  template <class T>
+  void sparse(std::vector<T>& v) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    uint64_t n = 0;
+    (*this)(n);
+    if (n > (uint64_t{1} << 40) / std::max<size_t>(1, sizeof(T))) fail("an array too long for any run");
+    v.resize(n);
+    try {
+      at_ += get_zero_runs(data_ + at_, size_ - at_, v.data(), n * sizeof(T));
+    } catch (const std::runtime_error& e) {
+      fail(e.what());
+    }
   }
   void raw(std::vector<uint8_t>& b) { (*this)(b); }
 

@@ -82,15 +82,16 @@ class TripLedger {
 
   template <class A>
   void visit_state(A& a) {
-    a(status_);
-    a(resume_rp_);
-    a(resume_speed_);
-    a(resume_pos_);
+    // Per trip, mostly the values of trips not departed yet (zero, but the lanes' -1).
+    a.sparse(status_);
+    a.sparse(resume_rp_);
+    a.sparse(resume_speed_);
+    a.sparse(resume_pos_);
     a(resume_lane_);
     a(carried_);
-    a(depart_time_);
-    a(depart_pos_);
-    a(depart_speed_);
+    a.sparse(depart_time_);
+    a.sparse(depart_pos_);
+    a.sparse(depart_speed_);
     a(depart_lane_);
     a(finished_);
     a(depart_delay_sum_);

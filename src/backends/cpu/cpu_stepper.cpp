@@ -283,7 +283,7 @@ class CpuStepper final : public Stepper {
   std::vector<uint8_t> save_state(uint32_t num_slots) override {
     StateBytesOut out;
     visit_state([&](auto& v, bool) { out.array(v); }, [&](auto* span, uint64_t n) { out.array(span, n); },
-                num_slots);
+                [&](auto* span, uint64_t n) { out.sparse(span, n); }, num_slots);
     out.value(state_map_);
     return std::move(out.bytes());
   }
@@ -292,19 +292,21 @@ class CpuStepper final : public Stepper {
     StateBytesIn in(state);
     if (num_slots > 0) veh_.reserve(num_slots, false);
     visit_state([&](auto& v, bool fixed) { in.array(v, fixed); },
-                [&](auto* span, uint64_t n) { in.array(span, n); }, num_slots);
+                [&](auto* span, uint64_t n) { in.array(span, n); },
+                [&](auto* span, uint64_t n) { in.sparse(span, n); }, num_slots);
     in.value(state_map_);
     if (!in.done()) throw std::runtime_error("backend state: bytes left after its last array");
   }
 
  private:
-  // The run state (save_state): each table with whether its length is fixed by the setup, the lane records
-  // (where counters_ aligns them) and each vehicle column's entries of the first `num_slots` slots.
-  // Everything else a step writes before it reads it.
-  template <class Table, class Span>
-  void visit_state(Table&& table, Span&& span, uint32_t num_slots) {
-    table(map_[0], true);
-    table(map_[1], true);
+  // The run state (save_state): each table with whether its length is fixed by the setup, each vehicle
+  // column's entries of the first `num_slots` slots, and as mostly zeros the lane maps, the lane records
+  // (where counters_ aligns them), the emission sums and the junction stands. Everything else a step writes
+  // before it reads it.
+  template <class Table, class Span, class Sparse>
+  void visit_state(Table&& table, Span&& span, Sparse&& sparse, uint32_t num_slots) {
+    sparse(map_[0].data(), map_[0].size());
+    sparse(map_[1].data(), map_[1].size());
     table(link_state_, true);
     table(signal_next_switch_ms_, true);
     table(actuated_phase_, true);
@@ -313,10 +315,10 @@ class CpuStepper final : public Stepper {
     table(approach_, true);
     table(claims_, true);
     table(merge_requests_, true);
-    if (lane_records_ != nullptr) span(lane_records_, uint64_t{kNumTrafficCounters} * setup_.net.num_lanes);
-    table(emission_sums_, true);
-    table(junction_stand_[0], true);
-    table(junction_stand_[1], true);
+    if (lane_records_ != nullptr) sparse(lane_records_, uint64_t{kNumTrafficCounters} * setup_.net.num_lanes);
+    sparse(emission_sums_.data(), emission_sums_.size());
+    sparse(junction_stand_[0].data(), junction_stand_[0].size());
+    sparse(junction_stand_[1].data(), junction_stand_[1].size());
     table(active_, false);
     visit_vehicle_columns([&](uint32_t per, auto*& c) { span(c, uint64_t{num_slots} * per); }, veh_.view());
   }
