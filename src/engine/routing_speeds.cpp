@@ -40,6 +40,17 @@ RoutingSpeeds::RoutingSpeeds(const Network& net, int steps, double weight)
   }
 }
 
+void RoutingSpeeds::forget_samples() {
+  for (const uint32_t e : driven_edges_) {
+    driven_[e] = 0;
+    speed_[e] = mean_speed(e, nullptr);
+    if (steps_ > 0) std::fill_n(past_.begin() + static_cast<std::ptrdiff_t>(e) * steps_, steps_, speed_[e]);
+  }
+  driven_edges_.clear();
+  next_ = 0;
+  samples_ = 0;
+}
+
 double RoutingSpeeds::mean_speed(uint32_t e, const LaneSpeedSums* lanes) const {
   double weighted = 0, vehicles = 0;
   const uint32_t first = net_.edge_first_lane[e];

@@ -38,14 +38,40 @@ class RoutingSpeeds {
   const std::vector<double>& speeds() const { return speed_; }
   /// Samples taken so far.
   uint64_t samples() const { return samples_; }
+  /// Every edge back at its free-flow speed, as made (before a saved state is read into it).
+  void forget_samples();
+  /// The edges driven so far, with their speeds and samples: every other edge keeps its free-flow speed, as
+  /// this object was made with.
   template <class A>
   void visit_state(A& a) {
-    a(speed_);
-    a(past_);
+    if constexpr (A::kReads) forget_samples();
+    a(driven_edges_);
     a(next_);
     a(samples_);
-    a(driven_);
-    a(driven_edges_);
+    const size_t steps = static_cast<size_t>(steps_);
+    std::vector<double> speeds, rows;
+    if constexpr (!A::kReads)
+      for (const uint32_t e : driven_edges_) {
+        speeds.push_back(speed_[e]);
+        rows.insert(rows.end(), past_.begin() + static_cast<std::ptrdiff_t>(e * steps),
+                    past_.begin() + static_cast<std::ptrdiff_t>((e + 1) * steps));
+      }
+    a(speeds);
+    a(rows);
+    if constexpr (A::kReads) {
+      if (speeds.size() != driven_edges_.size() || rows.size() != driven_edges_.size() * steps)
+        a.fail("the rerouting device's speeds do not match its driven edges");
+      for (size_t i = 0; i < driven_edges_.size(); ++i) {
+        const uint32_t e = driven_edges_[i];
+        if (e >= speed_.size() || driven_[e])
+          a.fail("the rerouting device's driven edges are not this network's");
+        driven_[e] = 1;
+        speed_[e] = speeds[i];
+        std::copy(rows.begin() + static_cast<std::ptrdiff_t>(i * steps),
+                  rows.begin() + static_cast<std::ptrdiff_t>((i + 1) * steps),
+                  past_.begin() + static_cast<std::ptrdiff_t>(e * steps));
+      }
+    }
   }
   /// SUMO's MSEdge::getMeanSpeed of edge e from `lanes`.
   double mean_speed(uint32_t e, const LaneSpeedSums* lanes) const;
