@@ -58,8 +58,6 @@ void load_run(const std::vector<std::string>& args, int ranks, LoadedRun* l) {
     throw InputError(
         "--save-state/--load-state: a partitioned run has no saved state yet: leave out --parts and "
         "--partition-file");
-  if (states && l->options.backend != make_cpu_stepper)
-    throw InputError("--save-state/--load-state: the CUDA backend has no saved state yet: use --device cpu");
 }
 
 }  // namespace

@@ -112,11 +112,7 @@ class StateBytesIn {
   template <class T>
   void array(T* data, uint64_t n) {
     static_assert(std::is_trivially_copyable_v<T>);
-    uint64_t got = 0;
-    value(got);
-    if (got != n)
-      throw std::runtime_error("backend state: an array of " + std::to_string(got) + " where this run has " +
-                               std::to_string(n) + " (another scenario or other options)");
+    expect_length(n);
     get(data, n * sizeof(T));
   }
   /// A vector of the saved length (`fixed`: it must have that length already).
@@ -138,11 +134,7 @@ class StateBytesIn {
   template <class T>
   void sparse(T* data, uint64_t n) {
     static_assert(std::is_trivially_copyable_v<T>);
-    uint64_t got = 0;
-    value(got);
-    if (got != n)
-      throw std::runtime_error("backend state: an array of " + std::to_string(got) + " where this run has " +
-                               std::to_string(n) + " (another scenario or other options)");
+    expect_length(n);
     at_ += get_zero_runs(in_.data() + at_, in_.size() - at_, data, n * sizeof(T));
   }
   template <class T>
@@ -152,6 +144,13 @@ class StateBytesIn {
   bool done() const { return at_ == in_.size(); }
 
  private:
+  void expect_length(uint64_t n) {
+    uint64_t got = 0;
+    value(got);
+    if (got != n)
+      throw std::runtime_error("backend state: an array of " + std::to_string(got) + " where this run has " +
+                               std::to_string(n) + " (another scenario or other options)");
+  }
   void get(void* p, size_t n) {
     if (in_.size() - at_ < n) throw std::runtime_error("backend state: it ends inside a value");
     if (n > 0) std::memcpy(p, in_.data() + at_, n);

@@ -35,6 +35,7 @@
 #include "backends/cuda/cuda_stepper.hpp"
 #include "backends/host_columns.hpp"
 #include "backends/lane_records.hpp"
+#include "backends/state_bytes.hpp"
 #include "kernels/cuda_kernels.cuh"
 
 namespace lpsim {
@@ -780,12 +781,43 @@ class CudaStepper final : public Stepper {
     drain(dev_.em.sums, columns + kCountEmissionFirst, kNumEmissionSums);
   }
 
-  // Checkpoints are not yet made on the device: the run refuses them before it starts (the error says so).
-  std::vector<uint8_t> save_state(uint32_t) override {
-    throw std::runtime_error("the CUDA backend does not save a run state yet: use --device cpu");
+  // The CPU backend's list of the run state, in its order and with its lengths, so that a state moves
+  // between the backends: each table copied from and to the device whole.
+  std::vector<uint8_t> save_state(uint32_t num_slots) override {
+    LPSIM_CUDA_CHECK(cudaStreamSynchronize(nullptr));
+    StateBytesOut out;
+    visit_state(num_slots, [&](auto* dev, size_t n, Kept kept) {
+      using T = std::remove_pointer_t<decltype(dev)>;
+      std::vector<T> h(n);
+      copy_to_host(h.data(), dev, n);
+      kept == Kept::Sparse ? out.sparse(h) : out.array(h);
+    });
+    out.value(state_map_);
+    return std::move(out.bytes());
   }
-  void load_state(const std::vector<uint8_t>&, uint32_t) override {
-    throw std::runtime_error("the CUDA backend does not load a run state yet: use --device cpu");
+
+  void load_state(const std::vector<uint8_t>& state, uint32_t num_slots) override {
+    LPSIM_CUDA_CHECK(cudaStreamSynchronize(nullptr));
+    StateBytesIn in(state);
+    grow_slots(num_slots);
+    visit_state(num_slots, [&](auto* dev, size_t n, Kept kept) {
+      using T = std::remove_pointer_t<decltype(dev)>;
+      std::vector<T> h(n);
+      if (kept == Kept::Sparse) {
+        in.sparse(h);
+      } else if (kept == Kept::Active) {
+        in.array(h, false);
+        if (h.size() > slot_capacity_)
+          throw std::runtime_error("backend state: more active slots than slots");
+        num_active_ = static_cast<uint32_t>(h.size());
+      } else {
+        in.array(h, true);
+      }
+      copy_to_device(dev, h.data(), h.size());
+    });
+    in.value(state_map_);
+    if (!in.done()) throw std::runtime_error("backend state: bytes left after its last array");
+    ++version_;
   }
 
  private:
@@ -986,6 +1018,7 @@ class CudaStepper final : public Stepper {
 
   void upload_actuated(const ActuatedTable& h, uint32_t ns, uint32_t phases) {
     const uint32_t loops = h.signal_det_begin[ns];
+    num_loops_ = loops;
     const uint32_t phase_loops = h.phase_det_begin[phases];
     ActuatedTable& d = signals_.actuated;
     d.actuated = upload(h.actuated, ns);
@@ -1000,10 +1033,40 @@ class CudaStepper final : public Stepper {
     d.det_last_cell = upload(h.det_last_cell, loops);
     d.det_offset = upload(h.det_offset, loops);
     d.det_max_gap_ms = upload(h.det_max_gap_ms, loops);
+    // Zero, as the CPU backend starts them: a fixed-time signal never writes them, and a saved state holds
+    // them (the same bytes on either backend).
     actuated_state_.phase = allocate<int32_t>(ns);
+    LPSIM_CUDA_CHECK(cudaMemset(actuated_state_.phase, 0, ns * sizeof(int32_t)));
     actuated_state_.phase_start_ms = allocate<int64_t>(ns);
+    LPSIM_CUDA_CHECK(cudaMemset(actuated_state_.phase_start_ms, 0, ns * sizeof(int64_t)));
     const std::vector<int64_t> never(loops, kNeverDetected);
     actuated_state_.det_last_ms = upload(never.data(), loops);
+  }
+
+  // How a table of the run state is kept (visit_state): whole, as mostly zeros, or the active list, whose
+  // length is the number of active slots.
+  enum class Kept { Whole, Sparse, Active };
+  // The run state in CpuStepper::visit_state's order: table(device pointer, length, how it is kept).
+  template <class Table>
+  void visit_state(uint32_t num_slots, Table&& table) {
+    const size_t nl = num_lanes_, ns = signals_.num_signals;
+    table(map_[0], cells_ + kLaneMapPadding, Kept::Sparse);
+    table(map_[1], cells_ + kLaneMapPadding, Kept::Sparse);
+    table(link_state_, size_t{num_links_}, Kept::Whole);
+    table(signal_next_switch_ms_, ns, Kept::Whole);
+    table(actuated_state_.phase, ns, Kept::Whole);
+    table(actuated_state_.phase_start_ms, ns, Kept::Whole);
+    table(actuated_state_.det_last_ms, size_t{num_loops_}, Kept::Whole);
+    table(dev_.approach, nl, Kept::Whole);
+    table(dev_.claims, nl, Kept::Whole);
+    table(dev_.merge_requests, kMergeSlots * nl, Kept::Whole);
+    if (counters_ != nullptr) table(counters_, kNumTrafficCounters * nl, Kept::Sparse);
+    table(dev_.em.sums, dev_.em.sums ? kNumEmissionSums * nl : 0, Kept::Sparse);
+    table(junction_stand_[0], junction_stand_[0] ? nl : 0, Kept::Sparse);
+    table(junction_stand_[1], junction_stand_[1] ? nl : 0, Kept::Sparse);
+    table(active_[cur_active_], size_t{num_active_}, Kept::Active);
+    visit_vehicle_columns([&](uint32_t per, auto*& c) { table(c, size_t{num_slots} * per, Kept::Whole); },
+                          dev_.veh);
   }
 
   // Adds the lane records and the departed column to `columns` (LaneCounter order) and zeroes them.
@@ -1068,7 +1131,7 @@ class CudaStepper final : public Stepper {
   char* link_state_ = nullptr;
   int64_t* signal_next_switch_ms_ = nullptr;
   ActuatedState actuated_state_{};
-  uint32_t num_links_ = 0, num_lanes_ = 0;
+  uint32_t num_links_ = 0, num_lanes_ = 0, num_loops_ = 0;
   uint64_t bytes_total_ = 0;  // fixed allocations (scratch arrays not included)
   DeviceBuffer plan_buffer_;
   size_t plan_capacity_ = 0, plan_bytes_ = 0;
