@@ -21,7 +21,14 @@ namespace {
 constexpr double kTimeSlack = 1e-9;
 
 bool keeps_states(const ConfigSpec& c) {
-  return !c.save_state_times.empty() || c.save_state_period > 0 || !c.load_state.empty();
+  return !c.save_state_times.empty() || c.save_state_period > 0 || !c.load_state.empty() ||
+         c.save_state_on_signal;
+}
+
+std::string state_file_name(const ConfigSpec& c, double t) {
+  char time[64];
+  std::snprintf(time, sizeof time, "%.2f", t);
+  return c.save_state_prefix + "_" + time + c.save_state_suffix;
 }
 
 // What a saved state cannot carry yet, refused before anything is written.
@@ -311,11 +318,7 @@ void Run::add_state_saves() {
   own_actions_ = actions_.size();
   const ConfigSpec& c = config_;
   const double now = sim_.time();
-  auto named = [&c](double t) {
-    char time[64];
-    std::snprintf(time, sizeof time, "%.2f", t);
-    return c.save_state_prefix + "_" + time + c.save_state_suffix;
-  };
+  auto named = [&c](double t) { return state_file_name(c, t); };
   if (!c.save_state_files.empty() && c.save_state_files.size() != c.save_state_times.size())
     throw InputError("--save-state.files names " + std::to_string(c.save_state_files.size()) + " files for " +
                      std::to_string(c.save_state_times.size()) + " times of --save-state.times");
@@ -344,6 +347,12 @@ void Run::add_state_saves() {
         "save state every period", StepTrigger::every(p, first),
         [this, named](double when) { save_state(named(when)); }, StepActions::AtBegin::Skip);
   }
+}
+
+std::string Run::save_state_now() {
+  const std::string path = state_file_name(config_, sim_.time());
+  save_state(path);
+  return path;
 }
 
 void Run::save_state(const std::string& path) {

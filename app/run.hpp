@@ -77,6 +77,9 @@ class Run {
   /// output. Later calls do nothing. Write failures raise InputError. An interrupted run calls it too: its
   /// outputs then end where it stopped, as SUMO's do.
   void finish();
+  /// Saves the run's state now, between steps, as --save-state.prefix_TIME suffix, and returns the file's
+  /// name (what --save-state.on-signal does when a signal stops the run, before finish()).
+  std::string save_state_now();
 
   /// The time SUMO reports for the same run ("Simulation ended at time"): the end of the last step. The
   /// simulation's clock shows when that step's state holds, as SUMO's outputs do (its state at time t is the

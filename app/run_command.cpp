@@ -52,8 +52,8 @@ void load_run(const std::vector<std::string>& args, int ranks, LoadedRun* l) {
   require_one_part_per_rank(ranks, l->parts);
   if (l->parts > 1 && !config.jam_report.empty())
     throw InputError("--jam-report reads one part's vehicles: leave out --parts and --partition-file");
-  const bool states =
-      !config.save_state_times.empty() || config.save_state_period > 0 || !config.load_state.empty();
+  const bool states = !config.save_state_times.empty() || config.save_state_period > 0 ||
+                      !config.load_state.empty() || config.save_state_on_signal;
   if (states && l->parts > 1)
     throw InputError(
         "--save-state/--load-state: a partitioned run has no saved state yet: leave out --parts and "
@@ -111,6 +111,8 @@ int command_run(const std::vector<std::string>& args) {
       return own != 0 ? own : run.simulation().link().signal();
     };
     drive_to_end(run, run.simulation(), progress, signalled);
+    if (config.save_state_on_signal && signalled() != 0)
+      std::fprintf(stderr, "lpsim: state saved to %s\n", run.save_state_now().c_str());
     run.finish();
     const double wall = std::chrono::duration<double>(Clock::now() - wall0).count();
     progress.end_line();

@@ -151,6 +151,7 @@ const OptionDef kOptions[] = {
   {"save-state.prefix", "", 0, Kind::Path, Check::None, false, kRun, "state files are named PREFIX_TIME SUFFIX (default prefix: state)", [](ConfigSpec& c, Value&& v) { c.save_state_prefix = std::move(v.text); }},
   {"save-state.suffix", "", 0, Kind::Text, Check::None, false, kRun, "the state files' suffix (default .lpstate)", [](ConfigSpec& c, Value&& v) { c.save_state_suffix = std::move(v.text); }},
   {"save-state.files", "", 0, Kind::PathList, Check::None, false, kRun, "the state files' names, one per time of save-state.times (comma-separated)", [](ConfigSpec& c, Value&& v) { c.save_state_files = std::move(v.list); }},
+  {"save-state.on-signal", "", 0, Kind::Bool, Check::None, true, kRun, "when a signal stops the run (SIGTERM of a pre-empted job), save its state before the outputs close, as PREFIX_TIME SUFFIX", [](ConfigSpec& c, Value&& v) { c.save_state_on_signal = v.flag; }},
   {"load-state", "", 0, Kind::Path, Check::None, false, kRun, "resume the run from this LPSim state file (of the same scenario and options), continuing its outputs", [](ConfigSpec& c, Value&& v) { c.load_state = std::move(v.text); }},
   {"jam-report.stop-time", "", 0, Kind::Number, Check::Positive, true, kRuns, "the jam report's shortest stop, in s (default 60)", [](ConfigSpec& c, Value&& v) { c.jam_report_stop_time = v.number; }},
   {"fcd-output", "", 0, Kind::Path, Check::None, false, kRuns, "SUMO FCD output (.gz: compressed)", [](ConfigSpec& c, Value&& v) { c.outputs.fcd = std::move(v.text); }},

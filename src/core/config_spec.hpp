@@ -125,6 +125,9 @@ struct ConfigSpec {
   std::string save_state_prefix = "state", save_state_suffix = ".lpstate";
   std::vector<std::string> save_state_files;
   std::string load_state;
+  // LPSim's --save-state.on-signal: a run stopped by SIGINT/SIGTERM/SIGHUP saves its state (prefix_TIME
+  // suffix) before its outputs close, so that a pre-empted batch job resumes where it stopped.
+  bool save_state_on_signal = false;
   bool ignore_route_errors = false;
   // SUMO's --emissions.volumetric-fuel: emissions outputs give fuel in ml (by the fuel's density), not mg.
   bool volumetric_fuel = false;

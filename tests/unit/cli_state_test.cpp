@@ -4,6 +4,7 @@
 // line and exit status 2. Every bundled scenario, each in a copy (their add-file outputs land beside them).
 #include <gtest/gtest.h>
 
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -13,6 +14,7 @@
 #include "lpsim_cli.hpp"
 #include "meandata_entries.hpp"
 #include "temp_dir.hpp"
+#include "unit/spawned_lpsim.hpp"
 
 namespace lpsim {
 namespace {
@@ -102,6 +104,66 @@ INSTANTIATE_TEST_SUITE_P(BundledScenarios, CliStateTest,
                                            "motorway_ramps", "random_net", "reroute_block",
                                            "emissions_classes", "emissions_free", "emissions_redlight",
                                            "cosim_line"));
+
+// A batch job pre-empted: SIGTERM stops the run at a step's end, --save-state.on-signal saves its state
+// before the outputs close, and the job started again with --load-state ends with the outputs of the run that
+// was never stopped. grid_tls run on far past its demand (empty steps), so that the signal lands mid-run.
+TEST(CliStateSignalTest, APreemptedRunResumedFromTheStateItSavedOnTheSignalWritesTheSameOutputs) {
+  test::TempDir tmp("lpsim_state_signal");
+  std::vector<std::string> args{"run",
+                                "-c",
+                                std::string(LPSIM_SCENARIOS_DIR) + "/grid_tls/grid_tls.sumocfg",
+                                "--end",
+                                "40000",
+                                "--fcd-output",
+                                "fcd.xml",
+                                "--tripinfo-output",
+                                "tripinfo.xml",
+                                "--summary-output",
+                                "summary.xml",
+                                "--edgedata-output",
+                                "edgedata.xml",
+                                "--statistic-output",
+                                "statistic.xml",
+                                "--no-warnings",
+                                "--progress-interval",
+                                "0.02"};
+  fs::create_directories(tmp.path() / "whole");
+  fs::create_directories(tmp.path() / "stopped");
+  const CliResult whole = test::run_lpsim(tmp.path() / "whole", args);
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+
+  std::vector<std::string> stopping = args;
+  stopping.push_back("--save-state.on-signal");
+  test::SpawnedLpsim lpsim(tmp.path() / "stopped", stopping);
+  ASSERT_TRUE(lpsim.started());
+  // The simulation time of the last progress line ("lpsim: t=12.00 running ..."), or -1.
+  auto progress = [&lpsim] {
+    static const std::regex line(R"(lpsim: t=([0-9.]+) running )");
+    const std::string err = lpsim.err();
+    double t = -1;
+    for (auto it = std::sregex_iterator(err.begin(), err.end(), line); it != std::sregex_iterator(); ++it)
+      t = std::stod((*it)[1].str());
+    return t;
+  };
+  ASSERT_TRUE(lpsim.wait_until([&] { return progress() >= 150; }, 8)) << lpsim.err();
+  lpsim.send(SIGTERM);
+  const int status = lpsim.wait_exit(8);
+  ASSERT_TRUE(WIFEXITED(status)) << lpsim.err();
+  ASSERT_EQ(WEXITSTATUS(status), 128 + SIGTERM) << lpsim.err();
+  std::smatch saved;
+  const std::string err = lpsim.err();
+  ASSERT_TRUE(std::regex_search(err, saved, std::regex(R"(lpsim: state saved to (state_[0-9.]+\.lpstate))")))
+      << err;
+
+  std::vector<std::string> resume = args;
+  resume.insert(resume.end(), {"--load-state", saved[1].str()});
+  const CliResult resumed = test::run_lpsim(tmp.path() / "stopped", resume);
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  for (const std::string name : {"fcd.xml", "tripinfo.xml", "summary.xml", "edgedata.xml", "statistic.xml"})
+    EXPECT_TRUE(read_file(tmp.path() / "whole" / name) == read_file(tmp.path() / "stopped" / name))
+        << name << " after resuming from " << saved[1].str();
+}
 
 class CliStateRefusalTest : public ::testing::Test {
  protected:
