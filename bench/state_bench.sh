@@ -1,0 +1,97 @@
+#!/usr/bin/env bash
+# Checkpoints: the size of a saved state, the cost of saving it and whether a resumed run writes the same
+# outputs, for LPSim (--save-state.times / --load-state) and, on a .sumocfg, for SUMO beside it
+# (--save-state.times with --save-state.rng, then --load-state --begin T). Each simulator runs the scenario
+# whole, then again saving at --at, then resumes from that state; the resumed trips are compared with the
+# whole run's: LPSim's tripinfo and summary byte for byte, SUMO's tripinfo line by line for the trips that
+# end after the save. Works in copies (bench/work/state/), as add-file outputs land beside their files.
+#
+# Usage: bench/state_bench.sh --scenario CFG_OR_SNAPSHOT --at T [--end T] [--threads 2] [--no-sumo]
+#                             [--lpsim PATH]
+# e.g.   bench/state_bench.sh --scenario ../shared/scenarios/bologna_acosta/run.sumocfg --at 1800
+#        bench/state_bench.sh --scenario bench/work/regional/1000000/regional.lpsim --at 1800 --end 2400
+set -euo pipefail
+cd "$(dirname "$0")/.."
+source bench/lib.sh
+
+scenario=""
+at=""
+end=""
+threads=2
+sumo=1
+lpsim="$PWD/build/lpsim"
+while [[ $# -gt 0 ]]; do
+  case "$1" in
+    --scenario) scenario="$(realpath "$2")"; shift 2 ;;
+    --at) at="$2"; shift 2 ;;
+    --end) end="$2"; shift 2 ;;
+    --threads) threads="$2"; shift 2 ;;
+    --no-sumo) sumo=0; shift ;;
+    --lpsim) lpsim="$(realpath "$2")"; shift 2 ;;
+    *) echo "unknown option $1" >&2; exit 2 ;;
+  esac
+done
+[[ -n "$scenario" && -n "$at" ]] || { echo "usage: $0 --scenario CFG_OR_SNAPSHOT --at T [--end T]" >&2; exit 2; }
+
+work="$PWD/bench/work/state"
+rm -rf "$work" && mkdir -p "$work"
+end_args=()
+[[ -n "$end" ]] && end_args=(--end "$end")
+# A .sumocfg's folder is copied (its add-file outputs land there); a snapshot is read where it is.
+input() {
+  if [[ "$scenario" == *.sumocfg ]]; then
+    cp -r "$(dirname "$scenario")" "$work/$1"
+    echo "-c $work/$1/$(basename "$scenario")"
+  else
+    mkdir -p "$work/$1"
+    echo "$scenario"
+  fi
+}
+
+outputs=(--tripinfo-output trip.xml --summary-output sum.xml --no-step-log -W --threads "$threads")
+for run in whole saved; do
+  # shellcheck disable=SC2046
+  set -- $(input "lpsim_$run")
+  args=(run "$@" "${end_args[@]}" "${outputs[@]}")
+  [[ "$run" == saved ]] && args+=(--save-state.times "$at")
+  (cd "$work/lpsim_$run" && echo "$run $(measure "$work/lpsim_$run.log" "$lpsim" "${args[@]}")") >>"$work/lpsim.times"
+done
+state=$(ls "$work"/lpsim_saved/*.lpstate)
+# shellcheck disable=SC2046
+set -- $(input lpsim_saved_again)
+(cd "$work/lpsim_saved" &&
+  echo "resumed $(measure "$work/lpsim_resumed.log" "$lpsim" run "$@" "${end_args[@]}" "${outputs[@]}" \
+    --load-state "$state")") >>"$work/lpsim.times"
+identical=yes
+for f in trip.xml sum.xml; do cmp -s "$work/lpsim_whole/$f" "$work/lpsim_saved/$f" || identical=no; done
+at_state=$(grep -o "<step time=\"$at.00\"[^>]*" "$work/lpsim_whole/sum.xml" | grep -oE 'running="[0-9]+" waiting="[0-9]+"' || true)
+echo "LPSim: state $(stat -c %s "$state") bytes at $at s ($at_state); resumed tripinfo and summary identical: $identical"
+awk '{ printf "  %-8s %8s s wall %8s CPU-s %8s MiB\n", $1, $2, $3, $4 }' "$work/lpsim.times"
+
+if [[ "$sumo" == 1 && "$scenario" == *.sumocfg ]]; then
+  for run in whole saved resumed; do cp -r "$(dirname "$scenario")" "$work/sumo_$run"; done
+  cfg="$(basename "$scenario")"
+  sumo_end=()
+  [[ -n "$end" ]] && sumo_end=(--end "$end")
+  (cd "$work/sumo_whole" && measure "$work/sumo_whole.log" sumo -c "$cfg" "${sumo_end[@]}" \
+    --tripinfo-output trip.xml --no-step-log true >/dev/null)
+  (cd "$work/sumo_saved" && measure "$work/sumo_saved.log" sumo -c "$cfg" "${sumo_end[@]}" \
+    --tripinfo-output trip.xml --no-step-log true --save-state.times "$at" --save-state.rng true \
+    --save-state.files state.xml.gz >/dev/null)
+  (cd "$work/sumo_resumed" && measure "$work/sumo_resumed.log" sumo -c "$cfg" "${sumo_end[@]}" \
+    --tripinfo-output trip.xml --no-step-log true --load-state "$work/sumo_saved/state.xml.gz" \
+    --begin "$at" >/dev/null)
+  python3 - "$work/sumo_whole/trip.xml" "$work/sumo_resumed/trip.xml" "$work/sumo_saved/state.xml.gz" <<'EOF'
+import os, re, sys
+def trips(path):
+    out = {}
+    for line in open(path):
+        m = re.search(r'<tripinfo id="([^"]+)"', line)
+        if m: out[m.group(1)] = line.strip()
+    return out
+whole, resumed = trips(sys.argv[1]), trips(sys.argv[2])
+same = sum(1 for k, v in resumed.items() if whole.get(k) == v)
+print(f"SUMO: state {os.path.getsize(sys.argv[3])} bytes (gzip XML); of {len(resumed)} trips ending after the "
+      f"save, {same} have the whole run's tripinfo line")
+EOF
+fi
