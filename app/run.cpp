@@ -20,11 +20,6 @@ namespace {
 // Times are sums of step lengths in double: compare them with this slack.
 constexpr double kTimeSlack = 1e-9;
 
-bool keeps_states(const ConfigSpec& c) {
-  return !c.save_state_times.empty() || c.save_state_period > 0 || !c.load_state.empty() ||
-         c.save_state_on_signal;
-}
-
 std::string state_file_name(const ConfigSpec& c, double t) {
   char time[64];
   std::snprintf(time, sizeof time, "%.2f", t);
@@ -33,7 +28,7 @@ std::string state_file_name(const ConfigSpec& c, double t) {
 
 // What a saved state cannot carry yet, refused before anything is written.
 void refuse_what_states_cannot_resume(const ConfigSpec& c) {
-  if (!keeps_states(c)) return;
+  if (!Run::keeps_states(c)) return;
   if (!c.jam_report.empty())
     throw InputError(
         "--save-state/--load-state: the jam report's episodes are not saved yet: leave out --jam-report");
@@ -48,6 +43,11 @@ const char* teleport_cause(TeleportCause cause) {
 }
 
 }  // namespace
+
+bool Run::keeps_states(const ConfigSpec& c) {
+  return !c.save_state_times.empty() || c.save_state_period > 0 || !c.load_state.empty() ||
+         c.save_state_on_signal;
+}
 
 Run::Run(Scenario scenario, const ConfigSpec& config, SimulationOptions options)
     : scenario_(std::move(scenario)),

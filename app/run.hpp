@@ -50,6 +50,8 @@ class Run {
   /// requested and a vehicle type has an emission class of a model LPSim does not implement.
   static bool needs_lane_counters(const Scenario& scenario, const OutputSpec& outputs);
   static bool needs_emission_sums(const Scenario& scenario, const OutputSpec& outputs);
+  /// Whether `config` saves or loads a state (--save-state.*, --load-state).
+  static bool keeps_states(const ConfigSpec& config);
   /// Without finish(), the writers close their files but the open edgeData/laneData intervals and the
   /// statistics are lost.
   ~Run();
