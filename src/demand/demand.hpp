@@ -90,7 +90,8 @@ struct Demand {
   std::vector<uint32_t> route_edges;  // edge indices; routes shared by id are stored once
   StopTable stops;
 
-  // SUMO's rerouting device (engine/rerouting.hpp), per vehicle: RerouteFlags. Empty: no vehicle has it.
+  // SUMO's rerouting device (engine/rerouting_device.hpp), per vehicle: RerouteFlags. Empty: no vehicle has
+  // it.
   std::vector<uint8_t> rerouting;
   // The via edges of trips that re-route (in order), [via_begin[v], via_begin[v + 1]) of via_edges; empty
   // while no such trip has any.

@@ -4,9 +4,11 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 #include "core/time_range.hpp"
+#include "demand/trip_routes.hpp"
 #include "engine/outside_link.hpp"
 #include "engine/part_link.hpp"
 #include "engine/state_archive.hpp"
@@ -54,6 +56,100 @@ TeleportCause teleport_cause(uint8_t limit_reason) {
   return TeleportCause::Jam;
 }
 
+// The stops' times as the step counts them: steps stood at least, and the step from which `until` lets a
+// vehicle leave: the one that ends at `until` (counted from the begin time; 0: none, or already past).
+StopSteps stop_steps_from_times(const StopTable& st, int64_t step_ms, int64_t begin_ms) {
+  StopSteps steps;
+  steps.duration.resize(st.size());
+  steps.until.resize(st.size());
+  const double cap = static_cast<double>(std::numeric_limits<uint32_t>::max() / 2);
+  for (uint32_t k = 0; k < st.size(); ++k) {
+    const double duration = std::ceil(std::llround(st.duration[k] * 1000.0) / static_cast<double>(step_ms));
+    steps.duration[k] = static_cast<uint32_t>(std::min(duration, cap));
+    const double until = st.until[k] < 0
+                             ? 0.0
+                             : std::ceil(static_cast<double>(std::llround(st.until[k] * 1000.0) - begin_ms) /
+                                         static_cast<double>(step_ms)) -
+                                   1.0;
+    steps.until[k] = static_cast<uint32_t>(std::clamp(until, 0.0, cap));
+  }
+  return steps;
+}
+
+TripTableView trip_table_view(const Demand& d, const StopSteps& stop_steps) {
+  TripTableView v;
+  const StopTable& st = d.stops;
+  v.trips = TripView{d.vehicle_type.data(),  d.route_begin.data(),  d.route_length.data(),
+                     d.route_edges.data(),   d.speed_factor.data(), d.arrival_pos_kind.data(),
+                     d.arrival_pos.data(),   st.route_pos.data(),   st.lane.data(),
+                     st.start_pos.data(),    st.end_pos.data(),     stop_steps.duration.data(),
+                     stop_steps.until.data()};
+  v.num_stops = st.size();
+  v.depart = DepartView{d.depart_lane_kind.data(), d.depart_lane.data(),       d.depart_pos_kind.data(),
+                        d.depart_pos.data(),       d.depart_speed_kind.data(), d.depart_speed.data()};
+  v.num_vehicles = d.size();
+  v.num_route_edges = d.route_edges.size();
+  return v;
+}
+
+std::unique_ptr<BoundaryLink> make_link(const LinkScope& scope, const SimulationOptions& opt,
+                                        double step_length) {
+  if (opt.part) return std::make_unique<PartLink>(scope, *opt.part, *opt.transport, opt.pending_signal);
+  if (opt.outside_lanes) return std::make_unique<OutsideLink>(scope, *opt.outside_lanes, step_length);
+  return std::make_unique<BoundaryLink>(scope);
+}
+
+// Exactly the slots whose vehicles left the road in the previous step drop out of the active list
+// (stays_active): anything else would free a slot still in use, or never free one.
+void check_kept(const HostBooks& books, uint32_t kept) {
+  if (kept + books.retiring.size() != books.num_active)
+    throw std::logic_error("step kept " + std::to_string(kept) + " of " + std::to_string(books.num_active) +
+                           " active slots, " + std::to_string(books.retiring.size()) + " were to leave");
+}
+
+// The counter columns the backend keeps (LaneCounter order): the traffic ones for edgeData/laneData, the
+// emission sums for emissions outputs.
+std::vector<int> kept_counters(const SimulationOptions& opt) {
+  std::vector<int> kept;
+  for (int k = 0; k < kNumLaneCounters; ++k)
+    if (k < kCountEmissionFirst ? opt.lane_counters : opt.emission_sums) kept.push_back(k);
+  return kept;
+}
+
+// The lane counters counted since the last request, from every part to part 0, which adds them to its own.
+// Only the columns every part keeps travel (the parts run with the same options).
+void gather_counters(BoundaryLink& link, Stepper& stepper, const std::vector<int>& kept, uint32_t num_lanes,
+                     LaneCounters& counters) {
+  std::vector<uint32_t> lanes;
+  std::vector<int64_t> values;
+  if (!link.leads() && !kept.empty()) {
+    std::vector<int64_t> all(static_cast<size_t>(kNumLaneCounters) * num_lanes, 0);
+    int64_t* columns[kNumLaneCounters];
+    for (int k = 0; k < kNumLaneCounters; ++k) columns[k] = all.data() + static_cast<size_t>(k) * num_lanes;
+    stepper.drain_counters(columns);
+    for (uint32_t l = 0; l < num_lanes; ++l) {
+      bool any = false;
+      for (const int k : kept) any = any || columns[k][l] != 0;
+      if (!any) continue;
+      lanes.push_back(l);
+      for (const int k : kept) values.push_back(columns[k][l]);
+    }
+  }
+  Bytes b;
+  ByteWriter w(b);
+  w.put_array(lanes);
+  w.put_array(values);
+  const std::vector<Bytes> all = link.gather(b, "counters");
+  for (size_t i = 1; i < all.size(); ++i) {
+    ByteReader r(all[i]);
+    const std::vector<uint32_t> l = r.get_array<uint32_t>();
+    const std::vector<int64_t> v = r.get_array<int64_t>();
+    for (size_t j = 0; j < l.size(); ++j)
+      for (size_t c = 0; c < kept.size(); ++c)
+        counter_column(counters, kept[c])[l[j]] += v[j * kept.size() + c];
+  }
+}
+
 }  // namespace
 
 Simulation::Simulation(const Network& net, Demand demand, const SimulationOptions& options)
@@ -95,7 +191,7 @@ Simulation::Simulation(const Network& net, Demand demand, const SimulationOption
   // 0 s ignores every vehicle on a junction lane, standing or not, as in SUMO.
   params_.ignore_blocker_steps = stopped_steps_for(opt_.ignore_junction_blocker, step_length());
   params_.highway_min_speed = static_cast<float>(opt_.highway_min_speed);
-  stop_steps_from_times();
+  stop_steps_ = stop_steps_from_times(d.stops, opt_.step_ms, time_ms_);
 
   if ((opt_.part == nullptr) != (opt_.transport == nullptr))
     throw std::invalid_argument("a part of a partitioned run needs both its plan and its transport");
@@ -122,7 +218,7 @@ Simulation::Simulation(const Network& net, Demand demand, const SimulationOption
   setup.num_connections = net.num_connections();
   setup.yielder_begin = engine_net_.yielder_begin.data();
   setup.yielder = engine_net_.yielder.data();
-  setup.trips = trip_table_view();
+  setup.trips = trip_table_view(d, stop_steps_);
   setup.lane_counters = opt_.lane_counters;
   setup.junction_stands = opt_.ignore_junction_blocker >= 0;
   setup.emission_sums = opt_.emission_sums;
@@ -140,29 +236,33 @@ Simulation::Simulation(const Network& net, Demand demand, const SimulationOption
   setup.threads = opt_.threads;
   setup.device = opt_.gpu_device;
   stepper_ = opt_.backend(setup);
-  make_link();
+  const LinkScope scope{net_, engine_net_, trips_, *stepper_, books_};
+  link_ = make_link(scope, opt_, step_length());
   InsertionRules rules;
   rules.seed = opt_.seed;
   rules.step_ms = opt_.step_ms;
   rules.max_depart_delay = opt_.max_depart_delay;
   rules.max_emergency_decel = params_.max_emergency_decel;
   for (uint32_t k = 0; k < t.size(); ++k) rules.min_decel = std::min(rules.min_decel, t.decel[k]);
-  insertion_ = std::make_unique<InsertionControl>(LinkScope{net_, engine_net_, trips_, *stepper_, books_},
-                                                  *link_, rules);
+  insertion_ = std::make_unique<InsertionControl>(scope, *link_, rules);
 
-  init_rerouting();
+  if (!d.rerouting.empty())
+    reroute_ = std::make_unique<ReroutingDevice>(net_, opt_.rerouting, opt_.seed, opt_.threads, time_ms_,
+                                                 opt_.step_ms, d.size(), due.next);
   // The state at the begin time: its signals and its first insertions.
+  const RerouteScope reroute_scope{net_, d, books_, *link_};
   stepper_->update_signals(time_ms_, time_ms_, cur_);
   link_->after_signals();
-  if (reroute_) reroute_vehicles(time_ms_);
+  if (reroute_) apply_new_routes(reroute_->reroute(time_ms_, reroute_scope, [this] { return query(); }));
   sync_trips();
   insertion_->enqueue_due(time_ms_);
   insertion_->insert(cur_, time_ms_, step_);
   link_->after_insertion(cur_);
-  check_kept(0);
+  check_kept(books_, 0);
   insertion_->start(0, 0);
   ++version_;  // the insertions changed the state (the rerouting device may have read it before them)
-  if (reroute_) sample_routing_speeds();
+  if (reroute_ && reroute_->sample_due(time_ms_))
+    reroute_->sample_speeds(reroute_scope, state(StateParts::Columns));
   link_->report();
 }
 
@@ -173,16 +273,6 @@ Simulation::~Simulation() {
   } catch (const std::exception&) {
     // A part that failed has ended its serve_part() already; its error was reported where it failed.
   }
-}
-
-void Simulation::make_link() {
-  const LinkScope scope{net_, engine_net_, trips_, *stepper_, books_};
-  if (opt_.part)
-    link_ = std::make_unique<PartLink>(scope, *opt_.part, *opt_.transport, opt_.pending_signal);
-  else if (opt_.outside_lanes)
-    link_ = std::make_unique<OutsideLink>(scope, *opt_.outside_lanes, step_length());
-  else
-    link_ = std::make_unique<BoundaryLink>(scope);
 }
 
 OutsideLink& Simulation::outside_link() {
@@ -205,7 +295,7 @@ void Simulation::serve_part() {
         collect_lane_counters();
         break;
       case kRequestSpeedSums:
-        gather_speed_sums();
+        speed_sums();
         break;
       case kRequestUnfinished:
         unfinished_trips(0, false);  // the arguments come from part 0
@@ -218,67 +308,27 @@ void Simulation::serve_part() {
 
 bool Simulation::finished() const { return link_->idle() && books_.schedule.empty(); }
 
-// The stops' times as the step counts them: steps stood at least, and the step from which `until` lets a
-// vehicle leave: the one that ends at `until` (counted from the begin time; 0: none, or already past).
-void Simulation::stop_steps_from_times() {
-  const StopTable& st = trips_.demand().stops;
-  stop_steps_.duration.resize(st.size());
-  stop_steps_.until.resize(st.size());
-  const double cap = static_cast<double>(std::numeric_limits<uint32_t>::max() / 2);
-  for (uint32_t k = 0; k < st.size(); ++k) {
-    const double duration =
-        std::ceil(std::llround(st.duration[k] * 1000.0) / static_cast<double>(opt_.step_ms));
-    stop_steps_.duration[k] = static_cast<uint32_t>(std::min(duration, cap));
-    const double until = st.until[k] < 0
-                             ? 0.0
-                             : std::ceil(static_cast<double>(std::llround(st.until[k] * 1000.0) - time_ms_) /
-                                         static_cast<double>(opt_.step_ms)) -
-                                   1.0;
-    stop_steps_.until[k] = static_cast<uint32_t>(std::clamp(until, 0.0, cap));
-  }
-}
-
-TripTableView Simulation::trip_table_view() const {
-  const Demand& d = trips_.demand();
-  TripTableView v;
-  const StopTable& st = d.stops;
-  v.trips = TripView{d.vehicle_type.data(),   d.route_begin.data(),  d.route_length.data(),
-                     d.route_edges.data(),    d.speed_factor.data(), d.arrival_pos_kind.data(),
-                     d.arrival_pos.data(),    st.route_pos.data(),   st.lane.data(),
-                     st.start_pos.data(),     st.end_pos.data(),     stop_steps_.duration.data(),
-                     stop_steps_.until.data()};
-  v.num_stops = st.size();
-  v.depart = DepartView{d.depart_lane_kind.data(), d.depart_lane.data(),       d.depart_pos_kind.data(),
-                        d.depart_pos.data(),       d.depart_speed_kind.data(), d.depart_speed.data()};
-  v.num_vehicles = d.size();
-  v.num_route_edges = d.route_edges.size();
-  return v;
-}
-
 // The backend reads the trip table through its own pointers (or its own copy, on a device): after the table
 // grew or a route changed, it is handed the table as it lies now and what changed.
 void Simulation::sync_trips() {
   if (!trips_.changed()) return;
   TripTable::Changes c = trips_.take_changes();
   TripChanges changes{c.first_new_vehicle, c.first_new_route_edge, std::move(c.new_routes), c.stops_moved};
-  stepper_->update_trips(trip_table_view(), changes);
-}
-
-StepParams Simulation::step_params() const {
-  StepParams p = params_;
-  p.step = step_;
-  p.signal_time_ms = time_ms_ + opt_.step_ms;
-  return p;
+  stepper_->update_trips(trip_table_view(trips_.demand(), stop_steps_), changes);
 }
 
 void Simulation::step() {
   const auto t0 = std::chrono::steady_clock::now();
   link_->begin_step();
-  if (reroute_) reroute_vehicles(time_ms_ + opt_.step_ms);
+  const RerouteScope reroute_scope{net_, trips_.demand(), books_, *link_};
+  if (reroute_)
+    apply_new_routes(reroute_->reroute(time_ms_ + opt_.step_ms, reroute_scope, [this] { return query(); }));
   sync_trips();
   ++version_;
   Stepper& s = *stepper_;
-  const StepParams params = step_params();
+  StepParams params = params_;
+  params.step = step_;
+  params.signal_time_ms = time_ms_ + opt_.step_ms;
   s.update_signals(params.signal_time_ms, time_ms_, cur_);
   link_->after_signals();
   s.start_step(params, cur_);
@@ -296,7 +346,7 @@ void Simulation::step() {
   // joins its queue at the head (handle_vehicle_ends), a departure at the tail.
   insertion_->enqueue_due(time_ms_ + opt_.step_ms);
   StepOutcome& out = s.finish_end_of_step();
-  check_kept(out.kept);
+  check_kept(books_, out.kept);
   // The vehicles the step moved: not the slots of those that left the road in the step before (they only
   // cleared their footprint), so a vehicle that drives into another part counts once.
   books_.counts.vehicle_updates += out.kept;
@@ -310,19 +360,12 @@ void Simulation::step() {
   link_->after_insertion(1 - cur_);
   cur_ = 1 - cur_;
   insertion_->start(out.kept, out.running);
-  if (reroute_) sample_routing_speeds();
+  if (reroute_ && reroute_->sample_due(time_ms_))
+    reroute_->sample_speeds(reroute_scope, state(StateParts::Columns));
   link_->count_step(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   link_->report();
   if (opt_.slot_sort_interval > 0 && step_ % opt_.slot_sort_interval == 0) sort_slots();
   step_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-// Exactly the slots whose vehicles left the road in the previous step drop out of the active list
-// (stays_active): anything else would free a slot still in use, or never free one.
-void Simulation::check_kept(uint32_t kept) const {
-  if (kept + books_.retiring.size() != books_.num_active)
-    throw std::logic_error("step kept " + std::to_string(kept) + " of " + std::to_string(books_.num_active) +
-                           " active slots, " + std::to_string(books_.retiring.size()) + " were to leave");
 }
 
 // Arrivals become trip records; teleporting vehicles re-enter at the next edge of their route (moves_ says
@@ -441,6 +484,31 @@ void Simulation::set_route(uint32_t v, const std::vector<uint32_t>& edges) {
   trips_.set_route(v, edges);
 }
 
+void Simulation::apply_new_routes(const std::vector<NewRoute>& routes) {
+  const Demand& d = trips_.demand();
+  std::vector<std::pair<uint32_t, uint32_t>> running;  // (slot, vehicle)
+  std::optional<VehicleQuery> on_road;                 // read once a route changes
+  for (const NewRoute& n : routes) {
+    if (n.edges.empty()) continue;
+    if (d.stops.first(n.vehicle) != d.stops.last(n.vehicle)) {
+      // Routed through its stops' edges, so each is on it; placed along it before it departs.
+      const std::vector<uint32_t> at = stop_positions(d, net_, n.vehicle, n.edges);
+      if (at.empty()) continue;
+      trips_.set_stop_positions(n.vehicle, at);
+    }
+    trips_.set_route(n.vehicle, n.edges);
+    if (!on_road) on_road.emplace(query());
+    if (const int32_t k = on_road->slot(n.vehicle); k >= 0)
+      running.emplace_back(static_cast<uint32_t>(k), n.vehicle);
+  }
+  if (running.empty()) return;
+  sync_trips();
+  std::vector<SlotRoute> slots;
+  for (const auto& [k, v] : running) slots.push_back(SlotRoute{k, d.route_begin[v], d.route_length[v], 0});
+  stepper_->set_routes(slots);
+  ++version_;
+}
+
 const LaneCounters& Simulation::collect_lane_counters() {
   if (lane_counters_.sampled_steps.size() != net_.num_lanes())  // all zero: nothing counted
     lane_counters_.resize(net_.num_lanes(), opt_.emission_sums);
@@ -453,17 +521,9 @@ const LaneCounters& Simulation::collect_lane_counters() {
     }
     stepper_->drain_counters(columns);
   }
-  if (link_->parts() > 1) gather_counters();
+  if (link_->parts() > 1)
+    gather_counters(*link_, *stepper_, kept_counters(opt_), net_.num_lanes(), lane_counters_);
   return lane_counters_;
-}
-
-// The counter columns the backend keeps (LaneCounter order): the traffic ones for edgeData/laneData, the
-// emission sums for emissions outputs.
-std::vector<int> Simulation::kept_counters() const {
-  std::vector<int> kept;
-  for (int k = 0; k < kNumLaneCounters; ++k)
-    if (k < kCountEmissionFirst ? opt_.lane_counters : opt_.emission_sums) kept.push_back(k);
-  return kept;
 }
 
 const std::vector<uint64_t>& Simulation::active_by_vehicle() const {
@@ -524,8 +584,8 @@ const std::vector<uint32_t>& Simulation::active() const {
 
 // Summed in units of 2^-24 (integers: the sums do not depend on the order of the slots, which sort_slots
 // changes, nor on how the vehicles are split among the parts of a partitioned run; each term is off by at
-// most 3e-8).
-SpeedSums Simulation::speed_sums() const {
+// most 3e-8). In a partitioned run part 0 adds every part's (integers: exact in any order).
+SpeedSums Simulation::speed_sums() {
   SpeedSums sums;
   const Demand& d = trips_.demand();
   const VehicleTypes& t = d.types;
@@ -546,7 +606,20 @@ SpeedSums Simulation::speed_sums() const {
     if (speed < kHaltingSpeed) ++sums.halting;
     if (s.veh.stop_release[k] != 0) ++sums.stopped;  // standing at a scheduled stop
   }
-  return sums;
+  if (link_->parts() == 1) return sums;
+  link_->request(kRequestSpeedSums);
+  Bytes b;
+  ByteWriter(b).put(sums);
+  SpeedSums total;
+  for (const Bytes& x : link_->gather(b, "speed sums")) {
+    const SpeedSums part = ByteReader(x).get<SpeedSums>();
+    total.running += part.running;
+    total.halting += part.halting;
+    total.stopped += part.stopped;
+    total.speed += part.speed;
+    total.relative += part.relative;
+  }
+  return total;
 }
 
 std::vector<TripRecord> Simulation::own_unfinished_trips(double end, bool undeparted) const {
@@ -615,7 +688,7 @@ SummaryRow Simulation::summary_row() {
   r.arrived = c.arrived;
   r.ended = c.arrived + c.discarded;
   r.teleports = c.teleports;
-  const SpeedSums sums = gather_speed_sums();
+  const SpeedSums sums = speed_sums();
   const uint64_t running = sums.running;
   const int64_t speed_sum = sums.speed, rel_sum = sums.relative;
   const uint64_t halting = sums.halting, stopped = sums.stopped;
@@ -686,59 +759,6 @@ std::vector<TripRecord> Simulation::unfinished_trips(double end, bool undeparted
   std::sort(all.begin(), all.end(),
             [](const TripRecord& a, const TripRecord& b) { return a.vehicle < b.vehicle; });
   return all;
-}
-
-// The summary's sums of every part, added at part 0 (integers: exact in any order).
-SpeedSums Simulation::gather_speed_sums() {
-  if (link_->parts() == 1) return speed_sums();
-  link_->request(kRequestSpeedSums);
-  Bytes b;
-  ByteWriter(b).put(speed_sums());
-  SpeedSums total;
-  for (const Bytes& x : link_->gather(b, "speed sums")) {
-    const SpeedSums s = ByteReader(x).get<SpeedSums>();
-    total.running += s.running;
-    total.halting += s.halting;
-    total.stopped += s.stopped;
-    total.speed += s.speed;
-    total.relative += s.relative;
-  }
-  return total;
-}
-
-// The lane counters counted since the last request, from every part to part 0, which adds them to its own.
-// Only the columns every part keeps travel (kept_counters: the parts run with the same options).
-void Simulation::gather_counters() {
-  std::vector<uint32_t> lanes;
-  std::vector<int64_t> values;
-  const std::vector<int> kept = kept_counters();
-  if (!link_->leads() && !kept.empty()) {
-    const uint32_t nl = net_.num_lanes();
-    std::vector<int64_t> all(static_cast<size_t>(kNumLaneCounters) * nl, 0);
-    int64_t* columns[kNumLaneCounters];
-    for (int k = 0; k < kNumLaneCounters; ++k) columns[k] = all.data() + static_cast<size_t>(k) * nl;
-    stepper_->drain_counters(columns);
-    for (uint32_t l = 0; l < nl; ++l) {
-      bool any = false;
-      for (const int k : kept) any = any || columns[k][l] != 0;
-      if (!any) continue;
-      lanes.push_back(l);
-      for (const int k : kept) values.push_back(columns[k][l]);
-    }
-  }
-  Bytes b;
-  ByteWriter w(b);
-  w.put_array(lanes);
-  w.put_array(values);
-  const std::vector<Bytes> all = link_->gather(b, "counters");
-  for (size_t i = 1; i < all.size(); ++i) {
-    ByteReader r(all[i]);
-    const std::vector<uint32_t> l = r.get_array<uint32_t>();
-    const std::vector<int64_t> v = r.get_array<int64_t>();
-    for (size_t j = 0; j < l.size(); ++j)
-      for (size_t c = 0; c < kept.size(); ++c)
-        counter_column(lane_counters_, kept[c])[l[j]] += v[j * kept.size() + c];
-  }
 }
 
 const Simulation::Counts& Simulation::counts() const { return link_->counts(); }

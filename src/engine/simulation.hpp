@@ -18,7 +18,7 @@
 #include "engine/engine_net.hpp"
 #include "engine/host_books.hpp"
 #include "engine/insertion_control.hpp"
-#include "engine/rerouting.hpp"
+#include "engine/rerouting_device.hpp"
 #include "engine/samples.hpp"
 #include "engine/vehicle_query.hpp"
 #include "net/network.hpp"
@@ -83,6 +83,11 @@ class OutsideLink;  // engine/outside_link.hpp
 struct SpeedSums {
   uint64_t running = 0, halting = 0, stopped = 0;
   int64_t speed = 0, relative = 0;
+};
+
+/// The stop table's durations and until times in steps (TripView::stop_duration_steps, stop_until_step).
+struct StopSteps {
+  std::vector<uint32_t> duration, until;
 };
 
 class Simulation {
@@ -175,27 +180,16 @@ class Simulation {
   const BoundaryLink& link() const { return *link_; }
 
  private:
-  StepParams step_params() const;
-  TripTableView trip_table_view() const;
   void sync_trips();
   std::vector<TripRecord> own_unfinished_trips(double end, bool undeparted) const;
   void handle_vehicle_ends(std::vector<VehicleEnd>& ends);
-  void stop_steps_from_times();
   void sort_slots();
-  void check_kept(uint32_t kept) const;
-  // The rerouting device (simulation_rerouting.cpp).
-  void init_rerouting();
-  void reroute_vehicles(int64_t end_ms);  // those due by end_ms
-  void share_new_routes(std::vector<NewRoute>& routes);
+  // The rerouting device's new routes into the trip table, and into the slots of those on the road.
   void apply_new_routes(const std::vector<NewRoute>& routes);
-  void sample_routing_speeds();
-  void make_link();
   template <class A>
   void visit_state(A& a, std::vector<uint8_t>& backend);
-  void gather_counters();
-  std::vector<int> kept_counters() const;
-  SpeedSums speed_sums() const;
-  SpeedSums gather_speed_sums();
+  // The summary's sums over every part's running vehicles (in a partitioned run a collective call).
+  SpeedSums speed_sums();
   /// The backend's state (a device backend copies it at most once per change of its state).
   const HostState& state(StateParts parts) const { return stepper_->fetch(parts, books_.slots.size()); }
   const std::vector<uint64_t>& active_by_vehicle() const;
@@ -213,10 +207,7 @@ class Simulation {
 
   // Host bookkeeping: slots handed out, the queues, every trip's account, the counts.
   HostBooks books_;
-  // The stop table's durations and until times in steps (TripView::stop_duration_steps, stop_until_step).
-  struct StopSteps {
-    std::vector<uint32_t> duration, until;
-  } stop_steps_;
+  StopSteps stop_steps_;
   std::vector<TeleportMove> moves_;
   LaneCounters lane_counters_;
   std::vector<double> fuel_divisor_;  // per type: EmissionView::fuel_divisor
@@ -226,7 +217,7 @@ class Simulation {
   // stepper and the books, gone before them.
   std::unique_ptr<BoundaryLink> link_;
   std::unique_ptr<InsertionControl> insertion_;  // made from the link and the books, gone before them
-  std::unique_ptr<RerouteState> reroute_;        // the rerouting device (null: no vehicle has it)
+  std::unique_ptr<ReroutingDevice> reroute_;     // null: no vehicle has the rerouting device
 
   // What outputs and tests derive from the backend's state, kept per version of it: the state changes in
   // step(), set_route() and the constructor's insertions, each counting a new version.

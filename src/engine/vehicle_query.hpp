@@ -38,6 +38,8 @@ class VehicleQuery {
   uint8_t limit_reason(uint32_t v) const { return on_road(&VehicleView::limit_reason, v, uint8_t{0}); }
   /// The current character of a connection's signal link (or its state when unsignalised). StateParts::Full.
   char link_state(uint32_t conn) const;
+  /// The columns by slot, for a pass over every vehicle on the road (HostState::active).
+  const HostState& state() const { return s_; }
 
  private:
   template <class T>
