@@ -95,6 +95,13 @@ std::string describe_scenario(const Scenario& sc) {
   }
   out += "\n";
   if (d.size() > 0) out += fmt("  departures: %.2f s to %.2f s\n", d.depart.front(), d.depart.back());
+  if (d.size() > 0) {
+    uint64_t route_edges = 0;
+    for (const uint32_t n : d.route_length) route_edges += n;
+    out += fmt("  routes: %.1f edges per vehicle (%llu in all)\n",
+               static_cast<double>(route_edges) / static_cast<double>(d.size()),
+               static_cast<unsigned long long>(route_edges));
+  }
   if (!d.rerouting.empty()) {
     // SUMO's rerouting device: who has it, and how it routes them (docs/MODELS.md, "The rerouting device").
     uint64_t with = 0, equipped = 0, driving = 0, repaired = 0;

@@ -66,6 +66,19 @@ identical=yes
 for f in trip.xml sum.xml; do cmp -s "$work/lpsim_whole/$f" "$work/lpsim_saved/$f" || identical=no; done
 at_state=$(grep -o "<step time=\"$at.00\"[^>]*" "$work/lpsim_whole/sum.xml" | grep -oE 'running="[0-9]+" waiting="[0-9]+"' || true)
 echo "LPSim: state $(stat -c %s "$state") bytes at $at s ($at_state); resumed tripinfo and summary identical: $identical"
+# The target: at most 100 bytes per vehicle running or waiting, plus its route (4 bytes per edge; the
+# scenario's mean route, from lpsim info, stands for theirs).
+# shellcheck disable=SC2046
+mean_edges=$("$lpsim" info $(input lpsim_info) 2>/dev/null | sed -n 's/^  routes: \([0-9.]*\) edges per vehicle.*/\1/p')
+python3 - "$(stat -c %s "$state")" "$at_state" "${mean_edges:-0}" <<'EOF2'
+import re, sys
+size, counts, edges = int(sys.argv[1]), sys.argv[2], float(sys.argv[3])
+n = sum(int(x) for x in re.findall(r'"([0-9]+)"', counts))
+if n:
+    allowance = n * (100 + 4 * edges)
+    print(f"  {size / n:.0f} bytes per vehicle running or waiting ({n}); target {100 + 4 * edges:.0f} "
+          f"(100 + 4 x {edges:.1f} route edges): {'met' if size <= allowance else 'not met'}")
+EOF2
 awk '{ printf "  %-8s %8s s wall %8s CPU-s %8s MiB\n", $1, $2, $3, $4 }' "$work/lpsim.times"
 
 if [[ "$sumo" == 1 && "$scenario" == *.sumocfg ]]; then

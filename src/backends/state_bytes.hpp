@@ -39,6 +39,18 @@ inline void put_zero_runs(std::vector<uint8_t>& out, const void* data, uint64_t 
   std::memcpy(out.data() + count_at, &stretches, sizeof stretches);
 }
 
+/// XORs each of the n elements at data with `usual`, byte by byte: an array whose elements are mostly `usual`
+/// becomes mostly zeros, and back.
+template <class T>
+void xor_each(T* data, uint64_t n, const T& usual) {
+  static_assert(std::is_trivially_copyable_v<T>);
+  unsigned char pattern[sizeof(T)];
+  std::memcpy(pattern, &usual, sizeof(T));
+  auto* b = reinterpret_cast<unsigned char*>(data);
+  for (uint64_t i = 0; i < n; ++i)
+    for (size_t j = 0; j < sizeof(T); ++j) b[i * sizeof(T) + j] ^= pattern[j];
+}
+
 /// Reads what put_zero_runs wrote from `in` (`available` bytes) into `size` bytes at data; returns the bytes
 /// it read. std::runtime_error when they do not fit.
 inline size_t get_zero_runs(const uint8_t* in, size_t available, void* data, uint64_t size) {

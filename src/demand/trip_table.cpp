@@ -67,6 +67,7 @@ uint32_t TripTable::add(const NewTrip& t, const Network& net) {
 }
 
 void TripTable::set_route(uint32_t v, const std::vector<uint32_t>& edges) {
+  if (v < loaded_trips_) replaced_.try_emplace(v, LoadedRoute{d_.route_begin[v], d_.route_length[v]});
   d_.route_begin[v] = static_cast<uint32_t>(d_.route_edges.size());
   d_.route_length[v] = static_cast<uint32_t>(edges.size());
   d_.route_edges.insert(d_.route_edges.end(), edges.begin(), edges.end());

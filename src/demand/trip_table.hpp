@@ -57,8 +57,10 @@ class TripTable {
   Changes take_changes();
 
   /// The routes and the stops' positions as they are now (rerouting replaces them), for a checkpoint (an
-  /// archive of engine/state_archive.hpp). Read back into a table made from the same demand, every route
-  /// that differs counts as changed. A table that grew while it ran (trips added) is not saved.
+  /// archive of engine/state_archive.hpp): the appended route edges and the trips whose route changed, each
+  /// with its loaded route. Read back into a table made from the same demand (whose own changed routes are
+  /// undone first), every route that differs counts as changed. A table that grew while it ran (trips
+  /// added) is not saved.
   template <class A>
   void visit_routes(A& a);
 
@@ -68,6 +70,12 @@ class TripTable {
   uint64_t loaded_route_edges_ = 0;                  // and route edges
   std::unordered_map<std::string, uint32_t> index_;  // vehicle ids, built at the first add
   Changes changes_;
+  // The loaded route (begin, length) of each loaded trip whose route was replaced: a checkpoint saves only
+  // these trips' routes.
+  struct LoadedRoute {
+    uint32_t begin = 0, length = 0;
+  };
+  std::unordered_map<uint32_t, LoadedRoute> replaced_;
 };
 
 template <class A>
@@ -78,26 +86,51 @@ void TripTable::visit_routes(A& a) {
   a(trips);
   if (trips != d_.size())
     a.fail("the state has " + std::to_string(trips) + " trips, this run " + std::to_string(d_.size()));
-  std::vector<uint32_t> tail, begin = d_.route_begin, length = d_.route_length, stops = d_.stops.route_pos;
-  if constexpr (!A::kReads)
+  std::vector<uint32_t> tail, replaced, loaded_begin, loaded_length, begin, length;
+  std::vector<uint32_t> stops = d_.stops.route_pos;
+  if constexpr (!A::kReads) {
     tail.assign(d_.route_edges.begin() + static_cast<std::ptrdiff_t>(loaded_route_edges_),
                 d_.route_edges.end());
+    for (const auto& [v, r] : replaced_) replaced.push_back(v);
+    std::sort(replaced.begin(), replaced.end());
+    for (const uint32_t v : replaced) {
+      loaded_begin.push_back(replaced_.at(v).begin);
+      loaded_length.push_back(replaced_.at(v).length);
+      begin.push_back(d_.route_begin[v]);
+      length.push_back(d_.route_length[v]);
+    }
+  }
   a(tail);
+  a(replaced);
+  a(loaded_begin);
+  a(loaded_length);
   a(begin);
   a(length);
   a(stops);
   if constexpr (A::kReads) {
-    if (begin.size() != d_.size() || length.size() != d_.size() || stops.size() != d_.stops.route_pos.size())
+    const size_t n = replaced.size();
+    if (loaded_begin.size() != n || loaded_length.size() != n || begin.size() != n || length.size() != n ||
+        stops.size() != d_.stops.route_pos.size())
       a.fail("the trip table's routes do not match this run's trips");
+    // This table's own replaced routes (a vehicle that re-routed at the begin time) back to the loaded ones.
+    for (const auto& [v, r] : replaced_) {
+      d_.route_begin[v] = r.begin;
+      d_.route_length[v] = r.length;
+      changes_.new_routes.push_back(v);
+    }
+    replaced_.clear();
     d_.route_edges.resize(loaded_route_edges_);
     d_.route_edges.insert(d_.route_edges.end(), tail.begin(), tail.end());
     changes_.first_new_route_edge = std::min(changes_.first_new_route_edge, loaded_route_edges_);
-    for (uint32_t v = 0; v < d_.size(); ++v) {
-      if (uint64_t{begin[v]} + length[v] > d_.route_edges.size()) a.fail("a route past the route edges");
-      if (begin[v] == d_.route_begin[v] && length[v] == d_.route_length[v]) continue;
-      d_.route_begin[v] = begin[v];
-      d_.route_length[v] = length[v];
-      if (v < changes_.first_new_vehicle) changes_.new_routes.push_back(v);
+    for (size_t i = 0; i < n; ++i) {
+      const uint32_t v = replaced[i];
+      if (v >= d_.size() || uint64_t{begin[i]} + length[i] > d_.route_edges.size() ||
+          uint64_t{loaded_begin[i]} + loaded_length[i] > loaded_route_edges_)
+        a.fail("a replaced route past the route edges");
+      replaced_[v] = LoadedRoute{loaded_begin[i], loaded_length[i]};
+      d_.route_begin[v] = begin[i];
+      d_.route_length[v] = length[i];
+      changes_.new_routes.push_back(v);
     }
     if (stops != d_.stops.route_pos) {
       d_.stops.route_pos = stops;

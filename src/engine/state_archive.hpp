@@ -69,6 +69,13 @@ class StateOut {
     (*this)(n);
     put_zero_runs(bytes_, v.data(), n * sizeof(T));
   }
+  /// A vector whose elements are mostly `usual` (a lane of -1: none), as the stretches where they differ.
+  template <class T>
+  void sparse(std::vector<T>& v, const T& usual) {
+    std::vector<T> x = v;
+    xor_each(x.data(), x.size(), usual);
+    sparse(x);
+  }
   /// Bytes written as they are (a backend's own state).
   void raw(const std::vector<uint8_t>& b) {
     uint64_t n = b.size();
@@ -148,6 +155,11 @@ class StateIn {
     } catch (const std::runtime_error& e) {
       fail(e.what());
     }
+  }
+  template <class T>
+  void sparse(std::vector<T>& v, const T& usual) {
+    sparse(v);
+    xor_each(v.data(), v.size(), usual);
   }
   void raw(std::vector<uint8_t>& b) { (*this)(b); }
 

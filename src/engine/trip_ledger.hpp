@@ -82,17 +82,17 @@ class TripLedger {
 
   template <class A>
   void visit_state(A& a) {
-    // Per trip, mostly the values of trips not departed yet (zero, but the lanes' -1).
+    // Per trip, mostly the values of trips not departed yet (zero, but the positions' and lanes' -1).
     a.sparse(status_);
     a.sparse(resume_rp_);
     a.sparse(resume_speed_);
-    a.sparse(resume_pos_);
-    a(resume_lane_);
+    a.sparse(resume_pos_, -1.0f);
+    a.sparse(resume_lane_, int32_t{-1});
     a(carried_);
     a.sparse(depart_time_);
     a.sparse(depart_pos_);
     a.sparse(depart_speed_);
-    a(depart_lane_);
+    a.sparse(depart_lane_, int32_t{-1});
     a(finished_);
     a(depart_delay_sum_);
     a(travel_time_sum_);

@@ -300,9 +300,10 @@ class CpuStepper final : public Stepper {
 
  private:
   // The run state (save_state): each table with whether its length is fixed by the setup, each vehicle
-  // column's entries of the first `num_slots` slots, and as mostly zeros the lane maps, the lane records
-  // (where counters_ aligns them), the emission sums and the junction stands. Everything else a step writes
-  // before it reads it.
+  // column's entries of the first `num_slots` slots, and as mostly zeros the lane maps, the claims and merge
+  // requests, the lane records (where counters_ aligns them), the emission sums and the junction stands.
+  // Everything else a step writes before it reads it; the approaches count only in the step that wrote them
+  // (LaneApproach::step).
   template <class Table, class Span, class Sparse>
   void visit_state(Table&& table, Span&& span, Sparse&& sparse, uint32_t num_slots) {
     sparse(map_[0].data(), map_[0].size());
@@ -312,9 +313,8 @@ class CpuStepper final : public Stepper {
     table(actuated_phase_, true);
     table(actuated_start_ms_, true);
     table(det_last_ms_, true);
-    table(approach_, true);
-    table(claims_, true);
-    table(merge_requests_, true);
+    sparse(claims_.data(), claims_.size());
+    sparse(merge_requests_.data(), merge_requests_.size());
     if (lane_records_ != nullptr) sparse(lane_records_, uint64_t{kNumTrafficCounters} * setup_.net.num_lanes);
     sparse(emission_sums_.data(), emission_sums_.size());
     sparse(junction_stand_[0].data(), junction_stand_[0].size());

@@ -1057,9 +1057,8 @@ class CudaStepper final : public Stepper {
     table(actuated_state_.phase, ns, Kept::Whole);
     table(actuated_state_.phase_start_ms, ns, Kept::Whole);
     table(actuated_state_.det_last_ms, size_t{num_loops_}, Kept::Whole);
-    table(dev_.approach, nl, Kept::Whole);
-    table(dev_.claims, nl, Kept::Whole);
-    table(dev_.merge_requests, kMergeSlots * nl, Kept::Whole);
+    table(dev_.claims, nl, Kept::Sparse);
+    table(dev_.merge_requests, kMergeSlots * nl, Kept::Sparse);
     if (counters_ != nullptr) table(counters_, kNumTrafficCounters * nl, Kept::Sparse);
     table(dev_.em.sums, dev_.em.sums ? kNumEmissionSums * nl : 0, Kept::Sparse);
     table(junction_stand_[0], junction_stand_[0] ? nl : 0, Kept::Sparse);
