@@ -3,7 +3,7 @@
 # outputs, for LPSim (--save-state.times / --load-state) and, on a .sumocfg, for SUMO beside it
 # (--save-state.times with --save-state.rng, then --load-state --begin T). Each simulator runs the scenario
 # whole, then again saving at --at, then resumes from that state; the resumed trips are compared with the
-# whole run's: LPSim's tripinfo and summary byte for byte, SUMO's tripinfo line by line for the trips that
+# whole run's: LPSim's outputs byte for byte, SUMO's tripinfo line by line for the trips that
 # end after the save. Works in copies (bench/work/state/), as add-file outputs land beside their files.
 #
 # Usage: bench/state_bench.sh --scenario CFG_OR_SNAPSHOT --at T [--end T] [--threads 2] [--no-sumo]
@@ -52,20 +52,22 @@ outputs=(--tripinfo-output trip.xml --summary-output sum.xml --no-step-log -W --
 for run in whole saved; do
   # shellcheck disable=SC2046
   set -- $(input "lpsim_$run")
+  scenario_args=("$@")  # the saved run's: the resumed run continues its outputs, add-file ones included
   args=(run "$@" "${end_args[@]}" "${outputs[@]}")
   [[ "$run" == saved ]] && args+=(--save-state.times "$at")
   (cd "$work/lpsim_$run" && echo "$run $(measure "$work/lpsim_$run.log" "$lpsim" "${args[@]}")") >>"$work/lpsim.times"
 done
 state=$(ls "$work"/lpsim_saved/*.lpstate)
-# shellcheck disable=SC2046
-set -- $(input lpsim_saved_again)
 (cd "$work/lpsim_saved" &&
-  echo "resumed $(measure "$work/lpsim_resumed.log" "$lpsim" run "$@" "${end_args[@]}" "${outputs[@]}" \
-    --load-state "$state")") >>"$work/lpsim.times"
+  echo "resumed $(measure "$work/lpsim_resumed.log" "$lpsim" run "${scenario_args[@]}" "${end_args[@]}" \
+    "${outputs[@]}" --load-state "$state")") >>"$work/lpsim.times"
+# Every file of the whole run's folder: its outputs (the scenario's add-file outputs too) and the inputs.
 identical=yes
-for f in trip.xml sum.xml; do cmp -s "$work/lpsim_whole/$f" "$work/lpsim_saved/$f" || identical=no; done
+for f in "$work"/lpsim_whole/*; do
+  cmp -s "$f" "$work/lpsim_saved/$(basename "$f")" || identical="no ($(basename "$f") differs)"
+done
 at_state=$(grep -o "<step time=\"$at.00\"[^>]*" "$work/lpsim_whole/sum.xml" | grep -oE 'running="[0-9]+" waiting="[0-9]+"' || true)
-echo "LPSim: state $(stat -c %s "$state") bytes at $at s ($at_state); resumed tripinfo and summary identical: $identical"
+echo "LPSim: state $(stat -c %s "$state") bytes at $at s ($at_state); resumed outputs identical: $identical"
 # The target: at most 100 bytes per vehicle running or waiting, plus its route (4 bytes per edge; the
 # scenario's mean route, from lpsim info, stands for theirs).
 # shellcheck disable=SC2046

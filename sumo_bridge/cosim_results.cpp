@@ -74,7 +74,10 @@ void Cosimulation::merge_tripinfo(bool after_failure) {
     } else {
       continue;  // still on its way when the run ended
     }
-    if (dep.lane < 0 && ps != nullptr) {  // it departed in SUMO
+    // Where it departed: in LPSim's record of its trip (kept on by the ledger until it ended), lane -1 when
+    // it departed in SUMO.
+    const int32_t depart_lane = held != held_trips_.end() ? static_cast<int32_t>(r.depart_lane) : dep.lane;
+    if (depart_lane < 0 && ps != nullptr) {  // it departed in SUMO
       const SumoTripPiece& first = ps->front();
       r.depart = first.depart;
       r.depart_delay = first.depart_delay;

@@ -102,6 +102,13 @@ class StateBytesOut {
   void sparse(const std::vector<T>& v) {
     sparse(v.data(), v.size());
   }
+  /// An array whose elements are mostly `usual` (a lane's "none"), as the stretches where they differ.
+  template <class T>
+  void sparse(const T* data, uint64_t n, const T& usual) {
+    std::vector<T> x(data, data + n);
+    xor_each(x.data(), n, usual);
+    sparse(x.data(), n);
+  }
   std::vector<uint8_t>& bytes() { return bytes_; }
 
  private:
@@ -152,6 +159,12 @@ class StateBytesIn {
   template <class T>
   void sparse(std::vector<T>& v) {
     sparse(v.data(), v.size());
+  }
+  /// What StateBytesOut::sparse wrote of an array mostly `usual`.
+  template <class T>
+  void sparse(T* data, uint64_t n, const T& usual) {
+    sparse(data, n);
+    xor_each(data, n, usual);
   }
   bool done() const { return at_ == in_.size(); }
 

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "backends/state_bytes.hpp"
 #include "net/network.hpp"
 
 namespace lpsim {
@@ -50,14 +51,21 @@ class RoutingSpeeds {
     a(samples_);
     const size_t steps = static_cast<size_t>(steps_);
     std::vector<double> speeds, rows;
+    // A sample of an edge that was empty then is its empty speed: the rows are saved as where they differ
+    // from it.
+    auto xor_empty = [&](size_t i, uint32_t e) {
+      xor_each(rows.data() + i * steps, steps, mean_speed(e, nullptr));
+    };
     if constexpr (!A::kReads)
-      for (const uint32_t e : driven_edges_) {
+      for (size_t i = 0; i < driven_edges_.size(); ++i) {
+        const uint32_t e = driven_edges_[i];
         speeds.push_back(speed_[e]);
         rows.insert(rows.end(), past_.begin() + static_cast<std::ptrdiff_t>(e * steps),
                     past_.begin() + static_cast<std::ptrdiff_t>((e + 1) * steps));
+        xor_empty(i, e);
       }
     a(speeds);
-    a(rows);
+    a.sparse(rows);
     if constexpr (A::kReads) {
       if (speeds.size() != driven_edges_.size() || rows.size() != driven_edges_.size() * steps)
         a.fail("the rerouting device's speeds do not match its driven edges");
@@ -67,6 +75,7 @@ class RoutingSpeeds {
           a.fail("the rerouting device's driven edges are not this network's");
         driven_[e] = 1;
         speed_[e] = speeds[i];
+        xor_empty(i, e);
         std::copy(rows.begin() + static_cast<std::ptrdiff_t>(i * steps),
                   rows.begin() + static_cast<std::ptrdiff_t>((i + 1) * steps),
                   past_.begin() + static_cast<std::ptrdiff_t>(e * steps));

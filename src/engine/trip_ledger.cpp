@@ -93,6 +93,9 @@ void TripLedger::ended(const VehicleEnd& e, bool teleported, double now, double 
   r.teleported = teleported;
   travel_time_sum_ += r.arrival - r.depart;
   finished_.push_back(r);
+  // The record carries the departure on; the account keeps only that the trip ended, so that a saved state
+  // holds nothing of the trips that ended but their status.
+  set_departure(v, DepartRecord{});
 }
 
 std::vector<TripRecord> TripLedger::take_finished() {

@@ -72,7 +72,8 @@ class TripLedger {
   }
   void set_departure(uint32_t v, const DepartRecord& d);
 
-  /// A trip ended at time `now`: its record joins those taken by take_finished().
+  /// A trip ended at time `now`: its record joins those taken by take_finished(), which carries its
+  /// departure on (departure() is then none).
   void ended(const VehicleEnd& end, bool teleported, double now, double depart_due, double step_length,
              float speed_factor);
   std::vector<TripRecord> take_finished();

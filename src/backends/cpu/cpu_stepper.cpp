@@ -283,7 +283,7 @@ class CpuStepper final : public Stepper {
   std::vector<uint8_t> save_state(uint32_t num_slots) override {
     StateBytesOut out;
     visit_state([&](auto& v, bool) { out.array(v); }, [&](auto* span, uint64_t n) { out.array(span, n); },
-                [&](auto* span, uint64_t n) { out.sparse(span, n); }, num_slots);
+                [&](auto* span, uint64_t n, auto usual) { out.sparse(span, n, usual); }, num_slots);
     out.value(state_map_);
     return std::move(out.bytes());
   }
@@ -293,7 +293,7 @@ class CpuStepper final : public Stepper {
     if (num_slots > 0) veh_.reserve(num_slots, false);
     visit_state([&](auto& v, bool fixed) { in.array(v, fixed); },
                 [&](auto* span, uint64_t n) { in.array(span, n); },
-                [&](auto* span, uint64_t n) { in.sparse(span, n); }, num_slots);
+                [&](auto* span, uint64_t n, auto usual) { in.sparse(span, n, usual); }, num_slots);
     in.value(state_map_);
     if (!in.done()) throw std::runtime_error("backend state: bytes left after its last array");
   }
@@ -301,24 +301,26 @@ class CpuStepper final : public Stepper {
  private:
   // The run state (save_state): each table with whether its length is fixed by the setup, each vehicle
   // column's entries of the first `num_slots` slots, and as mostly zeros the lane maps, the claims and merge
-  // requests, the lane records (where counters_ aligns them), the emission sums and the junction stands.
+  // requests, the lane records (where counters_ aligns them) and the emission sums, and as mostly
+  // kNoJunctionStand the junction stands.
   // Everything else a step writes before it reads it; the approaches count only in the step that wrote them
   // (LaneApproach::step).
   template <class Table, class Span, class Sparse>
   void visit_state(Table&& table, Span&& span, Sparse&& sparse, uint32_t num_slots) {
-    sparse(map_[0].data(), map_[0].size());
-    sparse(map_[1].data(), map_[1].size());
+    sparse(map_[0].data(), map_[0].size(), uint8_t{0});
+    sparse(map_[1].data(), map_[1].size(), uint8_t{0});
     table(link_state_, true);
     table(signal_next_switch_ms_, true);
     table(actuated_phase_, true);
     table(actuated_start_ms_, true);
     table(det_last_ms_, true);
-    sparse(claims_.data(), claims_.size());
-    sparse(merge_requests_.data(), merge_requests_.size());
-    if (lane_records_ != nullptr) sparse(lane_records_, uint64_t{kNumTrafficCounters} * setup_.net.num_lanes);
-    sparse(emission_sums_.data(), emission_sums_.size());
-    sparse(junction_stand_[0].data(), junction_stand_[0].size());
-    sparse(junction_stand_[1].data(), junction_stand_[1].size());
+    sparse(claims_.data(), claims_.size(), uint64_t{0});
+    sparse(merge_requests_.data(), merge_requests_.size(), uint64_t{0});
+    if (lane_records_ != nullptr)
+      sparse(lane_records_, uint64_t{kNumTrafficCounters} * setup_.net.num_lanes, int64_t{0});
+    sparse(emission_sums_.data(), emission_sums_.size(), int64_t{0});
+    sparse(junction_stand_[0].data(), junction_stand_[0].size(), kNoJunctionStand);
+    sparse(junction_stand_[1].data(), junction_stand_[1].size(), kNoJunctionStand);
     table(active_, false);
     visit_vehicle_columns([&](uint32_t per, auto*& c) { span(c, uint64_t{num_slots} * per); }, veh_.view());
   }

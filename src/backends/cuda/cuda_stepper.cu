@@ -42,6 +42,14 @@ namespace lpsim {
 
 namespace {
 
+// A value whose bytes are all ones (a lane's "none", ~0, in a table saved as mostly that).
+template <class T>
+T all_ones() {
+  T v;
+  std::memset(&v, 0xFF, sizeof v);
+  return v;
+}
+
 // Slots the device starts with, at least (grown by half again when the host hands out more). The host
 // emulation starts from one, so that every test there runs the growth.
 #ifndef LPSIM_GPU_INITIAL_SLOTS
@@ -790,7 +798,10 @@ class CudaStepper final : public Stepper {
       using T = std::remove_pointer_t<decltype(dev)>;
       std::vector<T> h(n);
       copy_to_host(h.data(), dev, n);
-      kept == Kept::Sparse ? out.sparse(h) : out.array(h);
+      if (kept == Kept::SparseOnes)
+        out.sparse(h.data(), n, all_ones<T>());
+      else
+        kept == Kept::Sparse ? out.sparse(h) : out.array(h);
     });
     out.value(state_map_);
     return std::move(out.bytes());
@@ -805,6 +816,8 @@ class CudaStepper final : public Stepper {
       std::vector<T> h(n);
       if (kept == Kept::Sparse) {
         in.sparse(h);
+      } else if (kept == Kept::SparseOnes) {
+        in.sparse(h.data(), n, all_ones<T>());
       } else if (kept == Kept::Active) {
         in.array(h, false);
         if (h.size() > slot_capacity_)
@@ -1043,9 +1056,9 @@ class CudaStepper final : public Stepper {
     actuated_state_.det_last_ms = upload(never.data(), loops);
   }
 
-  // How a table of the run state is kept (visit_state): whole, as mostly zeros, or the active list, whose
-  // length is the number of active slots.
-  enum class Kept { Whole, Sparse, Active };
+  // How a table of the run state is kept (visit_state): whole, as mostly zeros, as mostly all ones (a
+  // lane's "none", ~0), or the active list, whose length is the number of active slots.
+  enum class Kept { Whole, Sparse, SparseOnes, Active };
   // The run state in CpuStepper::visit_state's order: table(device pointer, length, how it is kept).
   template <class Table>
   void visit_state(uint32_t num_slots, Table&& table) {
@@ -1061,8 +1074,8 @@ class CudaStepper final : public Stepper {
     table(dev_.merge_requests, kMergeSlots * nl, Kept::Sparse);
     if (counters_ != nullptr) table(counters_, kNumTrafficCounters * nl, Kept::Sparse);
     table(dev_.em.sums, dev_.em.sums ? kNumEmissionSums * nl : 0, Kept::Sparse);
-    table(junction_stand_[0], junction_stand_[0] ? nl : 0, Kept::Sparse);
-    table(junction_stand_[1], junction_stand_[1] ? nl : 0, Kept::Sparse);
+    table(junction_stand_[0], junction_stand_[0] ? nl : 0, Kept::SparseOnes);
+    table(junction_stand_[1], junction_stand_[1] ? nl : 0, Kept::SparseOnes);
     table(active_[cur_active_], size_t{num_active_}, Kept::Active);
     visit_vehicle_columns([&](uint32_t per, auto*& c) { table(c, size_t{num_slots} * per, Kept::Whole); },
                           dev_.veh);
