@@ -24,6 +24,12 @@ inline void put_zero_runs(std::vector<uint8_t>& out, const void* data, uint64_t 
   put(&stretches, sizeof stretches);
   uint64_t at = 0;
   while (at < size) {
+    // Zeros skipped a word at a time: a lane map is hundreds of megabytes of them.
+    while (at < size && (at & 7) != 0 && b[at] == 0) ++at;
+    for (uint64_t word = 0; at + 8 <= size; at += 8) {
+      std::memcpy(&word, b + at, 8);
+      if (word != 0) break;
+    }
     while (at < size && b[at] == 0) ++at;
     if (at == size) break;
     uint64_t end = at, zeros = 0;
@@ -37,6 +43,15 @@ inline void put_zero_runs(std::vector<uint8_t>& out, const void* data, uint64_t 
     at = end;
   }
   std::memcpy(out.data() + count_at, &stretches, sizeof stretches);
+}
+
+template <class T>
+bool all_zero_bytes(const T& v) {
+  unsigned char b[sizeof(T)];
+  std::memcpy(b, &v, sizeof(T));
+  for (const unsigned char c : b)
+    if (c != 0) return false;
+  return true;
 }
 
 /// XORs each of the n elements at data with `usual`, byte by byte: an array whose elements are mostly `usual`
@@ -105,6 +120,7 @@ class StateBytesOut {
   /// An array whose elements are mostly `usual` (a lane's "none"), as the stretches where they differ.
   template <class T>
   void sparse(const T* data, uint64_t n, const T& usual) {
+    if (all_zero_bytes(usual)) return sparse(data, n);  // no copy of a lane map
     std::vector<T> x(data, data + n);
     xor_each(x.data(), n, usual);
     sparse(x.data(), n);
@@ -164,7 +180,7 @@ class StateBytesIn {
   template <class T>
   void sparse(T* data, uint64_t n, const T& usual) {
     sparse(data, n);
-    xor_each(data, n, usual);
+    if (!all_zero_bytes(usual)) xor_each(data, n, usual);
   }
   bool done() const { return at_ == in_.size(); }
 
