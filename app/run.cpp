@@ -98,8 +98,18 @@ SimulationOptions Run::counting_lanes(SimulationOptions options, const std::vect
   return options;
 }
 
+size_t Run::continued_outputs() const {
+  const OutputSpec& out = config_.outputs;
+  size_t n = mean_data_.size();
+  for (const std::string* o : {&out.fcd, &out.tripinfo, &out.summary}) n += o->empty() ? 0 : 1;
+  return n;
+}
+
 void Run::open_outputs(const std::vector<int64_t>* continue_at) {
   const OutputSpec& out = config_.outputs;
+  if (continue_at && continue_at->size() != continued_outputs())
+    throw std::logic_error("open_outputs: lengths for " + std::to_string(continue_at->size()) + " outputs, " +
+                           std::to_string(continued_outputs()) + " to continue");
   size_t next = 0;
   auto at = [&] { return continue_at ? (*continue_at)[next++] : int64_t{-1}; };
   if (!out.fcd.empty()) fcd_ = std::make_unique<FcdWriter>(out.fcd, scenario_.network, demand(), at());
@@ -375,9 +385,7 @@ void Run::resume(const std::string& path) {
     StateIn a(payload.data(), payload.size(), path);
     std::vector<int64_t> sizes;
     a(sizes);
-    size_t outputs = mean_data_.size();
-    for (const std::string* o : {&config_.outputs.fcd, &config_.outputs.tripinfo, &config_.outputs.summary})
-      outputs += o->empty() ? 0 : 1;
+    const size_t outputs = continued_outputs();
     if (sizes.size() != outputs)
       a.fail("saved with " + std::to_string(sizes.size()) + " outputs, resumed with " +
              std::to_string(outputs));

@@ -130,8 +130,11 @@ class Run {
                                           const std::vector<MeanDataOutput>& outputs);
   /// The trips the simulation runs, which may grow while it runs (the writers name their vehicles).
   const Demand& demand() const { return sim_.demand(); }
-  /// `continue_at`: where each output a resumed run continues (output_sizes()'s order), else null.
+  /// `continue_at`: where each output a resumed run continues (output_sizes()'s order, continued_outputs()
+  /// of them), else null.
   void open_outputs(const std::vector<int64_t>* continue_at);
+  /// How many outputs a resumed run continues: those of output_sizes(), known before they are opened.
+  size_t continued_outputs() const;
   void add_own_actions();
   void write_summary_row();
   void write_unfinished_trips();

@@ -39,30 +39,23 @@ std::vector<std::pair<std::string, std::string>> outputs_in(const fs::path& dir,
   return out;
 }
 
+// The outputs both tests compare: FCD, tripinfo, summary, edgeData and statistic.
+std::vector<std::string> compared_outputs() {
+  return {"--fcd-output", "fcd.xml",           "--tripinfo-output", "tripinfo.xml",       "--summary-output",
+          "summary.xml",  "--edgedata-output", "edgedata.xml",      "--statistic-output", "statistic.xml"};
+}
+
 class CliStateTest : public ::testing::TestWithParam<std::string> {
  protected:
   // The scenario copied to `sub`, run there with every output and `extra`.
   CliResult run_in(const std::string& sub, const std::vector<std::string>& extra) {
     const fs::path dir = tmp_.path() / sub;
     if (!fs::exists(dir)) test::copy_scenario(GetParam(), dir);
-    std::vector<std::string> args{"run",
-                                  "-c",
-                                  GetParam() + ".sumocfg",
-                                  "--no-step-log",
-                                  "-W",
-                                  "--fcd-output",
-                                  "fcd.xml",
-                                  "--tripinfo-output",
-                                  "tripinfo.xml",
-                                  "--summary-output",
-                                  "summary.xml",
-                                  "--edgedata-output",
-                                  "edgedata.xml",
-                                  "--lanedata-output",
-                                  "lanedata.xml",
-                                  "--statistic-output",
-                                  "statistic.xml",
-                                  "--tripinfo-output.write-unfinished"};
+    std::vector<std::string> args{"run", "-c", GetParam() + ".sumocfg", "--no-step-log", "-W"};
+    const std::vector<std::string> outputs = compared_outputs();
+    args.insert(args.end(), outputs.begin(), outputs.end());
+    for (const char* a : {"--lanedata-output", "lanedata.xml", "--tripinfo-output.write-unfinished"})
+      args.emplace_back(a);
     args.insert(args.end(), extra.begin(), extra.end());
     return test::run_lpsim(dir, args);
   }
@@ -110,24 +103,11 @@ INSTANTIATE_TEST_SUITE_P(BundledScenarios, CliStateTest,
 // was never stopped. grid_tls run on far past its demand (empty steps), so that the signal lands mid-run.
 TEST(CliStateSignalTest, APreemptedRunResumedFromTheStateItSavedOnTheSignalWritesTheSameOutputs) {
   test::TempDir tmp("lpsim_state_signal");
-  std::vector<std::string> args{"run",
-                                "-c",
-                                std::string(LPSIM_SCENARIOS_DIR) + "/grid_tls/grid_tls.sumocfg",
-                                "--end",
-                                "40000",
-                                "--fcd-output",
-                                "fcd.xml",
-                                "--tripinfo-output",
-                                "tripinfo.xml",
-                                "--summary-output",
-                                "summary.xml",
-                                "--edgedata-output",
-                                "edgedata.xml",
-                                "--statistic-output",
-                                "statistic.xml",
-                                "--no-warnings",
-                                "--progress-interval",
-                                "0.02"};
+  std::vector<std::string> args{"run", "-c", std::string(LPSIM_SCENARIOS_DIR) + "/grid_tls/grid_tls.sumocfg",
+                                "--end", "40000"};
+  const std::vector<std::string> outputs = compared_outputs();
+  args.insert(args.end(), outputs.begin(), outputs.end());
+  for (const char* a : {"--no-warnings", "--progress-interval", "0.02"}) args.emplace_back(a);
   fs::create_directories(tmp.path() / "whole");
   fs::create_directories(tmp.path() / "stopped");
   const CliResult whole = test::run_lpsim(tmp.path() / "whole", args);
