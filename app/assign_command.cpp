@@ -86,7 +86,7 @@ void load_assignment(const std::vector<std::string>& args, int ranks, LoadedAssi
   l->options.backend = device.backend;
   if (config.device != ComputeDevice::Cpu && MpiSession::world_rank() == 0)
     std::fprintf(stderr, "lpsim: device %s\n", device.description.c_str());
-  l->edge_part = run_edge_parts(config, l->sc, &l->parts);
+  l->edge_part = run_edge_parts(config, l->sc, ranks, &l->parts);
   require_one_part_per_rank(ranks, l->parts);
   const int first = config.assign.first_iteration;
   if (first > 0) {

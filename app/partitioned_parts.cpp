@@ -1,12 +1,14 @@
 #include "app/partitioned_parts.hpp"
 
 #include <algorithm>
+#include <cstdio>
 
 #include "app/partition_resolution.hpp"
 #include "converters/partition_file.hpp"
 #include "core/error.hpp"
 #include "partition/junction_graph.hpp"
 #include "partition/partition_method.hpp"
+#include "transport/mpi/mpi_transport.hpp"
 
 namespace lpsim {
 
@@ -20,7 +22,34 @@ void refuse_method_without_parts(const ConfigSpec& config) {
     throw InputError("--partition-method chooses how --parts K splits the network: give --parts K as well");
 }
 
-std::vector<int32_t> run_edge_parts(const ConfigSpec& config, const Scenario& sc, int32_t* parts) {
+double mean_vehicles_per_step(const Scenario& sc, const ConfigSpec& config) {
+  const Demand& d = sc.demand;
+  const Network& net = sc.network;
+  if (d.size() == 0) return 0;
+  // A trip's free-flow time: its route's edges at their speed, averaged over every trip (a sample of them in
+  // a large demand: the estimate decides only whether parts pay).
+  const uint32_t stride = std::max<uint32_t>(1, d.size() / 10000);
+  double trip_seconds = 0;
+  uint32_t sampled = 0;
+  for (uint32_t v = 0; v < d.size(); v += stride, ++sampled)
+    for (uint32_t k = 0; k < d.route_length[v]; ++k) {
+      const uint32_t e = d.route_edges[d.route_begin[v] + k];
+      if (net.edge_speed[e] > 0) trip_seconds += net.edge_length[e] / net.edge_speed[e];
+    }
+  trip_seconds /= sampled;
+  const double first = std::max(config.begin, static_cast<double>(d.depart.front()));
+  // The run's end, or the demand's when it has run out before.
+  double end = static_cast<double>(d.depart.back()) + trip_seconds;
+  if (config.end >= 0) end = std::min(end, config.end);
+  // The trips that depart while the run lasts, each on the road for that time or until the run ends.
+  double vehicle_seconds = 0;
+  for (auto t = std::lower_bound(d.depart.begin(), d.depart.end(), config.begin);
+       t != d.depart.end() && *t < end; ++t)
+    vehicle_seconds += std::min(trip_seconds, end - static_cast<double>(*t));
+  return vehicle_seconds / std::max(config.step_length, end - first);
+}
+
+std::vector<int32_t> run_edge_parts(const ConfigSpec& config, const Scenario& sc, int ranks, int32_t* parts) {
   const Network& net = sc.network;
   std::vector<int32_t> junction_part;
   int32_t k = config.parts;
@@ -36,6 +65,37 @@ std::vector<int32_t> run_edge_parts(const ConfigSpec& config, const Scenario& sc
     }
     const PartitionMethod method = *partition_method_from_name(config.partition_method);
     const JunctionGraph g = build_junction_graph(net, sc.demand, config.step_length);
+    if (config.parts_min_vehicles > 0) {
+      // A part's step costs its exchange rounds whatever it carries: below some vehicles per part the rounds
+      // cost more than the part saves.
+      const double vehicles = mean_vehicles_per_step(sc, config);
+      const auto fit = static_cast<int32_t>(
+          std::clamp(vehicles / static_cast<double>(config.parts_min_vehicles), 1.0, static_cast<double>(k)));
+      if (fit < k) {
+        char why[160];
+        std::snprintf(why, sizeof why, "about %.0f vehicles per step in free flow, fewer than %lld per part",
+                      vehicles, static_cast<long long>(config.parts_min_vehicles));
+        if (ranks > 1) {
+          if (!config.no_warnings && MpiSession::world_rank() == 0)
+            std::fprintf(stderr,
+                         "lpsim: warning: --parts %d: %s: these parts cost more in exchanges than they "
+                         "save (%d would pay)\n",
+                         k, why, fit);
+        } else {
+          if (!config.no_warnings)
+            std::fprintf(
+                stderr,
+                "lpsim: warning: --parts %d: %s: running %d part%s, as more would cost more in exchanges "
+                "than they save (--parts.min-vehicles 0 keeps %d)\n",
+                k, why, fit, fit == 1 ? "" : "s", k);
+          k = fit;
+          if (k == 1) {
+            *parts = 1;
+            return {};
+          }
+        }
+      }
+    }
     junction_part = partition_junctions(g, k, method, static_cast<uint64_t>(config.seed));
   }
   *parts = k;

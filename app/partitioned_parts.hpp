@@ -17,9 +17,17 @@
 namespace lpsim {
 
 /// The part of each edge for the run `config` asks for: the partition file's, or METIS/Leiden/random with
-/// config.parts parts (the demand weighting the graph, as `lpsim partition` does). Empty when the run is not
-/// partitioned. InputError for a bad partition file or part count (file:line).
-std::vector<int32_t> run_edge_parts(const ConfigSpec& config, const Scenario& sc, int32_t* parts);
+/// config.parts parts (the demand weighting the graph, as `lpsim partition` does), or fewer when the parts
+/// would carry fewer than config.parts_min_vehicles vehicles each per step (said on stderr; a job of `ranks`
+/// MPI ranks keeps its parts and is warned). Empty when the run is not partitioned. InputError for a bad
+/// partition file or part count (file:line).
+std::vector<int32_t> run_edge_parts(const ConfigSpec& config, const Scenario& sc, int ranks, int32_t* parts);
+
+/// The vehicles on the road at a time on average, in free flow, by the routes of `sc`'s demand: the trips
+/// departing while the run lasts, each for the mean free-flow time of a trip or until the run ends, over the
+/// time from the first departure to the run's end, or to the last departure plus a mean trip when that comes
+/// first.
+double mean_vehicles_per_step(const Scenario& sc, const ConfigSpec& config);
 
 /// InputError when --partition-method was given without --parts, or beside --partition-file.
 void refuse_method_without_parts(const ConfigSpec& config);

@@ -48,7 +48,7 @@ void load_run(const std::vector<std::string>& args, int ranks, LoadedRun* l) {
   l->options.emission_sums = Run::needs_emission_sums(l->sc, config.outputs);
   if (config.device != ComputeDevice::Cpu)
     std::fprintf(stderr, "lpsim: device %s\n", device.description.c_str());
-  l->edge_part = run_edge_parts(config, l->sc, &l->parts);
+  l->edge_part = run_edge_parts(config, l->sc, ranks, &l->parts);
   require_one_part_per_rank(ranks, l->parts);
   if (l->parts > 1 && !config.jam_report.empty())
     throw InputError("--jam-report reads one part's vehicles: leave out --parts and --partition-file");

@@ -84,7 +84,7 @@ case "$what" in
     for input in "-c scenarios/grid_tls/grid_tls.sumocfg" "$snapshot --end $end"; do
       for k in 1 2 4; do
         # shellcheck disable=SC2086
-        "$build/lpsim" run $input --device gpu --parts "$k" --no-step-log --no-warnings \
+        "$build/lpsim" run $input --device gpu --parts "$k" --parts.min-vehicles 0 --no-step-log --no-warnings \
           --tripinfo-output "$out/trip_$k.xml" >"$out/run_$k.log" 2>&1
         echo "== $input, $k parts: exit $?"
         grep -E "Duration|UPS|Part " "$out/run_$k.log"

@@ -42,8 +42,8 @@ common=(run "${input[@]}" --end "$end" --threads 1 --no-step-log --no-warnings)
 variant() {  # name log: runs one variant
   case "$1" in
     one) "$lpsim" "${common[@]}" ;;
-    inprocess) "$lpsim" "${common[@]}" --parts "$parts" ;;
-    mpi) "${mpirun[@]}" -n "$parts" "$lpsim" "${common[@]}" --parts "$parts" ;;
+    inprocess) "$lpsim" "${common[@]}" --parts "$parts" --parts.min-vehicles 0 ;;
+    mpi) "${mpirun[@]}" -n "$parts" "$lpsim" "${common[@]}" --parts "$parts" --parts.min-vehicles 0 ;;
   esac
 }
 

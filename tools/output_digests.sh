@@ -53,7 +53,7 @@ run_case() {  # binary label name folder config threads [parts [mpi ranks]]
     input=(--lpsim-nodes "$dir/nodes.csv" --lpsim-edges "$dir/edges.csv" --lpsim-od "$dir/od.csv")
   fi
   local part_args=() launch=()
-  if (( k > 1 )); then part_args=(--parts "$k"); fi
+  if (( k > 1 )); then part_args=(--parts "$k" --parts.min-vehicles 0); fi
   if (( mpi > 0 )); then launch=(mpirun --allow-run-as-root --oversubscribe -n "$mpi"); fi
   (cd "$dir" && "${launch[@]}" "$bin" run "${input[@]}" "${end_args[@]}" "${part_args[@]}" --threads "$threads" --no-warnings \
     --tripinfo-output out_tripinfo.xml --fcd-output out_fcd.xml --edgedata-output out_edgedata.xml \

@@ -144,6 +144,10 @@ struct ConfigSpec {
   int parts = 0;
   std::string partition_method = "metis";
   bool partition_method_given = false;  // named on the command line (it then needs --parts)
+  // The fewest vehicles per part and step (estimated from the routes in free flow) for which `run` and
+  // `assign` split the network into --parts K parts; with fewer they run fewer parts, as parts then cost more
+  // in exchanges than they save (measured: docs/PERFORMANCE.md, "Partitioned engine"). 0: always K.
+  int64_t parts_min_vehicles = 2500;
   // How long a part waits for another in one exchange before it calls it stopped (s).
   double part_timeout = 600;
   // Co-simulation over TraCI: how long SUMO may take to answer one call before it is killed (s).

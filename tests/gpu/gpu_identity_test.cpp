@@ -118,15 +118,17 @@ INSTANTIATE_TEST_SUITE_P(
                       IdentityCase{"flows", "flows", "", false},
                       // The rerouting device: speeds sampled from the device's state, routes set on it.
                       IdentityCase{"reroute_block", "reroute_block", "", false},
-                      IdentityCase{"reroute_block_in_2_parts", "reroute_block", "", false, "--parts 2"},
+                      IdentityCase{"reroute_block_in_2_parts", "reroute_block", "", false,
+                                   "--parts 2 --parts.min-vehicles 0"},
                       IdentityCase{"grid_tls_half_step", "grid_tls", "--step-length 0.5", false},
                       IdentityCase{"grid_tls_teleports", "grid_tls", "--time-to-teleport 20", true},
-                      IdentityCase{"grid_tls_in_3_parts", "grid_tls", "", false, "--parts 3"},
+                      IdentityCase{"grid_tls_in_3_parts", "grid_tls", "", false,
+                                   "--parts 3 --parts.min-vehicles 0"},
                       IdentityCase{"grid_tls_teleports_in_4_parts", "grid_tls", "--time-to-teleport 20", true,
-                                   "--parts 4"},
+                                   "--parts 4 --parts.min-vehicles 0"},
                       // The junction lanes' stand times (double-buffered like the lane map) in 3 parts.
                       IdentityCase{"grid_tls_ignore_junction_blockers_in_3_parts", "grid_tls",
-                                   "--ignore-junction-blocker 0", false, "--parts 3"}),
+                                   "--ignore-junction-blocker 0", false, "--parts 3 --parts.min-vehicles 0"}),
     [](const ::testing::TestParamInfo<IdentityCase>& info) { return std::string(info.param.name); });
 
 TEST(DeviceSelectTest, CpuIsAlwaysTheCpu) {

@@ -157,7 +157,7 @@ TEST(AssignCli, SameRoutesOnAnyThreadAndPartCount) {
   const test::CliResult one = test::run_lpsim(dir.path(), assign_args("one.rou.xml", 1));
   ASSERT_EQ(one.exit_code, 0) << one.err;
   std::vector<std::string> in_parts = assign_args("parts.rou.xml", 1);
-  in_parts.insert(in_parts.end(), {"--parts", "3"});
+  in_parts.insert(in_parts.end(), {"--parts", "3", "--parts.min-vehicles", "0"});
   for (const auto& [name, args] :
        {std::pair{"two", assign_args("two.rou.xml", 2)}, std::pair{"parts", in_parts}}) {
     SCOPED_TRACE(name);

@@ -178,7 +178,8 @@ TEST_F(CliStateRefusalTest, AStateThatIsNotOneOfThisRunIsRefusedWithOneLine) {
       {{"run", "-c", grid_, "--load-state", "missing.lpstate"}, "cannot read"},
       {{"run", "-c", flows_, "--load-state", "state_200.00.lpstate"}, "another scenario"},
       {{"run", "-c", grid_, "--seed", "7", "--load-state", "state_200.00.lpstate"}, "other options"},
-      {{"run", "-c", grid_, "--parts", "2", "--save-state.times", "100"}, "partitioned run"},
+      {{"run", "-c", grid_, "--parts", "2", "--parts.min-vehicles", "0", "--save-state.times", "100"},
+       "partitioned run"},
       {{"run", "-c", grid_, "--fcd-output", "f.xml.gz", "--save-state.times", "100"}, "plain outputs only"},
   };
   for (const auto& [args, why] : cases) {

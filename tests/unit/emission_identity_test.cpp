@@ -65,7 +65,7 @@ TEST_F(EmissionIdentityTest, SameBytesWithAnyThreadsAndParts) {
   const Outputs two = run("threads2", {"--threads", "2"});
   EXPECT_TRUE(one.edges == two.edges) << "edgeData differs with 2 threads";
   EXPECT_TRUE(one.lanes == two.lanes) << "laneData differs with 2 threads";
-  const Outputs parts = run("parts3", {"--parts", "3"});
+  const Outputs parts = run("parts3", {"--parts", "3", "--parts.min-vehicles", "0"});
   EXPECT_TRUE(one.edges == parts.edges) << "edgeData differs in 3 parts";
   EXPECT_TRUE(one.lanes == parts.lanes) << "laneData differs in 3 parts";
 }

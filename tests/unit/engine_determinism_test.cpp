@@ -120,8 +120,8 @@ class EngineDeterminismTest : public ::testing::Test {
     expect_content(one, vehicles);
     for (const int k : part_counts) {
       const std::string count = std::to_string(k);
-      const Outputs parts =
-          run(scenario, 1, std::string("k").append(count), true, std::string("--parts ").append(count));
+      const Outputs parts = run(scenario, 1, std::string("k").append(count), true,
+                                std::string("--parts.min-vehicles 0 --parts ").append(count));
       expect_same(one, parts, scenario + " one part vs " + std::to_string(k));
       EXPECT_GT(migrations(), vehicles / 10) << scenario << " in " << k << " parts:\n" << last_log_;
     }
@@ -166,8 +166,9 @@ TEST_F(EngineDeterminismTest, RerouteBlockWithTheContractionHierarchy) {
   const Outputs ch = run("reroute_block", 1, "ch", true, "--routing-algorithm CH");
   expect_content(ch, 121);
   expect_same(dijkstra, ch, "reroute_block Dijkstra vs CH");
-  expect_same(ch, run("reroute_block", 2, "ch_k3", true, "--routing-algorithm CH --parts 3"),
-              "reroute_block CH, one part vs 3");
+  expect_same(
+      ch, run("reroute_block", 2, "ch_k3", true, "--routing-algorithm CH --parts 3 --parts.min-vehicles 0"),
+      "reroute_block CH, one part vs 3");
 }
 
 TEST_F(EngineDeterminismTest, OutputsDoNotDependOnWhetherEdgeDataIsWritten) {
