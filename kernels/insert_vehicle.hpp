@@ -124,7 +124,7 @@ struct DepartSpeedChoice {
 LPSIM_HD DepartSpeedChoice depart_speed(const StepContext& s, const DepartView& d, uint64_t seed, uint32_t v,
                                         uint32_t step, uint32_t l, const LaneScan& sc) {
   const uint32_t type = s.trips.type[v];
-  const float lane_limit = lane_speed_for(s.net, l, s.types.vclass[type]);
+  const float lane_limit = lane_speed_for(s.net, l, s.types.vclass_mask[type]);
   const float v0 = desired_speed(lane_limit, s.trips.speed_factor[v], s.types.max_speed[type],
                                  s.types.desired_max_speed[type]);
   switch (d.speed_kind[v]) {
@@ -161,7 +161,7 @@ LPSIM_HD float insertion_check(const StepContext& s, const InsertParams& p, cons
   const uint32_t type = s.trips.type[v];
   const float length = s.types.length[type];
   const IdmParams ip = idm_of(s, type);
-  const float v0 = desired_speed(lane_speed_for(net, l, s.types.vclass[type]), s.trips.speed_factor[v],
+  const float v0 = desired_speed(lane_speed_for(net, l, s.types.vclass_mask[type]), s.trips.speed_factor[v],
                                  s.types.max_speed[type], s.types.desired_max_speed[type]);
   const BodyCells body = body_cells(net, l, pos, length);
   if (first_occupied(map, net, l, body.rear, body.front) >= 0) return -1.0f;
@@ -324,7 +324,7 @@ LPSIM_HD bool try_reenter(const StepContext& s, const InsertParams& p, uint8_t* 
   const uint32_t first = net.edge_first_lane[e], nlanes = net.edge_num_lanes[e];
   const uint32_t type = s.trips.type[v];
   const float length = s.types.length[type];
-  const uint32_t vclass = s.types.vclass[type];
+  const uint32_t vclass = s.types.vclass_mask[type];
   const uint32_t best =
       best_lanes(net, s.trips.route_edges + s.trips.route_begin[v], s.trips.route_length[v], rp, vclass)
           .mask[0];
@@ -382,7 +382,7 @@ LPSIM_HD void insert_queue_head(const StepContext& s, const DepartView& d, const
     const uint32_t type = s.trips.type[v];
     const uint8_t kind = d.lane_kind[v];
     // Only lanes the vehicle's class may use, as SUMO inserts (all of them on most edges).
-    const uint32_t vclass = s.types.vclass[type];
+    const uint32_t vclass = s.types.vclass_mask[type];
     uint64_t allowed = 0;
     uint32_t num_allowed = 0;
     for (uint32_t k = 0; k < nlanes; ++k)

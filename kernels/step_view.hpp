@@ -48,6 +48,53 @@ struct NetView {
   const float* restriction_speed;
 };
 
+/// What a NetView column is indexed by: its length follows from the counts and the begin tables.
+enum class NetExtent : uint8_t {
+  kLanes,
+  kLanesPlusOne,
+  kEdges,
+  kConnections,
+  kConnectionsPlusOne,
+  kFoes,            // conn_foe_begin[connections]
+  kSignalsPlusOne,  // the signal program's link_begin
+  kRestrictions     // lane_restriction_begin[lanes]; the three restriction columns are null when none
+};
+
+/// The one list of the network columns (as visit_vehicle_columns): f(extent, column...) for each pointer
+/// column of every view given (num_lanes is not one).
+template <class F, class... Nets>
+void visit_net_columns(F&& f, Nets&... n) {
+  f(NetExtent::kLanesPlusOne, n.lane_cell_begin...);
+  f(NetExtent::kLanes, n.lane_num_cells...);
+  f(NetExtent::kLanes, n.lane_length...);
+  f(NetExtent::kLanes, n.lane_speed...);
+  f(NetExtent::kLanes, n.lane_edge...);
+  f(NetExtent::kLanes, n.lane_internal...);
+  f(NetExtent::kLanes, n.lane_left...);
+  f(NetExtent::kLanes, n.lane_right...);
+  f(NetExtent::kLanes, n.lane_rank...);
+  f(NetExtent::kLanesPlusOne, n.lane_conn_begin...);
+  f(NetExtent::kEdges, n.edge_first_lane...);
+  f(NetExtent::kEdges, n.edge_num_lanes...);
+  f(NetExtent::kConnections, n.conn_to_lane...);
+  f(NetExtent::kConnections, n.conn_via_lane...);
+  f(NetExtent::kConnections, n.conn_to_edge...);
+  f(NetExtent::kConnections, n.conn_from_lane...);
+  f(NetExtent::kConnections, n.conn_signal...);
+  f(NetExtent::kConnections, n.conn_link_index...);
+  f(NetExtent::kConnections, n.conn_state...);
+  f(NetExtent::kConnectionsPlusOne, n.conn_foe_begin...);
+  f(NetExtent::kFoes, n.conn_foe...);
+  f(NetExtent::kFoes, n.conn_foe_block_cells...);
+  f(NetExtent::kConnections, n.conn_keep_clear...);
+  f(NetExtent::kSignalsPlusOne, n.signal_link_begin...);
+  f(NetExtent::kLanes, n.lane_permissions...);
+  f(NetExtent::kLanesPlusOne, n.lane_restriction_begin...);
+  f(NetExtent::kRestrictions, n.restriction_vclass...);
+  f(NetExtent::kRestrictions, n.restriction_speed...);
+}
+static_assert(sizeof(NetView) == 29 * sizeof(void*), "NetView changed: update visit_net_columns");
+
 /// The speed limit of lane `l` for a vehicle of vClass mask `vclass`: its class's restriction where the
 /// lane's edge type has one, else the lane's speed (SUMO's MSLane::getVehicleMaxSpeed). The mask must
 /// equal the restriction's, so "ignoring" (every bit) matches only a restriction for "ignoring".
@@ -69,10 +116,29 @@ struct TypeView {
   const float* desired_max_speed;  // SUMO's desiredMaxSpeed, before the speed factor (FLT_MAX: none)
   const float* tau;
   const float* delta;
-  const float* sigma;      // Krauss's dawdling
-  const uint8_t* model;    // CarFollowModel (kernels/idm.hpp)
-  const uint32_t* vclass;  // vClass mask: the type may use lanes whose permissions share a bit with it
+  const float* sigma;           // Krauss's dawdling
+  const uint8_t* model;         // CarFollowModel (kernels/idm.hpp)
+  const uint32_t* vclass_mask;  // the type may use lanes whose permissions share a bit with it
 };
+
+/// The one list of the type columns (as visit_vehicle_columns): f(column...) for each, of every view given,
+/// a TypeView or the demand's VehicleTypes, whose columns have the same names.
+template <class F, class... Types>
+void visit_type_columns(F&& f, Types&... t) {
+  f(t.length...);
+  f(t.min_gap...);
+  f(t.accel...);
+  f(t.decel...);
+  f(t.emergency_decel...);
+  f(t.max_speed...);
+  f(t.desired_max_speed...);
+  f(t.tau...);
+  f(t.delta...);
+  f(t.sigma...);
+  f(t.model...);
+  f(t.vclass_mask...);
+}
+static_assert(sizeof(TypeView) == 12 * sizeof(void*), "TypeView changed: update visit_type_columns");
 
 /// The per-lane sums of an emissions edgeData/laneData output, column by column (Pollutant order for the
 /// masses). Integers, so that the sums do not depend on the order vehicles add in; units fine enough that

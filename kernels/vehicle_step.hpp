@@ -106,7 +106,7 @@ LPSIM_HD bool conn_allows(const NetView& net, uint32_t c, uint32_t vclass) {
 
 /// vClass mask of the vehicle in slot r.slot.
 LPSIM_HD uint32_t vclass_of(const StepContext& s, VehicleRef r) {
-  return s.types.vclass[s.veh.trip_type[r.slot]];
+  return s.types.vclass_mask[s.veh.trip_type[r.slot]];
 }
 
 LPSIM_HD bool lane_has_conn_to(const NetView& net, int32_t lane, uint32_t edge, uint32_t vclass) {
@@ -695,8 +695,9 @@ LPSIM_HD void approach_vehicle(StepContext& s, uint32_t i, uint32_t slot) {
   a.held = s.veh.held_at_line[slot] != 0 && a.speed < kHaltingSpeed ? 1u : 0u;
   a.reach = reach;
   const uint32_t type = s.veh.trip_type[slot];
-  a.v_max = desired_speed(lane_speed_for(s.net, lane, s.types.vclass[type]), s.veh.trip_speed_factor[slot],
-                          s.types.max_speed[type], s.types.desired_max_speed[type]);
+  a.v_max =
+      desired_speed(lane_speed_for(s.net, lane, s.types.vclass_mask[type]), s.veh.trip_speed_factor[slot],
+                    s.types.max_speed[type], s.types.desired_max_speed[type]);
   s.approach[lane] = a;
 }
 
@@ -741,7 +742,7 @@ LPSIM_HD LaneChangeResult try_lane_change(const StepContext& s, VehicleRef me, i
   const int32_t front_cell = static_cast<int32_t>(cell_of(net, target, pos));
   if (first_occupied(s.map_now, net, target, rear_cell, front_cell) >= 0) return r;
   const float v0 =
-      desired_speed(lane_speed_for(net, target, s.types.vclass[type]), s.veh.trip_speed_factor[me.slot],
+      desired_speed(lane_speed_for(net, target, s.types.vclass_mask[type]), s.veh.trip_speed_factor[me.slot],
                     s.types.max_speed[type], s.types.desired_max_speed[type]);
   const float look = lookahead_distance(p, speed, dt);
   LcNeighbor lead = lc_no_neighbor();
@@ -877,7 +878,7 @@ LPSIM_HD_INLINED PlanInput read_plan_input(const StepContext& s, VehicleRef r, u
                    .speed = s.veh.speed[slot],
                    .rp = s.veh.route_pos[slot],
                    .route_size = s.veh.trip_route_size[slot],
-                   .v0 = desired_speed(lane_speed_for(s.net, lane, s.types.vclass[type]), speed_factor,
+                   .v0 = desired_speed(lane_speed_for(s.net, lane, s.types.vclass_mask[type]), speed_factor,
                                        max_speed, desired_max_speed),
                    .waiting = s.veh.stopped_steps[slot] > 0,
                    .impatience = impatience_of(s.veh.stopped_steps[slot], s.params.impatience_steps)};
@@ -1666,7 +1667,7 @@ LPSIM_HD_INLINED void commit_vehicle(StepContext& s, uint32_t i, uint32_t slot) 
 
   // Per-vehicle counters (tripinfo).
   const float v0 =
-      desired_speed(lane_speed_for(net, nlane, s.types.vclass[type]), veh.trip_speed_factor[slot],
+      desired_speed(lane_speed_for(net, nlane, s.types.vclass_mask[type]), veh.trip_speed_factor[slot],
                     s.types.max_speed[type], s.types.desired_max_speed[type]);
   // Time lost this step against the desired speed [s]; no loss where the desired speed is 0.
   const float lost = v0 > 0.0f ? dt * lp_fmaxf(0.0f, (v0 - nspeed) / v0) : 0.0f;

@@ -201,18 +201,7 @@ Simulation::Simulation(const Network& net, Demand demand, const SimulationOption
   StepperSetup setup;
   setup.net = engine_net_.view(net_);
   setup.signals = engine_net_.signal_table(net_);
-  setup.types = TypeView{t.length.data(),
-                         t.min_gap.data(),
-                         t.accel.data(),
-                         t.decel.data(),
-                         t.emergency_decel.data(),
-                         t.max_speed.data(),
-                         t.desired_max_speed.data(),
-                         t.tau.data(),
-                         t.delta.data(),
-                         t.sigma.data(),
-                         t.model.data(),
-                         t.vclass_mask.data()};
+  visit_type_columns([](auto*& view, const auto& column) { view = column.data(); }, setup.types, t);
   setup.num_types = t.size();
   setup.num_edges = net.num_edges();
   setup.num_connections = net.num_connections();

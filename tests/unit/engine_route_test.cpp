@@ -44,7 +44,7 @@ TEST(EngineRouteTest, TheCachedLaneEndConnectionFollowsTheRoutePosition) {
   const EngineNet engine_net(s.net);
   StepContext ctx{};
   ctx.net = engine_net.view(s.net);
-  ctx.types.vclass = s.demand.types.vclass_mask.data();  // the only type column these passes read
+  ctx.types.vclass_mask = s.demand.types.vclass_mask.data();  // the only type column these passes read
   ctx.trips = TripView{s.demand.vehicle_type.data(),
                        s.demand.route_begin.data(),
                        s.demand.route_length.data(),

@@ -964,45 +964,38 @@ class CudaStepper final : public Stepper {
 
   void upload_network(const StepperSetup& setup) {
     const NetView& h = setup.net;
-    const uint32_t nl = h.num_lanes, ne = setup.num_edges, nc = setup.num_connections;
+    const size_t nl = h.num_lanes, nc = setup.num_connections;
+    auto length = [&](NetExtent x) -> size_t {
+      switch (x) {
+        case NetExtent::kLanes:
+          return nl;
+        case NetExtent::kLanesPlusOne:
+          return nl + 1;
+        case NetExtent::kEdges:
+          return setup.num_edges;
+        case NetExtent::kConnections:
+          return nc;
+        case NetExtent::kConnectionsPlusOne:
+          return nc + 1;
+        case NetExtent::kFoes:
+          return h.conn_foe_begin[nc];
+        case NetExtent::kSignalsPlusOne:
+          return size_t{setup.signals.num_signals} + 1;
+        case NetExtent::kRestrictions:
+          return h.lane_restriction_begin ? h.lane_restriction_begin[nl] : 0;
+      }
+      return 0;
+    };
     NetView& d = dev_.net;
-    d.num_lanes = nl;
-    d.lane_cell_begin = upload(h.lane_cell_begin, nl + 1);
-    d.lane_num_cells = upload(h.lane_num_cells, nl);
-    d.lane_length = upload(h.lane_length, nl);
-    d.lane_speed = upload(h.lane_speed, nl);
-    d.lane_edge = upload(h.lane_edge, nl);
-    d.lane_internal = upload(h.lane_internal, nl);
-    d.lane_left = upload(h.lane_left, nl);
-    d.lane_right = upload(h.lane_right, nl);
-    d.lane_rank = upload(h.lane_rank, nl);
-    d.lane_conn_begin = upload(h.lane_conn_begin, nl + 1);
-    d.edge_first_lane = upload(h.edge_first_lane, ne);
-    d.edge_num_lanes = upload(h.edge_num_lanes, ne);
-    d.conn_to_lane = upload(h.conn_to_lane, nc);
-    d.conn_via_lane = upload(h.conn_via_lane, nc);
-    d.conn_to_edge = upload(h.conn_to_edge, nc);
-    d.conn_from_lane = upload(h.conn_from_lane, nc);
-    d.conn_signal = upload(h.conn_signal, nc);
-    d.conn_link_index = upload(h.conn_link_index, nc);
-    d.conn_state = upload(h.conn_state, nc);
-    d.conn_foe_begin = upload(h.conn_foe_begin, static_cast<size_t>(nc) + 1);
-    d.conn_foe = upload(h.conn_foe, h.conn_foe_begin[nc]);
-    d.conn_foe_block_cells = upload(h.conn_foe_block_cells, h.conn_foe_begin[nc]);
-    d.conn_keep_clear = upload(h.conn_keep_clear, nc);
-    d.lane_permissions = upload(h.lane_permissions, nl);
-    if (h.lane_restriction_begin != nullptr) {
-      const uint32_t nr = h.lane_restriction_begin[nl];
-      d.lane_restriction_begin = upload(h.lane_restriction_begin, nl + 1);
-      d.restriction_vclass = upload(h.restriction_vclass, nr);
-      d.restriction_speed = upload(h.restriction_speed, nr);
-    }
+    d.num_lanes = h.num_lanes;
+    visit_net_columns([&](NetExtent x, auto*& dev,
+                          auto* host) { dev = host == nullptr ? nullptr : upload(host, length(x)); },
+                      d, h);
   }
 
   void upload_signals(const SignalTable& h) {
     const uint32_t ns = h.num_signals;
-    // NetView's signal_link_begin is the same table as the signal program's link_begin.
-    dev_.net.signal_link_begin = upload(h.link_begin, static_cast<size_t>(ns) + 1);
+    // The signal program's link_begin is NetView's signal_link_begin, uploaded with the network.
     num_links_ = h.link_begin[ns];
     link_state_ = allocate<char>(num_links_);
     dev_.link_state = link_state_;
@@ -1121,18 +1114,7 @@ class CudaStepper final : public Stepper {
   }
 
   void upload_types(const TypeView& h, uint32_t nt) {
-    dev_.types = TypeView{upload(h.length, nt),
-                          upload(h.min_gap, nt),
-                          upload(h.accel, nt),
-                          upload(h.decel, nt),
-                          upload(h.emergency_decel, nt),
-                          upload(h.max_speed, nt),
-                          upload(h.desired_max_speed, nt),
-                          upload(h.tau, nt),
-                          upload(h.delta, nt),
-                          upload(h.sigma, nt),
-                          upload(h.model, nt),
-                          upload(h.vclass, nt)};
+    visit_type_columns([&](auto*& dev, auto* host) { dev = upload(host, nt); }, dev_.types, h);
   }
 
   std::vector<DeviceBuffer> buffers_;  // every fixed allocation, freed in the stepper's destructor
