@@ -63,8 +63,6 @@ std::vector<int32_t> run_edge_parts(const ConfigSpec& config, const Scenario& sc
       *parts = 1;
       return {};
     }
-    const PartitionMethod method = *partition_method_from_name(config.partition_method);
-    const JunctionGraph g = build_junction_graph(net, sc.demand, config.step_length);
     if (config.parts_min_vehicles > 0) {
       // A part's step costs its exchange rounds whatever it carries: below some vehicles per part the rounds
       // cost more than the part saves.
@@ -96,6 +94,9 @@ std::vector<int32_t> run_edge_parts(const ConfigSpec& config, const Scenario& sc
         }
       }
     }
+    // Built only for the parts that run: a large network's graph takes seconds.
+    const PartitionMethod method = *partition_method_from_name(config.partition_method);
+    const JunctionGraph g = build_junction_graph(net, sc.demand, config.step_length);
     junction_part = partition_junctions(g, k, method, static_cast<uint64_t>(config.seed));
   }
   *parts = k;
