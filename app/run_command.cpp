@@ -52,10 +52,6 @@ void load_run(const std::vector<std::string>& args, int ranks, LoadedRun* l) {
   require_one_part_per_rank(ranks, l->parts);
   if (l->parts > 1 && !config.jam_report.empty())
     throw InputError("--jam-report reads one part's vehicles: leave out --parts and --partition-file");
-  if (Run::keeps_states(config) && l->parts > 1)
-    throw InputError(
-        "--save-state/--load-state: a partitioned run has no saved state yet: leave out --parts and "
-        "--partition-file");
 }
 
 }  // namespace

@@ -15,7 +15,7 @@ namespace lpsim {
 namespace {
 
 constexpr char kMagic[8] = {'L', 'P', 'S', 'I', 'M', 'S', 'T', '\0'};
-constexpr uint32_t kFormatVersion = 2;
+constexpr uint32_t kFormatVersion = 3;
 
 struct Header {
   char magic[8];

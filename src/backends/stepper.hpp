@@ -96,6 +96,14 @@ struct FootprintWrite {
   Footprint fp;
   float length;
   uint8_t value;
+
+  /// Field by field for a state (state_archive.hpp): the padding after `value` is not part of it.
+  template <class A>
+  void visit_state(A& a) {
+    a(fp);
+    a(length);
+    a(value);
+  }
 };
 
 enum class StateParts {

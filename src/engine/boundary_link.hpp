@@ -15,6 +15,7 @@
 #include "demand/trip_table.hpp"
 #include "engine/engine_net.hpp"
 #include "engine/host_books.hpp"
+#include "engine/state_archive.hpp"
 #include "net/network.hpp"
 #include "transport/transport.hpp"
 
@@ -36,7 +37,9 @@ enum PartRequest : uint8_t {
   kRequestCounters = 3,
   kRequestSpeedSums = 4,
   kRequestStop = 5,
-  kRequestUnfinished = 6
+  kRequestUnfinished = 6,
+  kRequestSaveState = 7,
+  kRequestLoadState = 8
 };
 
 /// What one part of a partitioned run spent and sent, cumulative.
@@ -134,6 +137,13 @@ class BoundaryLink {
   virtual std::vector<Bytes> allgather(const Bytes& mine, const char* /*what*/) { return {mine}; }
   /// Part 0's `root` at every part.
   virtual Bytes broadcast(const Bytes& root, const char* /*what*/) { return root; }
+  /// Part 0's `each[p]` at part p (`each` is read at part 0 only).
+  virtual Bytes scatter(const std::vector<Bytes>& each, const char* /*what*/) { return each.at(0); }
+
+  // --- Checkpoints, between steps: what the link carries from one step to the next (nothing in a run of
+  // one part). ---
+  virtual void save_state(StateOut& /*a*/) {}
+  virtual void load_state(StateIn& /*a*/) {}
 
   /// Footprints written into lane map `map` from elsewhere and not yet erased (value 0: their erasures).
   const std::vector<FootprintWrite>& foreign_footprints(int map) const { return foreign_[map]; }
@@ -151,6 +161,12 @@ class BoundaryLink {
   std::vector<uint32_t> hand_out(int map, Visit visit);
   /// This side's running vehicles, in slot order.
   std::vector<SampleEntry> own_running() const;
+  /// The footprints written from elsewhere and not yet erased, as a state holds them.
+  template <class A>
+  void visit_foreign(A& a) {
+    a(foreign_[0]);
+    a(foreign_[1]);
+  }
 
   LinkScope run_;
   const uint8_t* held_lanes_ = nullptr;  // 1 per lane this side writes into its lane map

@@ -462,7 +462,7 @@ PartRequest PartLink::next_request() {
   if (plan_.part == 0) return BoundaryLink::next_request();
   const std::vector<Bytes> got = round({}, {}, {0}, "request", false);
   const uint8_t what = got.at(0).empty() ? 0 : got[0][0];
-  if (what < kRequestStep || what > kRequestUnfinished)
+  if (what < kRequestStep || what > kRequestLoadState)
     throw std::logic_error("part " + std::to_string(plan_.part) + ": unknown request " +
                            std::to_string(what));
   return static_cast<PartRequest>(what);
@@ -476,6 +476,35 @@ std::vector<Bytes> PartLink::gather(const Bytes& mine, const char* what) {
   }
   round({0}, {mine}, {}, what, false);
   return {};
+}
+
+Bytes PartLink::scatter(const std::vector<Bytes>& each, const char* what) {
+  if (plan_.part == 0) {
+    if (each.size() != static_cast<size_t>(plan_.parts))
+      throw std::logic_error(std::string(what) + ": " + std::to_string(each.size()) + " pieces for " +
+                             std::to_string(plan_.parts) + " parts");
+    round(others(), std::vector<Bytes>(each.begin() + 1, each.end()), {}, what, false);
+    return each[0];
+  }
+  return round({}, {}, {0}, what, false).at(0);
+}
+
+// Between steps the link carries the footprints it has to erase, the insertions its neighbours have not yet
+// seen, its stats and, in part 0, the run's totals; what a step hands on between its rounds is empty then.
+template <class A>
+void PartLink::visit_state(A& a) {
+  if (!teleports_.empty() || !adopted_.empty() || !departures_.empty())
+    a.fail("a part's step has not handed on everything");
+  visit_foreign(a);
+  for (const int p : neighbours_) a(inserted_[p]);
+  a(stats_);
+  a(part_stats_);
+  a(counts_);
+  a(teleport_events_);
+  a(finished_);
+  a(depart_delay_sum_);
+  a(travel_time_sum_);
+  a(all_idle_);
 }
 
 std::vector<Bytes> PartLink::allgather(const Bytes& mine, const char* what) {

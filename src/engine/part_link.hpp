@@ -68,6 +68,10 @@ class PartLink final : public BoundaryLink {
   std::vector<Bytes> gather(const Bytes& mine, const char* what) override;
   std::vector<Bytes> allgather(const Bytes& mine, const char* what) override;
   Bytes broadcast(const Bytes& root, const char* what) override;
+  Bytes scatter(const std::vector<Bytes>& each, const char* what) override;
+
+  void save_state(StateOut& a) override { visit_state(a); }
+  void load_state(StateIn& a) override { visit_state(a); }
 
  private:
   /// One round with the transport, timed and counted in stats_ (exchange: a round of the step; else a
@@ -75,6 +79,8 @@ class PartLink final : public BoundaryLink {
   std::vector<Bytes> round(const std::vector<int>& to, const std::vector<Bytes>& send,
                            const std::vector<int>& from, const char* what, bool exchange);
   std::vector<int> others() const;
+  template <class A>
+  void visit_state(A& a);
 
   const PartPlan& plan_;
   Transport& transport_;

@@ -289,6 +289,12 @@ void Simulation::serve_part() {
       case kRequestUnfinished:
         unfinished_trips(0, false);  // the arguments come from part 0
         break;
+      case kRequestSaveState:
+        save_state();
+        break;
+      case kRequestLoadState:
+        load_state({}, "part " + std::to_string(opt_.part->part) + "'s state");
+        break;
       case kRequestStop:
         return;
     }
@@ -757,10 +763,10 @@ std::vector<TripRecord> Simulation::take_finished_trips() { return link_->take_f
 const std::vector<TeleportEvent>& Simulation::teleport_events() const { return link_->teleport_events(); }
 
 // What a step reads that an earlier one wrote: the clock, the books, the routes as rerouting left them, the
-// lane counters drained so far, the rerouting device's speeds, and the backend's own state.
+// lane counters drained so far, the rerouting device's speeds, what the boundary link carries, and the
+// backend's own state.
 template <class A>
 void Simulation::visit_state(A& a, std::vector<uint8_t>& backend) {
-  if (link_->parts() > 1) throw std::runtime_error("a partitioned run has no saved state yet");
   if (opt_.outside_lanes) throw std::runtime_error("a co-simulation has no saved state yet");
   a(time_ms_);
   a(step_);
@@ -772,18 +778,69 @@ void Simulation::visit_state(A& a, std::vector<uint8_t>& backend) {
   a(rerouting);
   if (rerouting != (reroute_ ? 1 : 0)) a.fail("the state's rerouting device does not match this run's");
   if (reroute_) a(*reroute_);
+  if constexpr (A::kReads)
+    link_->load_state(a);
+  else
+    link_->save_state(a);
   a.raw(backend);
 }
 
+namespace {
+
+// Which part owns each lane, hashed: a partitioned run's state resumes only in the same parts.
+uint64_t partition_digest(const PartPlan* plan) {
+  if (plan == nullptr) return 0;
+  uint64_t h = 14695981039346656037ull;
+  for (const int32_t owner : plan->lane_owner)
+    for (int b = 0; b < 4; ++b)
+      h = (h ^ ((static_cast<uint32_t>(owner) >> (8 * b)) & 0xFFu)) * 1099511628211ull;
+  return h;
+}
+
+}  // namespace
+
+// The parts' count and partition, then every part's own state in part order (part 0 gathers them).
 std::vector<uint8_t> Simulation::save_state() {
+  link_->request(kRequestSaveState);
   std::vector<uint8_t> backend = stepper_->save_state(books_.slots.size());
+  StateOut own;
+  visit_state(own, backend);
+  const std::vector<Bytes> all = link_->gather(own.bytes(), "state");
+  if (all.empty()) return {};
   StateOut a;
-  visit_state(a, backend);
+  auto parts = static_cast<uint32_t>(all.size());
+  uint64_t partition = partition_digest(opt_.part);
+  a(parts);
+  a(partition);
+  for (const Bytes& b : all) a.raw(b);
   return std::move(a.bytes());
 }
 
 void Simulation::load_state(const std::vector<uint8_t>& state, const std::string& what) {
-  StateIn a(state.data(), state.size(), what);
+  std::vector<Bytes> each;
+  if (link_->leads()) {
+    StateIn a(state.data(), state.size(), what);
+    uint32_t parts = 0;
+    uint64_t partition = 0;
+    a(parts);
+    a(partition);
+    const auto here = static_cast<uint32_t>(link_->parts());
+    // Refused as a whole, not at a byte: the state is sound, only its parts differ.
+    if (parts != here)
+      throw std::runtime_error("saved by a run of " + std::to_string(parts) + " part" +
+                               (parts == 1 ? "" : "s") + ", resumed in " + std::to_string(here) +
+                               ": a state resumes in the parts that saved it (--parts, --partition-file)");
+    if (partition != partition_digest(opt_.part))
+      throw std::runtime_error(
+          "saved by a run of another partition of the network: a state resumes in the parts that saved it "
+          "(--parts, --partition-file)");
+    each.resize(parts);
+    for (Bytes& b : each) a.raw(b);
+    if (!a.done()) a.fail("bytes left after the last part's state");
+    link_->request(kRequestLoadState);
+  }
+  const Bytes mine = link_->scatter(each, "state");
+  StateIn a(mine.data(), mine.size(), what);
   std::vector<uint8_t> backend;
   visit_state(a, backend);
   if (!a.done()) a.fail("bytes left after the state's last field");

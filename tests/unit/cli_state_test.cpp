@@ -1,7 +1,8 @@
 // `lpsim run --save-state.times T` and `--load-state`: a run resumed from the state saved at T writes every
 // output byte for byte as the uninterrupted run does (its outputs continued from where the saved run had
-// written them), saving changes no output, and a state file that is not one of this run is refused with one
-// line and exit status 2. Every bundled scenario, each in a copy (their add-file outputs land beside them).
+// written them), in one part and in 3, saving changes no output, and a state file that is not one of this run
+// (nor of its parts) is refused with one line and exit status 2. Every bundled scenario, each in a copy (their
+// add-file outputs land beside them).
 #include <gtest/gtest.h>
 
 #include <csignal>
@@ -92,6 +93,26 @@ TEST_P(CliStateTest, AResumedRunWritesEveryOutputAsTheUninterruptedOne) {
   EXPECT_EQ(outputs_in(tmp_.path() / "saved", GetParam()), expected) << "resumed at " << t;
 }
 
+// A partitioned run saves every part's state in one file, and the same parts resumed from it go on as the run
+// never stopped (whose outputs are those of one part).
+TEST_P(CliStateTest, APartitionedRunResumedInItsPartsWritesEveryOutputAsTheUninterruptedOne) {
+  const CliResult whole = run_in("whole", {});
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  const auto expected = outputs_in(tmp_.path() / "whole", GetParam());
+  const std::string t = save_time();
+  const std::vector<std::string> parts{"--parts", "3", "--parts.min-vehicles", "0"};
+  std::vector<std::string> saving = parts;
+  saving.insert(saving.end(), {"--save-state.times", t});
+  const CliResult saved = run_in("parts", saving);
+  ASSERT_EQ(saved.exit_code, 0) << saved.err;
+  EXPECT_EQ(outputs_in(tmp_.path() / "parts", GetParam()), expected) << "saving changed an output";
+  std::vector<std::string> resuming = parts;
+  resuming.insert(resuming.end(), {"--load-state", "state_" + t + ".00.lpstate", "--threads", "2"});
+  const CliResult resumed = run_in("parts", resuming);
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  EXPECT_EQ(outputs_in(tmp_.path() / "parts", GetParam()), expected) << "resumed at " << t;
+}
+
 INSTANTIATE_TEST_SUITE_P(BundledScenarios, CliStateTest,
                          ::testing::Values("grid_tls", "actuated_cross", "city_mixed", "flows", "keep_clear",
                                            "motorway_ramps", "random_net", "reroute_block",
@@ -157,6 +178,10 @@ TEST_F(CliStateRefusalTest, AStateThatIsNotOneOfThisRunIsRefusedWithOneLine) {
   ASSERT_EQ(
       run({"run", "-c", grid_, "--no-step-log", "-W", "--save-state.times", "200", "--end", "300"}).exit_code,
       0);
+  ASSERT_EQ(run({"run", "-c", grid_, "--no-step-log", "-W", "--parts", "2", "--parts.min-vehicles", "0",
+                 "--save-state.times", "200", "--save-state.files", "parts_200.lpstate", "--end", "300"})
+                .exit_code,
+            0);
   const std::string good = read_file(tmp_.path() / "state_200.00.lpstate");
   ASSERT_GT(good.size(), 100u);
   auto write = [&](const std::string& name, const std::string& bytes) {
@@ -178,8 +203,15 @@ TEST_F(CliStateRefusalTest, AStateThatIsNotOneOfThisRunIsRefusedWithOneLine) {
       {{"run", "-c", grid_, "--load-state", "missing.lpstate"}, "cannot read"},
       {{"run", "-c", flows_, "--load-state", "state_200.00.lpstate"}, "another scenario"},
       {{"run", "-c", grid_, "--seed", "7", "--load-state", "state_200.00.lpstate"}, "other options"},
-      {{"run", "-c", grid_, "--parts", "2", "--parts.min-vehicles", "0", "--save-state.times", "100"},
-       "partitioned run"},
+      {{"run", "-c", grid_, "--load-state", "parts_200.lpstate"}, "saved by a run of 2 parts, resumed in 1"},
+      {{"run", "-c", grid_, "--parts", "3", "--parts.min-vehicles", "0", "--load-state", "parts_200.lpstate"},
+       "saved by a run of 2 parts, resumed in 3"},
+      {{"run", "-c", grid_, "--parts", "2", "--parts.min-vehicles", "0", "--partition-method", "random",
+        "--load-state", "parts_200.lpstate"},
+       "another partition"},
+      {{"run", "-c", grid_, "--parts", "2", "--parts.min-vehicles", "0", "--load-state",
+        "state_200.00.lpstate"},
+       "saved by a run of 1 part, resumed in 2"},
       {{"run", "-c", grid_, "--fcd-output", "f.xml.gz", "--save-state.times", "100"}, "plain outputs only"},
   };
   for (const auto& [args, why] : cases) {
