@@ -86,6 +86,8 @@ PartLink::PartLink(const LinkScope& run, const PartPlan& plan, Transport& transp
                                 " on rank " + std::to_string(transport.rank()) + " of " +
                                 std::to_string(transport.size()));
   held_lanes_ = plan.held.data();
+  alone_ = plan.held;
+  for (const uint32_t l : plan.shared_lanes) alone_[l] = 0;
   std::vector<uint8_t> neighbour(static_cast<size_t>(plan.parts), 0);
   for (const uint32_t l : plan.shared_lanes) {
     for (uint32_t h = plan.holder_begin[l]; h < plan.holder_begin[l + 1]; ++h)
@@ -240,20 +242,24 @@ void PartLink::after_end_of_step(int map) {
   std::map<int, Bytes> migrants;
   std::map<int, std::vector<uint32_t>> migrant_ids;
   std::map<int, std::vector<DepartRecord>> migrant_departures;
-  const std::vector<uint32_t> gone =
-      hand_out(map, [&](const HostState& st, uint32_t k, const Footprint& fp, float len) {
-        const uint8_t value = encode_cell_speed(st.veh.speed[k]);
-        for_each_other_holder(plan, net, fp, len, [&](int p) {
-          writes[p].push_back(FootprintWrite{fp, len, value});
-        });
-        const int32_t owner = plan.lane_owner[static_cast<uint32_t>(fp.lane)];
-        if (owner == plan.part) return false;
-        const uint32_t v = st.veh.vehicle[k];
-        pack_vehicle(st.veh, k, migrants[owner]);
-        migrant_ids[owner].push_back(v);
-        migrant_departures[owner].push_back(ledger.departure(v));
-        return true;
-      });
+  const std::vector<uint32_t> gone = hand_out(map, [&](const HostState& st, uint32_t k, const Footprint& fp,
+                                                       float len) {
+    // Most vehicles: a footprint no other part holds a lane of (its pieces are on these lanes only).
+    if (alone_[static_cast<uint32_t>(fp.lane)] && (fp.prev < 0 || alone_[static_cast<uint32_t>(fp.prev)]) &&
+        (fp.prev2 < 0 || alone_[static_cast<uint32_t>(fp.prev2)]))
+      return false;
+    const uint8_t value = encode_cell_speed(st.veh.speed[k]);
+    for_each_other_holder(plan, net, fp, len, [&](int p) {
+      writes[p].push_back(FootprintWrite{fp, len, value});
+    });
+    const int32_t owner = plan.lane_owner[static_cast<uint32_t>(fp.lane)];
+    if (owner == plan.part) return false;
+    const uint32_t v = st.veh.vehicle[k];
+    pack_vehicle(st.veh, k, migrants[owner]);
+    migrant_ids[owner].push_back(v);
+    migrant_departures[owner].push_back(ledger.departure(v));
+    return true;
+  });
   stats_.migrations += gone.size();
 
   std::vector<TeleportHandOver> teleports;

@@ -95,6 +95,9 @@ class PartLink final : public BoundaryLink {
   // before the next step's signals (the same in every part).
   bool insertion_round_ = false;
   std::vector<uint32_t> owned_shared_;  // its lanes that other parts hold too, ascending
+  // Per lane: 1 where this part alone holds it (it owns it then), so a vehicle all on such lanes concerns no
+  // other part.
+  std::vector<uint8_t> alone_;
   // Footprints of the last insertions on lanes others hold, by part, until they are sent.
   std::map<int, std::vector<FootprintWrite>> inserted_;
 
