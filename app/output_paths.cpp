@@ -32,6 +32,7 @@ std::vector<NamedPath> inputs_of(const ConfigSpec& c) {
   add("--lpsim-od", c.lpsim_od_csv);
   add("--partition-file", c.partition_file);
   add("--migrations-from", c.migrations_from);
+  add("--partition.load-from", c.partition_load_from);
   add("--corridor", c.corridor_file);
   return in;
 }

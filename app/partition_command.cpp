@@ -12,7 +12,6 @@
 #include "app/partition_resolution.hpp"
 #include "app/partitioned_parts.hpp"
 #include "app/scenario_args.hpp"
-#include "converters/edge_entries_reader.hpp"
 #include "converters/partition_file.hpp"
 #include "converters/partition_map_writer.hpp"
 #include "core/error.hpp"
@@ -41,7 +40,7 @@ int command_partition(const std::vector<std::string>& args) {
   std::vector<int32_t> junction_part;
   int32_t k = config.parts;
   std::string title;
-  refuse_method_without_parts(config);
+  refuse_split_options_without_parts(config);
   if (!config.partition_map.empty()) refuse_non_png_map(config.partition_map);
   auto write_map = [&](const std::vector<int32_t>& junction_part, int32_t parts) {
     if (!config.partition_map.empty())
@@ -61,7 +60,13 @@ int command_partition(const std::vector<std::string>& args) {
     if (config.output_file.empty()) throw InputError("partition needs -o <partition file>");
     const PartitionMethod method = *partition_method_from_name(config.partition_method);
     const auto t0 = std::chrono::steady_clock::now();
-    const JunctionGraph g = build_junction_graph(net, sc.demand, config.step_length);
+    double measured_seconds = 0;
+    const JunctionGraph g =
+        config.partition_load_from.empty()
+            ? build_junction_graph(net, sc.demand, config.step_length)
+            : build_junction_graph(net,
+                                   read_measured_load(config.partition_load_from, net, &measured_seconds),
+                                   config.step_length);
     junction_part = partition_junctions(g, k, method, static_cast<uint64_t>(config.seed));
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     // Before the partition file: a map that cannot be written leaves no half-done result behind.
@@ -90,15 +95,9 @@ int command_partition(const std::vector<std::string>& args) {
   }
   PartitionSummary summary = summarize_partition(net, sc.demand, junction_part, k, config.step_length);
   if (!config.migrations_from.empty()) {
-    std::vector<int64_t> entered(net.num_edges(), 0);
-    for (const auto& [id, n] : read_edge_entries(config.migrations_from)) {
-      const auto it = net.edge_index.find(id);
-      if (it == net.edge_index.end())
-        throw InputError(SourceLoc{config.migrations_from, 0},
-                         "edge '" + id + "' is not in the network: an edgeData output of another scenario?");
-      entered[it->second] = n;
-    }
-    add_measured_migrations(summary, net, junction_part, entered);
+    double seconds = 0;
+    add_measured_migrations(summary, net, junction_part,
+                            read_measured_load(config.migrations_from, net, &seconds).entered);
   }
   std::fputs(describe_partition(summary, title).c_str(), stdout);
   return 0;

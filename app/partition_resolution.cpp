@@ -2,6 +2,7 @@
 
 #include <string>
 
+#include "converters/edge_entries_reader.hpp"
 #include "core/error.hpp"
 
 namespace lpsim {
@@ -67,6 +68,21 @@ std::vector<int32_t> resolve_partition(const PartitionSpec& spec, const Network&
   for (int32_t& p : junction_part)
     if (p == kNone) p = 0;  // a junction no normal edge touches owns nothing
   return junction_part;
+}
+
+MeasuredLoad read_measured_load(const std::string& path, const Network& net, double* seconds) {
+  const EdgeDataTotals totals = read_edge_totals(path);
+  MeasuredLoad load{std::vector<double>(net.num_edges(), 0), std::vector<int64_t>(net.num_edges(), 0)};
+  for (const auto& [id, t] : totals.edges) {
+    const auto it = net.edge_index.find(id);
+    if (it == net.edge_index.end())
+      throw InputError(SourceLoc{path, 0},
+                       "edge '" + id + "' is not in the network: an edgeData output of another scenario?");
+    load.vehicle_seconds[it->second] = t.sampled_seconds;
+    load.entered[it->second] = t.entered;
+  }
+  *seconds = totals.seconds;
+  return load;
 }
 
 }  // namespace lpsim

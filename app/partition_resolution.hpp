@@ -6,6 +6,7 @@
 
 #include "core/partition_spec.hpp"
 #include "net/network.hpp"
+#include "partition/junction_graph.hpp"
 
 namespace lpsim {
 
@@ -15,5 +16,10 @@ namespace lpsim {
 /// a part outside 0..parts-1, a normal edge not listed, approaches of one junction in two parts, or (with
 /// expected_parts > 0) a part count other than expected_parts.
 std::vector<int32_t> resolve_partition(const PartitionSpec& spec, const Network& net, int32_t expected_parts);
+
+/// The load an edgeData output at `path` measured on each edge of `net` (edges it lacks: none), and in
+/// `*seconds` the time its intervals cover. InputError naming the file for an edge the network lacks (an
+/// output of another scenario).
+MeasuredLoad read_measured_load(const std::string& path, const Network& net, double* seconds);
 
 }  // namespace lpsim

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <tuple>
 
 #include "app/partition_resolution.hpp"
 #include "converters/partition_file.hpp"
@@ -12,14 +13,19 @@
 
 namespace lpsim {
 
-void refuse_method_without_parts(const ConfigSpec& config) {
-  if (!config.partition_method_given) return;
-  if (!config.partition_file.empty())
-    throw InputError(
-        "--partition-method chooses how --parts splits the network; --partition-file gives the "
-        "parts already: leave one out");
-  if (config.parts < 1)
-    throw InputError("--partition-method chooses how --parts K splits the network: give --parts K as well");
+void refuse_split_options_without_parts(const ConfigSpec& config) {
+  for (const auto& [given, option, what] :
+       {std::tuple{config.partition_method_given, "--partition-method", "chooses how"},
+        std::tuple{!config.partition_load_from.empty(), "--partition.load-from", "weighs what"}}) {
+    if (!given) continue;
+    if (!config.partition_file.empty())
+      throw InputError(
+          std::string(option) + " " + what +
+          " --parts splits the network; --partition-file gives the parts already: leave one out");
+    if (config.parts < 1)
+      throw InputError(std::string(option) + " " + what +
+                       " --parts K splits the network: give --parts K as well");
+  }
 }
 
 double mean_vehicles_per_step(const Scenario& sc, const ConfigSpec& config) {
@@ -53,7 +59,12 @@ std::vector<int32_t> run_edge_parts(const ConfigSpec& config, const Scenario& sc
   const Network& net = sc.network;
   std::vector<int32_t> junction_part;
   int32_t k = config.parts;
-  refuse_method_without_parts(config);
+  refuse_split_options_without_parts(config);
+  // A run's measured load, when given, in place of the routes in free flow.
+  const bool measured = !config.partition_load_from.empty();
+  MeasuredLoad load;
+  double measured_seconds = 0;
+  if (measured && k > 1) load = read_measured_load(config.partition_load_from, net, &measured_seconds);
   if (!config.partition_file.empty()) {
     const PartitionSpec spec = read_partition_file(config.partition_file);
     junction_part = resolve_partition(spec, net, k);
@@ -66,13 +77,19 @@ std::vector<int32_t> run_edge_parts(const ConfigSpec& config, const Scenario& sc
     if (config.parts_min_vehicles > 0) {
       // A part's step costs its exchange rounds whatever it carries: below some vehicles per part the rounds
       // cost more than the part saves.
-      const double vehicles = mean_vehicles_per_step(sc, config);
+      double vehicles = mean_vehicles_per_step(sc, config);
+      if (measured) {
+        double vehicle_seconds = 0;
+        for (const double s : load.vehicle_seconds) vehicle_seconds += s;
+        vehicles = vehicle_seconds / std::max(measured_seconds, config.step_length);
+      }
       const auto fit = static_cast<int32_t>(
           std::clamp(vehicles / static_cast<double>(config.parts_min_vehicles), 1.0, static_cast<double>(k)));
       if (fit < k) {
         char why[160];
-        std::snprintf(why, sizeof why, "about %.0f vehicles per step in free flow, fewer than %lld per part",
-                      vehicles, static_cast<long long>(config.parts_min_vehicles));
+        std::snprintf(why, sizeof why, "about %.0f vehicles per step %s, fewer than %lld per part", vehicles,
+                      measured ? "measured" : "in free flow",
+                      static_cast<long long>(config.parts_min_vehicles));
         if (ranks > 1) {
           if (!config.no_warnings && MpiSession::world_rank() == 0)
             std::fprintf(stderr,
@@ -96,7 +113,8 @@ std::vector<int32_t> run_edge_parts(const ConfigSpec& config, const Scenario& sc
     }
     // Built only for the parts that run: a large network's graph takes seconds.
     const PartitionMethod method = *partition_method_from_name(config.partition_method);
-    const JunctionGraph g = build_junction_graph(net, sc.demand, config.step_length);
+    const JunctionGraph g = measured ? build_junction_graph(net, load, config.step_length)
+                                     : build_junction_graph(net, sc.demand, config.step_length);
     junction_part = partition_junctions(g, k, method, static_cast<uint64_t>(config.seed));
   }
   *parts = k;

@@ -29,8 +29,9 @@ std::vector<int32_t> run_edge_parts(const ConfigSpec& config, const Scenario& sc
 /// first.
 double mean_vehicles_per_step(const Scenario& sc, const ConfigSpec& config);
 
-/// InputError when --partition-method was given without --parts, or beside --partition-file.
-void refuse_method_without_parts(const ConfigSpec& config);
+/// InputError when --partition-method or --partition.load-from was given without --parts, or beside
+/// --partition-file.
+void refuse_split_options_without_parts(const ConfigSpec& config);
 
 /// The longest vehicle of the demand's types, metres (how far back a vehicle's tail reaches).
 double longest_vehicle(const Demand& demand);

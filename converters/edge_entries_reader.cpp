@@ -4,8 +4,8 @@
 
 namespace lpsim {
 
-std::unordered_map<std::string, int64_t> read_edge_entries(const std::string& path) {
-  std::unordered_map<std::string, int64_t> entered;
+EdgeDataTotals read_edge_totals(const std::string& path) {
+  EdgeDataTotals totals;
   XmlStream xml(path);
   bool interval = false;
   for (XmlStream::Event e; (e = xml.next()) != XmlStream::Event::Eof;) {
@@ -13,10 +13,17 @@ std::unordered_map<std::string, int64_t> read_edge_entries(const std::string& pa
       if (xml.name() == "interval") interval = false;
       continue;
     }
-    if (xml.name() == "interval") interval = true;
-    if (interval && xml.name() == "edge") entered[xml.required("id")] += xml.integer("entered", 0);
+    if (xml.name() == "interval") {
+      interval = true;
+      totals.seconds += xml.number("end", 0) - xml.number("begin", 0);
+    }
+    if (interval && xml.name() == "edge") {
+      EdgeTotals& t = totals.edges[xml.required("id")];
+      t.entered += xml.integer("entered", 0);
+      t.sampled_seconds += xml.number("sampledSeconds", 0);
+    }
   }
-  return entered;
+  return totals;
 }
 
 }  // namespace lpsim

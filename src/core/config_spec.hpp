@@ -154,6 +154,8 @@ struct ConfigSpec {
   double sumo_timeout = 300;
   std::string partition_file, partition_map;
   std::string migrations_from;  // an edgeData output whose entries count the vehicles crossing the cuts
+  // An edgeData output of a run of the scenario: the partition weighed by its measured load.
+  std::string partition_load_from;
   // `lpsim cosim`: the corridor file, SUMO as a program over TraCI (empty: libsumo in process) and the
   // options passed to it, as one command-line text.
   std::string corridor_file, sumo_binary, sumo_args;

@@ -22,10 +22,13 @@ EdgeRouteUses count_route_uses(const Demand& demand, uint32_t num_edges) {
   return u;
 }
 
-JunctionGraph build_junction_graph(const Network& net, const Demand& demand, double dt) {
-  const uint32_t nj = net.num_junctions(), ne = net.num_edges();
-  const std::vector<int64_t> uses = count_route_uses(demand, ne).uses;
+namespace {
 
+// The graph with each normal edge's load (vehicle-steps) added to the junction it leads to and its crossings
+// to the link between its two junctions (both directions summed).
+JunctionGraph build_graph(const Network& net, const std::vector<int64_t>& load,
+                          const std::vector<int64_t>& crossings) {
+  const uint32_t nj = net.num_junctions(), ne = net.num_edges();
   JunctionGraph g;
   g.num_junctions = nj;
   std::vector<int32_t> vertex(nj, -1);
@@ -45,10 +48,10 @@ JunctionGraph build_junction_graph(const Network& net, const Demand& demand, dou
         net.edge_from_junction[e] >= 0 ? vertex[static_cast<uint32_t>(net.edge_from_junction[e])] : -1;
     const int32_t to =
         net.edge_to_junction[e] >= 0 ? vertex[static_cast<uint32_t>(net.edge_to_junction[e])] : -1;
-    if (to >= 0) g.vertex_weight[static_cast<uint32_t>(to)] += uses[e] * free_flow_steps(net, e, dt);
+    if (to >= 0) g.vertex_weight[static_cast<uint32_t>(to)] += load[e];
     if (from < 0 || to < 0 || from == to) continue;
-    links[static_cast<uint32_t>(from)].emplace_back(to, uses[e]);
-    links[static_cast<uint32_t>(to)].emplace_back(from, uses[e]);
+    links[static_cast<uint32_t>(from)].emplace_back(to, crossings[e]);
+    links[static_cast<uint32_t>(to)].emplace_back(from, crossings[e]);
   }
   g.adj_begin.assign(nv + 1, 0);
   for (uint32_t j = 0; j < nv; ++j) {
@@ -65,6 +68,24 @@ JunctionGraph build_junction_graph(const Network& net, const Demand& demand, dou
     g.adj_begin[j + 1] = static_cast<int32_t>(g.adj.size());
   }
   return g;
+}
+
+}  // namespace
+
+JunctionGraph build_junction_graph(const Network& net, const Demand& demand, double dt) {
+  const uint32_t ne = net.num_edges();
+  const std::vector<int64_t> uses = count_route_uses(demand, ne).uses;
+  std::vector<int64_t> load(ne, 0);
+  for (uint32_t e = 0; e < ne; ++e)
+    if (!net.edge_is_internal[e]) load[e] = uses[e] * free_flow_steps(net, e, dt);
+  return build_graph(net, load, uses);
+}
+
+JunctionGraph build_junction_graph(const Network& net, const MeasuredLoad& measured, double dt) {
+  const uint32_t ne = net.num_edges();
+  std::vector<int64_t> load(ne, 0);
+  for (uint32_t e = 0; e < ne; ++e) load[e] = std::llround(measured.vehicle_seconds.at(e) / dt);
+  return build_graph(net, load, measured.entered);
 }
 
 std::vector<int32_t> edge_parts_from_junctions(const Network& net,

@@ -1,8 +1,8 @@
 // `lpsim run --save-state.times T` and `--load-state`: a run resumed from the state saved at T writes every
 // output byte for byte as the uninterrupted run does (its outputs continued from where the saved run had
 // written them), in one part and in 3, saving changes no output, and a state file that is not one of this run
-// (nor of its parts) is refused with one line and exit status 2. Every bundled scenario, each in a copy (their
-// add-file outputs land beside them).
+// (nor of its parts) is refused with one line and exit status 2. Every bundled scenario, each in a copy
+// (their add-file outputs land beside them).
 #include <gtest/gtest.h>
 
 #include <csignal>

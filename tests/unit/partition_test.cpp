@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <map>
 #include <regex>
 #include <set>
 #include <string>
@@ -67,6 +68,37 @@ TEST(PartitionTest, JunctionGraphIsSymmetricAndWeighsTheDemand) {
       expected += free_flow_steps(sc.network, sc.demand.route_edges[sc.demand.route_begin[v] + i], 1.0);
   for (int64_t w : g.vertex_weight) total += w;
   EXPECT_EQ(total, expected);
+}
+
+// A run's measured load in place of the routes: each junction weighs the vehicle-steps measured on the roads
+// leading to it, each link between two junctions the vehicles that entered its roads (both directions).
+TEST(PartitionTest, JunctionGraphWeighsAMeasuredLoad) {
+  const Network& net = grid().network;
+  MeasuredLoad m{std::vector<double>(net.num_edges(), 0), std::vector<int64_t>(net.num_edges(), 0)};
+  std::map<uint32_t, int64_t> steps;                    // by junction
+  std::map<std::pair<uint32_t, uint32_t>, int64_t> in;  // by pair of junctions, the smaller first
+  for (uint32_t e = 0; e < net.num_edges(); ++e) {
+    if (net.edge_is_internal[e]) continue;
+    m.vehicle_seconds[e] =
+        7.0 * (e % 5) + 0.3;  // at a 0.5 s step: 14 (e % 5) + 1 vehicle-steps (0.6 rounds up)
+    m.entered[e] = e % 3;
+    const auto from = static_cast<uint32_t>(net.edge_from_junction[e]),
+               to = static_cast<uint32_t>(net.edge_to_junction[e]);
+    steps[to] += 14 * (e % 5) + 1;
+    in[std::pair{std::min(from, to), std::max(from, to)}] += e % 3;
+  }
+  const JunctionGraph g = build_junction_graph(net, m, 0.5);
+  ASSERT_EQ(g.num_vertices(), build_junction_graph(net, grid().demand, 1.0).num_vertices());
+  for (uint32_t u = 0; u < g.num_vertices(); ++u) {
+    const uint32_t j = g.junction[u];
+    EXPECT_EQ(g.vertex_weight[u], 1 + steps[j]) << net.junction_id[j];
+    for (int32_t a = g.adj_begin[u]; a < g.adj_begin[u + 1]; ++a) {
+      const uint32_t other = g.junction[static_cast<uint32_t>(g.adj[static_cast<size_t>(a)])];
+      const std::pair<uint32_t, uint32_t> key{std::min(j, other), std::max(j, other)};
+      EXPECT_EQ(g.adj_weight[static_cast<size_t>(a)], 1 + in[key])
+          << net.junction_id[j] << " " << net.junction_id[other];
+    }
+  }
 }
 
 TEST(PartitionTest, EveryMethodGivesKNonEmptyPartsDeterministically) {
@@ -248,8 +280,8 @@ class PartitionFileTest : public ::testing::Test {
     write_partition_file(path, {"a comment"}, 3, ids, part);
     return test::read_file(path);
   }
-  std::string write(const std::string& text) {
-    const std::string path = (dir.path() / "q.txt").string();
+  std::string write(const std::string& text, const std::string& name = "q.txt") {
+    const std::string path = (dir.path() / name).string();
     std::ofstream(path) << text;
     return path;
   }
@@ -408,9 +440,20 @@ TEST_F(PartitionFileTest, RefusesUnboundedOrMeaninglessPartitionInput) {
           "26 parts need at least as many junctions; the network has 25");
   refused({"partition", "-c", kConfig, "--parts", "26", "-o", "p.txt"}, "the network has 25");
   refused({"run", "-c", kConfig, "--partition-method", "leiden"}, "give --parts K as well");
+  refused({"run", "-c", kConfig, "--partition.load-from", "e.xml"}, "give --parts K as well");
+  write(
+      "<meandata>\n  <interval begin=\"0\" end=\"60\">\n    <edge id=\"nosuchedge\" sampledSeconds=\"3\"/>\n"
+      "  </interval>\n</meandata>\n",
+      "other.xml");
+  refused({"run", "-c", kConfig, "--parts", "2", "--partition.load-from", "other.xml"},
+          "other.xml: edge 'nosuchedge' is not in the network");
+  refused({"partition", "-c", kConfig, "--parts", "2", "-o", "p.txt", "--partition.load-from", "other.xml"},
+          "other.xml: edge 'nosuchedge' is not in the network");
   write("parts 3\n");
   refused({"run", "-c", kConfig, "--partition-method", "leiden", "--partition-file", "q.txt"},
           "--partition-file gives the parts already");
+  refused({"run", "-c", kConfig, "--partition.load-from", "other.xml", "--partition-file", "q.txt"},
+          "--partition.load-from weighs what --parts splits the network; --partition-file gives the parts");
   refused({"partition", "-c", kConfig, "--parts", "2", "-o", "p.txt", "--map", "p.jpg"}, "ending in .png");
   refused({"partition", "-c", kConfig, "--parts", "2", "-o", "p.txt", "--map", "nodir/p.png"}, "p.png");
   EXPECT_FALSE(std::filesystem::exists(dir.path() / "p.txt"));
@@ -437,6 +480,33 @@ TEST_F(PartitionFileTest, MigrationsMeasuredFromARunAreTheRoutesCrossings) {
   const test::CliResult one = test::run_lpsim(
       dir.path(), {"partition", "-c", kConfig, "--parts", "1", "-o", "p1.txt", "--migrations-from", "e.xml"});
   EXPECT_NE(one.out.find("measured migrations 0 "), std::string::npos) << one.out;
+}
+
+// A run split on another run's measured load: its vehicles per step come from that edgeData (the grid's
+// hour: its vehicle-seconds over the 3,600 s the intervals cover), and its outputs are the run's in one part.
+TEST_F(PartitionFileTest, ARunSplitOnAMeasuredLoadTakesItsVehiclesPerStepFromIt) {
+  const test::CliResult measured = test::run_lpsim(
+      dir.path(), {"run", "-c", kConfig, "--edgedata-output", "e.xml", "--tripinfo-output", "one.xml"});
+  ASSERT_EQ(measured.exit_code, 0) << measured.err;
+  double vehicle_seconds = 0;
+  const std::string edges = test::read_file(dir.path() / "e.xml");
+  static const std::regex sampled(" sampledSeconds=\"([0-9.]+)\"");
+  for (auto it = std::sregex_iterator(edges.begin(), edges.end(), sampled); it != std::sregex_iterator();
+       ++it)
+    vehicle_seconds += std::stod((*it)[1].str());
+  const test::CliResult split =
+      test::run_lpsim(dir.path(), {"run", "-c", kConfig, "--parts", "2", "--parts.min-vehicles", "100000",
+                                   "--partition.load-from", "e.xml", "--tripinfo-output", "two.xml"});
+  ASSERT_EQ(split.exit_code, 0) << split.err;
+  char says[96];
+  std::snprintf(says, sizeof says, "about %.0f vehicles per step measured", vehicle_seconds / 3600);
+  EXPECT_NE(split.err.find(says), std::string::npos) << split.err;
+  const test::CliResult kept =
+      test::run_lpsim(dir.path(), {"run", "-c", kConfig, "--parts", "3", "--parts.min-vehicles", "0",
+                                   "--partition.load-from", "e.xml", "--tripinfo-output", "three.xml"});
+  ASSERT_EQ(kept.exit_code, 0) << kept.err;
+  EXPECT_NE(kept.out.find("Part 2: vehicle updates"), std::string::npos) << kept.out;
+  EXPECT_TRUE(test::read_file(dir.path() / "three.xml") == test::read_file(dir.path() / "one.xml"));
 }
 
 }  // namespace
