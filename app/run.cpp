@@ -32,10 +32,6 @@ void refuse_what_states_cannot_resume(const ConfigSpec& c) {
   if (!c.jam_report.empty())
     throw InputError(
         "--save-state/--load-state: the jam report's episodes are not saved yet: leave out --jam-report");
-  const OutputSpec& o = c.outputs;
-  for (const std::string* path : {&o.fcd, &o.tripinfo, &o.summary, &o.edgedata, &o.lanedata})
-    if (path->size() > 3 && path->compare(path->size() - 3, 3, ".gz") == 0)
-      throw InputError("--save-state/--load-state: a resumed run continues plain outputs only, not " + *path);
 }
 
 const char* teleport_cause(TeleportCause cause) {
@@ -300,13 +296,15 @@ void Run::flush_outputs() {
   if (jam_) jam_->flush();
 }
 
-// The outputs a resumed run continues, in open_outputs()'s order: their lengths so far.
-std::vector<int64_t> Run::output_sizes() const {
+// The outputs a resumed run continues, in open_outputs()'s order: each handed to its file, and the file's
+// length then.
+std::vector<int64_t> Run::output_sizes() {
   std::vector<int64_t> sizes;
-  if (fcd_) sizes.push_back(static_cast<int64_t>(fcd_->size()));
-  if (tripinfo_) sizes.push_back(static_cast<int64_t>(tripinfo_->size()));
-  if (summary_) sizes.push_back(static_cast<int64_t>(summary_->size()));
-  for (const MeanDataOutput& m : mean_data_) sizes.push_back(static_cast<int64_t>(m.writer->size()));
+  if (fcd_) sizes.push_back(static_cast<int64_t>(fcd_->continue_point()));
+  if (tripinfo_) sizes.push_back(static_cast<int64_t>(tripinfo_->continue_point()));
+  if (summary_) sizes.push_back(static_cast<int64_t>(summary_->continue_point()));
+  for (const MeanDataOutput& m : mean_data_)
+    sizes.push_back(static_cast<int64_t>(m.writer->continue_point()));
   return sizes;
 }
 

@@ -145,7 +145,7 @@ class Run {
   void add_state_saves();
   void save_state(const std::string& path);
   void resume(const std::string& path);
-  std::vector<int64_t> output_sizes() const;
+  std::vector<int64_t> output_sizes();
   template <class A>
   void visit_state(A& a);
   RunStatistics statistics() const;

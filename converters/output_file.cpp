@@ -1,5 +1,6 @@
 #include "converters/output_file.hpp"
 
+#include <sys/stat.h>
 #include <unistd.h>
 #include <zlib.h>
 
@@ -9,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <stdexcept>
 
 #include "converters/fixed_decimal.hpp"
 #include "core/error.hpp"
@@ -45,8 +47,25 @@ OutputFile::OutputFile(std::string path) : path_(std::move(path)), buffer_(kBuff
 
 OutputFile::OutputFile(std::string path, uint64_t continue_at)
     : path_(std::move(path)), buffer_(kBufferBytes, '\0'), written_(continue_at) {
-  if (ends_with_gz(path_))
-    throw InputError(SourceLoc{path_, 0}, "a resumed run continues plain outputs only, not gzip files");
+  if (ends_with_gz(path_)) {
+    errno = 0;
+    struct stat st {};
+    if (::stat(path_.c_str(), &st) != 0)
+      throw InputError(SourceLoc{path_, 0}, "cannot continue output file: " + system_reason());
+    if (static_cast<uint64_t>(st.st_size) < continue_at)
+      throw InputError(SourceLoc{path_, 0}, "shorter than the saved run left it (" +
+                                                std::to_string(continue_at) +
+                                                " bytes): not the output of the run that saved the state");
+    // Cut back to the end of the member the save ended, then a new member appended.
+    if (::truncate(path_.c_str(), static_cast<off_t>(continue_at)) != 0)
+      throw InputError(SourceLoc{path_, 0}, "cannot continue output file: " + system_reason());
+    gzFile gz = gzopen(path_.c_str(), "ab6");
+    if (gz == nullptr)
+      throw InputError(SourceLoc{path_, 0}, "cannot continue output file: " + system_reason());
+    gzbuffer(gz, 256 * 1024);
+    gz_ = gz;
+    return;
+  }
   errno = 0;
   std::FILE* f = std::fopen(path_.c_str(), "r+b");
   if (f == nullptr) throw InputError(SourceLoc{path_, 0}, "cannot continue output file: " + system_reason());
@@ -91,6 +110,21 @@ void OutputFile::flush() {
   const bool ok = gz_ != nullptr ? gzflush(static_cast<gzFile>(gz_), Z_SYNC_FLUSH) == Z_OK
                                  : std::fflush(static_cast<std::FILE*>(plain_)) == 0;
   if (!ok) throw InputError(SourceLoc{path_, 0}, "cannot write output file: " + system_reason());
+}
+
+uint64_t OutputFile::continue_point() {
+  if (!is_open()) throw std::logic_error(path_ + ": continue_point() after close()");
+  flush_buffer();
+  errno = 0;
+  if (gz_ == nullptr) {
+    if (std::fflush(static_cast<std::FILE*>(plain_)) != 0)
+      throw InputError(SourceLoc{path_, 0}, "cannot write output file: " + system_reason());
+    return written_;
+  }
+  struct stat st {};
+  if (gzflush(static_cast<gzFile>(gz_), Z_FINISH) != Z_OK || ::stat(path_.c_str(), &st) != 0)
+    throw InputError(SourceLoc{path_, 0}, "cannot write output file: " + system_reason());
+  return static_cast<uint64_t>(st.st_size);
 }
 
 void OutputFile::close() {

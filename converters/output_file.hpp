@@ -13,9 +13,9 @@ class OutputFile {
  public:
   /// Creates (truncates) `path`. A file that cannot be created is an InputError naming it.
   explicit OutputFile(std::string path);
-  /// A resumed run's output: `path` as a saved run left it, cut back to its first `continue_at` bytes and
-  /// written on from there. Plain files only; an InputError naming the file when it is gzipped, missing or
-  /// shorter than that.
+  /// A resumed run's output: `path` as a saved run left it, cut back to its first `continue_at` bytes (a
+  /// continue_point() of that run) and written on from there, a gzip file in a gzip member of its own. An
+  /// InputError naming the file when it is missing or shorter than that.
   OutputFile(std::string path, uint64_t continue_at);
   /// Closes the file; errors during this implicit close are swallowed (call close() to see them).
   ~OutputFile();
@@ -25,8 +25,11 @@ class OutputFile {
   const std::string& path() const { return path_; }
   bool is_open() const { return plain_ != nullptr || gz_ != nullptr; }
   bool gzipped() const { return gz_ != nullptr; }
-  /// Bytes written so far, buffered ones included (before compression: a plain file's length once flushed).
-  uint64_t size() const { return written_ + used_; }
+  /// Hands everything written so far to the file and returns the file's length then, where a resumed run
+  /// continues it. A gzip file's member ends there, and the text goes on in a new one: concatenated members
+  /// decompress as one text (gzip's format; zlib, Python and SUMO read them so), which the run's text is,
+  /// saved or not. InputError on failure.
+  uint64_t continue_point();
 
   void text(std::string_view s);
   void put(char c);
@@ -67,7 +70,7 @@ class OutputFile {
   void* gz_ = nullptr;     // gzFile
   std::string buffer_;
   size_t used_ = 0;
-  uint64_t written_ = 0;  // handed to the file
+  uint64_t written_ = 0;  // handed to the file (a plain file's length)
 };
 
 /// Writes the XML declaration, a provenance comment and the opening root tag carrying SUMO's schema

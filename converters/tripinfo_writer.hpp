@@ -30,8 +30,8 @@ class TripinfoWriter {
   /// Hands what was written so far to the file (OutputFile::flush). Called between records, so that a file
   /// cut short by a later kill holds them all and lacks only its closing tag.
   void flush() { out_.flush(); }
-  /// Bytes written so far (a plain file's length once flushed): where a resumed run continues it.
-  uint64_t size() const { return out_.size(); }
+  /// Everything written so far handed to the file: where a resumed run continues it (OutputFile).
+  uint64_t continue_point() { return out_.continue_point(); }
 
   /// Writes the closing tag and closes the file (InputError on failure); later calls do nothing.
   void close();
