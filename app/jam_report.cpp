@@ -31,8 +31,9 @@ JamRecorder::Episode JamRecorder::started(double t) {
   return e;
 }
 
-JamRecorder::JamRecorder(const std::string& path, double stop_time, const Network& net, Simulation& sim)
-    : net_(net), writer_(path, net, sim.demand(), stop_time), stop_time_(stop_time) {}
+JamRecorder::JamRecorder(const std::string& path, double stop_time, const Network& net, Simulation& sim,
+                         int64_t continue_at)
+    : net_(net), writer_(path, net, sim.demand(), stop_time, continue_at), stop_time_(stop_time) {}
 
 const JamRecorder::Snapshot* JamRecorder::in(const std::vector<Snapshot>& snap, uint32_t step,
                                              uint32_t v) const {

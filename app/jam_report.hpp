@@ -16,8 +16,10 @@ namespace lpsim {
 
 class JamRecorder {
  public:
-  /// Opens the report at `path`; net and the simulation's demand must outlive the recorder.
-  JamRecorder(const std::string& path, double stop_time, const Network& net, Simulation& sim);
+  /// Opens the report at `path` (with `continue_at` >= 0 continues the one a saved run left there); net and
+  /// the simulation's demand must outlive the recorder.
+  JamRecorder(const std::string& path, double stop_time, const Network& net, Simulation& sim,
+              int64_t continue_at = -1);
 
   /// Reads the state after a step: ends the episodes of vehicles that moved, left or teleported (a record
   /// for each teleport and each episode of at least the stop time), starts those of vehicles now standing.
@@ -25,6 +27,12 @@ class JamRecorder {
   /// Records the episodes still going on (as running at the end) and closes the file.
   void finish(Simulation& sim);
   void flush() { writer_.flush(); }
+  /// The report handed to its file: where a resumed run continues it.
+  uint64_t continue_point() { return writer_.continue_point(); }
+  /// A checkpoint's share (between steps): the last step's snapshot of the running vehicles (the next step
+  /// ends episodes from it) and the episodes going on.
+  template <class A>
+  void visit_state(A& a);
 
  private:
   // A running vehicle in one step's snapshot, and the vehicle blocking it (-1: none, or not asked for).
@@ -40,6 +48,14 @@ class JamRecorder {
     // step would show every queue at the moment it is released, its leader already moving.
     bool held_known = false;
     JamRecord held;
+
+    template <class A>
+    void visit_state(A& a) {
+      a(begin);
+      a(reason_steps);
+      a(held_known);
+      a(held);
+    }
   };
 
   static Episode started(double t);
@@ -77,5 +93,39 @@ class JamRecorder {
   std::map<uint32_t, Episode> standing_;  // vehicles standing as of the last step, by vehicle
   FcdFrame frame_;                        // this step's running vehicles
 };
+
+template <class A>
+void JamRecorder::visit_state(A& a) {
+  a(step_);
+  std::vector<uint32_t> vehicles;
+  std::vector<JamVehicleState> states;
+  std::vector<int64_t> blockers;
+  std::vector<uint32_t> standing;
+  std::vector<Episode> episodes;
+  if constexpr (!A::kReads) {
+    for (uint32_t v = 0; v < cur_.size(); ++v)
+      if (cur_[v].step == step_)
+        vehicles.push_back(v), states.push_back(cur_[v].state), blockers.push_back(cur_[v].blocker);
+    for (const auto& [v, e] : standing_) standing.push_back(v), episodes.push_back(e);
+  }
+  a(vehicles);
+  a(states);
+  a(blockers);
+  a(standing);
+  a(episodes);
+  if constexpr (A::kReads) {
+    if (states.size() != vehicles.size() || blockers.size() != vehicles.size() ||
+        episodes.size() != standing.size())
+      a.fail("the jam report's lists differ in length");
+    cur_.clear();
+    prev_.clear();
+    for (size_t i = 0; i < vehicles.size(); ++i) {
+      if (vehicles[i] >= cur_.size()) cur_.resize(vehicles[i] + size_t{1});
+      cur_[vehicles[i]] = Snapshot{step_, states[i], blockers[i]};
+    }
+    standing_.clear();
+    for (size_t i = 0; i < standing.size(); ++i) standing_.emplace(standing[i], episodes[i]);
+  }
+}
 
 }  // namespace lpsim

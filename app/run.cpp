@@ -29,9 +29,6 @@ std::string state_file_name(const ConfigSpec& c, double t) {
 // What a saved state cannot carry yet, refused before anything is written.
 void refuse_what_states_cannot_resume(const ConfigSpec& c) {
   if (!Run::keeps_states(c)) return;
-  if (!c.jam_report.empty())
-    throw InputError(
-        "--save-state/--load-state: the jam report's episodes are not saved yet: leave out --jam-report");
 }
 
 const char* teleport_cause(TeleportCause cause) {
@@ -97,7 +94,8 @@ SimulationOptions Run::counting_lanes(SimulationOptions options, const std::vect
 size_t Run::continued_outputs() const {
   const OutputSpec& out = config_.outputs;
   size_t n = mean_data_.size();
-  for (const std::string* o : {&out.fcd, &out.tripinfo, &out.summary}) n += o->empty() ? 0 : 1;
+  for (const std::string* o : {&out.fcd, &out.tripinfo, &out.summary, &config_.jam_report})
+    n += o->empty() ? 0 : 1;
   return n;
 }
 
@@ -118,7 +116,7 @@ void Run::open_outputs(const std::vector<int64_t>* continue_at) {
   if (!out.statistic.empty()) statistic_ = std::make_unique<StatisticWriter>(out.statistic);
   if (!config_.jam_report.empty())
     jam_ = std::make_unique<JamRecorder>(config_.jam_report, config_.jam_report_stop_time, scenario_.network,
-                                         sim_);
+                                         sim_, at());
   for (MeanDataOutput& m : mean_data_) {
     m.writer =
         std::make_unique<MeanDataWriter>(m.spec, scenario_.network, demand(), options_.volumetric_fuel, at());
@@ -303,12 +301,14 @@ std::vector<int64_t> Run::output_sizes() {
   if (fcd_) sizes.push_back(static_cast<int64_t>(fcd_->continue_point()));
   if (tripinfo_) sizes.push_back(static_cast<int64_t>(tripinfo_->continue_point()));
   if (summary_) sizes.push_back(static_cast<int64_t>(summary_->continue_point()));
+  if (jam_) sizes.push_back(static_cast<int64_t>(jam_->continue_point()));
   for (const MeanDataOutput& m : mean_data_)
     sizes.push_back(static_cast<int64_t>(m.writer->continue_point()));
   return sizes;
 }
 
-// The Run's own part of a state: its totals and its open edgeData/laneData intervals.
+// The Run's own part of a state: its totals, its open edgeData/laneData intervals and the jam report's
+// episodes.
 template <class A>
 void Run::visit_state(A& a) {
   a(totals_);
@@ -317,6 +317,7 @@ void Run::visit_state(A& a) {
     a(m.interval_begin);
     a(m.at_begin);
   }
+  if (jam_) a(*jam_);
 }
 
 // SUMO's --save-state.times (each with the next of --save-state.files, else named by its time) and

@@ -36,8 +36,11 @@ const char* stop_reason_name(uint8_t reason) {
 }
 
 JamReportWriter::JamReportWriter(const std::string& path, const Network& net, const Demand& demand,
-                                 double stop_time)
-    : net_(net), demand_(demand), out_(path) {
+                                 double stop_time, int64_t continue_at)
+    : net_(net),
+      demand_(demand),
+      out_(continue_at < 0 ? OutputFile(path) : OutputFile(path, static_cast<uint64_t>(continue_at))) {
+  if (continue_at >= 0) return;
   out_.text("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
   out_.text(
       "<!-- LPSim jam report: every teleport and every vehicle standing (speed < 0.1 m/s) at least\n"

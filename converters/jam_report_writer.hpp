@@ -19,6 +19,16 @@ struct JamVehicleState {
   uint32_t lane = 0;
   float pos = 0, speed = 0;
   uint8_t reason = 0;  // StopReason (kernels/step_view.hpp)
+
+  /// Field by field for a checkpoint's state (app/state_file), without the padding.
+  template <class A>
+  void visit_state(A& a) {
+    a(vehicle);
+    a(lane);
+    a(pos);
+    a(speed);
+    a(reason);
+  }
 };
 
 /// How a standing episode ended.
@@ -39,6 +49,18 @@ struct JamRecord {
   std::vector<double> reason_seconds;  // seconds standing per StopReason, indexed by it
   std::vector<JamVehicleState> chain;
   int32_t cycle_from = -1;
+
+  template <class A>
+  void visit_state(A& a) {
+    a(begin);
+    a(end);
+    a(ended);
+    a(teleport);
+    a(where);
+    a(reason_seconds);
+    a(chain);
+    a(cycle_from);
+  }
 };
 
 /// The name the report gives a StopReason ("leader", "wrong_lane", "signal", "halt_rule", "no_room",
@@ -47,14 +69,18 @@ const char* stop_reason_name(uint8_t reason);
 
 class JamReportWriter {
  public:
-  /// Opens `path` (".gz" gives gzip) and writes the root tag. net and demand must outlive the writer.
-  JamReportWriter(const std::string& path, const Network& net, const Demand& demand, double stop_time);
+  /// Opens `path` (".gz" gives gzip) and writes the root tag, or with `continue_at` >= 0 continues the
+  /// report a saved run left there (OutputFile). net and demand must outlive the writer.
+  JamReportWriter(const std::string& path, const Network& net, const Demand& demand, double stop_time,
+                  int64_t continue_at = -1);
   ~JamReportWriter();
   JamReportWriter(const JamReportWriter&) = delete;
   JamReportWriter& operator=(const JamReportWriter&) = delete;
 
   void write(const JamRecord& r);
   void flush() { out_.flush(); }
+  /// Everything written so far handed to the file: where a resumed run continues it (OutputFile).
+  uint64_t continue_point() { return out_.continue_point(); }
   /// Writes the closing tag and closes the file (InputError on failure); later calls do nothing.
   void close();
 

@@ -221,6 +221,39 @@ TEST(CliStateGzipTest, AResumedRunContinuesGzippedOutputsAsOneText) {
               read_file(tmp.path() / "saved" / "summary.xml"));
 }
 
+// The jam report goes on too: the episodes standing at the save are ended (and written) by the resumed run
+// as by the run never stopped, each with the snapshot of the step it was last seen in.
+TEST(CliStateJamReportTest, AResumedRunWritesTheJamReportOfTheUninterruptedOne) {
+  test::TempDir tmp("lpsim_state_jam");
+  for (const std::string name : {"grid_tls", "keep_clear"}) {
+    const std::vector<std::string> args{"run",
+                                        "-c",
+                                        name + ".sumocfg",
+                                        "--jam-report",
+                                        "jam.xml",
+                                        "--jam-report.stop-time",
+                                        "20",
+                                        "--tripinfo-output",
+                                        "trip.xml",
+                                        "--no-step-log",
+                                        "-W"};
+    for (const char* dir : {"whole", "saved"}) test::copy_scenario(name, tmp.path() / name / dir);
+    const CliResult whole = test::run_lpsim(tmp.path() / name / "whole", args);
+    ASSERT_EQ(whole.exit_code, 0) << whole.err;
+    std::vector<std::string> saving = args, resuming = args;
+    saving.insert(saving.end(), {"--save-state.times", "700"});
+    resuming.insert(resuming.end(), {"--load-state", "state_700.00.lpstate"});
+    ASSERT_EQ(test::run_lpsim(tmp.path() / name / "saved", saving).exit_code, 0);
+    const CliResult resumed = test::run_lpsim(tmp.path() / name / "saved", resuming);
+    ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+    const std::string report = read_file(tmp.path() / name / "whole" / "jam.xml");
+    EXPECT_GT(std::count(report.begin(), report.end(), '\n'), 100) << name;
+    for (const char* f : {"jam.xml", "trip.xml"})
+      EXPECT_TRUE(read_file(tmp.path() / name / "whole" / f) == read_file(tmp.path() / name / "saved" / f))
+          << name << ": " << f;
+  }
+}
+
 class CliStateRefusalTest : public ::testing::Test {
  protected:
   CliResult run(const std::vector<std::string>& args) { return test::run_lpsim(tmp_.path(), args); }
