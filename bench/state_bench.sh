@@ -6,8 +6,11 @@
 # whole run's: LPSim's outputs byte for byte, SUMO's tripinfo line by line for the trips that
 # end after the save. Works in copies (bench/work/state/), as add-file outputs land beside their files.
 #
+# --parts K runs LPSim's three runs in K parts in one process (one thread each), --mpi K as K MPI ranks:
+# the state then holds every part's.
+#
 # Usage: bench/state_bench.sh --scenario CFG_OR_SNAPSHOT --at T [--end T] [--threads 2] [--no-sumo]
-#                             [--lpsim PATH]
+#                             [--parts K | --mpi K] [--lpsim PATH]
 # e.g.   bench/state_bench.sh --scenario ../shared/scenarios/bologna_acosta/run.sumocfg --at 1800
 #        bench/state_bench.sh --scenario bench/work/regional/1000000/regional.lpsim --at 1800 --end 2400
 set -euo pipefail
@@ -19,6 +22,8 @@ at=""
 end=""
 threads=2
 sumo=1
+parts=()
+launch=()
 lpsim="$PWD/build/lpsim"
 while [[ $# -gt 0 ]]; do
   case "$1" in
@@ -27,6 +32,8 @@ while [[ $# -gt 0 ]]; do
     --end) end="$2"; shift 2 ;;
     --threads) threads="$2"; shift 2 ;;
     --no-sumo) sumo=0; shift ;;
+    --parts) parts=(--parts "$2" --parts.min-vehicles 0); threads=1; shift 2 ;;
+    --mpi) parts=(--parts "$2"); launch=(mpirun --allow-run-as-root --oversubscribe -n "$2"); threads=1; shift 2 ;;
     --lpsim) lpsim="$(realpath "$2")"; shift 2 ;;
     *) echo "unknown option $1" >&2; exit 2 ;;
   esac
@@ -48,18 +55,18 @@ input() {
   fi
 }
 
-outputs=(--tripinfo-output trip.xml --summary-output sum.xml --no-step-log -W --threads "$threads")
+outputs=(--tripinfo-output trip.xml --summary-output sum.xml --no-step-log -W --threads "$threads" "${parts[@]}")
 for run in whole saved; do
   # shellcheck disable=SC2046
   set -- $(input "lpsim_$run")
   scenario_args=("$@")  # the saved run's: the resumed run continues its outputs, add-file ones included
   args=(run "$@" "${end_args[@]}" "${outputs[@]}")
   [[ "$run" == saved ]] && args+=(--save-state.times "$at")
-  (cd "$work/lpsim_$run" && echo "$run $(measure "$work/lpsim_$run.log" "$lpsim" "${args[@]}")") >>"$work/lpsim.times"
+  (cd "$work/lpsim_$run" && echo "$run $(measure "$work/lpsim_$run.log" "${launch[@]}" "$lpsim" "${args[@]}")") >>"$work/lpsim.times"
 done
 state=$(ls "$work"/lpsim_saved/*.lpstate)
 (cd "$work/lpsim_saved" &&
-  echo "resumed $(measure "$work/lpsim_resumed.log" "$lpsim" run "${scenario_args[@]}" "${end_args[@]}" \
+  echo "resumed $(measure "$work/lpsim_resumed.log" "${launch[@]}" "$lpsim" run "${scenario_args[@]}" "${end_args[@]}" \
     "${outputs[@]}" --load-state "$state")") >>"$work/lpsim.times"
 # Every file of the whole run's folder: its outputs (the scenario's add-file outputs too) and the inputs.
 identical=yes
