@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "lpsim_cli.hpp"
+#include "mpi/mpi_job.hpp"
 #include "temp_dir.hpp"
 
 namespace lpsim {
@@ -16,7 +17,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-bool have_mpirun() { return fs::exists(LPSIM_MPIEXEC); }
+using test::have_mpirun;
 
 std::string scenario_file(const std::string& name, const std::string& file) {
   return (fs::path(LPSIM_SOURCE_DIR) / "scenarios" / name / file).string();

@@ -13,6 +13,7 @@
 
 #include "converters/xml_stream.hpp"
 #include "lpsim_cli.hpp"
+#include "mpi/mpi_job.hpp"
 #include "temp_dir.hpp"
 
 namespace lpsim {
@@ -20,7 +21,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-bool have_mpirun() { return fs::exists(LPSIM_MPIEXEC); }
+using test::have_mpirun;
 
 const std::string kGrid = std::string(LPSIM_SOURCE_DIR) + "/scenarios/grid_tls/grid_tls.sumocfg";
 
@@ -65,27 +66,18 @@ TEST_P(MpiInterruptTest, EveryRankStopsAtOneStepAndRankZeroClosesTheOutputs) {
   if (!have_mpirun()) GTEST_SKIP() << "mpirun not installed";
   const std::string how = GetParam();
   test::TempDir tmp("lpsim_mpi_interrupt");
-  tmp.write("long.rou.xml",
-            "<routes>\n    <flow id=\"long\" begin=\"0\" end=\"1000000\" period=\"20\" from=\"A0A1\" "
-            "to=\"A1A2\"/>\n</routes>\n");
+  tmp.write("long.rou.xml", test::kEndlessFlow);
   const fs::path cut_dir = tmp.path() / "cut", whole_dir = tmp.path() / "whole";
   fs::create_directory(cut_dir);
   fs::create_directory(whole_dir);
-  // This job's processes are found by their working directory (other tests run lpsim at the same time); the
-  // signal goes once rank 0 has written the first few hundred steps of the summary.
   const std::string signal = how == std::string("mpirun")  ? "kill -INT $job"
                              : how == std::string("ranks") ? "for p in $(mine); do kill -TERM $p; done"
                                                            : "for p in $(mine); do grep -qz "
                                                              "'^OMPI_COMM_WORLD_RANK=1$' /proc/$p/environ && "
                                                              "kill -TERM $p; done";
-  const std::string cmd =
-      "cd " + test::shell_quote(cut_dir.string()) +
-      " && mine() { for p in $(pgrep -x lpsim); do [ \"$(readlink /proc/$p/cwd)\" = \"$PWD\" ] "
-      "&& echo $p; done; }; (" +
-      mpirun_command(std::string("--end 1000000") + kOutputs, how == std::string("mpirun") ? 3 : 1) +
-      " > out.txt 2> err.txt & job=$!; for i in $(seq 4000); do "
-      "[ $(stat -c %s summary.xml 2>/dev/null || echo 0) -gt 40000 ] && break; sleep 0.005; done; " +
-      signal + "; wait $job; echo $? > status.txt)";
+  const std::string cmd = test::signalled_job(
+      cut_dir, mpirun_command(std::string("--end 1000000") + kOutputs, how == std::string("mpirun") ? 3 : 1),
+      signal);
   ASSERT_EQ(std::system(cmd.c_str()), 0);
   const int status = std::stoi(test::read_file(cut_dir / "status.txt"));
   const std::string err = test::read_file(cut_dir / "err.txt");

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "lpsim_cli.hpp"
+#include "mpi/mpi_job.hpp"
 #include "temp_dir.hpp"
 
 namespace lpsim {
@@ -19,11 +20,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-bool have_mpirun() { return fs::exists(LPSIM_MPIEXEC); }
-
-std::string scenario(const std::string& name) {
-  return std::string(LPSIM_SOURCE_DIR) + "/scenarios/" + name + "/" + name + ".sumocfg";
-}
+using test::have_mpirun;
+using test::scenario;
 
 std::vector<std::string> output_args() {
   return {"--tripinfo-output", "trip.xml",         "--fcd-output", "fcd.xml",      "--edgedata-output",

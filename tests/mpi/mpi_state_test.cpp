@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "lpsim_cli.hpp"
+#include "mpi/mpi_job.hpp"
 #include "temp_dir.hpp"
 
 namespace lpsim {
@@ -19,11 +20,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-bool have_mpirun() { return fs::exists(LPSIM_MPIEXEC); }
-
-std::string scenario(const std::string& name) {
-  return std::string(LPSIM_SOURCE_DIR) + "/scenarios/" + name + "/" + name + ".sumocfg";
-}
+using test::have_mpirun;
+using test::scenario;
 
 // Bundled scenario `name`'s files copied into `dir` (the outputs its add-file names land there).
 void copy_scenario(const std::string& name, const fs::path& dir) {
@@ -101,10 +99,7 @@ TEST(MpiStateTest, AJobResumedFromTheStateItsRanksSavedWritesTheOutputsOfTheRunN
 TEST(MpiStateTest, AJobPreemptedBySigtermResumesFromTheStateItSavedOnTheSignal) {
   if (!have_mpirun()) GTEST_SKIP() << "mpirun not installed";
   test::TempDir tmp("lpsim_mpi_state_signal");
-  // Besides grid_tls's hour of demand, a flow all along: vehicles are on the road whenever the signal comes.
-  tmp.write("long.rou.xml",
-            "<routes>\n    <flow id=\"long\" begin=\"0\" end=\"1000000\" period=\"20\" from=\"A0A1\" "
-            "to=\"A1A2\"/>\n</routes>\n");
+  tmp.write("long.rou.xml", test::kEndlessFlow);
   const fs::path whole = tmp.path() / "whole", stopped = tmp.path() / "stopped";
   fs::create_directory(whole);
   fs::create_directory(stopped);
@@ -112,16 +107,8 @@ TEST(MpiStateTest, AJobPreemptedBySigtermResumesFromTheStateItSavedOnTheSignal) 
       test::shell_quote(scenario("grid_tls")) + " -a ../long.rou.xml --end 60000 --parts 2" + output_args();
   ASSERT_EQ(run_in(whole, mpirun_command(2, args)), 0) << test::read_file(whole / "err.txt");
 
-  // This job's ranks are found by their working directory (other tests run lpsim at the same time); the
-  // signal goes once rank 0 has written the first few hundred steps of the summary.
-  const std::string cmd =
-      "cd " + test::shell_quote(stopped.string()) +
-      " && mine() { for p in $(pgrep -x lpsim); do [ \"$(readlink /proc/$p/cwd)\" = \"$PWD\" ] "
-      "&& echo $p; done; }; (" +
-      mpirun_command(2, args + " --save-state.on-signal") +
-      " > out.txt 2> err.txt & job=$!; for i in $(seq 4000); do "
-      "[ $(stat -c %s summary.xml 2>/dev/null || echo 0) -gt 40000 ] && break; sleep 0.005; done; "
-      "for p in $(mine); do kill -TERM $p; done; wait $job; echo $? > status.txt)";
+  const std::string cmd = test::signalled_job(stopped, mpirun_command(2, args + " --save-state.on-signal"),
+                                              "for p in $(mine); do kill -TERM $p; done");
   ASSERT_EQ(std::system(cmd.c_str()), 0);
   const std::string err = test::read_file(stopped / "err.txt");
   ASSERT_EQ(std::stoi(test::read_file(stopped / "status.txt")), 128 + SIGTERM) << err;
