@@ -492,6 +492,9 @@ void print_run_report(std::FILE* out, const Run& run, double wall, double load_s
   if (c.discarded)
     std::fprintf(out, " Discarded (not inserted within --max-depart-delay): %llu\n",
                  static_cast<unsigned long long>(c.discarded));
+  if (c.cancelled)
+    std::fprintf(out, " Cancelled (removed by a command before departing): %llu\n",
+                 static_cast<unsigned long long>(c.cancelled));
   std::fprintf(out, "Teleports: %llu\n", static_cast<unsigned long long>(c.teleports));
   if (totals.trips > 0) {
     const double n = static_cast<double>(totals.trips);

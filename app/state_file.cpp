@@ -15,7 +15,7 @@ namespace lpsim {
 namespace {
 
 constexpr char kMagic[8] = {'L', 'P', 'S', 'I', 'M', 'S', 'T', '\0'};
-constexpr uint32_t kFormatVersion = 3;
+constexpr uint32_t kFormatVersion = 4;  // 4: trip records and counts of removals
 
 struct Header {
   char magic[8];

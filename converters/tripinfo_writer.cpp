@@ -58,6 +58,7 @@ void TripinfoWriter::write(const TripRecord& trip) {
   out_.attr("vType", demand_.types.id[demand_.vehicle_type[trip.vehicle]]);
   out_.attr_fixed("speedFactor", trip.speed_factor);
   out_.text(!arrived          ? " vaporized=\"end\"/>\n"
+            : trip.removed    ? " vaporized=\"traci\"/>\n"
             : trip.teleported ? " vaporized=\"teleport\"/>\n"
                               : " vaporized=\"\"/>\n");
 }

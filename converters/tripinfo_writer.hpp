@@ -2,8 +2,8 @@
 // tripinfo output (SUMO's tripinfo_file.xsd): one <tripinfo/> per finished trip, in the order the trips
 // are handed over (SUMO writes them as vehicles arrive), with SUMO's attribute order. Lanes are written
 // as lane ids; rerouteNo is 0 (LPSim does not reroute).
-// vaporized is "" for a trip that reached its destination and "teleport" for one that ended by being
-// removed in a teleport (TripRecord::teleported).
+// vaporized is "" for a trip that reached its destination, "teleport" for one that ended by being removed in
+// a teleport (TripRecord::teleported) and "traci" for one a remove command took out (TripRecord::removed).
 #include <string>
 #include <vector>
 

@@ -26,13 +26,22 @@ bool TripTable::connected(const Network& net, const std::vector<uint32_t>& edges
   return true;
 }
 
+const std::unordered_map<std::string, uint32_t>& TripTable::index() const {
+  if (index_.empty())
+    for (uint32_t v = 0; v < d_.size(); ++v) index_.emplace(d_.vehicle_id[v], v);
+  return index_;
+}
+
+int64_t TripTable::find(const std::string& id) const {
+  const auto it = index().find(id);
+  return it == index_.end() ? -1 : int64_t{it->second};
+}
+
 uint32_t TripTable::add(const NewTrip& t, const Network& net) {
   auto refuse = [&](const std::string& why) {
     throw std::invalid_argument("vehicle '" + t.id + "' cannot be added: " + why);
   };
-  if (index_.empty())
-    for (uint32_t v = 0; v < d_.size(); ++v) index_.emplace(d_.vehicle_id[v], v);
-  if (index_.count(t.id)) refuse("the id is in use");
+  if (index().count(t.id)) refuse("the id is in use");
   if (t.type >= d_.types.size()) refuse("unknown vehicle type " + std::to_string(t.type));
   if (t.route.empty()) refuse("empty route");
   for (const uint32_t e : t.route)

@@ -32,6 +32,8 @@ class TripTable {
 
   const Demand& demand() const { return d_; }
   uint32_t size() const { return d_.size(); }
+  /// The index of the trip with id `id`, or -1 (the ids are indexed at the first lookup or addition).
+  int64_t find(const std::string& id) const;
 
   /// Appends a trip and returns its index; std::invalid_argument naming the trip when it is not valid here
   /// (an id in use, an unknown type, an empty or unconnected route, an edge without car lanes).
@@ -66,9 +68,11 @@ class TripTable {
 
  private:
   Demand d_;
-  uint32_t loaded_trips_ = 0;                        // the demand's trips
-  uint64_t loaded_route_edges_ = 0;                  // and route edges
-  std::unordered_map<std::string, uint32_t> index_;  // vehicle ids, built at the first add
+  uint32_t loaded_trips_ = 0;        // the demand's trips
+  uint64_t loaded_route_edges_ = 0;  // and route edges
+  // Vehicle ids, built at the first lookup or addition: a run that never asks keeps no string per trip twice.
+  mutable std::unordered_map<std::string, uint32_t> index_;
+  const std::unordered_map<std::string, uint32_t>& index() const;
   Changes changes_;
   // The loaded route (begin, length) of each loaded trip whose route was replaced: a checkpoint saves only
   // these trips' routes.

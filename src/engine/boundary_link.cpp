@@ -24,6 +24,13 @@ void BoundaryLink::erase_foreign(int map) {
   kept.clear();
 }
 
+void BoundaryLink::erase_removed(int map, const FootprintWrite& fp) {
+  // A run of one part writes nothing from elsewhere: it holds every lane.
+  const std::vector<uint8_t> every_lane(held_lanes_ ? 0 : run_.net.num_lanes(), 1);
+  run_.stepper.write_footprints(map, {FootprintWrite{fp.fp, fp.length, 0}},
+                                held_lanes_ ? held_lanes_ : every_lane.data());
+}
+
 std::vector<SampleEntry> BoundaryLink::own_running() const {
   std::vector<SampleEntry> mine;
   const HostState& s = run_.stepper.fetch(StateParts::Sample, run_.books.slots.size());

@@ -39,7 +39,8 @@ enum PartRequest : uint8_t {
   kRequestStop = 5,
   kRequestUnfinished = 6,
   kRequestSaveState = 7,
-  kRequestLoadState = 8
+  kRequestLoadState = 8,
+  kRequestCommands = 9
 };
 
 /// What one part of a partitioned run spent and sent, cumulative.
@@ -144,6 +145,11 @@ class BoundaryLink {
   // one part). ---
   virtual void save_state(StateOut& /*a*/) {}
   virtual void load_state(StateIn& /*a*/) {}
+
+  // --- Commands, between steps. ---
+  /// A vehicle a command removed from the road: its footprint `fp` leaves lane map `map` (the one the next
+  /// step reads) on the lanes this side holds, and from what this side has still to send of it.
+  virtual void erase_removed(int map, const FootprintWrite& fp);
 
   /// Footprints written into lane map `map` from elsewhere and not yet erased (value 0: their erasures).
   const std::vector<FootprintWrite>& foreign_footprints(int map) const { return foreign_[map]; }

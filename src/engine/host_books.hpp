@@ -20,6 +20,7 @@ struct RunCounts {
   uint64_t loaded = 0, inserted = 0, running = 0, waiting = 0, arrived = 0, teleports = 0;
   uint64_t removed = 0;    // never inserted for a reason (departure before begin, route without car lanes)
   uint64_t discarded = 0;  // dropped while waiting to depart, after the max depart delay
+  uint64_t cancelled = 0;  // taken out by a remove command before they departed (ended, not arrived)
   uint64_t vehicle_updates = 0;
 };
 

@@ -30,6 +30,7 @@ void InsertionControl::enqueue_due(int64_t until_ms) {
 void InsertionControl::enqueue(uint32_t v) {
   const Demand& d = run_.trips.demand();
   HostBooks& books = run_.books;
+  if (books.ledger.status(v) == kArrived) return;  // removed by a command before it fell due
   if (d.route_length[v] == 0 || !books.queues.has_lanes(d.route_edges[d.route_begin[v]])) {
     books.ledger.set_status(v, kArrived);
     ++books.counts.removed;

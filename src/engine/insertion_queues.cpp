@@ -73,4 +73,23 @@ const InsertBatch& InsertionQueues::offer(const ReentryWants& wants) {
   return batch_;
 }
 
+bool InsertionQueues::holds(uint32_t e, uint32_t entry) const {
+  const EdgeQueue& q = queue_[e];
+  return std::find(q.entries.begin() + q.head, q.entries.end(), entry) != q.entries.end();
+}
+
+bool InsertionQueues::remove(uint32_t e, uint32_t entry) {
+  EdgeQueue& q = queue_[e];
+  const auto it = std::find(q.entries.begin() + q.head, q.entries.end(), entry);
+  if (it == q.entries.end()) return false;
+  q.entries.erase(it);
+  --waiting_;
+  if (q.head == q.entries.size()) {
+    q.entries.clear();
+    q.head = 0;
+    queued_edges_.erase(std::find(queued_edges_.begin(), queued_edges_.end(), e));
+  }
+  return true;
+}
+
 }  // namespace lpsim

@@ -35,6 +35,10 @@ class InsertionQueues {
   void push_back(uint32_t e, uint32_t entry);
   /// A teleported vehicle goes first: it has been on the road already.
   void push_front(uint32_t e, uint32_t entry);
+  /// Whether `entry` (queue_entry) waits in edge e's queue.
+  bool holds(uint32_t e, uint32_t entry) const;
+  /// Takes `entry` out of edge e's queue, keeping the order of the others; false when it was not there.
+  bool remove(uint32_t e, uint32_t entry);
   /// Vehicles queued on all edges.
   uint64_t waiting() const { return waiting_; }
   /// Vehicles queued on edge e.

@@ -401,6 +401,7 @@ void PartLink::report() {
     sum.arrived += c.arrived;
     sum.teleports += c.teleports;
     sum.discarded += c.discarded;
+    sum.cancelled += c.cancelled;
     sum.vehicle_updates += c.vehicle_updates;
     const bool part_idle = r.get<uint8_t>() != 0;
     idle = idle && part_idle;
@@ -416,8 +417,10 @@ void PartLink::report() {
   sum.removed = books.counts.removed;
   counts_ = sum;
   all_idle_ = idle;
-  std::sort(ended.begin(), ended.end(),
-            [](const TripRecord& a, const TripRecord& b) { return a.vehicle < b.vehicle; });
+  // By arrival, then vehicle: a step's trips all end at its time, those a command removed before it earlier.
+  std::sort(ended.begin(), ended.end(), [](const TripRecord& a, const TripRecord& b) {
+    return a.arrival != b.arrival ? a.arrival < b.arrival : a.vehicle < b.vehicle;
+  });
   for (const TripRecord& t : ended) {
     travel_time_sum_ += t.arrival - t.depart;
     finished_.push_back(t);
@@ -468,7 +471,7 @@ PartRequest PartLink::next_request() {
   if (plan_.part == 0) return BoundaryLink::next_request();
   const std::vector<Bytes> got = round({}, {}, {0}, "request", false);
   const uint8_t what = got.at(0).empty() ? 0 : got[0][0];
-  if (what < kRequestStep || what > kRequestLoadState)
+  if (what < kRequestStep || what > kRequestCommands)
     throw std::logic_error("part " + std::to_string(plan_.part) + ": unknown request " +
                            std::to_string(what));
   return static_cast<PartRequest>(what);
@@ -493,6 +496,15 @@ Bytes PartLink::scatter(const std::vector<Bytes>& each, const char* what) {
     return each[0];
   }
   return round({}, {}, {0}, what, false).at(0);
+}
+
+// A vehicle inserted in the last step and removed before its neighbours saw it: they never will.
+void PartLink::erase_removed(int map, const FootprintWrite& fp) {
+  BoundaryLink::erase_removed(map, fp);
+  for (auto& [p, writes] : inserted_)
+    std::erase_if(writes, [&](const FootprintWrite& w) {
+      return w.fp.lane == fp.fp.lane && w.fp.pos == fp.fp.pos && w.length == fp.length;
+    });
 }
 
 // Between steps the link carries the footprints it has to erase, the insertions its neighbours have not yet

@@ -70,6 +70,8 @@ class PartLink final : public BoundaryLink {
   Bytes broadcast(const Bytes& root, const char* what) override;
   Bytes scatter(const std::vector<Bytes>& each, const char* what) override;
 
+  void erase_removed(int map, const FootprintWrite& fp) override;
+
   void save_state(StateOut& a) override { visit_state(a); }
   void load_state(StateIn& a) override { visit_state(a); }
 

@@ -80,6 +80,7 @@ struct TripRecord {
   double time_loss = 0;  // s
   float speed_factor = 1;
   bool teleported = false;
+  bool removed = false;  // a remove command took it out (SUMO's vaporized="traci")
   // SUMO's write-unfinished / write-undeparted records, written at the end: kTripRunning for a trip still
   // on its way (arrival fields unknown), kTripUndeparted for one due by the end that never departed.
   uint8_t unfinished = 0;

@@ -292,6 +292,9 @@ void Simulation::serve_part() {
       case kRequestSaveState:
         save_state();
         break;
+      case kRequestCommands:
+        apply_commands({});  // part 0's, handed over
+        break;
       case kRequestLoadState:
         load_state({}, "part " + std::to_string(opt_.part->part) + "'s state");
         break;
@@ -418,65 +421,45 @@ void Simulation::sort_slots() {
   books_.slots.reset(books_.num_active);
 }
 
-uint32_t Simulation::add_trip(const NewTrip& trip) {
-  const uint32_t v = trips_.add(trip, net_);
-  books_.ledger.resize(trips_.size());
-  ++books_.counts.loaded;
-  // Soonest last; among trips due at once, the lowest index last.
-  const std::pair<int64_t, uint32_t> due{seconds_to_ms(trip.depart), v};
-  std::vector<std::pair<int64_t, uint32_t>>& added = books_.schedule.added;
-  added.insert(std::upper_bound(added.begin(), added.end(), due, std::greater<>()), due);
-  return v;
-}
-
-void Simulation::set_route(uint32_t v, const std::vector<uint32_t>& edges) {
-  const Demand& d = trips_.demand();
-  if (v >= d.size()) throw std::invalid_argument("set_route: no vehicle " + std::to_string(v));
-  auto refuse = [&](const std::string& why) {
-    throw std::invalid_argument("vehicle '" + d.vehicle_id[v] + "': new route refused: " + why);
-  };
-  if (edges.empty()) refuse("it is empty");
-  for (const uint32_t e : edges)
-    if (e >= net_.num_edges() || net_.edge_is_internal[e]) refuse("no normal edge " + std::to_string(e));
-  if (!TripTable::connected(net_, edges, d.types.vclass_mask[d.vehicle_type[v]]))
-    refuse("it is not connected for the vehicle's vClass");
-  const uint32_t* old = d.route_edges.data() + d.route_begin[v];
-  auto must_start_at = [&](uint32_t rp, const char* where) {
-    if (edges.front() != old[rp])
-      refuse(std::string("it starts at edge '") + net_.edge_id[edges.front()] + "', the vehicle " + where +
-             " '" + net_.edge_id[old[rp]] + "'");
-  };
-
-  const int32_t k = query().slot(v);
-  const HostState& s = state(StateParts::Columns);
-  if (k >= 0 && s.veh.status[k] == kRunning) {
-    const uint32_t rp = s.veh.route_pos[k];
-    must_start_at(rp, "is on edge");
-    // On a junction's internal lane it is already bound for the next edge of its route.
-    if (net_.edge_is_internal[net_.lane_edge[static_cast<uint32_t>(s.veh.lane[k])]] &&
-        (edges.size() < 2 || edges[1] != old[rp + 1]))
-      refuse("the vehicle is crossing a junction into edge '" + net_.edge_id[old[rp + 1]] +
-             "', which must come second");
-    trips_.set_route(v, edges);
-    sync_trips();
-    const std::vector<SlotRoute> routes{
-        SlotRoute{static_cast<uint32_t>(k), d.route_begin[v], d.route_length[v], 0}};
-    stepper_->set_routes(routes);
-    ++version_;
-    return;
+// Part 0 hands its commands to the other parts; each command is checked in every part, and applied once
+// the parts' verdicts say it can act (vehicle_commands.hpp).
+std::vector<CommandOutcome> Simulation::apply_commands(const std::vector<VehicleCommand>& given) {
+  link_->request(kRequestCommands);
+  const std::vector<VehicleCommand> commands =
+      link_->parts() > 1 ? commands_from_bytes(link_->broadcast(command_bytes(given), "commands")) : given;
+  const CommandScope scope{
+      net_, trips_, books_, *stepper_, *link_, cur_, time(), step_length(), [this] { sync_trips(); }};
+  std::vector<CommandOutcome> outcomes;
+  for (const VehicleCommand& c : commands) {
+    CommandOutcome o;
+    if (c.kind == VehicleCommand::Kind::Add) {
+      try {
+        o.vehicle = trips_.add(c.trip, net_);
+      } catch (const std::invalid_argument& e) {
+        o.error = e.what();
+      }
+      if (o.done()) {
+        books_.ledger.resize(trips_.size());
+        ++books_.counts.loaded;
+        // Soonest last; among trips due at once, the lowest index last.
+        const std::pair<int64_t, uint32_t> due{seconds_to_ms(c.trip.depart), o.vehicle};
+        std::vector<std::pair<int64_t, uint32_t>>& added = books_.schedule.added;
+        added.insert(std::upper_bound(added.begin(), added.end(), due, std::greater<>()), due);
+      }
+      outcomes.push_back(std::move(o));
+      continue;
+    }
+    const VehicleQuery now = query();
+    CommandApplier applier(scope, now);
+    const std::vector<Bytes> verdicts = link_->allgather(applier.verdict(c), "command verdicts");
+    o = CommandApplier::combine_verdicts(c, verdicts, trips_.demand());
+    if (o.done()) {
+      applier.apply(c, verdicts);
+      ++version_;
+    }
+    outcomes.push_back(std::move(o));
   }
-  // Off the road: waiting to re-enter after a teleport (its old slot may wait one more step to be cleared),
-  // or to depart (queued or not yet due). Its queue stays the one of the route's first edge.
-  TripLedger& ledger = books_.ledger;
-  if (ledger.status(v) == kTeleporting) {
-    must_start_at(ledger.resume_route_pos(v), "re-enters after its teleport at");
-    ledger.set_resume_route_pos(v, 0);
-  } else if (ledger.status(v) == kPending && k < 0) {
-    must_start_at(0, "departs from");
-  } else {
-    refuse("its trip has ended");
-  }
-  trips_.set_route(v, edges);
+  return outcomes;
 }
 
 void Simulation::apply_new_routes(const std::vector<NewRoute>& routes) {
@@ -681,7 +664,7 @@ SummaryRow Simulation::summary_row() {
   r.running = c.running;
   r.waiting = c.waiting;
   r.arrived = c.arrived;
-  r.ended = c.arrived + c.discarded;
+  r.ended = c.arrived + c.discarded + c.cancelled;
   r.teleports = c.teleports;
   const SpeedSums sums = speed_sums();
   const uint64_t running = sums.running;

@@ -20,6 +20,7 @@
 #include "engine/insertion_control.hpp"
 #include "engine/rerouting_device.hpp"
 #include "engine/samples.hpp"
+#include "engine/vehicle_commands.hpp"
 #include "engine/vehicle_query.hpp"
 #include "net/network.hpp"
 #include "partition/part_plan.hpp"
@@ -110,16 +111,20 @@ class Simulation {
 
   /// The trips: those loaded and those added since (ids and types for the outputs).
   const Demand& demand() const { return trips_.demand(); }
-  /// Adds a trip during the run (a vehicle handed over from another simulator): it queues for insertion at
-  /// its first edge when its depart time has come (at once if it has passed). Returns its index.
-  /// std::invalid_argument, naming it, when it cannot be added (TripTable::add).
-  uint32_t add_trip(const NewTrip& trip);
-  /// Trip v drives `edges` from now on, the first of them the edge it is on (a running vehicle: on an
-  /// internal lane, the edge it came from, and the second the one it is entering) or queued at (a vehicle
-  /// waiting to depart or to re-enter after a teleport), each edge reachable from the one before.
-  /// std::invalid_argument, naming the vehicle, when the route does not lead on from where it is, or the
-  /// trip has ended.
-  void set_route(uint32_t v, const std::vector<uint32_t>& edges);
+  /// The index of the trip (vehicle) with id `id`, or -1; its id is demand().vehicle_id[index].
+  int64_t vehicle_index(const std::string& id) const { return trips_.find(id); }
+  /// Applies a driver's commands between steps, in order (engine/vehicle_commands.hpp), and says what became
+  /// of each:
+  /// - Add: a trip that queues for insertion at its first edge when its depart time has come (at once if it
+  ///   has passed); its outcome names its index. Refused when TripTable::add refuses it.
+  /// - SetRoute: the vehicle drives `edges` from now on, the first of them the edge it is on (a running
+  ///   vehicle: on an internal lane, the edge it came from, and the second the one it is entering) or queued
+  ///   at (waiting to depart or to re-enter after a teleport), each edge reachable from the one before.
+  /// - Remove: the vehicle leaves the run. On the road (or teleporting) its trip ends where it is, counted
+  ///   as arrived with a trip record marked removed (SUMO's TraCI remove); before it departed it is
+  ///   cancelled (summary: ended, not arrived).
+  /// In a partitioned run a collective call (part 0's commands count; every part returns the outcomes).
+  std::vector<CommandOutcome> apply_commands(const std::vector<VehicleCommand>& commands);
 
   using Counts = RunCounts;
   /// The run's counts (in a partitioned run, part 0 sums the parts').
@@ -158,7 +163,7 @@ class Simulation {
   std::string check_lane_map() const;
   /// The vehicles' state now, read by vehicle (this part's vehicles in a partitioned run): every slot column
   /// (StateParts::Columns), or with the signals and the lane map too (Full). Valid until the state changes
-  /// (the next step, set_route()).
+  /// (the next step, apply_commands()).
   VehicleQuery query(StateParts parts = StateParts::Columns) const;
   /// Slots handed out so far: the length of the per-slot state columns (the most vehicles on the road at
   /// once, counting those that left it in the last two steps).
@@ -222,7 +227,7 @@ class Simulation {
   std::unique_ptr<ReroutingDevice> reroute_;     // null: no vehicle has the rerouting device
 
   // What outputs and tests derive from the backend's state, kept per version of it: the state changes in
-  // step(), set_route() and the constructor's insertions, each counting a new version.
+  // step(), apply_commands() and the constructor's insertions, each counting a new version.
   uint64_t version_ = 0;
   struct ActiveOrder {
     // The active list as vehicle << 32 | slot, ascending (active_by_vehicle()): outputs list vehicles in

@@ -1,5 +1,6 @@
 #include "engine/trip_ledger.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace lpsim {
@@ -70,7 +71,7 @@ uint32_t TripLedger::reentering(SlotInit& init) {
 }
 
 void TripLedger::ended(const VehicleEnd& e, bool teleported, double now, double depart_due,
-                       double step_length, float speed_factor) {
+                       double step_length, float speed_factor, bool removed) {
   const uint32_t v = e.vehicle;
   status_[v] = kArrived;
   TripRecord r;
@@ -91,6 +92,7 @@ void TripLedger::ended(const VehicleEnd& e, bool teleported, double now, double 
   r.time_loss = e.time_loss;
   r.speed_factor = speed_factor;
   r.teleported = teleported;
+  r.removed = removed;
   travel_time_sum_ += r.arrival - r.depart;
   finished_.push_back(r);
   // The record carries the departure on; the account keeps only that the trip ended, so that a saved state
@@ -98,9 +100,22 @@ void TripLedger::ended(const VehicleEnd& e, bool teleported, double now, double 
   set_departure(v, DepartRecord{});
 }
 
+TripCounters TripLedger::drop_carried(uint32_t v) {
+  TripCounters c;
+  if (const auto it = carried_.find(v); it != carried_.end()) {
+    c = it->second;
+    carried_.erase(it);
+  }
+  return c;
+}
+
 std::vector<TripRecord> TripLedger::take_finished() {
   std::vector<TripRecord> out;
   out.swap(finished_);
+  // A step ends its trips in vehicle order; those a command removed between steps come in the commands'.
+  std::sort(out.begin(), out.end(), [](const TripRecord& a, const TripRecord& b) {
+    return a.arrival != b.arrival ? a.arrival < b.arrival : a.vehicle < b.vehicle;
+  });
   return out;
 }
 

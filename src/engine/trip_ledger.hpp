@@ -72,10 +72,12 @@ class TripLedger {
   }
   void set_departure(uint32_t v, const DepartRecord& d);
 
-  /// A trip ended at time `now`: its record joins those taken by take_finished(), which carries its
-  /// departure on (departure() is then none).
+  /// A trip ended at time `now` (`removed`: by a remove command): its record joins those taken by
+  /// take_finished(), which carries its departure on (departure() is then none).
   void ended(const VehicleEnd& end, bool teleported, double now, double depart_due, double step_length,
-             float speed_factor);
+             float speed_factor, bool removed = false);
+  /// A teleporting vehicle's trip ends before it re-entered: its carried counters leave the account.
+  TripCounters drop_carried(uint32_t v);
   std::vector<TripRecord> take_finished();
 
   double depart_delay_sum() const { return depart_delay_sum_; }

@@ -83,7 +83,7 @@ TEST(EngineTripTableTest, RoutesThatDoNotLeadOnAreRefused) {
   ASSERT_GE(v, 0);
   const uint32_t vehicle = static_cast<uint32_t>(v);
   auto refused = [&](std::vector<uint32_t> r, const std::string& what) {
-    EXPECT_THROW(sim.set_route(vehicle, r), std::invalid_argument) << what;
+    EXPECT_FALSE(sim.apply_commands({VehicleCommand::set_route(vehicle, r)})[0].done()) << what;
   };
   refused({}, "empty");
   refused(std::vector<uint32_t>(route.begin() + 1, route.end()), "not starting at the vehicle's edge");
@@ -96,9 +96,10 @@ TEST(EngineTripTableTest, RoutesThatDoNotLeadOnAreRefused) {
   for (uint32_t a = 0; a < sim.demand().size(); ++a)
     if (sim.query().status(a) == kArrived) {
       const Demand& d = sim.demand();
-      EXPECT_THROW(sim.set_route(a, std::vector<uint32_t>(d.route_edges.begin() + d.route_begin[a],
-                                                          d.route_edges.begin() + d.route_begin[a] + 1)),
-                   std::invalid_argument);
+      const CommandOutcome o = sim.apply_commands({VehicleCommand::set_route(
+          a, std::vector<uint32_t>(d.route_edges.begin() + d.route_begin[a],
+                                   d.route_edges.begin() + d.route_begin[a] + 1))})[0];
+      EXPECT_NE(o.error.find("its trip has ended"), std::string::npos) << o.error;
       break;
     }
   // A refused route changed nothing: the vehicle still takes the same route as in a run without them.
@@ -113,23 +114,29 @@ TEST(EngineTripTableTest, AddedTripsThatCannotRunAreRefused) {
   t.route.assign(d.route_edges.begin() + d.route_begin[0],
                  d.route_edges.begin() + d.route_begin[0] + d.route_length[0]);
   t.id = d.vehicle_id[0];
-  EXPECT_THROW(sim.add_trip(t), std::invalid_argument) << "an id in use";
+  auto add = [&](const NewTrip& trip) { return sim.apply_commands({VehicleCommand::add(trip)})[0]; };
+  EXPECT_NE(add(t).error.find("the id is in use"), std::string::npos) << "an id in use";
   t.id = "fresh";
   t.type = d.types.size();
-  EXPECT_THROW(sim.add_trip(t), std::invalid_argument) << "an unknown type";
+  EXPECT_FALSE(add(t).done()) << "an unknown type";
   t.type = 0;
   std::vector<uint32_t> gap = t.route;
   if (gap.size() >= 3) {
     gap.erase(gap.begin() + 1);
     NewTrip g = t;
     g.route = gap;
-    EXPECT_THROW(sim.add_trip(g), std::invalid_argument) << "an unconnected route";
+    EXPECT_FALSE(add(g).done()) << "an unconnected route";
   }
   NewTrip empty = t;
   empty.route.clear();
-  EXPECT_THROW(sim.add_trip(empty), std::invalid_argument) << "an empty route";
+  EXPECT_FALSE(add(empty).done()) << "an empty route";
   EXPECT_EQ(sim.counts().loaded, d.size());
-  EXPECT_EQ(sim.add_trip(t), d.size());
+  const CommandOutcome added = add(t);
+  EXPECT_TRUE(added.done()) << added.error;
+  EXPECT_EQ(added.vehicle, d.size());
+  EXPECT_EQ(sim.vehicle_index("fresh"), int64_t{d.size()});
+  EXPECT_EQ(sim.vehicle_index(d.vehicle_id[3]), 3);
+  EXPECT_EQ(sim.vehicle_index("no such vehicle"), -1);
   EXPECT_EQ(sim.counts().loaded, d.size() + 1);
 }
 

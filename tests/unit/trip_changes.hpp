@@ -84,6 +84,7 @@ inline TripChangesRun run_with_trip_changes(const Scenario& sc, SimulationOption
     if (!added && sim.time() >= 60) {
       added = true;
       const Demand& d = sim.demand();
+      CommandQueue queue;
       for (uint32_t k = 0; k < 12; ++k) {
         NewTrip t;
         t.id = "added_" + std::to_string(k);
@@ -92,7 +93,7 @@ inline TripChangesRun run_with_trip_changes(const Scenario& sc, SimulationOption
         t.route.assign(d.route_edges.begin() + d.route_begin[k],
                        d.route_edges.begin() + d.route_begin[k] + d.route_length[k]);
         t.speed_factor = 0.9f + 0.02f * static_cast<float>(k);
-        out.added.push_back(sim.add_trip(t));
+        queue.push(VehicleCommand::add(t));
       }
       // The last loaded trip has not departed yet: it gets a route through another first successor.
       const uint32_t last = out.loaded - 1;
@@ -106,8 +107,12 @@ inline TripChangesRun run_with_trip_changes(const Scenario& sc, SimulationOption
       }
       EXPECT_GE(waiting, 0) << "no other route for the last trip";
       if (waiting >= 0) {
-        sim.set_route(static_cast<uint32_t>(waiting), out.waiting_route);
+        queue.push(VehicleCommand::set_route(static_cast<uint32_t>(waiting), out.waiting_route));
         out.rerouted_waiting = static_cast<uint32_t>(waiting);
+      }
+      for (const CommandOutcome& o : sim.apply_commands(queue.take())) {
+        EXPECT_TRUE(o.done()) << o.error;
+        if (out.added.size() < 12) out.added.push_back(o.vehicle);
       }
     }
     if (!rerouted && sim.time() >= 90) {
@@ -116,7 +121,9 @@ inline TripChangesRun run_with_trip_changes(const Scenario& sc, SimulationOption
       EXPECT_GE(v, 0) << "no running vehicle to reroute at t=" << sim.time();
       if (v >= 0) {
         out.rerouted = static_cast<uint32_t>(v);
-        sim.set_route(out.rerouted, out.new_route);
+        const CommandOutcome o =
+            sim.apply_commands({VehicleCommand::set_route(out.rerouted, out.new_route)})[0];
+        EXPECT_TRUE(o.done()) << o.error;
         EXPECT_EQ(sim.query().route_pos(out.rerouted), 0u);
         out.visited.push_back(out.new_route.front());
       }
