@@ -106,9 +106,11 @@ Scenario scenario_from_args(const std::vector<std::string>& args, ConfigSpec* co
     config = parse_cli_options(with_cfg, nullptr, command);
   }
   refuse_ignored_csv(config);
-  warn_inert(config);
+  // --no-warnings silences every warning, as SUMO's does (`lpsim info` still lists what loads unmodelled).
+  if (!config.no_warnings) warn_inert(config);
   if (config_out) *config_out = config;
   Scenario sc = load_scenario(config);
+  if (config.no_warnings) return sc;
   std::string unsupported = unsupported_summary(sc.demand);
   if (!unsupported.empty()) std::fprintf(stderr, "lpsim: warning: %s\n", unsupported.c_str());
   for (const auto& line : sc.warnings) std::fprintf(stderr, "lpsim: warning: %s\n", line.c_str());

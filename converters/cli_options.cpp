@@ -137,7 +137,7 @@ const OptionDef kOptions[] = {
   {"device.rerouting.adaptation-weight", "", 0, Kind::Number, Check::NonNegative, false, kLoad, "weight of the old value in the exponential average of the edges' speeds (used when adaptation-steps is not given; >= 1: no updates)", [](ConfigSpec& c, Value&& v) { c.rerouting.adaptation_weight = v.number; }},
   {"device.rerouting.synchronize", "", 0, Kind::Bool, Check::None, false, kLoad, "count the re-routing period from time 0 rather than from each vehicle's departure", [](ConfigSpec& c, Value&& v) { c.rerouting.synchronize = v.flag; }},
   {"weights.minor-penalty", "", 0, Kind::Time, Check::NonNegative, false, kLoad, "routing cost of a minor link, in s (default 1.5)", [](ConfigSpec& c, Value&& v) { c.minor_penalty = v.seconds; }},
-  {"no-warnings", "", 'W', Kind::Bool, Check::None, false, kSimulates, "no teleport warnings on stderr", [](ConfigSpec& c, Value&& v) { c.no_warnings = v.flag; }},
+  {"no-warnings", "", 'W', Kind::Bool, Check::None, false, kSimulates, "no warnings on stderr (loading, teleports, the parts' count), as SUMO's --no-warnings", [](ConfigSpec& c, Value&& v) { c.no_warnings = v.flag; }},
   {"no-step-log", "", 0, Kind::Bool, Check::None, false, kSimulates, "no progress lines on stderr", [](ConfigSpec& c, Value&& v) { c.no_step_log = v.flag; }},
   {"ignore-route-errors", "", 0, Kind::Bool, Check::None, false, kLoad, "skip vehicles with broken routes instead of refusing the input", [](ConfigSpec& c, Value&& v) { c.ignore_route_errors = v.flag; }},
   {"threads", "", 0, Kind::Integer, Check::ThreadCount, false, kLoad, "threads for routing and stepping; 0: all for routing, 1 for stepping", [](ConfigSpec& c, Value&& v) { c.threads = static_cast<int>(v.integer); }},

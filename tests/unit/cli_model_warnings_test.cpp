@@ -38,6 +38,23 @@ TEST_F(CliModelWarningsTest, CarFollowModelsOtherThanIdmAndKraussWarnOncePerMode
   EXPECT_NE(r.out.find("not implemented: carFollowModel 'Wiedemann'"), std::string::npos) << r.out;
 }
 
+// SUMO's --no-warnings silences these too.
+TEST_F(CliModelWarningsTest, NoWarningsSilencesThem) {
+  write_routes("cf.rou.xml", "<vType id=\"w1\" carFollowModel=\"Wiedemann\"/>");
+  const std::vector<std::string> run_it{"run", "-n", test::kGridTlsNet, "-r", "cf.rou.xml", "--end", "10"};
+  const auto warned = run(run_it);
+  ASSERT_EQ(warned.exit_code, 0) << warned.err;
+  EXPECT_NE(warned.err.find("lpsim: warning: carFollowModel 'Wiedemann' is not implemented"), std::string::npos)
+      << warned.err;
+  for (const char* flag : {"--no-warnings", "-W"}) {
+    std::vector<std::string> args = run_it;
+    args.push_back(flag);
+    const auto r = run(args);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.err.find("warning"), std::string::npos) << flag << ": " << r.err;
+  }
+}
+
 TEST_F(CliModelWarningsTest, DefaultCarFollowModelNamesTheVTypesThatTakeIt) {
   write_routes("cf.rou.xml", "<vType id=\"k\" carFollowModel=\"Krauss\"/>\n<vType id=\"plain\"/>");
   // Implemented defaults say nothing.
