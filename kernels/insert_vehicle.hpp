@@ -38,6 +38,19 @@ struct DepartView {
   const float* speed;
 };
 
+/// The one list of the depart columns, all per trip (as visit_type_columns): f(column...) for each, of every
+/// view given.
+template <class F, class... Views>
+void visit_depart_columns(F&& f, Views&... d) {
+  f(d.lane_kind...);
+  f(d.lane...);
+  f(d.pos_kind...);
+  f(d.pos...);
+  f(d.speed_kind...);
+  f(d.speed...);
+}
+static_assert(sizeof(DepartView) == 6 * sizeof(void*), "DepartView changed: update visit_depart_columns");
+
 /// One step's queue heads, one slot per edge with waiting vehicles. Entries are tried in queue order, and
 /// any of them may go in while one before it waits (as SUMO tries every pending vehicle): out_lane is -1
 /// for an entry not inserted.

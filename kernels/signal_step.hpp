@@ -21,6 +21,46 @@ struct SignalTable {
   ActuatedTable actuated;
 };
 
+/// What a SignalTable column is indexed by: its length follows from num_signals and the begin tables.
+enum class SignalExtent : uint8_t {
+  kSignals,
+  kSignalsPlusOne,
+  kPhases,  // phase_begin[num_signals]
+  kPhasesPlusOne,
+  kStateChars,    // up to the end of the last phase's link characters
+  kLinksPlusOne,  // link_begin: NetView's signal_link_begin, the same column
+  kLoops,         // actuated.signal_det_begin[num_signals]
+  kPhaseLoops     // actuated.phase_det_begin[phases]
+};
+
+/// The one list of the signal columns (as visit_net_columns): f(extent, column...) for each pointer column of
+/// every table given, the actuated ones' included (num_signals is not one).
+template <class F, class... Tables>
+void visit_signal_columns(F&& f, Tables&... t) {
+  f(SignalExtent::kSignalsPlusOne, t.phase_begin...);
+  f(SignalExtent::kPhases, t.durations_ms...);
+  f(SignalExtent::kPhases, t.state_begin...);
+  f(SignalExtent::kStateChars, t.states...);
+  f(SignalExtent::kSignals, t.num_links...);
+  f(SignalExtent::kSignals, t.cycle_ms...);
+  f(SignalExtent::kSignals, t.offset_ms...);
+  f(SignalExtent::kLinksPlusOne, t.link_begin...);
+  f(SignalExtent::kSignals, t.actuated.actuated...);
+  f(SignalExtent::kSignals, t.actuated.detector_gap_ms...);
+  f(SignalExtent::kPhases, t.actuated.min_ms...);
+  f(SignalExtent::kPhases, t.actuated.max_ms...);
+  f(SignalExtent::kPhases, t.actuated.green...);
+  f(SignalExtent::kSignalsPlusOne, t.actuated.signal_det_begin...);
+  f(SignalExtent::kPhasesPlusOne, t.actuated.phase_det_begin...);
+  f(SignalExtent::kPhaseLoops, t.actuated.phase_det...);
+  f(SignalExtent::kLoops, t.actuated.det_cell...);
+  f(SignalExtent::kLoops, t.actuated.det_last_cell...);
+  f(SignalExtent::kLoops, t.actuated.det_offset...);
+  f(SignalExtent::kLoops, t.actuated.det_max_gap_ms...);
+}
+static_assert(sizeof(SignalTable) == 9 * sizeof(void*) + 12 * sizeof(void*),
+              "SignalTable or ActuatedTable changed: update visit_signal_columns");
+
 /// What an actuated signal reads besides its table: the lane map its loops lie on and when it was taken.
 struct SignalInputs {
   const uint8_t* map;   // the lane map as the vehicles stand before the step

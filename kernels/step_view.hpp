@@ -167,6 +167,20 @@ struct EmissionView {
   uint32_t num_lanes;
 };
 
+/// The one list of the emission view's per-type columns (as visit_type_columns): f(values per type,
+/// column...) for each, of every view given (the sums are not one).
+template <class F, class... Views>
+void visit_emission_columns(F&& f, Views&... e) {
+  f(1, e.model...);
+  f(kCoefficientsPerClass, e.coeff...);
+  f(1, e.coast_incl...);
+  f(1, e.coast_mass_term...);
+  f(1, e.fuel_divisor...);
+  f(1, e.shut_off_stop...);
+}
+static_assert(sizeof(EmissionView) == 8 * sizeof(void*),
+              "EmissionView changed: update visit_emission_columns");
+
 /// Per-vehicle static data, read-only.
 struct TripView {
   const uint32_t* type;
@@ -185,6 +199,29 @@ struct TripView {
   const uint32_t* stop_duration_steps;  // steps it stands at least
   const uint32_t* stop_until_step;      // step before which it does not leave (0: none)
 };
+
+/// What a TripView column is indexed by.
+enum class TripExtent : uint8_t { kTrips, kRouteEdges, kStops };
+
+/// The one list of the trip columns (as visit_net_columns): f(extent, column...) for each, of every view
+/// given.
+template <class F, class... Trips>
+void visit_trip_columns(F&& f, Trips&... t) {
+  f(TripExtent::kTrips, t.type...);
+  f(TripExtent::kTrips, t.route_begin...);
+  f(TripExtent::kTrips, t.route_length...);
+  f(TripExtent::kRouteEdges, t.route_edges...);
+  f(TripExtent::kTrips, t.speed_factor...);
+  f(TripExtent::kTrips, t.arrival_pos_kind...);
+  f(TripExtent::kTrips, t.arrival_pos...);
+  f(TripExtent::kStops, t.stop_route_pos...);
+  f(TripExtent::kStops, t.stop_lane...);
+  f(TripExtent::kStops, t.stop_start...);
+  f(TripExtent::kStops, t.stop_end...);
+  f(TripExtent::kStops, t.stop_duration_steps...);
+  f(TripExtent::kStops, t.stop_until_step...);
+}
+static_assert(sizeof(TripView) == 13 * sizeof(void*), "TripView changed: update visit_trip_columns");
 
 // kMigrated: the vehicle drove into another part of a partitioned run, which runs it from there on; its
 // slot here stays one more step to clear its last footprint, as after an arrival.

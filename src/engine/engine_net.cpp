@@ -167,16 +167,30 @@ NetView EngineNet::view(const Network& net) const {
   return v;
 }
 
+// Named field by field: the table's columns are the network's and this one's under other names.
 SignalTable EngineNet::signal_table(const Network& net) const {
-  const ActuatedTable actuated{signal_actuated.data(), detector_gap_ms.data(), min_ms.data(),
-                               max_ms.data(),          phase_green.data(),     signal_det_begin.data(),
-                               phase_det_begin.data(), phase_det.data(),       det_cell.data(),
-                               det_last_cell.data(),   det_offset.data(),      det_max_gap_ms.data()};
-  return SignalTable{net.num_signals(),      net.signal_phase_begin.data(),
-                     durations_ms.data(),    net.phase_state_begin.data(),
-                     net.phase_state.data(), num_links.data(),
-                     cycle_ms.data(),        offset_ms.data(),
-                     link_begin.data(),      actuated};
+  const ActuatedTable actuated{.actuated = signal_actuated.data(),
+                               .detector_gap_ms = detector_gap_ms.data(),
+                               .min_ms = min_ms.data(),
+                               .max_ms = max_ms.data(),
+                               .green = phase_green.data(),
+                               .signal_det_begin = signal_det_begin.data(),
+                               .phase_det_begin = phase_det_begin.data(),
+                               .phase_det = phase_det.data(),
+                               .det_cell = det_cell.data(),
+                               .det_last_cell = det_last_cell.data(),
+                               .det_offset = det_offset.data(),
+                               .det_max_gap_ms = det_max_gap_ms.data()};
+  return SignalTable{.num_signals = net.num_signals(),
+                     .phase_begin = net.signal_phase_begin.data(),
+                     .durations_ms = durations_ms.data(),
+                     .state_begin = net.phase_state_begin.data(),
+                     .states = net.phase_state.data(),
+                     .num_links = num_links.data(),
+                     .cycle_ms = cycle_ms.data(),
+                     .offset_ms = offset_ms.data(),
+                     .link_begin = link_begin.data(),
+                     .actuated = actuated};
 }
 
 }  // namespace lpsim

@@ -76,17 +76,30 @@ StopSteps stop_steps_from_times(const StopTable& st, int64_t step_ms, int64_t be
   return steps;
 }
 
+// Named field by field: the views' columns are the demand's and the stop table's under other names.
 TripTableView trip_table_view(const Demand& d, const StopSteps& stop_steps) {
   TripTableView v;
   const StopTable& st = d.stops;
-  v.trips = TripView{d.vehicle_type.data(),  d.route_begin.data(),  d.route_length.data(),
-                     d.route_edges.data(),   d.speed_factor.data(), d.arrival_pos_kind.data(),
-                     d.arrival_pos.data(),   st.route_pos.data(),   st.lane.data(),
-                     st.start_pos.data(),    st.end_pos.data(),     stop_steps.duration.data(),
-                     stop_steps.until.data()};
+  v.trips = TripView{.type = d.vehicle_type.data(),
+                     .route_begin = d.route_begin.data(),
+                     .route_length = d.route_length.data(),
+                     .route_edges = d.route_edges.data(),
+                     .speed_factor = d.speed_factor.data(),
+                     .arrival_pos_kind = d.arrival_pos_kind.data(),
+                     .arrival_pos = d.arrival_pos.data(),
+                     .stop_route_pos = st.route_pos.data(),
+                     .stop_lane = st.lane.data(),
+                     .stop_start = st.start_pos.data(),
+                     .stop_end = st.end_pos.data(),
+                     .stop_duration_steps = stop_steps.duration.data(),
+                     .stop_until_step = stop_steps.until.data()};
   v.num_stops = st.size();
-  v.depart = DepartView{d.depart_lane_kind.data(), d.depart_lane.data(),       d.depart_pos_kind.data(),
-                        d.depart_pos.data(),       d.depart_speed_kind.data(), d.depart_speed.data()};
+  v.depart = DepartView{.lane_kind = d.depart_lane_kind.data(),
+                        .lane = d.depart_lane.data(),
+                        .pos_kind = d.depart_pos_kind.data(),
+                        .pos = d.depart_pos.data(),
+                        .speed_kind = d.depart_speed_kind.data(),
+                        .speed = d.depart_speed.data()};
   v.num_vehicles = d.size();
   v.num_route_edges = d.route_edges.size();
   return v;
@@ -214,14 +227,14 @@ Simulation::Simulation(const Network& net, Demand demand, const SimulationOption
   fuel_divisor_.resize(t.size());
   for (uint32_t k = 0; k < t.size(); ++k)
     fuel_divisor_[k] = opt_.volumetric_fuel ? kHbefaScale * t.fuel_density[k] : kHbefaScale;
-  setup.emission_types = EmissionView{t.emission_model.data(),
-                                      t.emission_coeff.data(),
-                                      t.coast_incl.data(),
-                                      t.coast_mass_term.data(),
-                                      fuel_divisor_.data(),
-                                      t.shut_off_stop.data(),
-                                      nullptr,
-                                      net.num_lanes()};
+  setup.emission_types = EmissionView{.model = t.emission_model.data(),
+                                      .coeff = t.emission_coeff.data(),
+                                      .coast_incl = t.coast_incl.data(),
+                                      .coast_mass_term = t.coast_mass_term.data(),
+                                      .fuel_divisor = fuel_divisor_.data(),
+                                      .shut_off_stop = t.shut_off_stop.data(),
+                                      .sums = nullptr,
+                                      .num_lanes = net.num_lanes()};
   setup.threads = opt_.threads;
   setup.device = opt_.gpu_device;
   stepper_ = opt_.backend(setup);

@@ -112,19 +112,14 @@ void copy_to_host(T* dst, const T* src, size_t n) {
   if (n > 0) LPSIM_CUDA_CHECK(cudaMemcpy(dst, src, n * sizeof(T), cudaMemcpyDeviceToHost));
 }
 
-// The stepper lists the columns of these views by hand: a column added to one of them must be added here.
-// (The slot and plan columns are walked through their column lists.)
-static_assert(sizeof(NetView) == 28 * sizeof(void*) + sizeof(void*),
-              "NetView changed: update upload_network");
-static_assert(sizeof(TypeView) == 12 * sizeof(void*) && sizeof(TripView) == 13 * sizeof(void*),
-              "TypeView or TripView changed: update upload_types and DeviceTrips");
+// The views the stepper copies to the device are walked through their column lists (visit_net_columns,
+// visit_type_columns, visit_trip_columns, visit_depart_columns, visit_emission_columns,
+// visit_signal_columns, visit_vehicle_columns, visit_plan_columns); the step context's other members are
+// its own.
 static_assert(sizeof(StepContext) == sizeof(NetView) + sizeof(TypeView) + sizeof(TripView) +
                                          sizeof(VehicleView) + sizeof(PlanView) + sizeof(StepParams) +
                                          sizeof(EmissionView) + 11 * sizeof(void*),
               "StepContext changed: update CudaStepper");
-static_assert(sizeof(EmissionView) == 8 * sizeof(void*), "EmissionView changed: update upload_emissions");
-
-static_assert(sizeof(DepartView) == 6 * sizeof(void*), "DepartView changed: update DeviceTrips");
 
 /// A device array that grows on demand (its contents are not kept when it grows).
 template <class T>
@@ -309,9 +304,12 @@ class DeviceTrips {
   /// Calls f(column) for every per-trip column of a trip and a depart view (not route_edges).
   template <class F>
   static void each_column(TripView& t, DepartView& d, F&& f) {
-    f(t.type), f(t.route_begin), f(t.route_length), f(t.speed_factor), f(t.arrival_pos_kind),
-        f(t.arrival_pos);
-    f(d.lane_kind), f(d.lane), f(d.pos_kind), f(d.pos), f(d.speed_kind), f(d.speed);
+    visit_trip_columns(
+        [&](TripExtent x, auto*& column) {
+          if (x == TripExtent::kTrips) f(column);
+        },
+        t);
+    visit_depart_columns(f, d);
   }
 
   // The stop table, whole: trips added during a run make no stops, so it is uploaded once, and again when
@@ -325,10 +323,11 @@ class DeviceTrips {
       to = static_cast<const T*>(stop_buffers_.back().get());
       copy_to_device(static_cast<T*>(stop_buffers_.back().get()), from, num_stops_);
     };
-    const TripView& h = host.trips;
-    up(h.stop_route_pos, trips.stop_route_pos), up(h.stop_lane, trips.stop_lane);
-    up(h.stop_start, trips.stop_start), up(h.stop_end, trips.stop_end);
-    up(h.stop_duration_steps, trips.stop_duration_steps), up(h.stop_until_step, trips.stop_until_step);
+    visit_trip_columns(
+        [&](TripExtent x, auto* from, auto*& to) {
+          if (x == TripExtent::kStops) up(from, to);
+        },
+        host.trips, trips);
   }
 
   template <class T>
@@ -995,7 +994,6 @@ class CudaStepper final : public Stepper {
 
   void upload_signals(const SignalTable& h) {
     const uint32_t ns = h.num_signals;
-    // The signal program's link_begin is NetView's signal_link_begin, uploaded with the network.
     num_links_ = h.link_begin[ns];
     link_state_ = allocate<char>(num_links_);
     dev_.link_state = link_state_;
@@ -1011,42 +1009,38 @@ class CudaStepper final : public Stepper {
       for (uint32_t p = h.phase_begin[s]; p < h.phase_begin[s + 1]; ++p)
         chars = std::max<size_t>(chars,
                                  static_cast<size_t>(h.state_begin[p]) + static_cast<size_t>(h.num_links[s]));
-    signals_.phase_begin = upload(h.phase_begin, static_cast<size_t>(ns) + 1);
-    signals_.durations_ms = upload(h.durations_ms, phases);
-    signals_.state_begin = upload(h.state_begin, phases);
-    signals_.states = upload(h.states, chars);
-    signals_.num_links = upload(h.num_links, ns);
-    signals_.cycle_ms = upload(h.cycle_ms, ns);
-    signals_.offset_ms = upload(h.offset_ms, ns);
-    signals_.link_begin = dev_.net.signal_link_begin;
-    upload_actuated(h.actuated, ns, phases);
-  }
-
-  void upload_actuated(const ActuatedTable& h, uint32_t ns, uint32_t phases) {
-    const uint32_t loops = h.signal_det_begin[ns];
+    const uint32_t loops = h.actuated.signal_det_begin[ns];
     num_loops_ = loops;
-    const uint32_t phase_loops = h.phase_det_begin[phases];
-    ActuatedTable& d = signals_.actuated;
-    d.actuated = upload(h.actuated, ns);
-    d.detector_gap_ms = upload(h.detector_gap_ms, ns);
-    d.min_ms = upload(h.min_ms, phases);
-    d.max_ms = upload(h.max_ms, phases);
-    d.green = upload(h.green, phases);
-    d.signal_det_begin = upload(h.signal_det_begin, static_cast<size_t>(ns) + 1);
-    d.phase_det_begin = upload(h.phase_det_begin, static_cast<size_t>(phases) + 1);
-    d.phase_det = upload(h.phase_det, phase_loops);
-    d.det_cell = upload(h.det_cell, loops);
-    d.det_last_cell = upload(h.det_last_cell, loops);
-    d.det_offset = upload(h.det_offset, loops);
-    d.det_max_gap_ms = upload(h.det_max_gap_ms, loops);
+    auto length = [&](SignalExtent x) -> size_t {
+      switch (x) {
+        case SignalExtent::kSignals:
+          return ns;
+        case SignalExtent::kSignalsPlusOne:
+        case SignalExtent::kLinksPlusOne:
+          return size_t{ns} + 1;
+        case SignalExtent::kPhases:
+          return phases;
+        case SignalExtent::kPhasesPlusOne:
+          return size_t{phases} + 1;
+        case SignalExtent::kStateChars:
+          return chars;
+        case SignalExtent::kLoops:
+          return loops;
+        case SignalExtent::kPhaseLoops:
+          return h.actuated.phase_det_begin[phases];
+      }
+      return 0;
+    };
+    visit_signal_columns([&](SignalExtent x, auto*& dev, auto* host) { dev = upload(host, length(x)); },
+                         signals_, h);
     // Zero, as the CPU backend starts them: a fixed-time signal never writes them, and a saved state holds
     // them (the same bytes on either backend).
     actuated_state_.phase = allocate<int32_t>(ns);
     LPSIM_CUDA_CHECK(cudaMemset(actuated_state_.phase, 0, ns * sizeof(int32_t)));
     actuated_state_.phase_start_ms = allocate<int64_t>(ns);
     LPSIM_CUDA_CHECK(cudaMemset(actuated_state_.phase_start_ms, 0, ns * sizeof(int64_t)));
-    const std::vector<int64_t> never(loops, kNeverDetected);
-    actuated_state_.det_last_ms = upload(never.data(), loops);
+    const std::vector<int64_t> never_detected(loops, kNeverDetected);
+    actuated_state_.det_last_ms = upload(never_detected.data(), loops);
   }
 
   // How a table of the run state is kept (visit_state): whole, as mostly zeros, as mostly all ones (a
@@ -1101,14 +1095,11 @@ class CudaStepper final : public Stepper {
 
   // The types' emission columns and the per-lane sums of the emissions pass, zeroed.
   void upload_emissions(const EmissionView& h, uint32_t nt, uint32_t nl) {
-    dev_.em = EmissionView{upload(h.model, nt),
-                           upload(h.coeff, static_cast<size_t>(nt) * kCoefficientsPerClass),
-                           upload(h.coast_incl, nt),
-                           upload(h.coast_mass_term, nt),
-                           upload(h.fuel_divisor, nt),
-                           upload(h.shut_off_stop, nt),
-                           allocate<int64_t>(static_cast<size_t>(kNumEmissionSums) * nl),
-                           nl};
+    dev_.em = EmissionView{};
+    visit_emission_columns([&](int per, auto*& dev, auto* host) { dev = upload(host, size_t{nt} * per); },
+                           dev_.em, h);
+    dev_.em.sums = allocate<int64_t>(static_cast<size_t>(kNumEmissionSums) * nl);
+    dev_.em.num_lanes = nl;
     LPSIM_CUDA_CHECK(
         cudaMemset(dev_.em.sums, 0, kNumEmissionSums * static_cast<size_t>(nl) * sizeof(int64_t)));
   }
