@@ -68,16 +68,15 @@ Bytes InProcessFabric::take(int to, int from, uint64_t round, const std::string&
   while (mail_.find(key) == mail_.end()) {
     if (!failure_.empty())
       throw TransportError("rank " + std::to_string(to) + ", round '" + what + "': " + failure_);
-    // Spinning, the lock is released: the peer posts under it.
-    const uint64_t seen = posts_.load(std::memory_order_acquire);
-    bool posted = false;
-    lock.unlock();
-    while (!posted && std::chrono::steady_clock::now() < spin_until) {
-      std::this_thread::yield();
-      posted = posts_.load(std::memory_order_acquire) != seen;
+    if (std::chrono::steady_clock::now() < spin_until) {
+      // Spinning, the lock is released: the peer posts under it. Any post ends the spin, to look again.
+      const uint64_t seen = posts_.load(std::memory_order_acquire);
+      lock.unlock();
+      while (posts_.load(std::memory_order_acquire) == seen && std::chrono::steady_clock::now() < spin_until)
+        std::this_thread::yield();
+      lock.lock();
+      continue;
     }
-    lock.lock();
-    if (posted || mail_.find(key) != mail_.end()) continue;
     if (arrived_.wait_until(lock, deadline) == std::cv_status::timeout && mail_.find(key) == mail_.end())
       throw TransportError("rank " + std::to_string(to) + ": no data from rank " + std::to_string(from) +
                            " in round '" + what + "' (#" + std::to_string(round) + ") within " +
