@@ -7,6 +7,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "core/fnv_hash.hpp"
 #include "core/time_range.hpp"
 #include "demand/trip_routes.hpp"
 #include "engine/outside_link.hpp"
@@ -786,11 +787,9 @@ namespace {
 // Which part owns each lane, hashed: a partitioned run's state resumes only in the same parts.
 uint64_t partition_digest(const PartPlan* plan) {
   if (plan == nullptr) return 0;
-  uint64_t h = 14695981039346656037ull;
-  for (const int32_t owner : plan->lane_owner)
-    for (int b = 0; b < 4; ++b)
-      h = (h ^ ((static_cast<uint32_t>(owner) >> (8 * b)) & 0xFFu)) * 1099511628211ull;
-  return h;
+  Fnv h;
+  h.bytes(plan->lane_owner.data(), plan->lane_owner.size() * sizeof(int32_t));
+  return h.get();
 }
 
 }  // namespace
