@@ -408,6 +408,11 @@ void visit_plan_columns(F&& f, Views&... v) {
 }
 static_assert(sizeof(PlanView) == 14 * sizeof(void*), "PlanView changed: update visit_plan_columns");
 
+/// Claims and merge requests keep the step in their top 24 bits: a backend zeroes both tables at the start of
+/// every step that is a multiple of this, so that the marks of the steps before the wrap cannot outrank the
+/// steps after it. Zeroing them at any step changes nothing else (a step reads only its own marks).
+LPSIM_HD constexpr bool step_marks_wrap(uint32_t step) { return step > 0 && (step & 0xFFFFFFu) == 0; }
+
 /// Claims on lane entries: one 64-bit word per lane; the largest value of the current step wins.
 /// value = step << 40 | (0xFF - priority) << 32 | (0xFFFFFFFF - vehicle): higher priority, then lower index.
 LPSIM_HD uint64_t claim_key(uint32_t step, uint32_t priority, uint32_t vehicle) {

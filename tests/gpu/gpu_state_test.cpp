@@ -10,6 +10,7 @@
 #include "backends/cuda/cuda_stepper.hpp"
 #include "unit/engine_invariant_checker.hpp"
 #include "unit/state_trace.hpp"
+#include "unit/step_wrap.hpp"
 
 namespace lpsim::engine_test {
 namespace {
@@ -46,6 +47,14 @@ TEST_P(GpuStateTest, AStateMovesBetweenTheDeviceAndTheCpu) {
     EXPECT_EQ(first_difference(trace_to_end(resumed, kMostSteps), uninterrupted), "")
         << GetParam() << ": " << what;
   }
+}
+
+TEST(GpuStepWrapTest, VehiclesStillEnterLanesAfter2To24Steps) {
+  const CudaDeviceStatus gpu = cuda_device_status();
+  if (!gpu.usable) GTEST_SKIP() << "no usable CUDA device (" << gpu.description << "): the wrap not checked";
+  SimulationOptions device = simulation_options(load_sumo_scenario("grid_tls").config);
+  device.backend = make_cuda_stepper;
+  expect_lane_entries_across_the_step_wrap(device);
 }
 
 INSTANTIATE_TEST_SUITE_P(BundledScenarios, GpuStateTest,

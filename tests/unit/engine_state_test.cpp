@@ -8,6 +8,7 @@
 #include "app/simulation_options.hpp"
 #include "unit/engine_invariant_checker.hpp"
 #include "unit/state_trace.hpp"
+#include "unit/step_wrap.hpp"
 
 namespace lpsim::engine_test {
 namespace {
@@ -54,6 +55,10 @@ INSTANTIATE_TEST_SUITE_P(BundledScenarios, EngineStateTest,
                          ::testing::Values("grid_tls", "actuated_cross", "city_mixed", "flows", "keep_clear",
                                            "motorway_ramps", "random_net", "reroute_block",
                                            "emissions_classes", "emissions_redlight", "cosim_line"));
+
+TEST(EngineStateTest, StepMarksWrapAfter2To24StepsAndVehiclesStillEnterLanes) {
+  expect_lane_entries_across_the_step_wrap(simulation_options(load_sumo_scenario("grid_tls").config));
+}
 
 TEST(EngineStateTest, AStateThatDoesNotFitTheRunIsRefused) {
   const Scenario grid = load_sumo_scenario("grid_tls");

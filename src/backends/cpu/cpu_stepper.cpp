@@ -78,6 +78,10 @@ class CpuStepper final : public Stepper {
     plan_.reserve(active_.size(), false);
     ctx_ = context(map_[map_now].data(), map_[1 - map_now].data());
     ctx_.params = params;
+    if (step_marks_wrap(params.step)) {
+      std::fill(claims_.begin(), claims_.end(), 0);
+      std::fill(merge_requests_.begin(), merge_requests_.end(), 0);
+    }
     if (setup_.junction_stands) {  // double-buffered as the lane map
       ctx_.junction_stand_now = junction_stand_[map_now].data();
       ctx_.junction_stand_next = junction_stand_[1 - map_now].data();

@@ -414,6 +414,11 @@ class CudaStepper final : public Stepper {
     reserve_plan_slots(num_active_);
     ctx_ = dev_;
     ctx_.params = params;
+    if (step_marks_wrap(params.step)) {
+      const size_t nl = host_net_.num_lanes;
+      LPSIM_CUDA_CHECK(cudaMemset(dev_.claims, 0, nl * sizeof(uint64_t)));
+      LPSIM_CUDA_CHECK(cudaMemset(dev_.merge_requests, 0, kMergeSlots * nl * sizeof(uint64_t)));
+    }
     ctx_.map_now = map_[map_now];
     ctx_.map_next = map_[1 - map_now];
     ctx_.junction_stand_now = junction_stand_[map_now];  // null unless tracked
