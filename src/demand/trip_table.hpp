@@ -58,11 +58,11 @@ class TripTable {
   bool changed() const;
   Changes take_changes();
 
-  /// The routes and the stops' positions as they are now (rerouting replaces them), for a checkpoint (an
-  /// archive of engine/state_archive.hpp): the appended route edges and the trips whose route changed, each
-  /// with its loaded route. Read back into a table made from the same demand (whose own changed routes are
-  /// undone first), every route that differs counts as changed. A table that grew while it ran (trips
-  /// added) is not saved.
+  /// The trips added and the routes and stops' positions as they are now (rerouting replaces them), for a
+  /// checkpoint (an archive of engine/state_archive.hpp): the added trips' columns, the appended route edges
+  /// and the trips whose route changed, each with its loaded route. Read back into a table made from the same
+  /// demand (whose own additions and changed routes are undone first), every trip added and every route that
+  /// differs counts as changed.
   template <class A>
   void visit_routes(A& a);
 
@@ -80,16 +80,80 @@ class TripTable {
     uint32_t begin = 0, length = 0;
   };
   std::unordered_map<uint32_t, LoadedRoute> replaced_;
+
+  // The columns TripTable::add appends to, but the ids (f(column) for each).
+  template <class F>
+  void visit_added_columns(F&& f);
+  // The added trips (from loaded_trips_ on), for visit_routes; read back, the table is cut to the loaded
+  // trips first.
+  template <class A>
+  void visit_added(A& a);
 };
+
+template <class F>
+void TripTable::visit_added_columns(F&& f) {
+  f(d_.vehicle_type);
+  f(d_.depart);
+  f(d_.route_begin);
+  f(d_.route_length);
+  f(d_.speed_factor);
+  f(d_.source);
+  f(d_.depart_lane_kind);
+  f(d_.depart_lane);
+  f(d_.depart_pos_kind);
+  f(d_.depart_pos);
+  f(d_.depart_speed_kind);
+  f(d_.depart_speed);
+  f(d_.arrival_pos_kind);
+  f(d_.arrival_pos);
+}
+
+template <class A>
+void TripTable::visit_added(A& a) {
+  const uint32_t loaded = loaded_trips_;
+  std::vector<uint32_t> id_length;
+  std::vector<char> id_chars;
+  for (uint32_t v = loaded; v < d_.size(); ++v) {
+    id_length.push_back(static_cast<uint32_t>(d_.vehicle_id[v].size()));
+    id_chars.insert(id_chars.end(), d_.vehicle_id[v].begin(), d_.vehicle_id[v].end());
+  }
+  a(id_length);
+  a(id_chars);
+  visit_added_columns([&](auto& column) {
+    using Column = std::remove_reference_t<decltype(column)>;
+    Column added(column.begin() + std::min<size_t>(loaded, column.size()), column.end());
+    a(added);
+    if constexpr (A::kReads) {
+      if (added.size() != id_length.size()) a.fail("the added trips' columns differ in length");
+      column.resize(loaded);
+      column.insert(column.end(), added.begin(), added.end());
+    }
+  });
+  if constexpr (A::kReads) {
+    d_.vehicle_id.resize(loaded);
+    size_t at = 0;
+    for (const uint32_t n : id_length) {
+      if (at + n > id_chars.size()) a.fail("the added trips' ids past their characters");
+      d_.vehicle_id.emplace_back(id_chars.begin() + static_cast<std::ptrdiff_t>(at),
+                                 id_chars.begin() + static_cast<std::ptrdiff_t>(at + n));
+      at += n;
+    }
+    // An added trip makes no scheduled stops.
+    if (!d_.stops.vehicle_begin.empty())
+      d_.stops.vehicle_begin.resize(size_t{d_.size()} + 1, d_.stops.size());
+    index_.clear();
+    changes_.first_new_vehicle = std::min(changes_.first_new_vehicle, loaded);
+  }
+}
 
 template <class A>
 void TripTable::visit_routes(A& a) {
-  if (d_.size() != loaded_trips_)
-    throw std::runtime_error("a run whose trips grew while it ran (a co-simulation) has no saved state yet");
-  uint64_t trips = d_.size();
+  uint64_t trips = loaded_trips_;
   a(trips);
-  if (trips != d_.size())
-    a.fail("the state has " + std::to_string(trips) + " trips, this run " + std::to_string(d_.size()));
+  if (trips != loaded_trips_)
+    a.fail("the state has " + std::to_string(trips) + " loaded trips, this run " +
+           std::to_string(loaded_trips_));
+  visit_added(a);
   std::vector<uint32_t> tail, replaced, loaded_begin, loaded_length, begin, length;
   std::vector<uint32_t> stops = d_.stops.route_pos;
   if constexpr (!A::kReads) {
@@ -140,6 +204,10 @@ void TripTable::visit_routes(A& a) {
       d_.stops.route_pos = stops;
       changes_.stops_moved = true;
     }
+    for (uint32_t v = loaded_trips_; v < d_.size(); ++v)
+      if (uint64_t{d_.route_begin[v]} + d_.route_length[v] > d_.route_edges.size() ||
+          d_.vehicle_type[v] >= d_.types.size())
+        a.fail("an added trip's route or type out of range");
   }
 }
 

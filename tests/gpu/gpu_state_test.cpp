@@ -8,6 +8,7 @@
 
 #include "app/simulation_options.hpp"
 #include "backends/cuda/cuda_stepper.hpp"
+#include "unit/command_run.hpp"
 #include "unit/engine_invariant_checker.hpp"
 #include "unit/state_trace.hpp"
 #include "unit/step_wrap.hpp"
@@ -47,6 +48,25 @@ TEST_P(GpuStateTest, AStateMovesBetweenTheDeviceAndTheCpu) {
     EXPECT_EQ(first_difference(trace_to_end(resumed, kMostSteps), uninterrupted), "")
         << GetParam() << ": " << what;
   }
+}
+
+// A run with a driver's commands (trips added, vehicles removed) saved on the CPU resumes on the device as
+// the CPU run goes on: the device's trip table takes the added trips from the state.
+TEST(GpuStateTest, ARunWithCommandsResumesOnTheDevice) {
+  const CudaDeviceStatus gpu = cuda_device_status();
+  if (!gpu.usable) GTEST_SKIP() << "no usable CUDA device (" << gpu.description << "): states not checked";
+  const Scenario sc = load_sumo_scenario("grid_tls");
+  const SimulationOptions cpu = simulation_options(sc.config);
+  SimulationOptions device = cpu;
+  device.backend = make_cuda_stepper;
+  constexpr uint32_t kSaveAt = 100, kMostSteps = 4000;
+  Simulation whole(sc.network, sc.demand, cpu);
+  drive_with_commands(whole, kSaveAt);
+  const std::vector<uint8_t> state = whole.save_state();
+  const std::string uninterrupted = trace_to_end(whole, kMostSteps);
+  Simulation resumed(sc.network, sc.demand, device);
+  resumed.load_state(state, "state with commands");
+  EXPECT_EQ(first_difference(trace_to_end(resumed, kMostSteps), uninterrupted), "");
 }
 
 TEST(GpuStepWrapTest, VehiclesStillEnterLanesAfter2To24Steps) {

@@ -128,6 +128,38 @@ inline const TripRecord* record_of(const CommandRun& run, uint32_t v) {
   return nullptr;
 }
 
+/// Steps `sim` (grid_tls) to step `steps`, with commands on the way: at step 60 six trips added (three due at
+/// once, three at 153-155 s) and the last loaded trip removed before it is due; at step 70 a running
+/// vehicle removed.
+inline void drive_with_commands(Simulation& sim, uint32_t steps) {
+  const Demand& d = sim.demand();
+  while (sim.step_index() < steps) {
+    if (sim.step_index() == 60) {
+      CommandQueue queue;
+      for (int k = 0; k < 6; ++k) {
+        NewTrip t;
+        t.id = "added_" + std::to_string(k);
+        t.type = d.vehicle_type[k];
+        t.route.assign(d.route_edges.begin() + d.route_begin[k],
+                       d.route_edges.begin() + d.route_begin[k] + d.route_length[k]);
+        t.depart = k < 3 ? sim.time() : 150.0 + k;  // some due after the save
+        t.speed_factor = 0.95f;
+        queue.push(VehicleCommand::add(t));
+      }
+      queue.push(VehicleCommand::remove(d.size() - 1));  // not due yet
+      for (const CommandOutcome& o : sim.apply_commands(queue.take())) EXPECT_TRUE(o.done()) << o.error;
+    }
+    if (sim.step_index() == 70) {
+      FcdFrame frame;
+      sim.sample_fcd(frame);
+      ASSERT_GE(frame.vehicle.size(), 2u);
+      const CommandOutcome o = sim.apply_commands({VehicleCommand::remove(frame.vehicle[0])})[0];
+      EXPECT_TRUE(o.done()) << o.error;
+    }
+    sim.step();
+  }
+}
+
 /// The two runs alike: the same outcomes, FCD, trip records and counts.
 inline void expect_same_command_run(const CommandRun& one, const CommandRun& other, const char* what) {
   EXPECT_EQ(other.errors, one.errors) << what;

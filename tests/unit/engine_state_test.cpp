@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "app/simulation_options.hpp"
+#include "unit/command_run.hpp"
 #include "unit/engine_invariant_checker.hpp"
 #include "unit/state_trace.hpp"
 #include "unit/step_wrap.hpp"
@@ -55,6 +56,28 @@ INSTANTIATE_TEST_SUITE_P(BundledScenarios, EngineStateTest,
                          ::testing::Values("grid_tls", "actuated_cross", "city_mixed", "flows", "keep_clear",
                                            "motorway_ramps", "random_net", "reroute_block",
                                            "emissions_classes", "emissions_redlight", "cosim_line"));
+
+// A driver's commands before the save (trips added, some due after it; a vehicle re-routed; vehicles
+// removed): the state holds the trips added, and the resumed run goes on as the uninterrupted one.
+TEST(EngineStateTest, ARunWithCommandsResumesAsItWouldHaveGoneOn) {
+  const Scenario sc = load_sumo_scenario("grid_tls");
+  const SimulationOptions options = simulation_options(sc.config);
+  constexpr uint32_t kSaveAt = 100, kMostSteps = 4000;
+  Simulation whole(sc.network, sc.demand, options);
+  drive_with_commands(whole, kSaveAt);
+  const std::string uninterrupted = trace_to_end(whole, kMostSteps);
+  Simulation saved(sc.network, sc.demand, options);
+  drive_with_commands(saved, kSaveAt);
+  const std::vector<uint8_t> state = saved.save_state();
+  Simulation resumed(sc.network, sc.demand, options);
+  resumed.load_state(state, "state with commands");
+  EXPECT_EQ(resumed.demand().size(), sc.demand.size() + 6);
+  EXPECT_EQ(resumed.vehicle_index("added_4"), int64_t{sc.demand.size()} + 4);
+  EXPECT_TRUE(resumed.save_state() == state) << "the state read back, saved again, differs";
+  EXPECT_EQ(first_difference(trace_to_end(resumed, kMostSteps), uninterrupted), "");
+  EXPECT_NE(uninterrupted.find("trip " + std::to_string(sc.demand.size() + 4) + " "), std::string::npos)
+      << "an added trip due after the save drove";
+}
 
 TEST(EngineStateTest, StepMarksWrapAfter2To24StepsAndVehiclesStillEnterLanes) {
   expect_lane_entries_across_the_step_wrap(simulation_options(load_sumo_scenario("grid_tls").config));
