@@ -44,7 +44,8 @@ TEST_F(CliModelWarningsTest, NoWarningsSilencesThem) {
   const std::vector<std::string> run_it{"run", "-n", test::kGridTlsNet, "-r", "cf.rou.xml", "--end", "10"};
   const auto warned = run(run_it);
   ASSERT_EQ(warned.exit_code, 0) << warned.err;
-  EXPECT_NE(warned.err.find("lpsim: warning: carFollowModel 'Wiedemann' is not implemented"), std::string::npos)
+  EXPECT_NE(warned.err.find("lpsim: warning: carFollowModel 'Wiedemann' is not implemented"),
+            std::string::npos)
       << warned.err;
   for (const char* flag : {"--no-warnings", "-W"}) {
     std::vector<std::string> args = run_it;
