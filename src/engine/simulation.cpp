@@ -443,6 +443,9 @@ std::vector<CommandOutcome> Simulation::apply_commands(const std::vector<Vehicle
       link_->parts() > 1 ? commands_from_bytes(link_->broadcast(command_bytes(given), "commands")) : given;
   const CommandScope scope{
       net_, trips_, books_, *stepper_, *link_, cur_, time(), step_length(), [this] { sync_trips(); }};
+  // One fetch of the vehicles' state for the whole batch (the applier keeps what its commands change).
+  const VehicleQuery now = query();
+  CommandApplier applier(scope, now);
   std::vector<CommandOutcome> outcomes;
   for (const VehicleCommand& c : commands) {
     CommandOutcome o;
@@ -463,16 +466,12 @@ std::vector<CommandOutcome> Simulation::apply_commands(const std::vector<Vehicle
       outcomes.push_back(std::move(o));
       continue;
     }
-    const VehicleQuery now = query();
-    CommandApplier applier(scope, now);
     const std::vector<Bytes> verdicts = link_->allgather(applier.verdict(c), "command verdicts");
     o = CommandApplier::combine_verdicts(c, verdicts, trips_.demand());
-    if (o.done()) {
-      applier.apply(c, verdicts);
-      ++version_;
-    }
+    if (o.done()) applier.apply(c, verdicts);
     outcomes.push_back(std::move(o));
   }
+  ++version_;  // the state changed (the next query fetches it again)
   return outcomes;
 }
 

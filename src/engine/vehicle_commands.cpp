@@ -89,10 +89,13 @@ CommandApplier::Where CommandApplier::locate(uint32_t v) const {
   if (v >= d.size()) return at;
   const int32_t k = query_.slot(v);
   const HostState& s = query_.state();
-  if (k >= 0 && s.veh.status[k] == kRunning) {
+  auto in = [v](const std::vector<uint32_t>& vehicles) {
+    return std::find(vehicles.begin(), vehicles.end(), v) != vehicles.end();
+  };
+  if (k >= 0 && s.veh.status[k] == kRunning && !in(removed_)) {
     at.kind = Where::kRunning;
     at.slot = k;
-    at.route_pos = s.veh.route_pos[k];
+    at.route_pos = in(rerouted_) ? 0 : s.veh.route_pos[k];
     return at;
   }
   const uint32_t* route = d.route_edges.data() + d.route_begin[v];
@@ -201,6 +204,7 @@ void CommandApplier::apply(const VehicleCommand& c, const std::vector<Bytes>& ve
     run_.trips.set_route(v, c.edges);
     if (at.kind == Where::kTeleporting) ledger.set_resume_route_pos(v, 0);
     if (at.kind != Where::kRunning) return;
+    rerouted_.push_back(v);
     run_.sync_trips();
     run_.stepper.set_routes(
         {SlotRoute{static_cast<uint32_t>(at.slot), d.route_begin[v], d.route_length[v], 0}});
@@ -218,6 +222,7 @@ void CommandApplier::apply(const VehicleCommand& c, const std::vector<Bytes>& ve
       ++books.counts.arrived;
       --books.counts.running;
       run_.stepper.mark_migrated({k});
+      removed_.push_back(v);
       // Its slot clears its last footprint in the next step, as one that left the road in the last.
       books.retiring.push_back(k);
       return;

@@ -87,12 +87,13 @@ struct CommandScope {
   std::function<void()> sync_trips;  // hands the backend the trip table as it lies now
 };
 
-/// One part's side of the commands: each is first checked here (a verdict that says whether this part has
-/// the vehicle and, if so, whether the command can act on it), the parts' verdicts are combined into the
+/// One part's side of a batch of commands: each is first checked here (a verdict that says whether this part
+/// has the vehicle and, if so, whether the command can act on it), the parts' verdicts are combined into the
 /// command's outcome (combine_verdicts), and a command done is then applied in every part (apply).
 class CommandApplier {
  public:
-  /// `query`: the vehicles' state now (fetched once, before the first command that needs it).
+  /// `query`: the vehicles' state as the batch found it, fetched once for the whole batch; what the batch's
+  /// own commands changed of it since is kept here.
   CommandApplier(const CommandScope& run, const VehicleQuery& query) : run_(run), query_(query) {}
 
   /// This part's verdict on `c`, as bytes: whether it has the vehicle, why the command cannot act on it, and
@@ -112,6 +113,9 @@ class CommandApplier {
 
   CommandScope run_;
   const VehicleQuery& query_;
+  // Vehicles on the road that an earlier command of the batch removed, or gave a new route (route
+  // position 0 from then on), which the query, fetched before, does not show.
+  std::vector<uint32_t> removed_, rerouted_;
 };
 
 }  // namespace lpsim

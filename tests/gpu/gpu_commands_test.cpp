@@ -22,5 +22,13 @@ TEST(GpuCommandsTest, RemovalsAndAdditionsAsOnTheCpu) {
   expect_same_command_run(reference, run, "GPU vs CPU");
 }
 
+TEST(GpuCommandsTest, ABatchSeesItsOwnCommands) {
+  const CudaDeviceStatus gpu = cuda_device_status();
+  if (!gpu.usable) GTEST_SKIP() << "no usable CUDA device (" << gpu.description << "): commands not checked";
+  SimulationOptions on_gpu = simulation_options(load_sumo_scenario("grid_tls").config);
+  on_gpu.backend = make_cuda_stepper;
+  expect_a_batch_sees_its_own_commands(on_gpu);
+}
+
 }  // namespace
 }  // namespace lpsim::engine_test

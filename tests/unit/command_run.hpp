@@ -10,6 +10,7 @@
 
 #include "unit/command_drive.hpp"
 #include "unit/engine_invariant_checker.hpp"
+#include "unit/trip_changes.hpp"
 
 namespace lpsim::engine_test {
 
@@ -73,6 +74,30 @@ inline void drive_with_commands(Simulation& sim, uint32_t steps) {
     }
     sim.step();
   }
+}
+
+/// One batch sees its own commands (its state is fetched once): a route given twice, then the vehicle
+/// removed, then its route and its removal refused.
+inline void expect_a_batch_sees_its_own_commands(const SimulationOptions& options) {
+  const Scenario sc = load_sumo_scenario("grid_tls");
+  Simulation sim(sc.network, sc.demand, options);
+  while (sim.time() < 100) sim.step();
+  std::vector<uint32_t> route;
+  const int64_t picked = pick_reroute(sim, sc.network, route);
+  ASSERT_GE(picked, 0);
+  const auto v = static_cast<uint32_t>(picked);
+  const std::vector<CommandOutcome> o = sim.apply_commands(
+      {VehicleCommand::set_route(v, route), VehicleCommand::set_route(v, route), VehicleCommand::remove(v),
+       VehicleCommand::set_route(v, route), VehicleCommand::remove(v)});
+  ASSERT_EQ(o.size(), 5u);
+  for (size_t i = 0; i < 3; ++i) EXPECT_TRUE(o[i].done()) << i << ": " << o[i].error;
+  EXPECT_NE(o[3].error.find("new route refused: its trip has ended"), std::string::npos) << o[3].error;
+  EXPECT_NE(o[4].error.find("not removed: its trip has ended"), std::string::npos) << o[4].error;
+  for (int k = 0; k < 5; ++k) {
+    sim.step();
+    EXPECT_EQ(sim.check_lane_map(), "");
+  }
+  EXPECT_EQ(sim.query().status(v), kArrived);  // its slot gone after the step that cleared it
 }
 
 /// The two runs alike: the same outcomes, FCD, trip records and counts.

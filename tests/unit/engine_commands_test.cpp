@@ -51,6 +51,10 @@ TEST(EngineCommandsTest, RemovedVehiclesLeaveWhereTheyAreAndQueuedOnesNeverDepar
   EXPECT_EQ(run.last_row.arrived, run.counts.arrived);
 }
 
+TEST(EngineCommandsTest, ABatchSeesItsOwnCommands) {
+  expect_a_batch_sees_its_own_commands(simulation_options(load_sumo_scenario("grid_tls").config));
+}
+
 TEST(EngineCommandsTest, ThreePartsRunTheCommandsAsOnePart) {
   const Scenario sc = load_sumo_scenario("grid_tls");
   EXPECT_GE(trip_from_a_shared_edge(sc), 0);
