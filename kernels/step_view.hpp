@@ -300,6 +300,11 @@ struct VehicleView {
   uint8_t* emission_flags;
 };
 
+/// Where the vehicle in `slot` lies now (its footprint as the last step wrote it into the lane map).
+LPSIM_HD Footprint current_footprint(const VehicleView& veh, uint32_t slot) {
+  return Footprint{veh.lane[slot], veh.prev[slot], veh.prev2[slot], veh.pos[slot]};
+}
+
 constexpr uint32_t kBestLaneEntries = 2;  // a power of two
 
 /// A slot number that names no slot in the active list (Stepper::sort_slots).

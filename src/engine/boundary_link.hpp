@@ -192,7 +192,7 @@ std::vector<uint32_t> BoundaryLink::hand_out(int map, Visit visit) {
   for (uint32_t i = 0; i < st.num_active; ++i) {
     const uint32_t k = st.active[i];
     if (st.veh.status[k] != kRunning) continue;
-    const Footprint fp{st.veh.lane[k], st.veh.prev[k], st.veh.prev2[k], st.veh.pos[k]};
+    const Footprint fp = current_footprint(st.veh, k);
     const float len = length[st.veh.trip_type[k]];
     if (!visit(st, k, fp, len)) continue;
     foreign_[map].push_back(FootprintWrite{fp, len, 0});

@@ -707,7 +707,7 @@ std::string Simulation::check_lane_map() const {
   for (const uint64_t key : active_by_vehicle()) {
     const uint32_t v = static_cast<uint32_t>(key >> 32), k = static_cast<uint32_t>(key);
     if (s.veh.status[k] != kRunning) continue;
-    const Footprint fp{s.veh.lane[k], s.veh.prev[k], s.veh.prev2[k], s.veh.pos[k]};
+    const Footprint fp = current_footprint(s.veh, k);
     std::vector<uint8_t> mark(net_.num_cells(), 0);
     apply_footprint(mark.data(), nv, fp, d.types.length[d.vehicle_type[v]], 1);
     for (uint64_t c = 0; c < mark.size(); ++c) {

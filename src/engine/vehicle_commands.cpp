@@ -163,8 +163,8 @@ Bytes CommandApplier::verdict(const VehicleCommand& c) const {
   if (at.kind == Where::kRunning && c.kind == VehicleCommand::Kind::Remove) {
     const VehicleView& veh = query_.state().veh;
     const auto k = static_cast<uint32_t>(at.slot);
-    v.erased = FootprintWrite{Footprint{veh.lane[k], veh.prev[k], veh.prev2[k], veh.pos[k]},
-                              run_.trips.demand().types.length[veh.trip_type[k]], 0};
+    v.erased =
+        FootprintWrite{current_footprint(veh, k), run_.trips.demand().types.length[veh.trip_type[k]], 0};
     v.erases = 1;
   }
   StateOut a;
@@ -212,7 +212,8 @@ void CommandApplier::apply(const VehicleCommand& c, const std::vector<Bytes>& ve
   }
   // Remove: its footprint leaves every part's lane map, wherever it was on the road.
   for (const Bytes& b : verdicts)
-    if (const Verdict v = read_verdict(b); v.erases) run_.link.erase_removed(run_.map, v.erased);
+    if (const Verdict verdict = read_verdict(b); verdict.erases)
+      run_.link.erase_removed(run_.map, verdict.erased);
   switch (at.kind) {
     case Where::kRunning: {
       // As SUMO's TraCI remove: the trip ends where the vehicle is, counted as arrived.
