@@ -7,10 +7,11 @@
 # end after the save. Works in copies (bench/work/state/), as add-file outputs land beside their files.
 #
 # --parts K runs LPSim's three runs in K parts in one process (one thread each), --mpi K as K MPI ranks:
-# the state then holds every part's.
+# the state then holds every part's. --all-outputs adds FCD, unfinished trips' tripinfo, edgeData, laneData and
+# the statistic output to the tripinfo and summary compared.
 #
 # Usage: bench/state_bench.sh --scenario CFG_OR_SNAPSHOT --at T [--end T] [--threads 2] [--no-sumo]
-#                             [--parts K | --mpi K] [--lpsim PATH]
+#                             [--parts K | --mpi K] [--all-outputs] [--lpsim PATH]
 # e.g.   bench/state_bench.sh --scenario ../shared/scenarios/bologna_acosta/run.sumocfg --at 1800
 #        bench/state_bench.sh --scenario bench/work/regional/1000000/regional.lpsim --at 1800 --end 2400
 set -euo pipefail
@@ -24,6 +25,7 @@ threads=2
 sumo=1
 parts=()
 launch=()
+more=()
 lpsim="$PWD/build/lpsim"
 while [[ $# -gt 0 ]]; do
   case "$1" in
@@ -32,6 +34,8 @@ while [[ $# -gt 0 ]]; do
     --end) end="$2"; shift 2 ;;
     --threads) threads="$2"; shift 2 ;;
     --no-sumo) sumo=0; shift ;;
+    --all-outputs) more=(--fcd-output fcd.xml --tripinfo-output.write-unfinished --edgedata-output edges.xml
+                         --lanedata-output lanes.xml --statistic-output stats.xml); shift ;;
     --parts) parts=(--parts "$2" --parts.min-vehicles 0); threads=1; shift 2 ;;
     --mpi) parts=(--parts "$2"); launch=(mpirun --allow-run-as-root --oversubscribe -n "$2"); threads=1; shift 2 ;;
     --lpsim) lpsim="$(realpath "$2")"; shift 2 ;;
@@ -55,7 +59,8 @@ input() {
   fi
 }
 
-outputs=(--tripinfo-output trip.xml --summary-output sum.xml --no-step-log -W --threads "$threads" "${parts[@]}")
+outputs=(--tripinfo-output trip.xml --summary-output sum.xml "${more[@]}" --no-step-log -W --threads "$threads"
+  "${parts[@]}")
 for run in whole saved; do
   # shellcheck disable=SC2046
   set -- $(input "lpsim_$run")

@@ -186,10 +186,10 @@ class Stepper {
   /// emission_sums) are touched: the others may be null.
   virtual void drain_counters(int64_t* const* columns) = 0;
 
-  // Checkpoints, between steps: the run state this backend keeps (slot columns of the first `num_slots`
-  // slots, active list, lane maps, signals, lane tables, counters) as bytes, and back into a backend made
-  // with the same setup; every backend in the CPU backend's list and layout, so that a state moves between
-  // them. std::runtime_error for bytes that do not fit the setup.
+  // Checkpoints, between steps: the run state the next step reads (slot columns of the first `num_slots`
+  // slots, active list, the current lane map, signals, lane tables, counters) as bytes, and back into a
+  // backend made with the same setup; every backend in the CPU backend's list and layout, so that a state
+  // moves between them. std::runtime_error for bytes that do not fit the setup.
   virtual std::vector<uint8_t> save_state(uint32_t num_slots) = 0;
   virtual void load_state(const std::vector<uint8_t>& state, uint32_t num_slots) = 0;
 };

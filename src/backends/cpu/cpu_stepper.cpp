@@ -286,45 +286,51 @@ class CpuStepper final : public Stepper {
 
   std::vector<uint8_t> save_state(uint32_t num_slots) override {
     StateBytesOut out;
+    out.value(state_map_);
     visit_state([&](auto& v, bool) { out.array(v); }, [&](auto* span, uint64_t n) { out.array(span, n); },
                 [&](auto* span, uint64_t n, auto usual) { out.sparse(span, n, usual); }, num_slots);
-    out.value(state_map_);
     return std::move(out.bytes());
   }
 
   void load_state(const std::vector<uint8_t>& state, uint32_t num_slots) override {
     StateBytesIn in(state);
+    in.value(state_map_);
+    if (state_map_ != 0 && state_map_ != 1)
+      throw std::runtime_error("backend state: no lane map " + std::to_string(state_map_));
     if (num_slots > 0) veh_.reserve(num_slots, false);
     visit_state([&](auto& v, bool fixed) { in.array(v, fixed); },
                 [&](auto* span, uint64_t n) { in.array(span, n); },
                 [&](auto* span, uint64_t n, auto usual) { in.sparse(span, n, usual); }, num_slots);
-    in.value(state_map_);
     if (!in.done()) throw std::runtime_error("backend state: bytes left after its last array");
+    // What the state leaves out, as the next step would find it after its own clearing.
+    std::fill(map_[1 - state_map_].begin(), map_[1 - state_map_].end(), uint8_t{0});
+    if (!junction_stand_[1 - state_map_].empty())
+      std::fill(junction_stand_[1 - state_map_].begin(), junction_stand_[1 - state_map_].end(),
+                kNoJunctionStand);
+    std::fill(claims_.begin(), claims_.end(), 0);
+    std::fill(merge_requests_.begin(), merge_requests_.end(), 0);
   }
 
  private:
-  // The run state (save_state): each table with whether its length is fixed by the setup, each vehicle
-  // column's entries of the first `num_slots` slots, and as mostly zeros the lane maps, the claims and merge
-  // requests, the lane records (where counters_ aligns them) and the emission sums, and as mostly
-  // kNoJunctionStand the junction stands.
-  // Everything else a step writes before it reads it; the approaches count only in the step that wrote them
-  // (LaneApproach::step).
+  // The run state (save_state), after state_map_: each table with whether its length is fixed by the setup,
+  // each vehicle column's entries of the first `num_slots` slots, and as mostly zeros the current lane map,
+  // the lane records (where counters_ aligns them) and the emission sums, and as mostly kNoJunctionStand the
+  // current junction stands.
+  // Everything else a step writes before it reads it: the other lane map and junction stands are cleared of
+  // what they held (the footprints and stands of one step before) before the step writes them; the claims
+  // and merge requests, and the approaches, count only in the step that wrote them (the step in their key).
   template <class Table, class Span, class Sparse>
   void visit_state(Table&& table, Span&& span, Sparse&& sparse, uint32_t num_slots) {
-    sparse(map_[0].data(), map_[0].size(), uint8_t{0});
-    sparse(map_[1].data(), map_[1].size(), uint8_t{0});
+    sparse(map_[state_map_].data(), map_[state_map_].size(), uint8_t{0});
     table(link_state_, true);
     table(signal_next_switch_ms_, true);
     table(actuated_phase_, true);
     table(actuated_start_ms_, true);
     table(det_last_ms_, true);
-    sparse(claims_.data(), claims_.size(), uint64_t{0});
-    sparse(merge_requests_.data(), merge_requests_.size(), uint64_t{0});
     if (lane_records_ != nullptr)
       sparse(lane_records_, uint64_t{kNumTrafficCounters} * setup_.net.num_lanes, int64_t{0});
     sparse(emission_sums_.data(), emission_sums_.size(), int64_t{0});
-    sparse(junction_stand_[0].data(), junction_stand_[0].size(), kNoJunctionStand);
-    sparse(junction_stand_[1].data(), junction_stand_[1].size(), kNoJunctionStand);
+    sparse(junction_stand_[state_map_].data(), junction_stand_[state_map_].size(), kNoJunctionStand);
     table(active_, false);
     visit_vehicle_columns([&](uint32_t per, auto*& c) { span(c, uint64_t{num_slots} * per); }, veh_.view());
   }

@@ -798,6 +798,7 @@ class CudaStepper final : public Stepper {
   std::vector<uint8_t> save_state(uint32_t num_slots) override {
     LPSIM_CUDA_CHECK(cudaStreamSynchronize(nullptr));
     StateBytesOut out;
+    out.value(state_map_);
     visit_state(num_slots, [&](auto* dev, size_t n, Kept kept) {
       using T = std::remove_pointer_t<decltype(dev)>;
       std::vector<T> h(n);
@@ -807,13 +808,15 @@ class CudaStepper final : public Stepper {
       else
         kept == Kept::Sparse ? out.sparse(h) : out.array(h);
     });
-    out.value(state_map_);
     return std::move(out.bytes());
   }
 
   void load_state(const std::vector<uint8_t>& state, uint32_t num_slots) override {
     LPSIM_CUDA_CHECK(cudaStreamSynchronize(nullptr));
     StateBytesIn in(state);
+    in.value(state_map_);
+    if (state_map_ != 0 && state_map_ != 1)
+      throw std::runtime_error("backend state: no lane map " + std::to_string(state_map_));
     grow_slots(num_slots);
     visit_state(num_slots, [&](auto* dev, size_t n, Kept kept) {
       using T = std::remove_pointer_t<decltype(dev)>;
@@ -832,8 +835,14 @@ class CudaStepper final : public Stepper {
       }
       copy_to_device(dev, h.data(), h.size());
     });
-    in.value(state_map_);
     if (!in.done()) throw std::runtime_error("backend state: bytes left after its last array");
+    // What the state leaves out, as the next step would find it after its own clearing (visit_state).
+    const size_t nl = num_lanes_;
+    LPSIM_CUDA_CHECK(cudaMemset(map_[1 - state_map_], 0, cells_ + kLaneMapPadding));
+    if (junction_stand_[1 - state_map_] != nullptr)
+      LPSIM_CUDA_CHECK(cudaMemset(junction_stand_[1 - state_map_], 0xFF, nl * sizeof(uint32_t)));
+    LPSIM_CUDA_CHECK(cudaMemset(dev_.claims, 0, nl * sizeof(uint64_t)));
+    LPSIM_CUDA_CHECK(cudaMemset(dev_.merge_requests, 0, kMergeSlots * nl * sizeof(uint64_t)));
     ++version_;
   }
 
@@ -1051,23 +1060,20 @@ class CudaStepper final : public Stepper {
   // How a table of the run state is kept (visit_state): whole, as mostly zeros, as mostly all ones (a
   // lane's "none", ~0), or the active list, whose length is the number of active slots.
   enum class Kept { Whole, Sparse, SparseOnes, Active };
-  // The run state in CpuStepper::visit_state's order: table(device pointer, length, how it is kept).
+  // The run state in CpuStepper::visit_state's order, after state_map_: table(device pointer, length, how it
+  // is kept). Only the current lane map and junction stands: a step clears the others before it writes them.
   template <class Table>
   void visit_state(uint32_t num_slots, Table&& table) {
     const size_t nl = num_lanes_, ns = signals_.num_signals;
-    table(map_[0], cells_ + kLaneMapPadding, Kept::Sparse);
-    table(map_[1], cells_ + kLaneMapPadding, Kept::Sparse);
+    table(map_[state_map_], cells_ + kLaneMapPadding, Kept::Sparse);
     table(link_state_, size_t{num_links_}, Kept::Whole);
     table(signal_next_switch_ms_, ns, Kept::Whole);
     table(actuated_state_.phase, ns, Kept::Whole);
     table(actuated_state_.phase_start_ms, ns, Kept::Whole);
     table(actuated_state_.det_last_ms, size_t{num_loops_}, Kept::Whole);
-    table(dev_.claims, nl, Kept::Sparse);
-    table(dev_.merge_requests, kMergeSlots * nl, Kept::Sparse);
     if (counters_ != nullptr) table(counters_, kNumTrafficCounters * nl, Kept::Sparse);
     table(dev_.em.sums, dev_.em.sums ? kNumEmissionSums * nl : 0, Kept::Sparse);
-    table(junction_stand_[0], junction_stand_[0] ? nl : 0, Kept::SparseOnes);
-    table(junction_stand_[1], junction_stand_[1] ? nl : 0, Kept::SparseOnes);
+    table(junction_stand_[state_map_], junction_stand_[state_map_] ? nl : 0, Kept::SparseOnes);
     table(active_[cur_active_], size_t{num_active_}, Kept::Active);
     visit_vehicle_columns([&](uint32_t per, auto*& c) { table(c, size_t{num_slots} * per, Kept::Whole); },
                           dev_.veh);
