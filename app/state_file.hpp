@@ -1,8 +1,8 @@
 #pragma once
 // An LPSim state file (--save-state.*, --load-state): a header (magic, format version, the layout of the
 // values it holds, the digest of the scenario and options that made it, the payload's lengths and CRC-32)
-// and the payload deflated (zlib), the run's state as Run and Simulation list it. A file that is truncated, corrupted, of
-// another format or layout, or of another scenario is refused with one InputError naming it.
+// and the payload deflated (zlib), the run's state as Run and Simulation list it. A file that is truncated,
+// corrupted, of another format or layout, or of another scenario is refused with one InputError naming it.
 #include <cstdint>
 #include <string>
 #include <vector>
