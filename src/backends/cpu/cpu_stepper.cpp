@@ -78,10 +78,7 @@ class CpuStepper final : public Stepper {
     plan_.reserve(active_.size(), false);
     ctx_ = context(map_[map_now].data(), map_[1 - map_now].data());
     ctx_.params = params;
-    if (step_marks_wrap(params.step)) {
-      std::fill(claims_.begin(), claims_.end(), 0);
-      std::fill(merge_requests_.begin(), merge_requests_.end(), 0);
-    }
+    if (step_marks_wrap(params.step)) clear_step_marks();
     if (setup_.junction_stands) {  // double-buffered as the lane map
       ctx_.junction_stand_now = junction_stand_[map_now].data();
       ctx_.junction_stand_next = junction_stand_[1 - map_now].data();
@@ -304,14 +301,18 @@ class CpuStepper final : public Stepper {
     if (!in.done()) throw std::runtime_error("backend state: bytes left after its last array");
     // What the state leaves out, as the next step would find it after its own clearing.
     std::fill(map_[1 - state_map_].begin(), map_[1 - state_map_].end(), uint8_t{0});
-    if (!junction_stand_[1 - state_map_].empty())
-      std::fill(junction_stand_[1 - state_map_].begin(), junction_stand_[1 - state_map_].end(),
-                kNoJunctionStand);
+    std::fill(junction_stand_[1 - state_map_].begin(), junction_stand_[1 - state_map_].end(),
+              kNoJunctionStand);
+    clear_step_marks();
+  }
+
+ private:
+  // Claims and merge requests count only in the step in their key (step_marks_wrap).
+  void clear_step_marks() {
     std::fill(claims_.begin(), claims_.end(), 0);
     std::fill(merge_requests_.begin(), merge_requests_.end(), 0);
   }
 
- private:
   // The run state (save_state), after state_map_: each table with whether its length is fixed by the setup,
   // each vehicle column's entries of the first `num_slots` slots, and as mostly zeros the current lane map,
   // the lane records (where counters_ aligns them) and the emission sums, and as mostly kNoJunctionStand the

@@ -414,11 +414,7 @@ class CudaStepper final : public Stepper {
     reserve_plan_slots(num_active_);
     ctx_ = dev_;
     ctx_.params = params;
-    if (step_marks_wrap(params.step)) {
-      const size_t nl = host_net_.num_lanes;
-      LPSIM_CUDA_CHECK(cudaMemset(dev_.claims, 0, nl * sizeof(uint64_t)));
-      LPSIM_CUDA_CHECK(cudaMemset(dev_.merge_requests, 0, kMergeSlots * nl * sizeof(uint64_t)));
-    }
+    if (step_marks_wrap(params.step)) clear_step_marks();
     ctx_.map_now = map_[map_now];
     ctx_.map_next = map_[1 - map_now];
     ctx_.junction_stand_now = junction_stand_[map_now];  // null unless tracked
@@ -837,16 +833,21 @@ class CudaStepper final : public Stepper {
     });
     if (!in.done()) throw std::runtime_error("backend state: bytes left after its last array");
     // What the state leaves out, as the next step would find it after its own clearing (visit_state).
-    const size_t nl = num_lanes_;
     LPSIM_CUDA_CHECK(cudaMemset(map_[1 - state_map_], 0, cells_ + kLaneMapPadding));
     if (junction_stand_[1 - state_map_] != nullptr)
-      LPSIM_CUDA_CHECK(cudaMemset(junction_stand_[1 - state_map_], 0xFF, nl * sizeof(uint32_t)));
-    LPSIM_CUDA_CHECK(cudaMemset(dev_.claims, 0, nl * sizeof(uint64_t)));
-    LPSIM_CUDA_CHECK(cudaMemset(dev_.merge_requests, 0, kMergeSlots * nl * sizeof(uint64_t)));
+      LPSIM_CUDA_CHECK(cudaMemset(junction_stand_[1 - state_map_], 0xFF, num_lanes_ * sizeof(uint32_t)));
+    clear_step_marks();
     ++version_;
   }
 
  private:
+  // Claims and merge requests count only in the step in their key (step_marks_wrap).
+  void clear_step_marks() {
+    const size_t nl = num_lanes_;
+    LPSIM_CUDA_CHECK(cudaMemset(dev_.claims, 0, nl * sizeof(uint64_t)));
+    LPSIM_CUDA_CHECK(cudaMemset(dev_.merge_requests, 0, kMergeSlots * nl * sizeof(uint64_t)));
+  }
+
   // The exchanges' index lists and values, uploaded for one launch.
   uint32_t* upload_index(const std::vector<uint32_t>& index) {
     uint32_t* dev = border_index_.get(index.size());
