@@ -16,7 +16,7 @@ namespace lpsim {
 namespace {
 
 constexpr char kMagic[8] = {'L', 'P', 'S', 'I', 'M', 'S', 'T', '\0'};
-constexpr uint32_t kFormatVersion = 5;  // 5: the payload deflated; only the current lane map and stands
+constexpr uint32_t kFormatVersion = 6;  // 6: a link saves the current map's foreign footprints only
 
 struct Header {
   char magic[8];

@@ -43,6 +43,11 @@ struct CliResult {
 /// which receives stdout.txt and stderr.txt.
 inline CliResult run_program(const std::filesystem::path& dir, const std::vector<std::string>& program,
                              const std::vector<std::string>& args) {
+  // SUMO validates files that name a schema against those under SUMO_HOME and fails without it: where it is
+  // unset, Debian's, as lpsim's own SUMO start does (sumo_bridge/sumo_start.cpp), so that a plain ctest
+  // runs SUMO as tools/test.sh does.
+  if (std::getenv("SUMO_HOME") == nullptr && std::filesystem::exists("/usr/share/sumo/data/xsd"))
+    ::setenv("SUMO_HOME", "/usr/share/sumo", 0);
   // Appended piecewise: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string temporaries.
   std::string cmd = "cd ";
   cmd += shell_quote(dir.string());

@@ -142,9 +142,9 @@ class BoundaryLink {
   virtual Bytes scatter(const std::vector<Bytes>& each, const char* /*what*/) { return each.at(0); }
 
   // --- Checkpoints, between steps: what the link carries from one step to the next (nothing in a run of
-  // one part). ---
-  virtual void save_state(StateOut& /*a*/) {}
-  virtual void load_state(StateIn& /*a*/) {}
+  // one part); `map` is the lane map the last step wrote, the one a state holds. ---
+  virtual void save_state(StateOut& /*a*/, int /*map*/) {}
+  virtual void load_state(StateIn& /*a*/, int /*map*/) {}
 
   // --- Commands, between steps. ---
   /// A vehicle a command removed from the road: its footprint `fp` leaves lane map `map` (the one the next
@@ -167,11 +167,12 @@ class BoundaryLink {
   std::vector<uint32_t> hand_out(int map, Visit visit);
   /// This side's running vehicles, in slot order.
   std::vector<SampleEntry> own_running() const;
-  /// The footprints written from elsewhere and not yet erased, as a state holds them.
+  /// The footprints written from elsewhere into lane map `map` (the one a state holds) and not yet erased.
+  /// The other map's are not: a resumed run starts with that map cleared.
   template <class A>
-  void visit_foreign(A& a) {
-    a(foreign_[0]);
-    a(foreign_[1]);
+  void visit_foreign(A& a, int map) {
+    a(foreign_[map]);
+    if constexpr (A::kReads) foreign_[1 - map].clear();
   }
 
   LinkScope run_;

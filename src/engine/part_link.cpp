@@ -510,10 +510,10 @@ void PartLink::erase_removed(int map, const FootprintWrite& fp) {
 // Between steps the link carries the footprints it has to erase, the insertions its neighbours have not yet
 // seen, its stats and, in part 0, the run's totals; what a step hands on between its rounds is empty then.
 template <class A>
-void PartLink::visit_state(A& a) {
+void PartLink::visit_state(A& a, int map) {
   if (!teleports_.empty() || !adopted_.empty() || !departures_.empty())
     a.fail("a part's step has not handed on everything");
-  visit_foreign(a);
+  visit_foreign(a, map);
   for (const int p : neighbours_) a(inserted_[p]);
   a(stats_);
   a(part_stats_);

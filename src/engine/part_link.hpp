@@ -72,8 +72,8 @@ class PartLink final : public BoundaryLink {
 
   void erase_removed(int map, const FootprintWrite& fp) override;
 
-  void save_state(StateOut& a) override { visit_state(a); }
-  void load_state(StateIn& a) override { visit_state(a); }
+  void save_state(StateOut& a, int map) override { visit_state(a, map); }
+  void load_state(StateIn& a, int map) override { visit_state(a, map); }
 
  private:
   /// One round with the transport, timed and counted in stats_ (exchange: a round of the step; else a
@@ -82,7 +82,7 @@ class PartLink final : public BoundaryLink {
                            const std::vector<int>& from, const char* what, bool exchange);
   std::vector<int> others() const;
   template <class A>
-  void visit_state(A& a);
+  void visit_state(A& a, int map);
 
   const PartPlan& plan_;
   Transport& transport_;

@@ -775,9 +775,9 @@ void Simulation::visit_state(A& a, std::vector<uint8_t>& backend) {
   if (rerouting != (reroute_ ? 1 : 0)) a.fail("the state's rerouting device does not match this run's");
   if (reroute_) a(*reroute_);
   if constexpr (A::kReads)
-    link_->load_state(a);
+    link_->load_state(a, cur_);
   else
-    link_->save_state(a);
+    link_->save_state(a, cur_);
   a.raw(backend);
 }
 
