@@ -7,11 +7,13 @@
 # end after the save. Works in copies (bench/work/state/), as add-file outputs land beside their files.
 #
 # --parts K runs LPSim's three runs in K parts in one process (one thread each), --mpi K as K MPI ranks:
-# the state then holds every part's. --all-outputs adds FCD, unfinished trips' tripinfo, edgeData, laneData and
+# the state then holds every part's. --resume-parts K / --resume-mpi K resume it in other parts than those
+# that saved it (in one process / as MPI ranks; --resume-parts 1: one part), the state re-cut for them. --all-outputs adds FCD, unfinished trips' tripinfo, edgeData, laneData and
 # the statistic output to the tripinfo and summary compared.
 #
 # Usage: bench/state_bench.sh --scenario CFG_OR_SNAPSHOT --at T [--end T] [--threads 2] [--no-sumo]
-#                             [--parts K | --mpi K] [--all-outputs] [--lpsim PATH]
+#                             [--parts K | --mpi K] [--resume-parts K | --resume-mpi K] [--all-outputs]
+#                             [--lpsim PATH]
 # e.g.   bench/state_bench.sh --scenario ../shared/scenarios/bologna_acosta/run.sumocfg --at 1800
 #        bench/state_bench.sh --scenario bench/work/regional/1000000/regional.lpsim --at 1800 --end 2400
 set -euo pipefail
@@ -26,6 +28,9 @@ sumo=1
 parts=()
 launch=()
 more=()
+resume_parts=()
+resume_launch=()
+resume_set=0
 lpsim="$PWD/build/lpsim"
 while [[ $# -gt 0 ]]; do
   case "$1" in
@@ -38,12 +43,20 @@ while [[ $# -gt 0 ]]; do
                          --lanedata-output lanes.xml --statistic-output stats.xml); shift ;;
     --parts) parts=(--parts "$2" --parts.min-vehicles 0); threads=1; shift 2 ;;
     --mpi) parts=(--parts "$2"); launch=(mpirun --allow-run-as-root --oversubscribe -n "$2"); threads=1; shift 2 ;;
+    --resume-parts) resume_parts=(--parts "$2" --parts.min-vehicles 0); resume_launch=(); resume_set=1
+                    [[ "$2" == 1 ]] && resume_parts=(); shift 2 ;;
+    --resume-mpi) resume_parts=(--parts "$2"); resume_launch=(mpirun --allow-run-as-root --oversubscribe -n "$2")
+                  resume_set=1; shift 2 ;;
     --lpsim) lpsim="$(realpath "$2")"; shift 2 ;;
     *) echo "unknown option $1" >&2; exit 2 ;;
   esac
 done
 [[ -n "$scenario" && -n "$at" ]] || { echo "usage: $0 --scenario CFG_OR_SNAPSHOT --at T [--end T]" >&2; exit 2; }
 
+if [[ "$resume_set" == 0 ]]; then
+  resume_parts=("${parts[@]}")
+  resume_launch=("${launch[@]}")
+fi
 work="$PWD/bench/work/state"
 rm -rf "$work" && mkdir -p "$work"
 end_args=()
@@ -59,8 +72,8 @@ input() {
   fi
 }
 
-outputs=(--tripinfo-output trip.xml --summary-output sum.xml "${more[@]}" --no-step-log -W --threads "$threads"
-  "${parts[@]}")
+common=(--tripinfo-output trip.xml --summary-output sum.xml "${more[@]}" --no-step-log -W --threads "$threads")
+outputs=("${common[@]}" "${parts[@]}")
 for run in whole saved; do
   # shellcheck disable=SC2046
   set -- $(input "lpsim_$run")
@@ -71,15 +84,15 @@ for run in whole saved; do
 done
 state=$(ls "$work"/lpsim_saved/*.lpstate)
 (cd "$work/lpsim_saved" &&
-  echo "resumed $(measure "$work/lpsim_resumed.log" "${launch[@]}" "$lpsim" run "${scenario_args[@]}" "${end_args[@]}" \
-    "${outputs[@]}" --load-state "$state")") >>"$work/lpsim.times"
+  echo "resumed $(measure "$work/lpsim_resumed.log" "${resume_launch[@]}" "$lpsim" run "${scenario_args[@]}" \
+    "${end_args[@]}" "${common[@]}" "${resume_parts[@]}" --load-state "$state")") >>"$work/lpsim.times"
 # Every file of the whole run's folder: its outputs (the scenario's add-file outputs too) and the inputs.
 identical=yes
 for f in "$work"/lpsim_whole/*; do
   cmp -s "$f" "$work/lpsim_saved/$(basename "$f")" || identical="no ($(basename "$f") differs)"
 done
 at_state=$(grep -o "<step time=\"$at.00\"[^>]*" "$work/lpsim_whole/sum.xml" | grep -oE 'running="[0-9]+" waiting="[0-9]+"' || true)
-echo "LPSim: state $(stat -c %s "$state") bytes at $at s ($at_state); resumed outputs identical: $identical"
+echo "LPSim: state $(stat -c %s "$state") bytes at $at s ($at_state); resumed (${resume_launch[*]:-one process} ${resume_parts[*]:-one part}) outputs identical: $identical"
 # The target: at most 100 bytes per vehicle running or waiting, plus its route (4 bytes per edge; the
 # scenario's mean route, from lpsim info, stands for theirs).
 # shellcheck disable=SC2046

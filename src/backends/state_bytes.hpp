@@ -182,6 +182,14 @@ class StateBytesIn {
     sparse(data, n);
     if (!all_zero_bytes(usual)) xor_each(data, n, usual);
   }
+  /// The length of the next array, which is still to be read.
+  uint64_t next_length() {
+    uint64_t n = 0;
+    const size_t at = at_;
+    value(n);
+    at_ = at;
+    return n;
+  }
   bool done() const { return at_ == in_.size(); }
 
  private:

@@ -60,6 +60,15 @@ class InsertionQueues {
   template <class Drop>
   void drop_departures(Drop&& drop);
 
+  /// f(edge, first, last) for each non-empty queue, edges ascending: its entries [first, last) from its head.
+  template <class F>
+  void for_each_queue(F&& f) const {
+    for (const uint32_t e : queued_edges_) {
+      const EdgeQueue& q = queue_[e];
+      f(e, q.entries.data() + q.head, q.entries.data() + q.entries.size());
+    }
+  }
+
   /// The queues' entries, of the queued edges only (StateOut, StateIn: engine/state_archive.hpp).
   template <class Out>
   void save_state(Out& a) const {

@@ -24,11 +24,11 @@ std::vector<Bytes> PartLink::round(const std::vector<int>& to, const std::vector
   std::vector<Bytes> got = transport_.exchange(to, send, from, what);
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (exchange) {
-    for (const Bytes& b : send) stats_.bytes_sent += b.size();
-    ++stats_.rounds;
-    stats_.exchange_seconds += s;
+    for (const Bytes& b : send) carry_.stats.bytes_sent += b.size();
+    ++carry_.stats.rounds;
+    carry_.stats.exchange_seconds += s;
   } else {
-    stats_.gather_seconds += s;
+    carry_.stats.gather_seconds += s;
   }
   return got;
 }
@@ -77,6 +77,17 @@ void for_each_other_holder(const PartPlan& plan, const NetView& net, const Footp
 
 }  // namespace
 
+std::vector<int> part_neighbours(const PartPlan& plan) {
+  std::vector<uint8_t> neighbour(static_cast<size_t>(plan.parts), 0);
+  for (const uint32_t l : plan.shared_lanes)
+    for (uint32_t h = plan.holder_begin[l]; h < plan.holder_begin[l + 1]; ++h)
+      neighbour[static_cast<size_t>(plan.holders[h])] = 1;
+  std::vector<int> out;
+  for (int p = 0; p < plan.parts; ++p)
+    if (neighbour[static_cast<size_t>(p)] && p != plan.part) out.push_back(p);
+  return out;
+}
+
 PartLink::PartLink(const LinkScope& run, const PartPlan& plan, Transport& transport,
                    std::function<int()> pending_signal)
     : BoundaryLink(run), plan_(plan), transport_(transport), pending_signal_(std::move(pending_signal)) {
@@ -88,14 +99,9 @@ PartLink::PartLink(const LinkScope& run, const PartPlan& plan, Transport& transp
   held_lanes_ = plan.held.data();
   alone_ = plan.held;
   for (const uint32_t l : plan.shared_lanes) alone_[l] = 0;
-  std::vector<uint8_t> neighbour(static_cast<size_t>(plan.parts), 0);
-  for (const uint32_t l : plan.shared_lanes) {
-    for (uint32_t h = plan.holder_begin[l]; h < plan.holder_begin[l + 1]; ++h)
-      neighbour[static_cast<size_t>(plan.holders[h])] = 1;
+  for (const uint32_t l : plan.shared_lanes)
     if (plan.lane_owner[l] == plan.part) owned_shared_.push_back(l);
-  }
-  for (int p = 0; p < plan.parts; ++p)
-    if (neighbour[static_cast<size_t>(p)] && p != plan.part) neighbours_.push_back(p);
+  neighbours_ = part_neighbours(plan);
   // An actuated signal's owner sends its state to every part holding a lane one of its links leaves.
   std::vector<std::vector<uint8_t>> reads(net.num_signals());
   for (uint32_t c = 0; c < net.num_connections(); ++c) {
@@ -189,9 +195,9 @@ void PartLink::after_approach(uint32_t step, int read_map) {
     }
     w.put_array(lanes);
     w.put_array(sent);
-    if (!insertion_round_) w.put_array(inserted_[p]);
+    if (!insertion_round_) w.put_array(carry_.inserted[p]);
   }
-  inserted_.clear();
+  carry_.inserted.clear();
   const std::vector<Bytes> got = round(neighbours_, out.all(), neighbours_, "approaches", true);
   for (const Bytes& b : got) {
     ByteReader r(b);
@@ -260,7 +266,7 @@ void PartLink::after_end_of_step(int map) {
     migrant_departures[owner].push_back(ledger.departure(v));
     return true;
   });
-  stats_.migrations += gone.size();
+  carry_.stats.migrations += gone.size();
 
   std::vector<TeleportHandOver> teleports;
   std::map<int, std::vector<TeleportHandOver>> teleports_out;
@@ -333,12 +339,12 @@ void PartLink::after_insertion(int map) {
     const Footprint fp{in.lane, -1, -1, in.pos};
     const float len = d.types.length[d.vehicle_type[in.vehicle]];
     const FootprintWrite fw{fp, len, encode_cell_speed(in.speed)};
-    for_each_other_holder(plan_, net, fp, len, [&](int p) { inserted_[p].push_back(fw); });
+    for_each_other_holder(plan_, net, fp, len, [&](int p) { carry_.inserted[p].push_back(fw); });
   }
   if (!insertion_round_) return;
   Outbox out(neighbours_);
-  for (const int p : neighbours_) ByteWriter(out.to(p)).put_array(inserted_[p]);
-  inserted_.clear();
+  for (const int p : neighbours_) ByteWriter(out.to(p)).put_array(carry_.inserted[p]);
+  carry_.inserted.clear();
   const std::vector<Bytes> got = round(neighbours_, out.all(), neighbours_, "insertions", true);
   for (const Bytes& b : got) {
     ByteReader r(b);
@@ -356,9 +362,9 @@ int64_t PartLink::settle_crossings(std::vector<uint32_t>& added) {
 }
 
 void PartLink::count_step(double seconds) {
-  ++stats_.steps;
-  stats_.vehicle_updates = run_.books.counts.vehicle_updates;
-  stats_.step_seconds += seconds;
+  ++carry_.stats.steps;
+  carry_.stats.vehicle_updates = run_.books.counts.vehicle_updates;
+  carry_.stats.step_seconds += seconds;
 }
 
 // The edge's owner queues the departure; the others never see it.
@@ -382,7 +388,7 @@ void PartLink::report() {
   w.put_array(books.teleport_events);
   w.put_array(departures_);
   departures_.clear();
-  w.put(stats_);
+  w.put(carry_.stats);
   w.put<int32_t>(pending_signal_ ? pending_signal_() : 0);
   const std::vector<Bytes> all = gather(mine, "report");
   if (all.empty()) return;
@@ -391,7 +397,7 @@ void PartLink::report() {
   std::vector<TripRecord> ended;
   std::vector<TeleportEvent> events;
   std::vector<DepartDelay> departures;
-  part_stats_.clear();
+  carry_.part_stats.clear();
   for (const Bytes& b : all) {
     ByteReader r(b);
     const RunCounts c = r.get<RunCounts>();
@@ -408,34 +414,34 @@ void PartLink::report() {
     for (const TripRecord& t : r.get_array<TripRecord>()) ended.push_back(t);
     for (const TeleportEvent& t : r.get_array<TeleportEvent>()) events.push_back(t);
     for (const DepartDelay& dep : r.get_array<DepartDelay>()) departures.push_back(dep);
-    part_stats_.push_back(r.get<PartStats>());
+    carry_.part_stats.push_back(r.get<PartStats>());
     const int32_t signal = r.get<int32_t>();
     if (signal_ == 0) signal_ = signal;
   }
   // Loaded and removed trips are counted where every part counts them alike: part 0's own.
   sum.loaded = books.counts.loaded;
   sum.removed = books.counts.removed;
-  counts_ = sum;
-  all_idle_ = idle;
+  carry_.counts = sum;
+  carry_.all_idle = idle;
   // By arrival, then vehicle: a step's trips all end at its time, those a command removed before it earlier.
   std::sort(ended.begin(), ended.end(), [](const TripRecord& a, const TripRecord& b) {
     return a.arrival != b.arrival ? a.arrival < b.arrival : a.vehicle < b.vehicle;
   });
   for (const TripRecord& t : ended) {
-    travel_time_sum_ += t.arrival - t.depart;
-    finished_.push_back(t);
+    carry_.travel_time_sum += t.arrival - t.depart;
+    carry_.finished.push_back(t);
   }
   std::sort(events.begin(), events.end(),
             [](const TeleportEvent& a, const TeleportEvent& b) { return a.vehicle < b.vehicle; });
-  teleport_events_ = std::move(events);
+  carry_.teleport_events = std::move(events);
   std::sort(departures.begin(), departures.end(),
             [](const DepartDelay& a, const DepartDelay& b) { return a.order < b.order; });
-  for (const DepartDelay& dep : departures) depart_delay_sum_ += dep.delay;
+  for (const DepartDelay& dep : departures) carry_.depart_delay_sum += dep.delay;
 }
 
 std::vector<TripRecord> PartLink::take_finished() {
   std::vector<TripRecord> out;
-  out.swap(finished_);
+  out.swap(carry_.finished);
   return out;
 }
 
@@ -501,28 +507,20 @@ Bytes PartLink::scatter(const std::vector<Bytes>& each, const char* what) {
 // A vehicle inserted in the last step and removed before its neighbours saw it: they never will.
 void PartLink::erase_removed(int map, const FootprintWrite& fp) {
   BoundaryLink::erase_removed(map, fp);
-  for (auto& [p, writes] : inserted_)
+  for (auto& [p, writes] : carry_.inserted)
     std::erase_if(writes, [&](const FootprintWrite& w) {
       return w.fp.lane == fp.fp.lane && w.fp.pos == fp.fp.pos && w.length == fp.length;
     });
 }
 
-// Between steps the link carries the footprints it has to erase, the insertions its neighbours have not yet
-// seen, its stats and, in part 0, the run's totals; what a step hands on between its rounds is empty then.
+// Between steps the link carries the footprints it has to erase and what PartLinkCarry lists; what a step
+// hands on between its rounds is empty then.
 template <class A>
 void PartLink::visit_state(A& a, int map) {
   if (!teleports_.empty() || !adopted_.empty() || !departures_.empty())
     a.fail("a part's step has not handed on everything");
   visit_foreign(a, map);
-  for (const int p : neighbours_) a(inserted_[p]);
-  a(stats_);
-  a(part_stats_);
-  a(counts_);
-  a(teleport_events_);
-  a(finished_);
-  a(depart_delay_sum_);
-  a(travel_time_sum_);
-  a(all_idle_);
+  a(carry_);
 }
 
 std::vector<Bytes> PartLink::allgather(const Bytes& mine, const char* what) {

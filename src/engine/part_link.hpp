@@ -28,6 +28,52 @@ struct DepartDelay {
   double delay;
 };
 
+/// What a part's link carries from one step to the next besides the footprints it has to erase: a piece of
+/// its state (the link's visit_state writes the erasures, then this).
+struct PartLinkCarry {
+  // Footprints of the last insertions on lanes others hold, by part, until they are sent.
+  std::map<int, std::vector<FootprintWrite>> inserted;
+  PartStats stats;  // this part's, cumulative
+  // Part 0: each part's stats as of its last report, and the run's totals.
+  std::vector<PartStats> part_stats;
+  RunCounts counts;
+  std::vector<TeleportEvent> teleport_events;
+  std::vector<TripRecord> finished;
+  double depart_delay_sum = 0, travel_time_sum = 0;
+  bool all_idle = false;  // no part has a vehicle on the road or waiting to be inserted
+
+  template <class A>
+  void visit_state(A& a) {
+    auto n = static_cast<uint32_t>(inserted.size());
+    a(n);
+    if constexpr (A::kReads) {
+      inserted.clear();
+      for (uint32_t i = 0; i < n; ++i) {
+        int32_t part = 0;
+        a(part);
+        a(inserted[part]);
+      }
+    } else {
+      for (auto& [part, writes] : inserted) {
+        auto p = static_cast<int32_t>(part);
+        a(p);
+        a(writes);
+      }
+    }
+    a(stats);
+    a(part_stats);
+    a(counts);
+    a(teleport_events);
+    a(finished);
+    a(depart_delay_sum);
+    a(travel_time_sum);
+    a(all_idle);
+  }
+};
+
+/// The parts that hold a lane `plan`'s part holds, ascending (those it exchanges with).
+std::vector<int> part_neighbours(const PartPlan& plan);
+
 class PartLink final : public BoundaryLink {
  public:
   /// `pending_signal`: the signal this part's process received and has not acted on (0: none), reported to
@@ -53,13 +99,13 @@ class PartLink final : public BoundaryLink {
 
   int parts() const override { return plan_.parts; }
   bool leads() const override { return plan_.part == 0; }
-  bool idle() const override { return all_idle_; }
-  const RunCounts& counts() const override { return counts_; }
+  bool idle() const override { return carry_.all_idle; }
+  const RunCounts& counts() const override { return carry_.counts; }
   std::vector<TripRecord> take_finished() override;
-  const std::vector<TeleportEvent>& teleport_events() const override { return teleport_events_; }
-  double depart_delay_sum() const override { return depart_delay_sum_; }
-  double travel_time_sum() const override { return travel_time_sum_; }
-  std::vector<PartStats> part_stats() const override { return part_stats_; }
+  const std::vector<TeleportEvent>& teleport_events() const override { return carry_.teleport_events; }
+  double depart_delay_sum() const override { return carry_.depart_delay_sum; }
+  double travel_time_sum() const override { return carry_.travel_time_sum; }
+  std::vector<PartStats> part_stats() const override { return carry_.part_stats; }
   int signal() const override { return signal_; }
   const std::vector<SampleEntry>& running_vehicles(uint64_t version) override;
 
@@ -76,7 +122,7 @@ class PartLink final : public BoundaryLink {
   void load_state(StateIn& a, int map) override { visit_state(a, map); }
 
  private:
-  /// One round with the transport, timed and counted in stats_ (exchange: a round of the step; else a
+  /// One round with the transport, timed and counted in carry_.stats (exchange: a round of the step; else a
   /// request or a gather for the outputs).
   std::vector<Bytes> round(const std::vector<int>& to, const std::vector<Bytes>& send,
                            const std::vector<int>& from, const char* what, bool exchange);
@@ -100,23 +146,14 @@ class PartLink final : public BoundaryLink {
   // Per lane: 1 where this part alone holds it (it owns it then), so a vehicle all on such lanes concerns no
   // other part.
   std::vector<uint8_t> alone_;
-  // Footprints of the last insertions on lanes others hold, by part, until they are sent.
-  std::map<int, std::vector<FootprintWrite>> inserted_;
+  PartLinkCarry carry_;
 
   // Handed on within a step.
   std::vector<TeleportHandOver> teleports_;  // this step's teleports, whoever owns their re-entry edge
   std::vector<uint32_t> adopted_;            // slots taken by vehicles that drove in from other parts
   std::vector<DepartDelay> departures_;      // the step's insertions
 
-  PartStats stats_;  // this part's, cumulative
-  // Part 0: the run's totals, and each part's stats as of its last report.
-  std::vector<PartStats> part_stats_;
-  RunCounts counts_;
-  std::vector<TeleportEvent> teleport_events_;
-  std::vector<TripRecord> finished_;
-  double depart_delay_sum_ = 0, travel_time_sum_ = 0;
-  bool all_idle_ = false;  // no part has a vehicle on the road or waiting to be inserted
-  int signal_ = 0;         // the first signal a part reported
+  int signal_ = 0;  // the first signal a part reported
 };
 
 }  // namespace lpsim

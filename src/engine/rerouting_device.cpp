@@ -29,9 +29,9 @@ ReroutingDevice::ReroutingDevice(const Network& net, const ReroutingOptions& o, 
       step_ms_(step_ms),
       router_(net, o.minor_penalty, RandomWeights{o.random_factor, seed ^ kSeedRandomWeights}),
       speeds_(net, o.adaptation_steps, o.adaptation_weight),
-      lanes_(net.num_lanes()),
-      next_due_(first_due),
-      routed_at_(trips, 0) {
+      lanes_(net.num_lanes()) {
+  carry_.next_due = first_due;
+  carry_.routed_at.assign(trips, 0);
   if (o.contraction_hierarchy) hierarchy_ = std::make_unique<CchRouter>(net);
 }
 
@@ -81,7 +81,7 @@ std::vector<NewRoute> ReroutingDevice::reroute(int64_t end_ms, const RerouteScop
     requests.push_back(std::move(q));
     who.push_back(v);
     kept.push_back(keep_edge);
-    routed_at_[v] = sample;
+    carry_.routed_at[v] = sample;
   };
   auto holds_queue_of = [&](uint32_t edge) {
     return scope.link.queues_at(edge) && books.queues.has_lanes(edge);
@@ -89,25 +89,25 @@ std::vector<NewRoute> ReroutingDevice::reroute(int64_t end_ms, const RerouteScop
 
   // Due to depart in this step: routed when due (a trip's loaded route is the one free-flow times give,
   // so before the first sample only equipped vehicles re-route).
-  while (next_due_ < books.schedule.loaded && seconds_to_ms(d.depart[next_due_]) <= end_ms) {
-    const uint32_t v = next_due_++;
+  while (carry_.next_due < books.schedule.loaded && seconds_to_ms(d.depart[carry_.next_due]) <= end_ms) {
+    const uint32_t v = carry_.next_due++;
     if (d.rerouting[v] == 0 || d.route_length[v] == 0) continue;
     if (!holds_queue_of(d.route_edges[d.route_begin[v]])) continue;
     if (sample > 0 || (d.rerouting[v] & kRerouteEquipped)) ask(v, 0, ~0u, true);
-    if (options_.pre_period_ms > 0) waiting_.emplace_back(end_ms + options_.pre_period_ms, v);
+    if (options_.pre_period_ms > 0) carry_.waiting.emplace_back(end_ms + options_.pre_period_ms, v);
   }
   // Waiting to be inserted since a pre-period or more.
   size_t kept_waiting = 0;
-  for (auto& [when, v] : waiting_) {
+  for (auto& [when, v] : carry_.waiting) {
     if (books.ledger.status(v) != kPending || books.ledger.departure(v).lane >= 0)
       continue;  // departed, or dropped
     if (when <= end_ms) {
-      if (routed_at_[v] < sample) ask(v, 0, ~0u, true);
+      if (carry_.routed_at[v] < sample) ask(v, 0, ~0u, true);
       when += options_.pre_period_ms;
     }
-    waiting_[kept_waiting++] = {when, v};
+    carry_.waiting[kept_waiting++] = {when, v};
   }
-  waiting_.resize(kept_waiting);
+  carry_.waiting.resize(kept_waiting);
   // Equipped vehicles on the road, every period from their departure.
   if (options_.period_ms > 0) {
     const HostState& s = road().state();
@@ -115,7 +115,8 @@ std::vector<NewRoute> ReroutingDevice::reroute(int64_t end_ms, const RerouteScop
       const uint32_t k = s.active[i];
       if (s.veh.status[k] != kRunning) continue;
       const uint32_t v = s.veh.vehicle[k];
-      if (v >= d.rerouting.size() || !(d.rerouting[v] & kRerouteWhileDriving) || routed_at_[v] >= sample)
+      if (v >= d.rerouting.size() || !(d.rerouting[v] & kRerouteWhileDriving) ||
+          carry_.routed_at[v] >= sample)
         continue;
       const int64_t departed =
           std::llround(books.ledger.departure(v).time / (static_cast<double>(step_ms_) / 1000.0)) * step_ms_;
@@ -131,15 +132,15 @@ std::vector<NewRoute> ReroutingDevice::reroute(int64_t end_ms, const RerouteScop
 
   std::vector<NewRoute> mine;
   if (!requests.empty()) {
-    if (router_sample_ != sample || router_stale_) {
+    if (carry_.router_sample != sample || router_stale_) {
       router_.set_speeds(speeds_.speeds());
-      router_sample_ = sample;
+      carry_.router_sample = sample;
       router_stale_ = false;
     }
     const std::vector<std::vector<uint32_t>> paths = hierarchy_
                                                          ? hierarchy_->route_all(router_, requests, threads_)
                                                          : router_.route_all(requests, threads_);
-    reroutes_ += requests.size();
+    carry_.reroutes += requests.size();
     for (size_t i = 0; i < requests.size(); ++i) {
       const uint32_t v = who[i];
       NewRoute n{v, {}};
@@ -189,7 +190,7 @@ void ReroutingDevice::share(std::vector<NewRoute>& routes, BoundaryLink& link) {
           {vehicles[i], std::vector<uint32_t>(edges.begin() + static_cast<std::ptrdiff_t>(at),
                                               edges.begin() + static_cast<std::ptrdiff_t>(at + lengths[i]))});
       at += lengths[i];
-      routed_at_[vehicles[i]] = sample;
+      carry_.routed_at[vehicles[i]] = sample;
     }
   }
   std::sort(routes.begin(), routes.end(),
@@ -236,8 +237,8 @@ void ReroutingDevice::sample_speeds(const RerouteScope& scope, const HostState& 
       for (size_t i = 0; i < lanes.size(); ++i) lanes_.add(lanes[i], counts[i], speeds[i]);
     }
   }
-  departed_ = departed_ || departed;
-  if (departed_) speeds_.add_sample(lanes_);
+  carry_.departed = carry_.departed || departed;
+  if (carry_.departed) speeds_.add_sample(lanes_);
 }
 
 }  // namespace lpsim

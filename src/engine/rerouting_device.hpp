@@ -12,6 +12,7 @@
 #include "engine/boundary_link.hpp"
 #include "engine/host_books.hpp"
 #include "engine/routing_speeds.hpp"
+#include "engine/state_archive.hpp"
 #include "engine/vehicle_query.hpp"
 #include "net/cch_router.hpp"
 #include "net/router.hpp"
@@ -49,6 +50,28 @@ struct RerouteScope {
   BoundaryLink& link;
 };
 
+/// What the rerouting device carries from one step to the next besides its speeds: a piece of its state.
+struct ReroutingCarry {
+  uint32_t next_due = 0;  // loaded vehicles (by depart) before this one were routed when due
+  // Equipped vehicles this part queued to depart, with the time of their next re-routing while they wait.
+  std::vector<std::pair<int64_t, uint32_t>> waiting;
+  // Per vehicle: the speeds' sample count it was last routed on (SUMO re-routes only on new speeds).
+  std::vector<uint64_t> routed_at;
+  uint64_t router_sample = 0;  // the sample the router's costs were set from (0: free-flow times)
+  bool departed = false;       // some vehicle has departed (SUMO samples only from then on)
+  uint64_t reroutes = 0;       // routes computed
+
+  template <class A>
+  void visit_state(A& a) {
+    a(next_due);
+    a(waiting);
+    a(routed_at);
+    a(router_sample);
+    a(departed);
+    a(reroutes);
+  }
+};
+
 class ReroutingDevice {
  public:
   /// For a run of `trips` trips that starts at begin_ms with steps of step_ms, the trips before `first_due`
@@ -69,14 +92,22 @@ class ReroutingDevice {
 
   template <class A>
   void visit_state(A& a) {
-    a(speeds_);
-    a(next_due_);
-    a(waiting_);
-    a(routed_at_);
-    a(router_sample_);
-    a(departed_);
-    a(reroutes_);
-    if constexpr (A::kReads) router_stale_ = router_sample_ != 0;
+    // The speeds are the same in every part of a partitioned run: a section of their own, which a state
+    // re-cut for other parts takes whole.
+    std::vector<uint8_t> speeds;
+    if constexpr (!A::kReads) {
+      StateOut s;
+      s(speeds_);
+      speeds = std::move(s.bytes());
+    }
+    a.raw(speeds);
+    if constexpr (A::kReads) {
+      StateIn s(speeds.data(), speeds.size(), a.what());
+      s(speeds_);
+      if (!s.done()) s.fail("bytes left after the rerouting device's speeds");
+    }
+    a(carry_);
+    if constexpr (A::kReads) router_stale_ = carry_.router_sample != 0;
   }
 
  private:
@@ -88,15 +119,8 @@ class ReroutingDevice {
   Router router_;                         // on `speeds_` once a sample was taken, on free-flow times before
   std::unique_ptr<CchRouter> hierarchy_;  // with contraction_hierarchy: ordered and contracted once
   RoutingSpeeds speeds_;
-  LaneSpeedSums lanes_;    // the sample's scratch
-  uint32_t next_due_ = 0;  // loaded vehicles (by depart) before this one were routed when due
-  // Equipped vehicles this part queued to depart, with the time of their next re-routing while they wait.
-  std::vector<std::pair<int64_t, uint32_t>> waiting_;
-  // Per vehicle: the speeds' sample count it was last routed on (SUMO re-routes only on new speeds).
-  std::vector<uint64_t> routed_at_;
-  uint64_t router_sample_ = 0;  // the sample the router's costs were set from (0: free-flow times)
-  bool departed_ = false;       // some vehicle has departed (SUMO samples only from then on)
-  uint64_t reroutes_ = 0;       // routes computed
+  LaneSpeedSums lanes_;  // the sample's scratch
+  ReroutingCarry carry_;
   // The router's costs are not part of a saved state: one loaded with router_sample_ > 0 takes the speeds
   // of that sample anew before it next routes.
   bool router_stale_ = false;

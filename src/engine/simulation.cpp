@@ -7,12 +7,13 @@
 #include <optional>
 #include <stdexcept>
 
-#include "core/fnv_hash.hpp"
 #include "core/time_range.hpp"
 #include "demand/trip_routes.hpp"
 #include "engine/outside_link.hpp"
 #include "engine/part_link.hpp"
+#include "engine/saved_state.hpp"
 #include "engine/state_archive.hpp"
+#include "engine/state_recut.hpp"
 #include "kernels/idm.hpp"
 #include "kernels/insert_vehicle.hpp"
 #include "kernels/vehicle_step.hpp"
@@ -758,55 +759,72 @@ std::vector<TripRecord> Simulation::take_finished_trips() { return link_->take_f
 
 const std::vector<TeleportEvent>& Simulation::teleport_events() const { return link_->teleport_events(); }
 
-// What a step reads that an earlier one wrote: the clock, the books, the routes as rerouting left them, the
-// lane counters drained so far, the rerouting device's speeds, what the boundary link carries, and the
-// backend's own state.
+// What a step reads that an earlier one wrote: the clock, and as sections of their own (SavedPartState) the
+// books, the routes as rerouting left them, the lane counters drained so far, the rerouting device, what the
+// boundary link carries, and the backend's own state.
 template <class A>
 void Simulation::visit_state(A& a, std::vector<uint8_t>& backend) {
   if (opt_.outside_lanes) throw std::runtime_error("a co-simulation has no saved state yet");
-  a(time_ms_);
-  a(step_);
-  a(cur_);
-  a(books_);
-  trips_.visit_routes(a);
-  a(lane_counters_);
-  uint8_t rerouting = reroute_ ? 1 : 0;
-  a(rerouting);
-  if (rerouting != (reroute_ ? 1 : 0)) a.fail("the state's rerouting device does not match this run's");
-  if (reroute_) a(*reroute_);
-  if constexpr (A::kReads)
-    link_->load_state(a, cur_);
-  else
-    link_->save_state(a, cur_);
-  a.raw(backend);
+  SavedPartState saved;
+  if constexpr (A::kReads) {
+    a(saved);
+    time_ms_ = saved.time_ms;
+    step_ = saved.step;
+    cur_ = saved.map;
+    if (cur_ != 0 && cur_ != 1) a.fail("no lane map " + std::to_string(cur_));
+  } else {
+    saved.time_ms = time_ms_;
+    saved.step = step_;
+    saved.map = cur_;
+  }
+  // f(archive) on section k: writing it, or reading it whole.
+  auto section = [&](StateSection k, auto&& f) {
+    std::vector<uint8_t>& bytes = saved.sections[k];
+    if constexpr (A::kReads) {
+      StateIn in(bytes.data(), bytes.size(), a.what());
+      f(in);
+      if (!in.done()) in.fail("bytes left after a section's last field");
+    } else {
+      StateOut out;
+      f(out);
+      bytes = std::move(out.bytes());
+    }
+  };
+  section(kSectionBooks, [&](auto& s) { s(books_); });
+  section(kSectionRoutes, [&](auto& s) { trips_.visit_routes(s); });
+  section(kSectionLaneCounters, [&](auto& s) { s(lane_counters_); });
+  section(kSectionRerouting, [&](auto& s) {
+    uint8_t rerouting = reroute_ ? 1 : 0;
+    s(rerouting);
+    if (rerouting != (reroute_ ? 1 : 0)) s.fail("the state's rerouting device does not match this run's");
+    if (reroute_) s(*reroute_);
+  });
+  section(kSectionLink, [&](auto& s) {
+    if constexpr (A::kReads)
+      link_->load_state(s, cur_);
+    else
+      link_->save_state(s, cur_);
+  });
+  if constexpr (A::kReads) {
+    backend = std::move(saved.sections[kSectionBackend]);
+  } else {
+    saved.sections[kSectionBackend] = std::move(backend);
+    a(saved);
+  }
 }
 
-namespace {
-
-// Which part owns each lane, hashed: a partitioned run's state resumes only in the same parts.
-uint64_t partition_digest(const PartPlan* plan) {
-  if (plan == nullptr) return 0;
-  Fnv h;
-  h.bytes(plan->lane_owner.data(), plan->lane_owner.size() * sizeof(int32_t));
-  return h.get();
-}
-
-}  // namespace
-
-// The parts' count and partition, then every part's own state in part order (part 0 gathers them).
+// The parts' partition, then every part's own state in part order (part 0 gathers them).
 std::vector<uint8_t> Simulation::save_state() {
   link_->request(kRequestSaveState);
   std::vector<uint8_t> backend = stepper_->save_state(books_.slots.size());
   StateOut own;
   visit_state(own, backend);
-  const std::vector<Bytes> all = link_->gather(own.bytes(), "state");
-  if (all.empty()) return {};
+  SavedState saved;
+  saved.parts = link_->gather(own.bytes(), "state");
+  if (saved.parts.empty()) return {};
+  if (opt_.part != nullptr) saved.edge_part = opt_.part->edge_owner;
   StateOut a;
-  auto parts = static_cast<uint32_t>(all.size());
-  uint64_t partition = partition_digest(opt_.part);
-  a(parts);
-  a(partition);
-  for (const Bytes& b : all) a.raw(b);
+  a(saved);
   return std::move(a.bytes());
 }
 
@@ -814,23 +832,30 @@ void Simulation::load_state(const std::vector<uint8_t>& state, const std::string
   std::vector<Bytes> each;
   if (link_->leads()) {
     StateIn a(state.data(), state.size(), what);
-    uint32_t parts = 0;
-    uint64_t partition = 0;
-    a(parts);
-    a(partition);
-    const auto here = static_cast<uint32_t>(link_->parts());
-    // Refused as a whole, not at a byte: the state is sound, only its parts differ.
-    if (parts != here)
-      throw std::runtime_error("saved by a run of " + std::to_string(parts) + " part" +
-                               (parts == 1 ? "" : "s") + ", resumed in " + std::to_string(here) +
-                               ": a state resumes in the parts that saved it (--parts, --partition-file)");
-    if (partition != partition_digest(opt_.part))
-      throw std::runtime_error(
-          "saved by a run of another partition of the network: a state resumes in the parts that saved it "
-          "(--parts, --partition-file)");
-    each.resize(parts);
-    for (Bytes& b : each) a.raw(b);
+    SavedState saved;
+    a(saved);
     if (!a.done()) a.fail("bytes left after the last part's state");
+    // Saved in other parts, or in another partition: re-cut for these.
+    const auto here = static_cast<int32_t>(link_->parts());
+    const bool same_parts = saved.parts.size() == static_cast<size_t>(here) &&
+                            (opt_.part ? saved.edge_part == opt_.part->edge_owner : saved.edge_part.empty());
+    if (!same_parts) {
+      const Demand& d = trips_.demand();
+      double longest = 0;
+      for (const float l : d.types.length) longest = std::max(longest, static_cast<double>(l));
+      std::vector<PartPlan> plans;
+      if (opt_.part) plans = part_plans(net_, opt_.part->edge_owner, here, longest);
+      try {
+        saved = recut_state(saved, RecutScope{net_, d, longest}, plans);
+      } catch (const std::runtime_error& e) {
+        throw std::runtime_error(
+            "saved by a run of " + std::to_string(saved.parts.size()) + " part" +
+            (saved.parts.size() == 1 ? "" : "s") +
+            (saved.parts.size() == static_cast<size_t>(here) ? " in another partition" : "") +
+            ", resumed in " + std::to_string(here) + ": " + e.what());
+      }
+    }
+    each = std::move(saved.parts);
     link_->request(kRequestLoadState);
   }
   const Bytes mine = link_->scatter(each, "state");

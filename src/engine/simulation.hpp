@@ -152,9 +152,9 @@ class Simulation {
   /// Checkpoints, between steps: the run's whole state as bytes (versioned and checked by the caller), and
   /// back into a Simulation made from the same scenario and options, which then steps on exactly as the
   /// saved one would have, on either backend. In a partitioned run both are collective calls: part 0 gathers
-  /// every part's state (the others return nothing) and hands each part its own back, in the same parts
-  /// only. std::runtime_error for what has no saved state yet (a co-simulation) and, naming `what`, for a
-  /// state that does not fit this run.
+  /// every part's state (the others return nothing) and hands each part its own back, re-cut for them when
+  /// other parts saved it (state_recut.hpp). std::runtime_error for what has no saved state yet (a
+  /// co-simulation) and, naming `what`, for a state that does not fit this run.
   std::vector<uint8_t> save_state();
   void load_state(const std::vector<uint8_t>& state, const std::string& what);
 

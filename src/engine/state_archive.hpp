@@ -164,6 +164,7 @@ class StateIn {
   void raw(std::vector<uint8_t>& b) { (*this)(b); }
 
   bool done() const { return at_ == size_; }
+  const std::string& what() const { return what_; }
   [[noreturn]] void fail(const std::string& why) const {
     throw std::runtime_error(what_ + ": " + why + " at byte " + std::to_string(at_));
   }

@@ -25,6 +25,26 @@ void TripLedger::departed(uint32_t v, double now, double depart_due, const SlotI
   depart_speed_[v] = init.speed;
 }
 
+void TripLedger::copy_trip(const TripLedger& from, uint32_t v) {
+  status_[v] = from.status_[v];
+  resume_rp_[v] = from.resume_rp_[v];
+  resume_speed_[v] = from.resume_speed_[v];
+  resume_lane_[v] = from.resume_lane_[v];
+  resume_pos_[v] = from.resume_pos_[v];
+  if (const TripCounters* c = from.carried(v))
+    carried_[v] = *c;
+  else
+    carried_.erase(v);
+  set_departure(v, from.departure(v));
+}
+
+void TripLedger::set_totals(double depart_delay_sum, double travel_time_sum,
+                            std::vector<TripRecord> finished) {
+  depart_delay_sum_ = depart_delay_sum;
+  travel_time_sum_ = travel_time_sum;
+  finished_ = std::move(finished);
+}
+
 void TripLedger::set_departure(uint32_t v, const DepartRecord& d) {
   depart_time_[v] = d.time;
   depart_pos_[v] = d.pos;
@@ -60,6 +80,8 @@ void TripLedger::handed_back(uint32_t v, uint32_t rp, int32_t lane, float pos_le
 uint32_t TripLedger::reentering(SlotInit& init) {
   const auto c = carried_.find(init.vehicle);
   if (c == carried_.end()) throw std::logic_error("a vehicle re-enters that did not teleport");
+  // On the road again: a part it leaves would otherwise still report it as teleporting (an unfinished trip).
+  status_[init.vehicle] = kPending;
   init.route_length = c->second.route_length + (resume_pos_[init.vehicle] >= 0 ? init.pos : 0.0f);
   init.time_loss = c->second.time_loss;
   init.waiting_steps = c->second.waiting_steps;

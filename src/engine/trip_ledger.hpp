@@ -83,6 +83,15 @@ class TripLedger {
   double depart_delay_sum() const { return depart_delay_sum_; }
   double travel_time_sum() const { return travel_time_sum_; }
 
+  // --- A partitioned run's state re-cut for other parts (state_recut.hpp). ---
+  /// Trips [0, size()).
+  uint32_t size() const { return static_cast<uint32_t>(status_.size()); }
+  /// Trip v's whole account (status, re-entry, carried counters, departure) as `from` has it.
+  void copy_trip(const TripLedger& from, uint32_t v);
+  /// The sums and the records of ended trips not yet taken, as a run's totals.
+  void set_totals(double depart_delay_sum, double travel_time_sum, std::vector<TripRecord> finished);
+  const std::vector<TripRecord>& finished() const { return finished_; }
+
   template <class A>
   void visit_state(A& a) {
     // Per trip, mostly the values of trips not departed yet (zero, but the positions' and lanes' -1).

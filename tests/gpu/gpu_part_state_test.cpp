@@ -1,7 +1,7 @@
 // Checkpoints of a partitioned run on the CUDA backend (`lpsim run --device gpu --parts 3`): its parts'
-// states resume on the CPU, a CPU run's on the device, and either way every output is byte for byte that of
-// the run never stopped in one part on the CPU. Skipped without a usable GPU; the emulated suite runs it
-// always.
+// states resume on the CPU, a CPU run's on the device, in the same parts or re-cut for others, and either way
+// every output is byte for byte that of the run never stopped in one part on the CPU. Skipped without a
+// usable GPU; the emulated suite runs it always.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -47,10 +47,17 @@ TEST_P(GpuPartStateTest, APartitionedStateMovesBetweenTheDeviceAndTheCpu) {
   test::TempDir tmp("lpsim_gpu_part_state");
   const test::CliResult whole = run(tmp.path() / "whole", name, {});
   ASSERT_EQ(whole.exit_code, 0) << whole.err;
-  for (const auto& [from, to] : {std::pair<std::string, std::string>{"gpu", "cpu"}, {"cpu", "gpu"}}) {
-    const fs::path dir = tmp.path() / (from + "_to_" + to);
-    const std::vector<std::string> parts{"--parts", "3", "--parts.min-vehicles", "0"};
-    std::vector<std::string> saving = parts, resuming = parts;
+  // Saved in 3 parts; resumed in the same, or re-cut for 2 parts or one.
+  struct Move {
+    std::string from, to, parts;
+  };
+  for (const Move& m :
+       {Move{"gpu", "cpu", "3"}, Move{"cpu", "gpu", "3"}, Move{"gpu", "cpu", "2"}, Move{"cpu", "gpu", "1"}}) {
+    const std::string& from = m.from;
+    const std::string& to = m.to;
+    const fs::path dir = tmp.path() / (from + "_to_" + to + "_in_" + m.parts);
+    std::vector<std::string> saving{"--parts", "3", "--parts.min-vehicles", "0"},
+        resuming{"--parts", m.parts, "--parts.min-vehicles", "0"};
     saving.insert(saving.end(), {"--device", from, "--save-state.times", "311"});
     resuming.insert(resuming.end(), {"--device", to, "--load-state", "state_311.00.lpstate"});
     const test::CliResult saved = run(dir, name, saving);
@@ -59,7 +66,8 @@ TEST_P(GpuPartStateTest, APartitionedStateMovesBetweenTheDeviceAndTheCpu) {
     ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
     for (const std::string& f : kOutputs)
       EXPECT_TRUE(test::read_file(tmp.path() / "whole" / f) == test::read_file(dir / f))
-          << name << ": " << f << " differs, saved on the " << from << ", resumed on the " << to;
+          << name << ": " << f << " differs, saved on the " << from << " in 3 parts, resumed on the " << to
+          << " in " << m.parts;
   }
 }
 

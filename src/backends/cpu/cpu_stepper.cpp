@@ -4,11 +4,11 @@
 #include <cstdint>
 #include <vector>
 
+#include "backends/backend_state.hpp"
 #include "backends/cpu/parallel_for.hpp"
 #include "backends/cpu/pass_prefetch.hpp"
 #include "backends/host_columns.hpp"
 #include "backends/lane_records.hpp"
-#include "backends/state_bytes.hpp"
 #include "backends/vehicle_packing.hpp"
 #include "kernels/emission_step.hpp"
 #include "kernels/insert_vehicle.hpp"
@@ -284,8 +284,10 @@ class CpuStepper final : public Stepper {
   std::vector<uint8_t> save_state(uint32_t num_slots) override {
     StateBytesOut out;
     out.value(state_map_);
-    visit_state([&](auto& v, bool) { out.array(v); }, [&](auto* span, uint64_t n) { out.array(span, n); },
-                [&](auto* span, uint64_t n, auto usual) { out.sparse(span, n, usual); }, num_slots);
+    BackendTables<TableSpan> t = tables();
+    visit_backend_tables(t, [&](auto& span, Kept kept) { put_table(out, span.data, span.size, kept); });
+    visit_vehicle_columns([&](uint32_t per, auto*& c) { out.array(c, uint64_t{num_slots} * per); },
+                          veh_.view());
     return std::move(out.bytes());
   }
 
@@ -295,9 +297,15 @@ class CpuStepper final : public Stepper {
     if (state_map_ != 0 && state_map_ != 1)
       throw std::runtime_error("backend state: no lane map " + std::to_string(state_map_));
     if (num_slots > 0) veh_.reserve(num_slots, false);
-    visit_state([&](auto& v, bool fixed) { in.array(v, fixed); },
-                [&](auto* span, uint64_t n) { in.array(span, n); },
-                [&](auto* span, uint64_t n, auto usual) { in.sparse(span, n, usual); }, num_slots);
+    BackendTables<TableSpan> t = tables();
+    visit_backend_tables(t, [&](auto& span, Kept kept) {
+      if (kept == Kept::kActive)
+        get_table(in, active_, kept);  // of the saved length
+      else
+        get_table(in, span.data, span.size, kept);
+    });
+    visit_vehicle_columns([&](uint32_t per, auto*& c) { in.array(c, uint64_t{num_slots} * per); },
+                          veh_.view());
     if (!in.done()) throw std::runtime_error("backend state: bytes left after its last array");
     // What the state leaves out, as the next step would find it after its own clearing.
     std::fill(map_[1 - state_map_].begin(), map_[1 - state_map_].end(), uint8_t{0});
@@ -313,27 +321,24 @@ class CpuStepper final : public Stepper {
     std::fill(merge_requests_.begin(), merge_requests_.end(), 0);
   }
 
-  // The run state (save_state), after state_map_: each table with whether its length is fixed by the setup,
-  // each vehicle column's entries of the first `num_slots` slots, and as mostly zeros the current lane map,
-  // the lane records (where counters_ aligns them) and the emission sums, and as mostly kNoJunctionStand the
-  // current junction stands.
-  // Everything else a step writes before it reads it: the other lane map and junction stands are cleared of
-  // what they held (the footprints and stands of one step before) before the step writes them; the claims
-  // and merge requests, and the approaches, count only in the step that wrote them (the step in their key).
-  template <class Table, class Span, class Sparse>
-  void visit_state(Table&& table, Span&& span, Sparse&& sparse, uint32_t num_slots) {
-    sparse(map_[state_map_].data(), map_[state_map_].size(), uint8_t{0});
-    table(link_state_, true);
-    table(signal_next_switch_ms_, true);
-    table(actuated_phase_, true);
-    table(actuated_start_ms_, true);
-    table(det_last_ms_, true);
-    if (lane_records_ != nullptr)
-      sparse(lane_records_, uint64_t{kNumTrafficCounters} * setup_.net.num_lanes, int64_t{0});
-    sparse(emission_sums_.data(), emission_sums_.size(), int64_t{0});
-    sparse(junction_stand_[state_map_].data(), junction_stand_[state_map_].size(), kNoJunctionStand);
-    table(active_, false);
-    visit_vehicle_columns([&](uint32_t per, auto*& c) { span(c, uint64_t{num_slots} * per); }, veh_.view());
+  template <class T>
+  static TableSpan<T> span_of(std::vector<T>& v) {
+    return TableSpan<T>{v.data(), v.size()};
+  }
+  // The run state's tables (backend_state.hpp), of the lane map the state is in.
+  BackendTables<TableSpan> tables() {
+    const uint64_t nl = setup_.net.num_lanes;
+    return BackendTables<TableSpan>{
+        span_of(map_[state_map_]),
+        span_of(link_state_),
+        span_of(signal_next_switch_ms_),
+        span_of(actuated_phase_),
+        span_of(actuated_start_ms_),
+        span_of(det_last_ms_),
+        TableSpan<int64_t>{lane_records_, lane_records_ != nullptr ? kNumTrafficCounters * nl : 0},
+        span_of(emission_sums_),
+        span_of(junction_stand_[state_map_]),
+        span_of(active_)};
   }
 
   // Adds `n` columns of num_lanes kept in `from` (none when it is empty) to `columns` and zeroes them.

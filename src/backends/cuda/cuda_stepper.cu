@@ -32,23 +32,15 @@
 #include <type_traits>
 #include <vector>
 
+#include "backends/backend_state.hpp"
 #include "backends/cuda/cuda_stepper.hpp"
 #include "backends/host_columns.hpp"
 #include "backends/lane_records.hpp"
-#include "backends/state_bytes.hpp"
 #include "kernels/cuda_kernels.cuh"
 
 namespace lpsim {
 
 namespace {
-
-// A value whose bytes are all ones (a lane's "none", ~0, in a table saved as mostly that).
-template <class T>
-T all_ones() {
-  T v;
-  std::memset(&v, 0xFF, sizeof v);
-  return v;
-}
 
 // Slots the device starts with, at least (grown by half again when the host hands out more). The host
 // emulation starts from one, so that every test there runs the growth.
@@ -789,21 +781,26 @@ class CudaStepper final : public Stepper {
     drain(dev_.em.sums, columns + kCountEmissionFirst, kNumEmissionSums);
   }
 
-  // The CPU backend's list of the run state, in its order and with its lengths, so that a state moves
-  // between the backends: each table copied from and to the device whole.
+  // The run state's one list (backend_state.hpp), each table copied from and to the device whole, so that a
+  // state moves between the backends.
   std::vector<uint8_t> save_state(uint32_t num_slots) override {
     LPSIM_CUDA_CHECK(cudaStreamSynchronize(nullptr));
     StateBytesOut out;
     out.value(state_map_);
-    visit_state(num_slots, [&](auto* dev, size_t n, Kept kept) {
-      using T = std::remove_pointer_t<decltype(dev)>;
-      std::vector<T> h(n);
-      copy_to_host(h.data(), dev, n);
-      if (kept == Kept::SparseOnes)
-        out.sparse(h.data(), n, all_ones<T>());
-      else
-        kept == Kept::Sparse ? out.sparse(h) : out.array(h);
+    BackendTables<TableSpan> t = tables();
+    visit_backend_tables(t, [&](auto& span, Kept kept) {
+      using T = std::remove_pointer_t<decltype(span.data)>;
+      std::vector<T> h(span.size);
+      copy_to_host(h.data(), span.data, h.size());
+      put_table(out, h.data(), h.size(), kept);
     });
+    visit_vehicle_columns(
+        [&](uint32_t per, auto*& c) {
+          std::vector<std::remove_reference_t<decltype(*c)>> h(size_t{num_slots} * per);
+          copy_to_host(h.data(), c, h.size());
+          out.array(h.data(), h.size());
+        },
+        dev_.veh);
     return std::move(out.bytes());
   }
 
@@ -814,25 +811,29 @@ class CudaStepper final : public Stepper {
     if (state_map_ != 0 && state_map_ != 1)
       throw std::runtime_error("backend state: no lane map " + std::to_string(state_map_));
     grow_slots(num_slots);
-    visit_state(num_slots, [&](auto* dev, size_t n, Kept kept) {
-      using T = std::remove_pointer_t<decltype(dev)>;
-      std::vector<T> h(n);
-      if (kept == Kept::Sparse) {
-        in.sparse(h);
-      } else if (kept == Kept::SparseOnes) {
-        in.sparse(h.data(), n, all_ones<T>());
-      } else if (kept == Kept::Active) {
-        in.array(h, false);
+    BackendTables<TableSpan> t = tables();
+    visit_backend_tables(t, [&](auto& span, Kept kept) {
+      std::vector<std::remove_pointer_t<decltype(span.data)>> h;
+      if (kept == Kept::kActive) {
+        get_table(in, h, kept);
         if (h.size() > slot_capacity_)
           throw std::runtime_error("backend state: more active slots than slots");
         num_active_ = static_cast<uint32_t>(h.size());
       } else {
-        in.array(h, true);
+        h.resize(span.size);
+        get_table(in, h.data(), h.size(), kept);
       }
-      copy_to_device(dev, h.data(), h.size());
+      copy_to_device(span.data, h.data(), h.size());
     });
+    visit_vehicle_columns(
+        [&](uint32_t per, auto*& c) {
+          std::vector<std::remove_reference_t<decltype(*c)>> h(size_t{num_slots} * per);
+          in.array(h.data(), h.size());
+          copy_to_device(c, h.data(), h.size());
+        },
+        dev_.veh);
     if (!in.done()) throw std::runtime_error("backend state: bytes left after its last array");
-    // What the state leaves out, as the next step would find it after its own clearing (visit_state).
+    // What the state leaves out, as the next step would find it after its own clearing (backend_state.hpp).
     LPSIM_CUDA_CHECK(cudaMemset(map_[1 - state_map_], 0, cells_ + kLaneMapPadding));
     if (junction_stand_[1 - state_map_] != nullptr)
       LPSIM_CUDA_CHECK(cudaMemset(junction_stand_[1 - state_map_], 0xFF, num_lanes_ * sizeof(uint32_t)));
@@ -1058,26 +1059,20 @@ class CudaStepper final : public Stepper {
     actuated_state_.det_last_ms = upload(never_detected.data(), loops);
   }
 
-  // How a table of the run state is kept (visit_state): whole, as mostly zeros, as mostly all ones (a
-  // lane's "none", ~0), or the active list, whose length is the number of active slots.
-  enum class Kept { Whole, Sparse, SparseOnes, Active };
-  // The run state in CpuStepper::visit_state's order, after state_map_: table(device pointer, length, how it
-  // is kept). Only the current lane map and junction stands: a step clears the others before it writes them.
-  template <class Table>
-  void visit_state(uint32_t num_slots, Table&& table) {
-    const size_t nl = num_lanes_, ns = signals_.num_signals;
-    table(map_[state_map_], cells_ + kLaneMapPadding, Kept::Sparse);
-    table(link_state_, size_t{num_links_}, Kept::Whole);
-    table(signal_next_switch_ms_, ns, Kept::Whole);
-    table(actuated_state_.phase, ns, Kept::Whole);
-    table(actuated_state_.phase_start_ms, ns, Kept::Whole);
-    table(actuated_state_.det_last_ms, size_t{num_loops_}, Kept::Whole);
-    if (counters_ != nullptr) table(counters_, kNumTrafficCounters * nl, Kept::Sparse);
-    table(dev_.em.sums, dev_.em.sums ? kNumEmissionSums * nl : 0, Kept::Sparse);
-    table(junction_stand_[state_map_], junction_stand_[state_map_] ? nl : 0, Kept::SparseOnes);
-    table(active_[cur_active_], size_t{num_active_}, Kept::Active);
-    visit_vehicle_columns([&](uint32_t per, auto*& c) { table(c, size_t{num_slots} * per, Kept::Whole); },
-                          dev_.veh);
+  // The run state's tables (backend_state.hpp), of the lane map the state is in.
+  BackendTables<TableSpan> tables() {
+    const uint64_t nl = num_lanes_, ns = signals_.num_signals;
+    return BackendTables<TableSpan>{
+        {map_[state_map_], cells_ + kLaneMapPadding},
+        {link_state_, num_links_},
+        {signal_next_switch_ms_, ns},
+        {actuated_state_.phase, ns},
+        {actuated_state_.phase_start_ms, ns},
+        {actuated_state_.det_last_ms, num_loops_},
+        {counters_, counters_ != nullptr ? kNumTrafficCounters * nl : 0},
+        {dev_.em.sums, dev_.em.sums != nullptr ? kNumEmissionSums * nl : 0},
+        {junction_stand_[state_map_], junction_stand_[state_map_] != nullptr ? nl : 0},
+        {active_[cur_active_], num_active_}};
   }
 
   // Adds the lane records and the departed column to `columns` (LaneCounter order) and zeroes them.
