@@ -168,7 +168,7 @@ Whole put_together(std::vector<std::unique_ptr<PartPieces>>& parts, const std::v
     for (const uint32_t entry : entries)
       if (entry & kInsertTeleported) requeued[entry & ~kInsertTeleported] = 1;
   for (uint32_t v = 0; v < trips; ++v) {
-    // The teleported status stays after the re-entry: where the trip ended since, it ended.
+    // Ended in one part: ended. Teleported: the part that queues it to re-enter.
     int h = holder[v], ended = -1, queued = -1;
     for (size_t q = 0; q < parts.size() && h < 0; ++q) {
       const uint8_t st = parts[q]->books.ledger.status(v);
@@ -314,16 +314,15 @@ std::vector<uint8_t> cut(Whole& w, const PartPieces& first_pieces, const std::ve
     if (owns_edge(e))
       for (const uint32_t entry : entries) books.queues.push_back(e, entry);
   books.ledger = w.ledger;
-  // A trip's status stays kTeleporting while it waits to re-enter and after it re-entered: only the part
-  // that queues it or runs it keeps that (the others would report it as running, unfinished).
-  std::vector<uint8_t> keeps(books.ledger.size(), 0);
-  for (const RoadVehicle* v : mine) keeps[v->vehicle] = 1;
+  // A teleported trip waiting to re-enter is teleporting only in the part that queues it (a part reports its
+  // teleporting trips as running, unfinished); the others hold it as departed.
+  std::vector<uint8_t> queued_here(books.ledger.size(), 0);
   books.queues.for_each_queue([&](uint32_t, const uint32_t* b, const uint32_t* end) {
     for (; b != end; ++b)
-      if (*b & kInsertTeleported) keeps[*b & ~kInsertTeleported] = 1;
+      if (*b & kInsertTeleported) queued_here[*b & ~kInsertTeleported] = 1;
   });
   for (uint32_t v = 0; v < books.ledger.size() && parted; ++v) {
-    if (books.ledger.status(v) != kTeleporting || keeps[v]) continue;
+    if (books.ledger.status(v) != kTeleporting || queued_here[v]) continue;
     books.ledger.set_status(v, kPending);
     books.ledger.drop_carried(v);  // the part that queues it carries its counters
   }
