@@ -36,7 +36,8 @@ constexpr int kDeflateLevel = Z_BEST_SPEED;
 uint32_t layout() {
   Fnv f;
   for (const size_t s : {sizeof(VehicleView), sizeof(TripRecord), sizeof(TripCounters), sizeof(RunCounts),
-                         sizeof(TeleportEvent), sizeof(LaneApproach), sizeof(SlotInit), sizeof(StepParams)})
+                         sizeof(TeleportEvent), sizeof(LaneApproach), sizeof(SlotInit), sizeof(StepParams),
+                         sizeof(PartStats), sizeof(FootprintWrite)})
     f.value(uint64_t{s});
   return static_cast<uint32_t>(f.get() ^ (f.get() >> 32));
 }
