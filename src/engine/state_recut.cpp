@@ -301,6 +301,9 @@ std::vector<uint8_t> cut(Whole& w, const PartPieces& first_pieces, const std::ve
   VehicleView& veh = b.vehicles.view();
   for (uint32_t k = 0; k < b.num_slots; ++k) {
     unpack_vehicle(w.packed.data() + mine[k]->packed, veh, k);
+    // Its footprint of one step ago is cleared from the other lane map, which a resumed run has cleared, and
+    // may lie on lanes this part does not hold (as when it drives in from another part: adopt_vehicles).
+    veh.old_lane[k] = -1;
     b.tables.active.push_back(k);
   }
 
