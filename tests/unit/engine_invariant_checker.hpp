@@ -53,6 +53,7 @@ struct RunStats {
   uint64_t entries_on_yellow = 0;
   uint64_t lane_changes = 0;
   uint64_t teleport_jumps = 0;  // moves explained by a teleport
+  uint64_t tail_lanes = 0;      // running vehicles seen with a tail on a lane behind their front's
   uint64_t trip_records = 0;
   float max_speed_over_new_lane = 0;  // max of speed / (limit of the lane the vehicle ends on x factor)
 };
@@ -269,6 +270,7 @@ class InvariantChecker {
       return;
     }
     const float len = net_.lane_length[static_cast<size_t>(lane)];
+    if (st == kRunning) check_tail_lanes(v, lane);
     if (!(speed >= 0.0f)) fail(v, "negative speed " + std::to_string(speed));
     if (!(pos >= -kPosTol && pos <= len + kPosTol))
       fail(v, "pos " + std::to_string(pos) + " outside lane " + lane_text(lane) + " of length " +
@@ -324,6 +326,47 @@ class InvariantChecker {
     check_path(v, old_lane, lane);
   }
 
+  /// Edge `up` is edge `down`, or leads into it along one hop of a connection (from lane to internal lane,
+  /// internal lane to lane, or lane to lane).
+  bool one_hop_upstream(uint32_t up, uint32_t down) {
+    if (up == down) return true;
+    if (hops_.empty()) {
+      auto hop = [&](uint32_t a, uint32_t b) { hops_.push_back(uint64_t{a} << 32 | b); };
+      for (uint32_t c = 0; c < net_.num_connections(); ++c) {
+        const uint32_t from = net_.lane_edge[net_.conn_from_lane[c]];
+        const uint32_t to = net_.lane_edge[net_.conn_to_lane[c]];
+        hop(from, to);
+        if (net_.conn_via_lane[c] >= 0) {
+          const uint32_t via = net_.lane_edge[static_cast<uint32_t>(net_.conn_via_lane[c])];
+          hop(from, via);
+          hop(via, to);
+        }
+      }
+      std::sort(hops_.begin(), hops_.end());
+    }
+    return std::binary_search(hops_.begin(), hops_.end(), uint64_t{up} << 32 | down);
+  }
+
+  // A running vehicle's tail lanes (prev, prev2), which its footprint covers where it reaches back, each lie
+  // on the edge of the lane ahead of it or one connection hop upstream of it (after a lane change the tail
+  // may stay behind the lane beside the new one).
+  void check_tail_lanes(uint32_t v, int32_t lane) {
+    const VehicleQuery q = sim_.query();
+    const HostState& s = q.state();
+    const int32_t k = q.slot(v);
+    const int32_t prev = s.veh.prev[k], prev2 = s.veh.prev2[k];
+    if (prev < 0) {
+      if (prev2 >= 0) fail(v, "a second tail lane " + lane_text(prev2) + " without a first");
+      return;
+    }
+    ++stats_.tail_lanes;
+    auto edge = [&](int32_t l) { return net_.lane_edge[static_cast<size_t>(l)]; };
+    if (!one_hop_upstream(edge(prev), edge(lane)))
+      fail(v, "tail lane " + lane_text(prev) + " is not one hop behind " + lane_text(lane));
+    if (prev2 >= 0 && !one_hop_upstream(edge(prev2), edge(prev)))
+      fail(v, "tail lane " + lane_text(prev2) + " is not one hop behind " + lane_text(prev));
+  }
+
   // The lanes driven this step, found by searching the connections (the engine's tail lanes prev/prev2
   // are not exposed, and an arriving vehicle's are not updated; the lane-map check covers the footprint).
   // Every hop must follow a connection, and every normal lane end crossed must not have been red.
@@ -368,6 +411,7 @@ class InvariantChecker {
   std::vector<float> pos_, speed_;
   std::vector<uint32_t> active_before_;
   std::vector<uint8_t> seen_trip_;
+  std::vector<uint64_t> hops_;  // edge pairs (up << 32 | down) one connection hop apart, ascending
   std::vector<TripRecord> trips_;
   Simulation::Counts counts_before_;
   RunStats stats_;

@@ -19,6 +19,7 @@ TEST(EngineInvariantsTest, GridTlsEveryStep) {
   EXPECT_GT(r.stats.signalised_entries, 1000u);
   EXPECT_EQ(r.stats.signalised_entries, r.stats.junction_entries);
   EXPECT_GT(r.stats.lane_changes, 0u);
+  EXPECT_GT(r.stats.tail_lanes, 1000u);  // vehicles crossing junctions, their tails checked
 }
 
 TEST(EngineInvariantsTest, RandomNetEveryStep) {
