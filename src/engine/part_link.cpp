@@ -102,6 +102,10 @@ PartLink::PartLink(const LinkScope& run, const PartPlan& plan, Transport& transp
   for (const uint32_t l : plan.shared_lanes)
     if (plan.lane_owner[l] == plan.part) owned_shared_.push_back(l);
   neighbours_ = part_neighbours(plan);
+  neighbour_at_.assign(static_cast<size_t>(plan.parts), -1);
+  for (size_t n = 0; n < neighbours_.size(); ++n)
+    neighbour_at_[static_cast<size_t>(neighbours_[n])] = static_cast<int32_t>(n);
+  footprints_out_.resize(neighbours_.size());
   // An actuated signal's owner sends its state to every part holding a lane one of its links leaves.
   std::vector<std::vector<uint8_t>> reads(net.num_signals());
   for (uint32_t c = 0; c < net.num_connections(); ++c) {
@@ -244,7 +248,7 @@ void PartLink::after_end_of_step(int map) {
   const PartPlan& plan = plan_;
   const NetView net = run_.engine_net.view(run_.net);
   TripLedger& ledger = run_.books.ledger;
-  std::map<int, std::vector<FootprintWrite>> writes;
+  for (std::vector<FootprintWrite>& w : footprints_out_) w.clear();
   std::map<int, Bytes> migrants;
   std::map<int, std::vector<uint32_t>> migrant_ids;
   std::map<int, std::vector<DepartRecord>> migrant_departures;
@@ -256,7 +260,8 @@ void PartLink::after_end_of_step(int map) {
       return false;
     const uint8_t value = encode_cell_speed(st.veh.speed[k]);
     for_each_other_holder(plan, net, fp, len, [&](int p) {
-      writes[p].push_back(FootprintWrite{fp, len, value});
+      footprints_out_[static_cast<size_t>(neighbour_at_[static_cast<size_t>(p)])].push_back(
+          FootprintWrite{fp, len, value});
     });
     const int32_t owner = plan.lane_owner[static_cast<uint32_t>(fp.lane)];
     if (owner == plan.part) return false;
@@ -277,9 +282,16 @@ void PartLink::after_end_of_step(int map) {
   teleports_.clear();
 
   Outbox out(neighbours_);
-  for (const int p : neighbours_) {
-    ByteWriter w(out.to(p));
-    w.put_array(writes[p]);
+  for (size_t n = 0; n < neighbours_.size(); ++n) {
+    const int p = neighbours_[n];
+    const std::vector<FootprintWrite>& writes = footprints_out_[n];
+    Bytes& bytes = out.to(p);
+    // Sized at once: the footprints are most of it, tens of kilobytes a step on a congested cut.
+    bytes.reserve(5 * sizeof(uint64_t) + writes.size() * sizeof(FootprintWrite) +
+                  migrant_ids[p].size() * (sizeof(uint32_t) + sizeof(DepartRecord)) + migrants[p].size() +
+                  teleports_out[p].size() * sizeof(TeleportHandOver));
+    ByteWriter w(bytes);
+    w.put_array(writes);
     w.put_array(migrant_ids[p]);
     w.put_array(migrant_departures[p]);
     w.put_array(migrants[p]);

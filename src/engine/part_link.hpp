@@ -133,7 +133,8 @@ class PartLink final : public BoundaryLink {
   const PartPlan& plan_;
   Transport& transport_;
   std::function<int()> pending_signal_;
-  std::vector<int> neighbours_;  // the parts that hold a lane this one holds, ascending
+  std::vector<int> neighbours_;        // the parts that hold a lane this one holds, ascending
+  std::vector<int32_t> neighbour_at_;  // per part: its place in neighbours_ (-1: none)
   // The actuated signals this part runs that others read, and the parts that read them; the parts whose
   // signals this one reads.
   std::vector<uint32_t> signals_sent_;
@@ -152,6 +153,8 @@ class PartLink final : public BoundaryLink {
   std::vector<TeleportHandOver> teleports_;  // this step's teleports, whoever owns their re-entry edge
   std::vector<uint32_t> adopted_;            // slots taken by vehicles that drove in from other parts
   std::vector<DepartDelay> departures_;      // the step's insertions
+  // The step's footprints for each neighbour (by place in neighbours_), kept between steps with their room.
+  std::vector<std::vector<FootprintWrite>> footprints_out_;
 
   int signal_ = 0;  // the first signal a part reported
 };
