@@ -260,8 +260,14 @@ void PartLink::after_end_of_step(int map) {
       return false;
     const uint8_t value = encode_cell_speed(st.veh.speed[k]);
     for_each_other_holder(plan, net, fp, len, [&](int p) {
-      footprints_out_[static_cast<size_t>(neighbour_at_[static_cast<size_t>(p)])].push_back(
-          FootprintWrite{fp, len, value});
+      // Every other holder of a lane this part holds is a neighbour (part_neighbours), and a vehicle's
+      // footprint lies on lanes its part holds (its ghosts reach a vehicle length behind its lanes).
+      const int32_t at = neighbour_at_[static_cast<size_t>(p)];
+      if (at < 0)
+        throw std::logic_error("vehicle " + run_.trips.demand().vehicle_id[st.veh.vehicle[k]] + " of part " +
+                               std::to_string(plan.part) + " lies on a lane of part " + std::to_string(p) +
+                               ", which is not its neighbour");
+      footprints_out_[static_cast<size_t>(at)].push_back(FootprintWrite{fp, len, value});
     });
     const int32_t owner = plan.lane_owner[static_cast<uint32_t>(fp.lane)];
     if (owner == plan.part) return false;
