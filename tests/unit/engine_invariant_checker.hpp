@@ -70,7 +70,8 @@ class InvariantChecker {
         demand_(sim.demand()),
         sim_(sim),
         lane_map_every_(lane_map_every),
-        limit_on_entered_lane_(limit_on_entered_lane) {
+        limit_on_entered_lane_(limit_on_entered_lane),
+        hops_(connection_hops(sc.network)) {
     grow();
     check_counts();
     check_lane_map();
@@ -328,23 +329,25 @@ class InvariantChecker {
 
   /// Edge `up` is edge `down`, or leads into it along one hop of a connection (from lane to internal lane,
   /// internal lane to lane, or lane to lane).
-  bool one_hop_upstream(uint32_t up, uint32_t down) {
-    if (up == down) return true;
-    if (hops_.empty()) {
-      auto hop = [&](uint32_t a, uint32_t b) { hops_.push_back(uint64_t{a} << 32 | b); };
-      for (uint32_t c = 0; c < net_.num_connections(); ++c) {
-        const uint32_t from = net_.lane_edge[net_.conn_from_lane[c]];
-        const uint32_t to = net_.lane_edge[net_.conn_to_lane[c]];
-        hop(from, to);
-        if (net_.conn_via_lane[c] >= 0) {
-          const uint32_t via = net_.lane_edge[static_cast<uint32_t>(net_.conn_via_lane[c])];
-          hop(from, via);
-          hop(via, to);
-        }
+  bool one_hop_upstream(uint32_t up, uint32_t down) const {
+    return up == down || std::binary_search(hops_.begin(), hops_.end(), uint64_t{up} << 32 | down);
+  }
+
+  /// The edge pairs one connection hop apart, for one_hop_upstream.
+  static std::vector<uint64_t> connection_hops(const Network& net) {
+    std::vector<uint64_t> hops;
+    auto hop = [&](uint32_t a, uint32_t b) { hops.push_back(uint64_t{a} << 32 | b); };
+    for (uint32_t c = 0; c < net.num_connections(); ++c) {
+      const uint32_t from = net.lane_edge[net.conn_from_lane[c]], to = net.lane_edge[net.conn_to_lane[c]];
+      hop(from, to);
+      if (net.conn_via_lane[c] >= 0) {
+        const uint32_t via = net.lane_edge[static_cast<uint32_t>(net.conn_via_lane[c])];
+        hop(from, via);
+        hop(via, to);
       }
-      std::sort(hops_.begin(), hops_.end());
     }
-    return std::binary_search(hops_.begin(), hops_.end(), uint64_t{up} << 32 | down);
+    std::sort(hops.begin(), hops.end());
+    return hops;
   }
 
   // A running vehicle's tail lanes (prev, prev2), which its footprint covers where it reaches back, each lie
@@ -367,8 +370,8 @@ class InvariantChecker {
       fail(v, "tail lane " + lane_text(prev2) + " is not one hop behind " + lane_text(prev));
   }
 
-  // The lanes driven this step, found by searching the connections (the engine's tail lanes prev/prev2
-  // are not exposed, and an arriving vehicle's are not updated; the lane-map check covers the footprint).
+  // The lanes driven this step, found by searching the connections (the tail lanes prev/prev2 say only where
+  // the body lies, and an arriving vehicle's are not updated; the lane-map check covers the footprint).
   // Every hop must follow a connection, and every normal lane end crossed must not have been red.
   void check_path(uint32_t v, int32_t old_lane, int32_t lane) {
     const std::vector<int32_t> path = search_path(old_lane, lane);
