@@ -52,6 +52,12 @@ class Outbox {
   std::vector<Bytes> bytes_;
 };
 
+// Out of the hand-out's loop, so that the check costs it no inlining.
+[[noreturn, gnu::cold, gnu::noinline]] void not_a_neighbour(const std::string& vehicle, int part, int other) {
+  throw std::logic_error("vehicle " + vehicle + " of part " + std::to_string(part) +
+                         " lies on a lane of part " + std::to_string(other) + ", which is not its neighbour");
+}
+
 // Calls each(p), ascending, for every part p other than this one that holds a lane of footprint fp (a vehicle
 // `length` metres long).
 template <class Each>
@@ -263,10 +269,7 @@ void PartLink::after_end_of_step(int map) {
       // Every other holder of a lane this part holds is a neighbour (part_neighbours), and a vehicle's
       // footprint lies on lanes its part holds (its ghosts reach a vehicle length behind its lanes).
       const int32_t at = neighbour_at_[static_cast<size_t>(p)];
-      if (at < 0)
-        throw std::logic_error("vehicle " + run_.trips.demand().vehicle_id[st.veh.vehicle[k]] + " of part " +
-                               std::to_string(plan.part) + " lies on a lane of part " + std::to_string(p) +
-                               ", which is not its neighbour");
+      if (at < 0) not_a_neighbour(run_.trips.demand().vehicle_id[st.veh.vehicle[k]], plan.part, p);
       footprints_out_[static_cast<size_t>(at)].push_back(FootprintWrite{fp, len, value});
     });
     const int32_t owner = plan.lane_owner[static_cast<uint32_t>(fp.lane)];
